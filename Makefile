@@ -1,0 +1,29 @@
+# semgoal: `make demo` runs the whole node graph on a task, `make test` runs lint and the test suite.
+# Both set everything up first (idempotent, seconds when nothing changed).
+SHELL := /bin/bash
+.ONESHELL:
+.SHELLFLAGS := -eo pipefail -c
+.PHONY: setup demo test lint test-unit test-graph clean
+
+setup:
+	@bash tools/setup.sh
+
+demo: setup
+	@./semgoal demo $(DEMO_ARGS)
+
+lint: setup
+	@source tools/env.sh && ruff check .
+
+test: setup
+	@source tools/env.sh
+	ruff check .
+	python -m pytest $(PYTEST_ARGS)
+
+test-unit: setup
+	@source tools/env.sh && python -m pytest -m "not graph" $(PYTEST_ARGS)
+
+test-graph: setup
+	@source tools/env.sh && python -m pytest -m graph $(PYTEST_ARGS)
+
+clean:
+	rm -rf ros_ws/build ros_ws/install ros_ws/log ros_ws/.semgoal-stamp

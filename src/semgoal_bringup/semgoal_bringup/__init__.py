@@ -1,0 +1,1 @@
+"""Operator CLI, parameters and bring-up of the semgoal node graph."""

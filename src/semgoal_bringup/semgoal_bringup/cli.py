@@ -1,0 +1,36 @@
+"""The `./semgoal` dispatcher: one registry of subcommands, each living in the package it belongs to."""
+
+import importlib
+import sys
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    "run": ("semgoal_bringup.run", "what `ros2 run PKG EXE` does on a native install"),
+    "doctor": ("semgoal_bringup.doctor", "versions, workspace state and DDS settings in force"),
+    "demo": ("semgoal_bringup.demo", "start the node graph and solve a task (make demo)"),
+}
+
+
+def usage() -> str:
+    """Return the help text listing every subcommand."""
+    width = max(map(len, COMMANDS))
+    lines = ["usage: ./semgoal COMMAND [args...]", "", "commands:"]
+    lines += [f"  {name:<{width}}  {text}" for name, (_, text) in COMMANDS.items()]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Dispatch ``argv[0]`` to its module's ``main(argv[1:])``."""
+    argv = sys.argv[1:] if argv is None else argv
+    if not argv or argv[0] in ("-h", "--help", "help"):
+        print(usage())
+        return 0
+    command, rest = argv[0], argv[1:]
+    if command not in COMMANDS:
+        print(f"semgoal: unknown command {command!r}\n\n{usage()}", file=sys.stderr)
+        return 2
+    module = importlib.import_module(COMMANDS[command][0])
+    return int(module.main(rest) or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

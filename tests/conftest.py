@@ -1,0 +1,121 @@
+"""Shared fixtures: a private ROS domain per test, real node processes, an in-test rclpy node."""
+
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Tests under tests/graph/ start real nodes: mark them so they can be run apart (-m graph)."""
+    for item in items:
+        if "tests/graph/" in str(item.fspath).replace(os.sep, "/"):
+            item.add_marker(pytest.mark.graph)
+
+
+@pytest.fixture
+def ros_domain(monkeypatch: pytest.MonkeyPatch) -> int:
+    """A random ROS_DOMAIN_ID for this test only, DDS kept on localhost, set for child processes too."""
+    domain = random.Random(time.time_ns() ^ os.getpid()).randint(1, 100)
+    monkeypatch.setenv("ROS_DOMAIN_ID", str(domain))
+    monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+    return domain
+
+
+class NodeProcesses:
+    """Starts nodes as separate processes (`./semgoal run`) and stops them all at teardown."""
+
+    def __init__(self, log_dir: Path) -> None:
+        self.log_dir = log_dir
+        self.processes: list[tuple[str, subprocess.Popen]] = []
+
+    def start(self, package: str, executable: str, *args: str, params: dict | None = None) -> subprocess.Popen:
+        ros_args = [f"{key}:={value}" for key, value in (params or {}).items()]
+        command = [str(ROOT / "semgoal"), "run", package, executable, *args]
+        if ros_args:
+            command += ["--ros-args", *[token for arg in ros_args for token in ("-p", arg)]]
+        log = open(self.log_dir / f"{executable}-{len(self.processes)}.log", "w")  # noqa: SIM115
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
+        self.processes.append((executable, process))
+        return process
+
+    def logs(self) -> str:
+        return "\n".join(f"--- {p.name}\n{p.read_text()[-3000:]}" for p in sorted(self.log_dir.glob("*.log")))
+
+    def stop(self, process: subprocess.Popen, timeout: float = 5.0) -> int:
+        if process.poll() is None:
+            process.send_signal(signal.SIGINT)
+            try:
+                process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+        return process.returncode
+
+    def stop_all(self) -> None:
+        for _, process in self.processes:
+            self.stop(process)
+
+
+@pytest.fixture
+def nodes(ros_domain: int, tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[NodeProcesses]:
+    """Start real node processes in this test's domain; their logs are printed when the test fails."""
+    processes = NodeProcesses(tmp_path)
+    yield processes
+    processes.stop_all()
+    report = getattr(request.node, "rep_call", None)
+    if report is not None and report.failed:
+        sys.stderr.write(processes.logs())
+
+
+@pytest.hookimpl(wrapper=True, tryfirst=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo):
+    report = yield
+    setattr(item, f"rep_{report.when}", report)
+    return report
+
+
+class GraphProbe:
+    """An rclpy node inside the test process, in the test's domain, with helpers to wait on the graph."""
+
+    def __init__(self, domain: int) -> None:
+        import rclpy
+        from rclpy.executors import SingleThreadedExecutor
+
+        self.context = rclpy.Context()
+        rclpy.init(context=self.context, domain_id=domain)
+        self.node = rclpy.create_node("semgoal_test", context=self.context)
+        self.executor = SingleThreadedExecutor(context=self.context)
+        self.executor.add_node(self.node)
+
+    def spin_until(self, condition: Callable[[], bool], timeout: float, what: str = "condition") -> None:
+        """Spin until ``condition()`` holds; fail the test with ``what`` after ``timeout`` seconds."""
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > deadline:
+                pytest.fail(f"timed out after {timeout:.0f} s waiting for {what}")
+            self.executor.spin_once(timeout_sec=0.05)
+
+    def spin_future(self, future, timeout: float, what: str = "future"):
+        self.spin_until(future.done, timeout, what)
+        return future.result()
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        self.node.destroy_node()
+        self.context.try_shutdown()
+
+
+@pytest.fixture
+def probe(ros_domain: int) -> Iterator[GraphProbe]:
+    node = GraphProbe(ros_domain)
+    yield node
+    node.close()

@@ -1,0 +1,185 @@
+"""Scripted expert: achieves any sub-goal from any reachable state (the paper's "expert supervision").
+
+The controller is stateless: each step it reads the world and decides what to do (approach, descend,
+grasp, lift, carry, lower, release, retreat). So it recovers by itself when a block slips or a person
+moves one, and it serves as an oracle and as the source of demonstrations. Where to put a block
+(near, away, in the bin, ...) is chosen from the other blocks only, which stay put while it carries.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+
+from semgoal_sim.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry, SubGoal
+
+GAIN = 15.0
+"""Action per metre of position error (saturates at 1, i.e. 0.05 m per step, beyond 6.7 cm)."""
+HOVER = 0.08
+"""Height above a block's centre from which the gripper descends onto it (m)."""
+CARRY_CLEARANCE = 0.07
+"""Carried block's bottom stays this far above every other block's top (m)."""
+ALIGN_XY = 0.008
+ALIGN_Z = 0.008
+CLOSE = -1.0
+GRASP_OPENING = 0.08
+"""Finger opening (m) used to straddle a 5 cm block when grasping and releasing. Opening no wider
+keeps the fingers (they open along y) off neighbouring blocks."""
+NEAR_RANGE = (0.055, 0.093)
+"""Centre distances at which put_near places a block next to its references (close: <= 0.10 m)."""
+AWAY_DISTANCE = 0.16
+"""Minimum distance put_away keeps from its references (m)."""
+MIN_CENTRE_DISTANCE = 0.058
+FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
+FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
+"""A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
+finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
+
+
+@dataclass(frozen=True)
+class WorldView:
+    """What the expert reads: block centres by name, the grip site, the finger opening, the bin."""
+
+    positions: dict[str, np.ndarray]
+    grip: np.ndarray
+    opening: float
+    bin: BinGeometry | None = None
+
+    def holds(self, block: str) -> bool:
+        rel = self.positions[block] - self.grip
+        t = THRESHOLDS
+        return (t.holding_opening_min <= self.opening <= t.holding_opening_max
+                and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
+
+    def others(self, block: str) -> dict[str, np.ndarray]:
+        return {name: pos for name, pos in self.positions.items() if name != block}
+
+
+def _move(grip: np.ndarray, target: np.ndarray, gripper: float) -> np.ndarray:
+    return np.append(np.clip((target - grip) * GAIN, -1.0, 1.0), gripper)
+
+
+def _open(world: WorldView) -> float:
+    """Gripper command that opens the fingers to :data:`GRASP_OPENING` (position target = now + command)."""
+    return float(np.clip((GRASP_OPENING - world.opening) / 2, -1.0, 1.0))
+
+
+def _placement_candidates(step: float = 0.01) -> np.ndarray:
+    xs = np.arange(SPAWN_LOW[0] - 0.05, SPAWN_HIGH[0] + 0.05 + 1e-9, step)
+    ys = np.arange(SPAWN_LOW[1] - 0.05, SPAWN_HIGH[1] + 0.03 + 1e-9, step)
+    return np.array(list(itertools.product(xs, ys)))
+
+
+CANDIDATES = _placement_candidates()
+
+
+def _free(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
+    """Spots where a block fits and the fingers, opening there, touch no obstacle."""
+    if not obstacles:
+        return np.ones(len(candidates), dtype=bool)
+    delta = np.abs(candidates[:, None, :] - np.array(obstacles)[None, :, :2])
+    fingers_miss = (delta[..., 0] >= FINGER_REACH_X) | (delta[..., 1] >= FINGER_REACH_Y)
+    return np.all(fingers_miss & (np.linalg.norm(delta, axis=2) >= clearance), axis=1)
+
+
+def _nearest(candidates: np.ndarray, ok: np.ndarray, to: np.ndarray) -> np.ndarray | None:
+    if not ok.any():
+        return None
+    options = candidates[ok]
+    return options[np.argmin(np.linalg.norm(options - to[:2], axis=1))]
+
+
+def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
+    """Where the moved block's centre should come to rest for a put sub-goal; None when nowhere fits."""
+    x = subgoal.block
+    others = world.others(x)
+    here = world.positions[x]
+    rest_z = TABLE_TOP + BLOCK_HALF_SIZE
+    if subgoal.kind == "put_on":
+        below = others[subgoal.references[0]]
+        return below + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE])
+    if subgoal.kind == "put_in_bin":
+        assert world.bin is not None, "put_in_bin needs a bin"
+        floor = TABLE_TOP + world.bin.floor_thickness + BLOCK_HALF_SIZE
+        slots = world.bin.slots()
+        spot = _nearest(slots, _free(slots, list(others.values())), here)
+        return None if spot is None else np.array([*spot, floor])
+    ok = _free(CANDIDATES, list(others.values()))
+    if world.bin is not None:  # never on or in the bin when a table spot is asked for
+        ok &= np.any(np.abs(CANDIDATES - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + 0.06, axis=1)
+    if subgoal.kind == "put_near":  # the most compact admissible spot: leaves room for a third block
+        spread = np.zeros(len(CANDIDATES))
+        for ref in subgoal.references:
+            d = np.linalg.norm(CANDIDATES - others[ref][:2], axis=1)
+            ok &= (d >= NEAR_RANGE[0]) & (d <= NEAR_RANGE[1])
+            spread += d
+        if not ok.any():
+            return None
+        best = spread[ok].min()
+        ok &= spread <= best + 0.005
+    elif subgoal.kind == "put_away":
+        for ref in subgoal.references:
+            ok &= np.linalg.norm(CANDIDATES - others[ref][:2], axis=1) >= AWAY_DISTANCE
+        # far from every other block too, so moving x makes nothing else close by accident
+        ok &= _free(CANDIDATES, list(others.values()), THRESHOLDS.close_distance + 0.03)
+    spot = _nearest(CANDIDATES, ok, here)
+    return None if spot is None else np.array([*spot, rest_z])
+
+
+def _pick(block: str, world: WorldView) -> np.ndarray:
+    target = world.positions[block]
+    grip = world.grip
+    if world.holds(block):  # lift clear of everything
+        carry_z = max(p[2] for p in world.positions.values()) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE
+        return _move(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
+    xy_error = np.linalg.norm(target[:2] - grip[:2])
+    hover = target + np.array([0.0, 0.0, HOVER])
+    if xy_error > ALIGN_XY:
+        safe_z = max(p[2] for p in world.positions.values()) + HOVER
+        if grip[2] < safe_z - 0.02 and xy_error > 0.03:  # rise before travelling, never sweep blocks
+            return _move(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
+        return _move(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
+    if grip[2] - target[2] > ALIGN_Z:
+        if world.opening < GRASP_OPENING - 0.006:
+            return _move(grip, np.array([target[0], target[1], grip[2]]), _open(world))
+        return _move(grip, target, _open(world))
+    return _move(grip, target, CLOSE)
+
+
+def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
+    x = subgoal.block
+    grip, block = world.grip, world.positions[x]
+    offset = grip - block  # keep the block where it sits in the hand
+    release = spot + offset + np.array([0.0, 0.0, 0.004])
+    obstacles = [p[2] for n, p in world.others(x).items()] or [TABLE_TOP]
+    carry_z = max(max(obstacles) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE, spot[2] + 0.02) + offset[2]
+    xy_error = np.linalg.norm(spot[:2] - block[:2])
+    if xy_error > ALIGN_XY:
+        if grip[2] < carry_z - 0.02 and xy_error > 0.02:
+            return _move(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
+        return _move(grip, np.array([release[0], release[1], max(carry_z, release[2])]), CLOSE)
+    if grip[2] - release[2] > ALIGN_Z:
+        return _move(grip, release, CLOSE)
+    return _move(grip, release, _open(world))
+
+
+def expert_action(subgoal: SubGoal, world: WorldView, satisfied: bool) -> np.ndarray:
+    """The expert's 4-D action for ``subgoal`` in ``world``.
+
+    :param satisfied: whether the sub-goal's literals hold now: then the expert backs off (rises with
+        the gripper open after a put, keeps lifting after a pick) instead of disturbing the result.
+    """
+    x = subgoal.block
+    if subgoal.kind == "pick":
+        return _pick(x, world)
+    if satisfied:  # back off upwards, fingers as they are
+        return _move(world.grip, world.grip + np.array([0.0, 0.0, 0.05]), 0.0)
+    if not world.holds(x):
+        return _pick(x, world)
+    spot = destination(subgoal, world)
+    if spot is None:  # nowhere to put it: hold still and wait for the world to change
+        return np.array([0.0, 0.0, 0.0, CLOSE])
+    return _place(subgoal, spot, world)

@@ -1,0 +1,135 @@
+"""The eight tasks of the paper (Figure 4): seeded initial-state samplers and goal literals. No MuJoCo.
+
+Initial states are block centres on the table, resting (z = table + half size), never closer than
+:data:`MIN_SEPARATION` (no interpenetration), inside :data:`SPAWN_LOW`..:data:`SPAWN_HIGH` (reachable,
+clear of the bin). Stacked starts put the top block on the bottom one; the world settles them.
+
+Every task goal also asks that nothing is held at the end: a task is done when the blocks are placed.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, Literal
+
+TABLE_TOP = 0.4
+REST_Z = TABLE_TOP + BLOCK_HALF_SIZE
+SPAWN_LOW = np.array([1.15, 0.50])
+SPAWN_HIGH = np.array([1.45, 0.85])
+"""Area (x, y) where blocks start: within easy reach of the arm and clear of the desk-cleanup bin."""
+MIN_SEPARATION = 0.07
+"""Minimum centre distance of two blocks at the start (a 5 cm block's diagonal is 0.071 m)."""
+FAR_APART = 0.15
+"""'Far apart' starts (MC-2, MC-3): well beyond the close threshold of 0.09 m."""
+CLOSE_RANGE = (0.06, 0.085)
+"""'Close' starts (MA-2, MA-3): centre distances in this range, under the close threshold."""
+
+
+@dataclass(frozen=True)
+class Task:
+    """A task: its scene, how many blocks, how to sample a start, and the goal literals."""
+
+    name: str
+    scene: str
+    n_blocks: int
+    description: str
+    sample: Callable[[np.random.Generator, tuple[str, ...]], tuple[np.ndarray, list[Literal]]]
+    """(rng, blocks) -> (block centres (N, 3), goal literals). Swap-2's goal depends on the start."""
+
+    @property
+    def blocks(self) -> tuple[str, ...]:
+        return SCENES[self.scene].objects[: self.n_blocks]
+
+    def initial_state(self, seed: int) -> tuple[np.ndarray, list[Literal]]:
+        """Block centres and goal literals for episode ``seed`` (same seed, same start)."""
+        positions, goal = self.sample(np.random.default_rng(seed), self.blocks)
+        released = [Literal("holding", (block,), False) for block in self.blocks]
+        return positions, goal + released
+
+
+def _resting(xy: np.ndarray) -> np.ndarray:
+    return np.column_stack([xy, np.full(len(xy), REST_Z)])
+
+
+def scatter(rng: np.random.Generator, count: int, min_distance: float = MIN_SEPARATION,
+            low: np.ndarray = SPAWN_LOW, high: np.ndarray = SPAWN_HIGH) -> np.ndarray:
+    """``count`` resting block centres, pairwise at least ``min_distance`` apart (rejection sampling)."""
+    for _ in range(10_000):
+        xy = rng.uniform(low, high, size=(count, 2))
+        if all(np.linalg.norm(a - b) >= min_distance for a, b in itertools.combinations(xy, 2)):
+            return _resting(xy)
+    raise RuntimeError(f"cannot place {count} blocks {min_distance} m apart in the spawn area")
+
+
+def cluster(rng: np.random.Generator, count: int) -> np.ndarray:
+    """``count`` resting blocks, every pair at a centre distance within :data:`CLOSE_RANGE`."""
+    low, high = CLOSE_RANGE
+    margin = high
+    for _ in range(10_000):
+        xy = [rng.uniform(SPAWN_LOW + margin, SPAWN_HIGH - margin)]
+        while len(xy) < count:
+            anchor = xy[rng.integers(len(xy))]
+            angle, radius = rng.uniform(0, 2 * np.pi), rng.uniform(low, high)
+            xy.append(anchor + radius * np.array([np.cos(angle), np.sin(angle)]))
+        pairs = [np.linalg.norm(a - b) for a, b in itertools.combinations(xy, 2)]
+        if all(low <= d <= high for d in pairs):
+            return _resting(np.array(xy))
+    raise RuntimeError(f"cannot sample a cluster of {count} blocks")
+
+
+def stack(rng: np.random.Generator, order: tuple[int, int]) -> np.ndarray:
+    """Two blocks, ``order[1]`` resting on ``order[0]`` (a few mm of xy offset)."""
+    positions = np.zeros((2, 3))
+    base = rng.uniform(SPAWN_LOW, SPAWN_HIGH)
+    positions[order[0]] = [*base, REST_Z]
+    positions[order[1]] = [*(base + rng.uniform(-0.004, 0.004, 2)), REST_Z + 2 * BLOCK_HALF_SIZE + 0.001]
+    return positions
+
+
+def _pairs(blocks: tuple[str, ...], value: bool) -> list[Literal]:
+    return [Literal("close", pair, value) for pair in itertools.combinations(blocks, 2)]
+
+
+def _move_close(rng, blocks):
+    return scatter(rng, len(blocks), FAR_APART), _pairs(blocks, True)
+
+
+def _move_apart(rng, blocks):
+    return cluster(rng, len(blocks)), _pairs(blocks, False)
+
+
+def _swap(rng, blocks):
+    bottom, top = (0, 1) if rng.uniform() < 0.5 else (1, 0)
+    return stack(rng, (bottom, top)), [Literal("above", (blocks[bottom], blocks[top]))]
+
+
+def _desk_cleanup(rng, blocks):
+    return scatter(rng, len(blocks)), [Literal("in_bin", (block,)) for block in blocks]
+
+
+TASKS: dict[str, Task] = {
+    task.name: task
+    for task in (
+        Task("MC-2", "two_blocks", 2, "two blocks far apart: move them close", _move_close),
+        Task("MA-2", "two_blocks", 2, "two blocks close: move them apart", _move_apart),
+        Task("Swap-2", "two_blocks", 2, "one block stacked on the other: swap their order", _swap),
+        Task("MC-3", "three_blocks", 3, "three blocks far apart: bring all close to each other", _move_close),
+        Task("MA-3", "three_blocks", 3, "three blocks close: move all apart", _move_apart),
+        Task("DC-2", "desk_cleanup", 2, "two blocks on the desk: put them in the bin", _desk_cleanup),
+        Task("DC-3", "desk_cleanup", 3, "three blocks on the desk: put them in the bin", _desk_cleanup),
+        Task("DC-4", "desk_cleanup", 4, "four blocks on the desk: put them in the bin", _desk_cleanup),
+    )
+}
+
+
+def get_task(name: str) -> Task:
+    """Look a task up by its paper name (case-insensitive), or raise with the list of valid names."""
+    for task_name, task in TASKS.items():
+        if task_name.lower() == name.strip().lower():
+            return task
+    raise KeyError(f"unknown task {name!r}: tasks are {', '.join(TASKS)}")

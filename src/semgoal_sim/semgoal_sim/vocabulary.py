@@ -1,0 +1,361 @@
+"""The semantic layer, defined once: scenes, predicates, literals, the semantic vector and sub-goal types.
+
+Imports neither rclpy nor MuJoCo: the planner, the policy, the nodes and the tests all read the
+vocabulary from here.
+
+Predicates (paper, "Semantic goal representations"), evaluated on block centres, the grip site and the
+finger opening. Thresholds (see :class:`Thresholds`) follow DECSTR (Akakzia et al. 2021), which uses the
+same predicates on the same Fetch blocks (5 cm cubes), except for close:
+
+- ``close(a, b)``: centre distance <= 0.10 m (symmetric; one vector entry per unordered pair). DECSTR
+  uses 0.09 m; the Fetch fingers open along y and reach 5.5 cm to each side, so a block released next
+  to another needs some room, and three blocks close to each other (MC-3) only fit a triangle with
+  sides up to 0.09 m when the threshold leaves a margin. 0.10 m still means "at most one block width
+  between them".
+- ``above(a, b)``: ``a`` rests on ``b``: xy distance < 0.05 m and 0.03 m < z_a - z_b < 0.07 m.
+- ``holding(a)``: ``a`` sits between the fingers (xy within 0.03 m of the grip site, z within 0.03 m)
+  and the fingers are closed on it (opening between 0.03 and 0.07 m: a 5 cm block, with give). A
+  grasped block still touching the table is held.
+- ``in_bin(a)``: the centre lies inside the bin walls (xy) and below the rim: a block lying on the rim
+  is not in the bin.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+BLOCK_HALF_SIZE = 0.025
+"""Half edge of every block (m): the Fetch benchmark's 5 cm cube."""
+
+BLOCK_COLOURS: dict[str, tuple[float, float, float, float]] = {
+    "red": (0.85, 0.12, 0.12, 1.0),
+    "green": (0.13, 0.70, 0.20, 1.0),
+    "blue": (0.15, 0.30, 0.90, 1.0),
+    "yellow": (0.95, 0.80, 0.10, 1.0),
+}
+"""Block names in canonical order, with their RGBA colours."""
+
+PREDICATE_ARITY = {"close": 2, "above": 2, "holding": 1, "in_bin": 1}
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """Geometric thresholds of the predicates (m). Defaults follow DECSTR's Fetch blocks."""
+
+    close_distance: float = 0.10
+    """close(a, b) when the block centres are at most this far apart (DECSTR: 0.09; see module doc)."""
+    above_xy: float = 0.05
+    """above(a, b) needs the centres closer than this in the table plane..."""
+    above_dz_min: float = 0.03
+    """...and a above b by more than this..."""
+    above_dz_max: float = 0.07
+    """...and by less than this (one block height is 0.05)."""
+    holding_xy: float = 0.03
+    """holding(a): block centre within this of the grip site in the table plane..."""
+    holding_z: float = 0.03
+    """...and vertically..."""
+    holding_opening_min: float = 0.03
+    """...and finger opening (sum of both finger joints, 0 = shut, 0.1 = open) at least this..."""
+    holding_opening_max: float = 0.07
+    """...and at most this: closed on a 5 cm block."""
+
+
+THRESHOLDS = Thresholds()
+
+
+@dataclass(frozen=True)
+class BinGeometry:
+    """The open bin of the desk-cleanup scene: a floor and four walls on the table."""
+
+    center: tuple[float, float] = (1.30, 1.00)
+    """Centre of the bin in the table plane (m)."""
+    inner_half_size: tuple[float, float] = (0.13, 0.055)
+    """Half of the inner extent in x and y (m): a row of four blocks along x, with room between them
+    for the fingers, which open along y."""
+    wall_height: float = 0.04
+    """Height of the walls above the floor's top (m): low, so blocks are dropped in from above."""
+    wall_thickness: float = 0.01
+    floor_thickness: float = 0.01
+
+    def slots(self, count: int = 4) -> np.ndarray:
+        """(count, 2) resting spots for blocks, evenly spaced along x inside the bin."""
+        spacing = 2 * self.inner_half_size[0] / count
+        xs = self.center[0] - self.inner_half_size[0] + spacing * (np.arange(count) + 0.5)
+        return np.column_stack([xs, np.full(count, self.center[1])])
+
+    def contains(self, positions: np.ndarray, table_height: float) -> np.ndarray:
+        """in_bin for block centres ``positions`` (N, 3): inside the walls and below the rim."""
+        offset = np.abs(positions[:, :2] - np.asarray(self.center))
+        inside_walls = np.all(offset < np.asarray(self.inner_half_size), axis=1)
+        rim_top = table_height + self.floor_thickness + self.wall_height
+        return inside_walls & (positions[:, 2] < rim_top)
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A scene: its blocks, the predicates of its semantic state, its sub-goal types, a bin or not."""
+
+    name: str
+    objects: tuple[str, ...]
+    predicates: tuple[str, ...]
+    subgoal_types: tuple[str, ...]
+    bin: BinGeometry | None = None
+    block_counts: tuple[int, ...] = field(default=())
+    """Numbers of blocks the scene can be built with (desk cleanup: 2 to 4); empty = all objects."""
+
+    @property
+    def max_blocks(self) -> int:
+        return len(self.objects)
+
+
+SCENES: dict[str, Scene] = {
+    scene.name: scene
+    for scene in (
+        # Paper, "Experiments": 2 blocks use close, above, holding; 3 blocks close, holding;
+        # desk cleanup holding and in-bin. Sub-goal types from the paper's table of goals.
+        Scene("two_blocks", ("red", "green"), ("close", "above", "holding"),
+              ("pick", "put_near", "put_away", "put_on")),
+        Scene("three_blocks", ("red", "green", "blue"), ("close", "holding"),
+              ("pick", "put_near", "put_away")),
+        Scene("desk_cleanup", ("red", "green", "blue", "yellow"), ("holding", "in_bin"),
+              ("pick", "put_on_table", "put_in_bin"), bin=BinGeometry(), block_counts=(2, 3, 4)),
+    )
+}
+
+
+@dataclass(frozen=True, order=True)
+class Literal:
+    """A grounded predicate with a truth value: ``close(red,green)`` or ``not close(red,green)``."""
+
+    name: str
+    args: tuple[str, ...]
+    value: bool = True
+
+    def __str__(self) -> str:
+        atom = f"{self.name}({','.join(self.args)})"
+        return atom if self.value else f"not {atom}"
+
+    def negated(self) -> Literal:
+        return Literal(self.name, self.args, not self.value)
+
+
+class VocabularyError(ValueError):
+    """A literal or goal that does not fit the scene; the message says what is wrong and what is valid."""
+
+
+_LITERAL = re.compile(r"^\s*(?P<neg>not\s+|!\s*|~\s*|¬\s*)?(?P<name>[A-Za-z_][\w-]*)\s*\((?P<args>[^()]*)\)\s*$")
+
+
+def parse_literal(text: str) -> Literal:
+    """Parse ``close(red,green)``, ``not in_bin(red)``, ``!holding(blue)`` into a :class:`Literal`."""
+    match = _LITERAL.match(text)
+    if not match:
+        raise VocabularyError(f"cannot read literal {text!r}: expected e.g. 'close(red,green)' or 'not in_bin(red)'")
+    args = tuple(arg.strip().lower() for arg in match["args"].split(",")) if match["args"].strip() else ()
+    return Literal(match["name"].lower().replace("-", "_"), args, value=match["neg"] is None)
+
+
+class SemanticLayout:
+    """The canonical semantic vector of one scene: which literal each entry holds, and conversions.
+
+    Entry order: for each predicate of the scene in vocabulary order, its groundings in object order
+    (close over unordered pairs, above over ordered pairs, unary predicates over objects).
+    """
+
+    def __init__(self, scene: Scene) -> None:
+        self.scene = scene
+        self.objects = scene.objects
+        atoms: list[tuple[str, tuple[str, ...]]] = []
+        for name in scene.predicates:
+            if name == "close":
+                atoms += [(name, pair) for pair in itertools.combinations(scene.objects, 2)]
+            elif name == "above":
+                atoms += [(name, pair) for pair in itertools.permutations(scene.objects, 2)]
+            else:
+                atoms += [(name, (obj,)) for obj in scene.objects]
+        self.atoms: tuple[tuple[str, tuple[str, ...]], ...] = tuple(atoms)
+        self._index = {atom: i for i, atom in enumerate(self.atoms)}
+
+    @property
+    def size(self) -> int:
+        return len(self.atoms)
+
+    def canonical(self, name: str, args: Sequence[str]) -> tuple[str, tuple[str, ...]]:
+        """The atom as stored (close is symmetric: its arguments in object order)."""
+        args = tuple(args)
+        if name == "close" and len(args) == 2 and all(a in self.objects for a in args):
+            args = tuple(sorted(args, key=self.objects.index))
+        return name, args
+
+    def validate(self, literal: Literal, objects: Iterable[str] | None = None) -> Literal:
+        """Check a literal against the scene; raise :class:`VocabularyError` naming what is valid."""
+        allowed = tuple(objects) if objects is not None else self.objects
+        if literal.name not in PREDICATE_ARITY:
+            raise VocabularyError(f"unknown predicate {literal.name!r} in {literal}: known are {', '.join(PREDICATE_ARITY)}")
+        if literal.name not in self.scene.predicates:
+            raise VocabularyError(f"predicate {literal.name!r} is not used in scene {self.scene.name!r} "
+                                  f"(it uses {', '.join(self.scene.predicates)})")
+        arity = PREDICATE_ARITY[literal.name]
+        if len(literal.args) != arity:
+            raise VocabularyError(f"{literal}: {literal.name} takes {arity} argument(s), got {len(literal.args)}")
+        for arg in literal.args:
+            if arg not in allowed:
+                raise VocabularyError(f"unknown object {arg!r} in {literal}: objects are {', '.join(allowed)}")
+        if arity == 2 and literal.args[0] == literal.args[1]:
+            raise VocabularyError(f"{literal}: a block cannot be related to itself")
+        name, args = self.canonical(literal.name, literal.args)
+        return Literal(name, args, literal.value)
+
+    def index(self, literal: Literal) -> int:
+        return self._index[self.canonical(literal.name, literal.args)]
+
+    def encode(self, literals: Iterable[Literal]) -> tuple[np.ndarray, np.ndarray]:
+        """(target, mask) float32 vectors: mask 1 where a literal constrains the entry, target its value.
+
+        Raises :class:`VocabularyError` for contradictory literals (the same atom true and false).
+        """
+        target = np.zeros(self.size, dtype=np.float32)
+        mask = np.zeros(self.size, dtype=np.float32)
+        for literal in literals:
+            literal = self.validate(literal)
+            i = self.index(literal)
+            if mask[i] and bool(target[i]) != literal.value:
+                raise VocabularyError(f"contradictory goal: both {literal} and {literal.negated()}")
+            mask[i], target[i] = 1.0, float(literal.value)
+        return target, mask
+
+    def decode(self, target: np.ndarray, mask: np.ndarray | None = None) -> list[Literal]:
+        """Literals of the entries selected by ``mask`` (all entries when None)."""
+        selected = range(self.size) if mask is None else np.flatnonzero(np.asarray(mask) > 0.5)
+        return [Literal(*self.atoms[i], bool(target[i] > 0.5)) for i in selected]
+
+    def true_literals(self, vector: np.ndarray) -> list[Literal]:
+        """The literals that hold, e.g. for display: ``[close(red,green), holding(red)]``."""
+        return [Literal(*self.atoms[i]) for i in np.flatnonzero(np.asarray(vector) > 0.5)]
+
+    def readable(self, vector: np.ndarray) -> str:
+        return " & ".join(map(str, self.true_literals(vector))) or "(nothing holds)"
+
+
+LAYOUTS: dict[str, SemanticLayout] = {name: SemanticLayout(scene) for name, scene in SCENES.items()}
+
+
+def evaluate(
+    layout: SemanticLayout,
+    block_positions: np.ndarray,
+    grip_position: np.ndarray,
+    finger_opening: float,
+    table_height: float,
+    present: np.ndarray | None = None,
+    thresholds: Thresholds = THRESHOLDS,
+) -> np.ndarray:
+    """The semantic vector (bool) of one world state.
+
+    :param block_positions: (N, 3) block centres in the scene's object order (m).
+    :param grip_position: (3,) grip site between the fingers (m).
+    :param finger_opening: sum of both finger joint positions (m).
+    :param table_height: z of the table top (m).
+    :param present: (N,) bool, False for a block slot the scene was built without (its entries stay false).
+    """
+    positions = np.asarray(block_positions, dtype=np.float64)
+    count = len(layout.objects)
+    present = np.ones(count, dtype=bool) if present is None else np.asarray(present, dtype=bool)
+    index = {name: i for i, name in enumerate(layout.objects)}
+    rel_grip = positions - np.asarray(grip_position)
+    fingers_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
+    holding = (fingers_on_block & (np.linalg.norm(rel_grip[:, :2], axis=1) < thresholds.holding_xy)
+               & (np.abs(rel_grip[:, 2]) < thresholds.holding_z))
+    in_bin = (layout.scene.bin.contains(positions, table_height) if layout.scene.bin is not None
+              else np.zeros(count, dtype=bool))
+    vector = np.zeros(layout.size, dtype=bool)
+    for k, (name, args) in enumerate(layout.atoms):
+        idx = [index[a] for a in args]
+        if not present[idx].all():
+            continue
+        if name == "close":
+            vector[k] = np.linalg.norm(positions[idx[0]] - positions[idx[1]]) <= thresholds.close_distance
+        elif name == "above":
+            delta = positions[idx[0]] - positions[idx[1]]
+            vector[k] = (np.linalg.norm(delta[:2]) < thresholds.above_xy
+                         and thresholds.above_dz_min < delta[2] < thresholds.above_dz_max)
+        elif name == "holding":
+            vector[k] = holding[idx[0]]
+        elif name == "in_bin":
+            vector[k] = in_bin[idx[0]]
+    return vector
+
+
+# Sub-goal types (paper, table of goals): each is a symbolic action with the literals it must make
+# true. The planner's PDDL operators carry the same names; Plan2Goals and training both read them here.
+SUBGOAL_ARITY: dict[str, tuple[int, int]] = {
+    "pick": (1, 1), "put_near": (2, 3), "put_away": (2, 3), "put_on": (2, 2), "put_on_table": (1, 1),
+    "put_in_bin": (1, 1),
+}
+"""(min, max) arguments of each sub-goal type. put_near / put_away take one or two reference blocks:
+``put_near(blue,red,green)`` means near red and near green (MC-3's last move needs both)."""
+
+
+@dataclass(frozen=True)
+class SubGoal:
+    """A sub-goal: a typed symbolic action such as put_near(red,green)."""
+
+    kind: str
+    args: tuple[str, ...]
+
+    def __str__(self) -> str:
+        return f"{self.kind}({','.join(self.args)})"
+
+    @property
+    def block(self) -> str:
+        """The block the action moves."""
+        return self.args[0]
+
+    @property
+    def references(self) -> tuple[str, ...]:
+        return self.args[1:]
+
+    def literals(self) -> list[Literal]:
+        """The literals this sub-goal must make true, e.g. put_near(red,green): close, not holding."""
+        x, refs = self.block, self.references
+        released = Literal("holding", (x,), False)
+        if self.kind == "pick":
+            return [Literal("holding", (x,))]
+        if self.kind == "put_near":
+            return [*(Literal("close", (x, y)) for y in refs), released]
+        if self.kind == "put_away":
+            return [*(Literal("close", (x, y), False) for y in refs), released]
+        if self.kind == "put_on":
+            return [Literal("above", (x, refs[0])), released]
+        if self.kind == "put_on_table":
+            return [Literal("in_bin", (x,), False), released]
+        return [Literal("in_bin", (x,)), released]  # put_in_bin
+
+
+def parse_subgoal(text: str, scene: Scene | None = None) -> SubGoal:
+    """Read ``put_near(red,green)``; check the type, the arity and (given a scene) type and objects."""
+    match = _LITERAL.match(text)
+    if not match or match["neg"]:
+        raise VocabularyError(f"cannot read action {text!r}: expected e.g. 'pick(red)' or 'put_near(red,green)'")
+    kind = match["name"].lower()
+    args = tuple(arg.strip().lower() for arg in match["args"].split(",")) if match["args"].strip() else ()
+    if kind not in SUBGOAL_ARITY:
+        raise VocabularyError(f"unknown action {kind!r}: known are {', '.join(SUBGOAL_ARITY)}")
+    low, high = SUBGOAL_ARITY[kind]
+    if not low <= len(args) <= high:
+        expected = str(low) if low == high else f"{low} to {high}"
+        raise VocabularyError(f"{text.strip()}: {kind} takes {expected} argument(s), got {len(args)}")
+    if len(set(args)) != len(args):
+        raise VocabularyError(f"{text.strip()}: a block appears twice")
+    if scene is not None:
+        if kind not in scene.subgoal_types:
+            raise VocabularyError(f"action {kind!r} is not available in scene {scene.name!r} "
+                                  f"(it has {', '.join(scene.subgoal_types)})")
+        for arg in args:
+            if arg not in scene.objects:
+                raise VocabularyError(f"unknown object {arg!r} in {text.strip()}: objects are {', '.join(scene.objects)}")
+    return SubGoal(kind, args)

@@ -1,0 +1,179 @@
+"""The simulated Fetch block world: reset, one control step, state read-out. No rclpy.
+
+Control as in the Fetch benchmark (gymnasium-robotics ``MujocoFetchEnv``): a 4-D action in [-1, 1];
+the first three move the end effector by up to 0.05 m per step through the mocap body welded to the
+gripper, the fourth drives both fingers' position targets (relative to their current opening); each
+control step runs 20 physics substeps of 0.002 s (25 Hz).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from semgoal_sim.expert import WorldView
+from semgoal_sim.scene import TABLE_HEIGHT, block_body_name, build_model
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
+
+N_SUBSTEPS = 20
+MAX_DISPLACEMENT = 0.05
+"""End-effector displacement (m) per control step for an action of 1 (Fetch benchmark)."""
+CONTROL_DT = N_SUBSTEPS * 0.002
+GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
+"""Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
+GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
+"""Gripper pointing down, fixed orientation (the benchmark's mocap rotation)."""
+INITIAL_QPOS = {"robot0:slide0": 0.405, "robot0:slide1": 0.48, "robot0:slide2": 0.0}
+WORKSPACE_LOW = np.array([1.0, 0.35, TABLE_HEIGHT + 0.005])
+WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_HEIGHT + 0.35])
+"""The mocap target is kept in this box so the arm never drives into the table or out of reach."""
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """Everything observable after a control step, as plain arrays (world frame, m, m/s)."""
+
+    step: int
+    time: float
+    block_positions: np.ndarray  # (N, 3) for the blocks built, canonical order
+    block_quaternions: np.ndarray  # (N, 4) w, x, y, z
+    block_velocities: np.ndarray  # (N, 6) linear, angular
+    grip_position: np.ndarray  # (3,)
+    grip_velocity: np.ndarray  # (3,)
+    finger_positions: np.ndarray  # (2,) right, left joint positions; opening = sum
+    finger_velocities: np.ndarray  # (2,)
+
+    @property
+    def finger_opening(self) -> float:
+        return float(self.finger_positions.sum())
+
+
+class FetchWorld:
+    """One scene's physics: seeded placement of blocks, Fetch-style control, state and predicates."""
+
+    def __init__(self, scene: str, n_blocks: int | None = None) -> None:
+        self.scene = SCENES[scene]
+        self.layout = LAYOUTS[scene]
+        self.model = build_model(scene, n_blocks)
+        self.data = mujoco.MjData(self.model)
+        self.blocks = self.scene.objects[: n_blocks or self.scene.max_blocks]
+        self.present = np.array([obj in self.blocks for obj in self.scene.objects])
+        m = self.model
+        self._block_qpos = [m.joint(f"{block_body_name(b)}:joint").qposadr[0] for b in self.blocks]
+        self._block_qvel = [m.joint(f"{block_body_name(b)}:joint").dofadr[0] for b in self.blocks]
+        self._block_body = np.array([m.body(block_body_name(b)).id for b in self.blocks])
+        self._grip_site = m.site("robot0:grip").id
+        self._gripper_body = m.body("robot0:gripper_link").id
+        fingers = ("robot0:r_gripper_finger_joint", "robot0:l_gripper_finger_joint")
+        self._finger_qpos = np.array([m.joint(f).qposadr[0] for f in fingers])
+        self._finger_qvel = np.array([m.joint(f).dofadr[0] for f in fingers])
+        self._finger_actuators = np.array([m.actuator(f).id for f in fingers])
+        self.step_count = 0
+        self._home_state = self._settle_home()
+
+    # -- reset ---------------------------------------------------------------------------------------
+    def _settle_home(self) -> np.ndarray:
+        """Put the arm in the benchmark's home pose once; later resets restore this state."""
+        m, d = self.model, self.data
+        mujoco.mj_resetData(m, d)
+        weld = m.eq_type == mujoco.mjtEq.mjEQ_WELD  # the mocap weld: no offset between mocap and gripper
+        m.eq_data[weld, :7] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+        for name, value in INITIAL_QPOS.items():
+            d.qpos[m.joint(name).qposadr[0]] = value
+        for i, addr in enumerate(self._block_qpos):  # park blocks apart, off the arm's way, during settling
+            d.qpos[addr: addr + 7] = [1.1 + 0.1 * i, 0.45, TABLE_HEIGHT + BLOCK_HALF_SIZE, 1, 0, 0, 0]
+        mujoco.mj_forward(m, d)
+        d.mocap_pos[0] = d.site_xpos[self._grip_site] + GRIPPER_HOME_OFFSET
+        d.mocap_quat[0] = GRIPPER_QUAT
+        for _ in range(10):
+            mujoco.mj_step(m, d, nstep=N_SUBSTEPS)
+        self.home_grip_position = d.site_xpos[self._grip_site].copy()
+        state = np.empty(mujoco.mj_stateSize(m, mujoco.mjtState.mjSTATE_INTEGRATION))
+        mujoco.mj_getState(m, d, state, mujoco.mjtState.mjSTATE_INTEGRATION)
+        return state
+
+    def reset(self, block_positions: np.ndarray, settle_steps: int = 10) -> Snapshot:
+        """Arm at home, blocks at ``block_positions`` (N, 3) upright and at rest, then let them settle.
+
+        Settling (arm held still) lets stacked starts come to rest before the first observation.
+        """
+        m, d = self.model, self.data
+        mujoco.mj_setState(m, d, self._home_state, mujoco.mjtState.mjSTATE_INTEGRATION)
+        for addr, dof, pos in zip(self._block_qpos, self._block_qvel, np.asarray(block_positions), strict=True):
+            d.qpos[addr: addr + 7] = [*pos, 1.0, 0.0, 0.0, 0.0]
+            d.qvel[dof: dof + 6] = 0.0
+        mujoco.mj_forward(m, d)
+        self.step_count = 0
+        for _ in range(settle_steps):
+            self.step(np.zeros(4), count=False)
+        return self.snapshot()
+
+    def set_block_pose(self, block: str, position: np.ndarray) -> None:
+        """Teleport a block (upright, at rest): operator intervention and perturbation tests."""
+        i = self.blocks.index(block)
+        addr, dof = self._block_qpos[i], self._block_qvel[i]
+        self.data.qpos[addr: addr + 7] = [*position, 1.0, 0.0, 0.0, 0.0]
+        self.data.qvel[dof: dof + 6] = 0.0
+        mujoco.mj_forward(self.model, self.data)
+
+    def place_in_gripper(self, block: str, steps: int = 6) -> Snapshot:
+        """Put ``block`` between the fingers and close them on it: start states for put-* sub-goals."""
+        self.set_block_pose(block, self.data.site_xpos[self._grip_site].copy())
+        self.data.qpos[self._finger_qpos] = BLOCK_HALF_SIZE
+        mujoco.mj_forward(self.model, self.data)
+        for _ in range(steps):
+            self.step(np.array([0.0, 0.0, 0.0, -1.0]), count=False)
+        return self.snapshot()
+
+    # -- control -------------------------------------------------------------------------------------
+    def step(self, action: np.ndarray, count: bool = True) -> None:
+        """One control step. Non-finite entries count as 0; the rest is clipped to [-1, 1]."""
+        action = np.clip(np.nan_to_num(np.asarray(action, dtype=np.float64), nan=0.0, posinf=0.0, neginf=0.0), -1, 1)
+        m, d = self.model, self.data
+        target = d.xpos[self._gripper_body] + action[:3] * MAX_DISPLACEMENT
+        d.mocap_pos[0] = np.clip(target, WORKSPACE_LOW + (d.xpos[self._gripper_body] - d.site_xpos[self._grip_site]),
+                                 WORKSPACE_HIGH)
+        d.mocap_quat[0] = GRIPPER_QUAT
+        d.ctrl[self._finger_actuators] = d.qpos[self._finger_qpos] + action[3]
+        mujoco.mj_step(m, d, nstep=N_SUBSTEPS)
+        if count:
+            self.step_count += 1
+
+    # -- read-out ------------------------------------------------------------------------------------
+    def snapshot(self) -> Snapshot:
+        d = self.data
+        velocities = np.empty((len(self.blocks), 6))
+        for i, dof in enumerate(self._block_qvel):
+            velocities[i] = d.qvel[dof: dof + 6]
+        grip_velocity = np.empty(6)
+        mujoco.mj_objectVelocity(self.model, d, mujoco.mjtObj.mjOBJ_SITE, self._grip_site, grip_velocity, 0)
+        return Snapshot(
+            step=self.step_count,
+            time=self.step_count * CONTROL_DT,
+            block_positions=d.xpos[self._block_body].copy(),
+            block_quaternions=d.xquat[self._block_body].copy(),
+            block_velocities=velocities,
+            grip_position=d.site_xpos[self._grip_site].copy(),
+            grip_velocity=grip_velocity[3:].copy(),
+            finger_positions=d.qpos[self._finger_qpos].copy(),
+            finger_velocities=d.qvel[self._finger_qvel].copy(),
+        )
+
+    def padded_positions(self, snapshot: Snapshot) -> np.ndarray:
+        """(max_blocks, 3) block centres with absent slots at zero: the scene-wide layout."""
+        positions = np.zeros((self.scene.max_blocks, 3))
+        positions[: len(self.blocks)] = snapshot.block_positions
+        return positions
+
+    def semantic_vector(self, snapshot: Snapshot | None = None) -> np.ndarray:
+        snapshot = snapshot or self.snapshot()
+        return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
+                        snapshot.finger_opening, TABLE_HEIGHT, self.present)
+
+    def view(self, snapshot: Snapshot | None = None) -> WorldView:
+        """The expert's view of the world: block centres by name, grip, finger opening, bin."""
+        snapshot = snapshot or self.snapshot()
+        return WorldView(dict(zip(self.blocks, snapshot.block_positions, strict=True)), snapshot.grip_position,
+                         snapshot.finger_opening, self.scene.bin)

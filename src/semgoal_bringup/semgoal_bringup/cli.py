@@ -3,10 +3,12 @@
 import importlib
 import sys
 
-COMMANDS: dict[str, tuple[str, str]] = {
+COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); function defaults to main
     "run": ("semgoal_bringup.run", "what `ros2 run PKG EXE` does on a native install"),
     "doctor": ("semgoal_bringup.doctor", "versions, workspace state and DDS settings in force"),
     "demo": ("semgoal_bringup.demo", "start the node graph and solve a task (make demo)"),
+    "expert": ("semgoal_sim.cli:expert_main", "run the scripted expert on a task: success rate, steps"),
+    "bench-sim": ("semgoal_sim.cli:bench_sim_main", "env steps/s per scene beside FetchPickAndPlace-v4"),
 }
 
 
@@ -28,8 +30,9 @@ def main(argv: list[str] | None = None) -> int:
     if command not in COMMANDS:
         print(f"semgoal: unknown command {command!r}\n\n{usage()}", file=sys.stderr)
         return 2
-    module = importlib.import_module(COMMANDS[command][0])
-    return int(module.main(rest) or 0)
+    module_name, _, function = COMMANDS[command][0].partition(":")
+    entry = getattr(importlib.import_module(module_name), function or "main")
+    return int(entry(rest) or 0)
 
 
 if __name__ == "__main__":

@@ -180,6 +180,12 @@ class SemanticLayout:
                 atoms += [(name, (obj,)) for obj in scene.objects]
         self.atoms: tuple[tuple[str, tuple[str, ...]], ...] = tuple(atoms)
         self._index = {atom: i for i, atom in enumerate(self.atoms)}
+        # Per predicate: vector entries and object indices of their arguments, for vectorised evaluation.
+        self.groundings: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+        for name in scene.predicates:
+            entries = [k for k, (n, _) in enumerate(self.atoms) if n == name]
+            args = [[scene.objects.index(a) for a in self.atoms[k][1]] for k in entries]
+            self.groundings[name] = (np.array(entries), np.array(args))
 
     @property
     def size(self) -> int:
@@ -265,28 +271,23 @@ def evaluate(
     positions = np.asarray(block_positions, dtype=np.float64)
     count = len(layout.objects)
     present = np.ones(count, dtype=bool) if present is None else np.asarray(present, dtype=bool)
-    index = {name: i for i, name in enumerate(layout.objects)}
-    rel_grip = positions - np.asarray(grip_position)
-    fingers_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
-    holding = (fingers_on_block & (np.linalg.norm(rel_grip[:, :2], axis=1) < thresholds.holding_xy)
-               & (np.abs(rel_grip[:, 2]) < thresholds.holding_z))
-    in_bin = (layout.scene.bin.contains(positions, table_height) if layout.scene.bin is not None
-              else np.zeros(count, dtype=bool))
     vector = np.zeros(layout.size, dtype=bool)
-    for k, (name, args) in enumerate(layout.atoms):
-        idx = [index[a] for a in args]
-        if not present[idx].all():
-            continue
+    for name, (entries, args) in layout.groundings.items():
         if name == "close":
-            vector[k] = np.linalg.norm(positions[idx[0]] - positions[idx[1]]) <= thresholds.close_distance
+            a, b = positions[args[:, 0]], positions[args[:, 1]]
+            value = np.linalg.norm(a - b, axis=1) <= thresholds.close_distance
         elif name == "above":
-            delta = positions[idx[0]] - positions[idx[1]]
-            vector[k] = (np.linalg.norm(delta[:2]) < thresholds.above_xy
-                         and thresholds.above_dz_min < delta[2] < thresholds.above_dz_max)
+            delta = positions[args[:, 0]] - positions[args[:, 1]]
+            value = ((np.linalg.norm(delta[:, :2], axis=1) < thresholds.above_xy)
+                     & (delta[:, 2] > thresholds.above_dz_min) & (delta[:, 2] < thresholds.above_dz_max))
         elif name == "holding":
-            vector[k] = holding[idx[0]]
-        elif name == "in_bin":
-            vector[k] = in_bin[idx[0]]
+            rel = positions[args[:, 0]] - np.asarray(grip_position)
+            fingers_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
+            value = (fingers_on_block & (np.linalg.norm(rel[:, :2], axis=1) < thresholds.holding_xy)
+                     & (np.abs(rel[:, 2]) < thresholds.holding_z))
+        else:  # in_bin
+            value = layout.scene.bin.contains(positions[args[:, 0]], table_height)
+        vector[entries] = value & present[args].all(axis=1)
     return vector
 
 

@@ -13,14 +13,15 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from semgoal_sim import layout
 from semgoal_sim.expert import WorldView
+from semgoal_sim.layout import CONTROL_DT
 from semgoal_sim.scene import TABLE_HEIGHT, block_body_name, build_model
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
 """End-effector displacement (m) per control step for an action of 1 (Fetch benchmark)."""
-CONTROL_DT = N_SUBSTEPS * 0.002
 GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 """Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
@@ -177,3 +178,10 @@ class FetchWorld:
         snapshot = snapshot or self.snapshot()
         return WorldView(dict(zip(self.blocks, snapshot.block_positions, strict=True)), snapshot.grip_position,
                          snapshot.finger_opening, self.scene.bin)
+
+    def observation(self, snapshot: Snapshot | None = None) -> np.ndarray:
+        """The policy observation (layout: :mod:`semgoal_sim.layout`)."""
+        snapshot = snapshot or self.snapshot()
+        return layout.observation(self.scene.name, snapshot.grip_position, snapshot.grip_velocity,
+                                  snapshot.finger_positions, snapshot.finger_velocities,
+                                  snapshot.block_positions, snapshot.block_velocities)

@@ -1,0 +1,141 @@
+"""A goal-conditioned gymnasium environment over any scene, for training the low-level policy.
+
+Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
+``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Put
+sub-goals start with the block in the gripper, as they do after a pick in a plan. Episodes never start
+with the sub-goal already achieved.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from semgoal_sim import layout, tasks
+from semgoal_sim.vocabulary import SCENES, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.world import FetchWorld
+
+EPISODE_STEPS = 50
+"""Control steps per sub-goal episode (2 s of sim time; the expert needs about 15 to 25)."""
+
+
+class SubgoalEnv(gym.Env):
+    """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
+                 max_steps: int = EPISODE_STEPS) -> None:
+        self.scene = SCENES[scene]
+        counts = self.scene.block_counts or (self.scene.max_blocks,)
+        self.block_counts = (n_blocks,) if n_blocks else counts
+        self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}
+        self.world = self.worlds[self.block_counts[-1]]
+        self.layout = self.world.layout
+        self.subgoal_types = subgoal_types or self.scene.subgoal_types
+        self.max_steps = max_steps
+        obs_size, goal_size = layout.observation_size(scene), layout.goal_size(scene)
+        self.observation_space = gym.spaces.Dict({
+            "observation": gym.spaces.Box(-np.inf, np.inf, (obs_size,), np.float32),
+            "achieved_goal": gym.spaces.Box(0.0, 1.0, (goal_size,), np.float32),
+            "desired_goal": gym.spaces.Box(0.0, 1.0, (goal_size,), np.float32),
+        })
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
+        self.subgoal: SubGoal | None = None
+        self._target = self._mask = np.zeros(self.layout.size, dtype=np.float32)
+        self._steps = 0
+
+    # -- gymnasium API -------------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
+        super().reset(seed=seed)
+        options = options or {}
+        for _ in range(100):
+            self.world = self.worlds[int(self.np_random.choice(self.block_counts))]
+            self.world.reset(self._sample_positions())
+            subgoal = (parse_subgoal(options["subgoal"], self.scene) if "subgoal" in options
+                       else self._sample_subgoal())
+            if subgoal is None:
+                continue
+            if subgoal.kind != "pick":
+                self.world.place_in_gripper(subgoal.block)
+            self._set_subgoal(subgoal)
+            if not self._success() or "subgoal" in options:
+                break
+        self._steps = 0
+        return self._obs(), self._info()
+
+    def step(self, action: np.ndarray):
+        self.world.step(action)
+        self._steps += 1
+        obs = self._obs()
+        reward = float(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
+        return obs, reward, False, self._steps >= self.max_steps, self._info(success=reward > 0)
+
+    def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
+        """Vectorised sparse semantic reward, for HER relabelling."""
+        return layout.goal_reward(achieved_goal, desired_goal)
+
+    # -- sampling ------------------------------------------------------------------------------------
+    def _sample_positions(self) -> np.ndarray:
+        """Scattered, clustered or (with a bin) partly binned starts, so every sub-goal meets variety."""
+        rng, count = self.np_random, len(self.world.blocks)
+        kind = rng.uniform()
+        if kind < 0.3 and count >= 2:
+            positions = tasks.scatter(rng, count)
+            positions[:2] = tasks.cluster(rng, 2)
+            if count > 2 and min(np.linalg.norm(positions[i, :2] - positions[j, :2])
+                                 for i, j in itertools.combinations(range(count), 2)) < tasks.MIN_SEPARATION:
+                positions = tasks.scatter(rng, count)
+            return positions[rng.permutation(count)] if kind < 0.15 else positions
+        positions = tasks.scatter(rng, count)
+        if self.scene.bin is not None and kind > 0.7:
+            slots = self.scene.bin.slots()
+            for i in range(count - 1):
+                if rng.uniform() < 0.5:
+                    positions[i] = [*slots[i], tasks.TABLE_TOP + self.scene.bin.floor_thickness + 0.0251]
+        if self.scene.name == "two_blocks" and kind > 0.8:
+            return tasks.stack(rng, (0, 1) if rng.uniform() < 0.5 else (1, 0))
+        return positions
+
+    def _sample_subgoal(self) -> SubGoal | None:
+        rng, blocks = self.np_random, self.world.blocks
+        kind = str(rng.choice(self.subgoal_types))
+        x, *others = rng.permutation(blocks).tolist()
+        vector = self.world.semantic_vector()
+        on_x = any(lit.name == "above" and lit.args[1] == x for lit in self.layout.true_literals(vector))
+        if on_x:  # a block under another cannot be picked: the plan would clear it first
+            return None
+        if kind in ("put_near", "put_away") and len(others) >= 2 and rng.uniform() < 0.3:
+            refs = tuple(others[:2])
+            try:
+                return parse_subgoal(f"{kind}({x},{','.join(refs)})", self.scene)
+            except VocabularyError:
+                return None
+        args = (x, others[0]) if kind in ("put_near", "put_away", "put_on") else (x,)
+        return SubGoal(kind, args)
+
+    def _set_subgoal(self, subgoal: SubGoal) -> None:
+        self.subgoal = subgoal
+        self._target, self._mask = self.layout.encode(subgoal.literals())
+
+    # -- read-out ------------------------------------------------------------------------------------
+    def _success(self) -> bool:
+        achieved = self.world.semantic_vector().astype(np.float32)
+        return bool(layout.goal_reward(np.concatenate([achieved, self._mask]),
+                                       np.concatenate([self._target, self._mask])))
+
+    def _obs(self) -> dict[str, np.ndarray]:
+        snapshot = self.world.snapshot()
+        achieved = self.world.semantic_vector(snapshot).astype(np.float32)
+        return {
+            "observation": self.world.observation(snapshot),
+            "achieved_goal": np.concatenate([achieved, self._mask]),
+            "desired_goal": np.concatenate([self._target, self._mask]),
+        }
+
+    def _info(self, success: bool | None = None) -> dict[str, Any]:
+        return {"subgoal": str(self.subgoal), "subgoal_type": self.subgoal.kind if self.subgoal else "",
+                "is_success": self._success() if success is None else success}

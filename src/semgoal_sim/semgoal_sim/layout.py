@@ -1,0 +1,84 @@
+"""The observation and goal layouts, defined once for training, evaluation and the nodes. No MuJoCo.
+
+Observation (float32), after the Fetch benchmark's: the arm, then one fixed-size slot per block of the
+scene (absent blocks of a smaller desk-cleanup variant are zeros with ``present`` = 0):
+
+    arm:   grip position (3), grip velocity x dt (3), finger positions (2), finger velocities x dt (2)
+    block: present (1), position (3), position relative to the grip (3), linear velocity x dt (3)
+
+Goal: ``concat(target, mask)`` over the scene's semantic vector: mask 1 where a literal constrains the
+entry, target its value. The achieved goal is ``concat(semantic vector, the episode's mask)``, so HER
+can relabel by copying an achieved goal into the desired one and the mask travels along.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from semgoal_sim.vocabulary import LAYOUTS, SCENES
+
+CONTROL_DT = 0.04
+"""Seconds per control step (20 substeps of 0.002 s); velocities are scaled by it, as in Fetch."""
+ARM_FEATURES = (("grip_position", 3), ("grip_velocity", 3), ("finger_positions", 2), ("finger_velocities", 2))
+BLOCK_FEATURES = (("present", 1), ("position", 3), ("relative_position", 3), ("velocity", 3))
+ARM_SIZE = sum(size for _, size in ARM_FEATURES)
+BLOCK_SIZE = sum(size for _, size in BLOCK_FEATURES)
+
+
+def observation_size(scene: str) -> int:
+    return ARM_SIZE + BLOCK_SIZE * SCENES[scene].max_blocks
+
+
+def goal_size(scene: str) -> int:
+    return 2 * LAYOUTS[scene].size
+
+
+def describe(scene: str) -> dict:
+    """The layout as data: stored next to exported actors and checked when they are loaded."""
+    return {
+        "scene": scene,
+        "observation_size": observation_size(scene),
+        "arm_features": [list(f) for f in ARM_FEATURES],
+        "block_features": [list(f) for f in BLOCK_FEATURES],
+        "blocks": list(SCENES[scene].objects),
+        "semantic_atoms": [f"{name}({','.join(args)})" for name, args in LAYOUTS[scene].atoms],
+        "goal_size": goal_size(scene),
+    }
+
+
+def observation(
+    scene: str,
+    grip_position: np.ndarray,
+    grip_velocity: np.ndarray,
+    finger_positions: np.ndarray,
+    finger_velocities: np.ndarray,
+    block_positions: np.ndarray,
+    block_velocities: np.ndarray,
+) -> np.ndarray:
+    """The observation vector. ``block_positions`` / ``block_velocities`` (n, 3) hold the blocks present,
+    in scene order (n may be below the scene's maximum)."""
+    slots = SCENES[scene].max_blocks
+    obs = np.zeros(ARM_SIZE + BLOCK_SIZE * slots, dtype=np.float32)
+    obs[0:3] = grip_position
+    obs[3:6] = np.asarray(grip_velocity) * CONTROL_DT
+    obs[6:8] = finger_positions
+    obs[8:10] = np.asarray(finger_velocities) * CONTROL_DT
+    blocks = obs[ARM_SIZE:].reshape(slots, BLOCK_SIZE)
+    count = len(block_positions)
+    blocks[:count, 0] = 1.0
+    blocks[:count, 1:4] = block_positions
+    blocks[:count, 4:7] = np.asarray(block_positions) - np.asarray(grip_position)
+    blocks[:count, 7:10] = np.asarray(block_velocities)[:, :3] * CONTROL_DT
+    return obs
+
+
+def goal_reward(achieved_goal: np.ndarray, desired_goal: np.ndarray) -> np.ndarray:
+    """Sparse semantic reward, vectorised over leading axes: 1 where every masked entry matches, else 0.
+
+    The mask is read from ``desired_goal``; no hand-written dense term (paper, "Training the low-level
+    policy").
+    """
+    n = desired_goal.shape[-1] // 2
+    target, mask = desired_goal[..., :n], desired_goal[..., n:]
+    mismatch = (np.abs(achieved_goal[..., :n] - target) > 0.5) & (mask > 0.5)
+    return (~mismatch.any(axis=-1)).astype(np.float32)

@@ -104,6 +104,12 @@ class GraphProbe:
                 pytest.fail(f"timed out after {timeout:.0f} s waiting for {what}")
             self.executor.spin_once(timeout_sec=0.05)
 
+    def spin_for(self, seconds: float) -> None:
+        """Process callbacks for ``seconds`` (to show that something does NOT happen)."""
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            self.executor.spin_once(timeout_sec=0.05)
+
     def spin_future(self, future, timeout: float, what: str = "future"):
         self.spin_until(future.done, timeout, what)
         return future.result()

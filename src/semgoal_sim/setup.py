@@ -18,6 +18,8 @@ setup(
     license="Apache-2.0",
     entry_points={
         "console_scripts": [
+            "sim_node = semgoal_sim.sim_node:main",
+            "predicate_node = semgoal_sim.predicate_node:main",
         ],
     },
 )

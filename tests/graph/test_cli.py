@@ -2,7 +2,7 @@
 
 import subprocess
 
-from conftest import ROOT, NodeProcesses, GraphProbe
+from conftest import ROOT, GraphProbe, NodeProcesses
 
 
 def test_semgoal_run_starts_a_node_seen_in_the_graph(nodes: NodeProcesses, probe: GraphProbe) -> None:

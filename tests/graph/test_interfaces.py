@@ -3,7 +3,7 @@
 from geometry_msgs.msg import Point, Pose, Twist, Vector3
 from rclpy.action import ActionClient
 
-from conftest import NodeProcesses, GraphProbe
+from conftest import GraphProbe, NodeProcesses
 from semgoal_msgs import msg, srv
 from semgoal_msgs.action import ExecuteGoal
 

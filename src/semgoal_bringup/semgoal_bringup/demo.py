@@ -19,9 +19,9 @@ def main(argv: list[str]) -> int:
     echo = subprocess.Popen([str(root / "semgoal"), "run", "semgoal_bringup", "echo_node"])
     try:
         import rclpy
-        from semgoal_msgs.msg import GoalRequest
 
         from semgoal_bringup.echo_node import echo_topics
+        from semgoal_msgs.msg import GoalRequest
 
         rclpy.init(domain_id=int(os.environ["ROS_DOMAIN_ID"]))
         node = rclpy.create_node("semgoal_demo")

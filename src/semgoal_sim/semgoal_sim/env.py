@@ -25,8 +25,6 @@ EPISODE_STEPS = 50
 class SubgoalEnv(gym.Env):
     """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
 
-    metadata = {"render_modes": []}
-
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS) -> None:
         self.scene = SCENES[scene]

@@ -82,7 +82,7 @@ def build_spec(scene: Scene, blocks: tuple[str, ...]) -> mujoco.MjSpec:
     return spec
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def build_model(scene_name: str, n_blocks: int | None = None) -> mujoco.MjModel:
     """Compile the model of a scene (cached: models are immutable in use, data is per world).
 

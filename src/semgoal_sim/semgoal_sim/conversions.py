@@ -1,0 +1,105 @@
+"""Between plain arrays and semgoal_msgs / standard messages. Used by the nodes, never by the cores."""
+
+from __future__ import annotations
+
+import numpy as np
+from geometry_msgs.msg import Point, Vector3
+from sensor_msgs.msg import JointState
+from visualization_msgs.msg import Marker, MarkerArray
+
+from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
+from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
+from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
+from semgoal_sim.world import FetchWorld, Snapshot
+
+
+def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int) -> WorldState:
+    msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode)
+    msg.header.frame_id = "world"
+    seconds = snapshot.time
+    msg.header.stamp.sec, msg.header.stamp.nanosec = int(seconds), int((seconds % 1) * 1e9)
+    for name, pos, quat, vel in zip(world.blocks, snapshot.block_positions, snapshot.block_quaternions,
+                                    snapshot.block_velocities, strict=True):
+        block = BlockState(name=name)
+        block.pose.position = Point(x=float(pos[0]), y=float(pos[1]), z=float(pos[2]))
+        block.pose.orientation.w, block.pose.orientation.x = float(quat[0]), float(quat[1])
+        block.pose.orientation.y, block.pose.orientation.z = float(quat[2]), float(quat[3])
+        block.twist.linear = Vector3(x=float(vel[0]), y=float(vel[1]), z=float(vel[2]))
+        block.twist.angular = Vector3(x=float(vel[3]), y=float(vel[4]), z=float(vel[5]))
+        msg.blocks.append(block)
+    g, v = snapshot.grip_position, snapshot.grip_velocity
+    msg.gripper_position = Point(x=float(g[0]), y=float(g[1]), z=float(g[2]))
+    msg.gripper_velocity = Vector3(x=float(v[0]), y=float(v[1]), z=float(v[2]))
+    msg.finger_positions = snapshot.finger_positions.astype(float).tolist()
+    msg.finger_velocities = snapshot.finger_velocities.astype(float).tolist()
+    if world.scene.bin is not None:
+        msg.has_bin = True
+        msg.bin_position = Point(x=world.scene.bin.center[0], y=world.scene.bin.center[1], z=TABLE_HEIGHT)
+    msg.observation = world.observation(snapshot).astype(float).tolist()
+    return msg
+
+
+def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
+    """(max_blocks, 3) centres in the scene's slot order and the (max_blocks,) presence mask."""
+    objects = SCENES[msg.scene].objects
+    positions = np.zeros((len(objects), 3))
+    present = np.zeros(len(objects), dtype=bool)
+    for block in msg.blocks:
+        i = objects.index(block.name)
+        p = block.pose.position
+        positions[i], present[i] = (p.x, p.y, p.z), True
+    return positions, present
+
+
+def semantic_vector(msg: WorldState) -> np.ndarray:
+    """Evaluate the scene's predicates on a world state message."""
+    positions, present = block_positions(msg)
+    g = msg.gripper_position
+    return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
+                    float(sum(msg.finger_positions)), TABLE_HEIGHT, present)
+
+
+def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
+    layout = LAYOUTS[msg.scene]
+    state = SemanticState(scene=msg.scene, step=msg.step, objects=list(layout.objects),
+                          vector=[bool(v) for v in vector])
+    state.header = msg.header
+    state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
+                        for (name, args), v in zip(layout.atoms, vector, strict=True)]
+    return state
+
+
+def joint_state(world: FetchWorld, snapshot: Snapshot) -> JointState:
+    m, d = world.model, world.data
+    names = [m.joint(i).name for i in range(m.njnt) if m.joint(i).name.startswith("robot0:")]
+    msg = JointState(name=names)
+    msg.header.stamp.sec, msg.header.stamp.nanosec = int(snapshot.time), int((snapshot.time % 1) * 1e9)
+    msg.position = [float(d.qpos[m.joint(n).qposadr[0]]) for n in names]
+    msg.velocity = [float(d.qvel[m.joint(n).dofadr[0]]) for n in names]
+    return msg
+
+
+def _cube(marker_id: int, ns: str, position, size, rgba) -> Marker:
+    marker = Marker(ns=ns, id=marker_id, type=Marker.CUBE, action=Marker.ADD)
+    marker.header.frame_id = "world"
+    marker.pose.position = Point(x=float(position[0]), y=float(position[1]), z=float(position[2]))
+    marker.pose.orientation.w = 1.0
+    marker.scale = Vector3(x=float(size[0]), y=float(size[1]), z=float(size[2]))
+    marker.color.r, marker.color.g, marker.color.b, marker.color.a = (float(c) for c in rgba)
+    return marker
+
+
+def markers(msg: WorldState) -> MarkerArray:
+    """Table, bin and blocks as RViz cubes."""
+    table = _cube(0, "table", (*TABLE_CENTER, TABLE_HEIGHT / 2), (2 * TABLE_HALF_SIZE[0], 2 * TABLE_HALF_SIZE[1],
+                                                                  TABLE_HEIGHT), (0.9, 0.9, 0.9, 1.0))
+    items = [table]
+    scene = SCENES[msg.scene]
+    if scene.bin is not None:
+        b = scene.bin
+        items.append(_cube(0, "bin", (*b.center, TABLE_HEIGHT + b.wall_height / 2),
+                           (2 * b.inner_half_size[0], 2 * b.inner_half_size[1], b.wall_height), (0.45, 0.33, 0.22, 0.6)))
+    for i, block in enumerate(msg.blocks):
+        p = block.pose.position
+        items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
+    return MarkerArray(markers=items)

@@ -1,0 +1,108 @@
+"""The simulator as the sim node sees it: tasks and seeds, command checking, interventions. No rclpy.
+
+Every input is checked here: a command with a non-finite entry is dropped, one out of [-1, 1] is
+clamped, a stale lockstep command is ignored, an unknown task or block is refused; each case returns a
+message for the node to log, and the world keeps its last good state.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
+from semgoal_sim.tasks import TASKS, get_task
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES
+from semgoal_sim.world import FetchWorld, Snapshot
+
+
+@dataclass(frozen=True)
+class CommandCheck:
+    """Outcome of checking one arm command: the action to apply (None = drop it) and why."""
+
+    action: np.ndarray | None
+    warning: str = ""
+
+
+def check_command(values: list[float] | np.ndarray) -> CommandCheck:
+    """Drop non-finite commands, clamp out-of-range ones (Fetch actions live in [-1, 1])."""
+    action = np.asarray(values, dtype=np.float64)
+    if action.shape != (4,):
+        return CommandCheck(None, f"dropped a command with {action.size} values (need 4)")
+    if not np.all(np.isfinite(action)):
+        return CommandCheck(None, f"dropped a command with non-finite values {action.tolist()}")
+    if np.any(np.abs(action) > 1.0):
+        return CommandCheck(np.clip(action, -1.0, 1.0), f"clamped an out-of-range command {action.tolist()} to [-1, 1]")
+    return CommandCheck(action)
+
+
+class SimCore:
+    """One scene's world, reset to tasks by seed, stepped by checked commands."""
+
+    def __init__(self, scene: str, task: str = "", seed: int = 0) -> None:
+        if scene not in SCENES:
+            raise ValueError(f"unknown scene {scene!r}: scenes are {', '.join(SCENES)}")
+        self.scene = scene
+        self.task = ""
+        self.episode = 0
+        self._next_seed = seed
+        self._worlds: dict[int, FetchWorld] = {}
+        default_task = task or next(name for name, t in TASKS.items() if t.scene == scene)
+        ok, message = self.reset(default_task, seed)
+        if not ok:
+            raise ValueError(message)
+
+    @property
+    def world(self) -> FetchWorld:
+        return self._worlds[self._blocks]
+
+    def reset(self, task_name: str, seed: int) -> tuple[bool, str]:
+        """Reset to a seeded start of ``task_name`` (same scene); a negative seed takes the next one."""
+        try:
+            task = get_task(task_name or self.task)
+        except KeyError as error:
+            return False, str(error.args[0])
+        if task.scene != self.scene:
+            scene_tasks = ", ".join(n for n, t in TASKS.items() if t.scene == self.scene)
+            return False, f"task {task.name} runs in scene {task.scene}, this sim is {self.scene} (tasks here: {scene_tasks})"
+        if seed < 0:
+            seed = self._next_seed
+        self._next_seed = seed + 1
+        if task.n_blocks not in self._worlds:
+            self._worlds[task.n_blocks] = FetchWorld(self.scene, task.n_blocks)
+        self._blocks = task.n_blocks
+        positions, self.goal = task.initial_state(seed)
+        self.world.reset(positions)
+        self.task, self.seed = task.name, seed
+        self.episode += 1
+        return True, f"reset to {task.name} with seed {seed}"
+
+    def step(self, values: list[float] | np.ndarray) -> CommandCheck:
+        """Check a command and, unless dropped, advance one control step."""
+        check = check_command(values)
+        if check.action is not None:
+            self.world.step(check.action)
+        return check
+
+    def move_block(self, block: str, position: np.ndarray) -> tuple[bool, str]:
+        """Operator intervention: put ``block`` at ``position`` (x, y; z is set to rest on the table)."""
+        world = self.world
+        if block not in world.blocks:
+            return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
+        xy = np.asarray(position, dtype=np.float64)[:2]
+        if not np.all(np.isfinite(xy)):
+            return False, "position must be finite"
+        low = np.array(TABLE_CENTER) - np.array(TABLE_HALF_SIZE) + BLOCK_HALF_SIZE
+        high = np.array(TABLE_CENTER) + np.array(TABLE_HALF_SIZE) - BLOCK_HALF_SIZE
+        if np.any(xy < low) or np.any(xy > high):
+            return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is off the table (x {low[0]:.2f}..{high[0]:.2f}, y {low[1]:.2f}..{high[1]:.2f})"
+        snapshot = world.snapshot()
+        for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
+            if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
+                return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
+        world.set_block_pose(block, np.array([*xy, TABLE_HEIGHT + BLOCK_HALF_SIZE]))
+        return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f})"
+
+    def snapshot(self) -> Snapshot:
+        return self.world.snapshot()

@@ -1,0 +1,118 @@
+"""sim_node: the MuJoCo Fetch block world on the ROS graph.
+
+Publishes /joint_states, /semgoal/world_state and /semgoal/markers; takes /semgoal/arm_command; serves
+/semgoal/reset_world and /semgoal/move_block. In ``lockstep`` mode one command for the step just
+published advances one control step (as fast as the graph goes); in ``realtime`` mode a timer steps at
+``rate_hz`` with the last good command.
+"""
+
+import numpy as np
+import rclpy
+from rcl_interfaces.msg import SetParametersResult
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from sensor_msgs.msg import JointState
+from visualization_msgs.msg import MarkerArray
+
+from semgoal_msgs.msg import ArmCommand, WorldState
+from semgoal_msgs.srv import MoveBlock, ResetWorld
+from semgoal_sim import conversions
+from semgoal_sim import ros_interfaces as topics
+from semgoal_sim.sim_core import SimCore, check_command
+
+MODES = ("lockstep", "realtime")
+
+
+class SimNode(Node):
+    def __init__(self) -> None:
+        super().__init__("sim")
+        scene = self.declare_parameter("scene", "two_blocks").value
+        task = self.declare_parameter("task", "").value
+        seed = self.declare_parameter("seed", 0).value
+        self.mode = self.declare_parameter("mode", "lockstep").value
+        self.rate_hz = self.declare_parameter("rate_hz", 25.0).value
+        self.markers_every = self.declare_parameter("markers_every", 5).value
+        if self.mode not in MODES:
+            raise ValueError(f"mode must be one of {MODES}, got {self.mode!r}")
+        self.core = SimCore(scene, task, seed)
+        self.held_command = np.zeros(4)
+        self.world_pub = self.create_publisher(WorldState, topics.WORLD_STATE, topics.STREAM)
+        self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
+        self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED)
+        self.create_subscription(ArmCommand, topics.ARM_COMMAND, self.command_callback, topics.STREAM)
+        self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
+        self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
+        self.add_on_set_parameters_callback(self.parameters_callback)
+        if self.mode == "realtime":
+            self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step)
+        self.publish_state()
+        self.get_logger().info(f"{scene} ready: task {self.core.task}, seed {self.core.seed}, {self.mode} mode")
+
+    def parameters_callback(self, params) -> SetParametersResult:
+        for param in params:
+            if param.name in ("scene", "mode"):
+                return SetParametersResult(successful=False, reason=f"{param.name} is fixed at start-up; restart the node")
+        return SetParametersResult(successful=True)
+
+    def publish_state(self) -> WorldState:
+        snapshot = self.core.snapshot()
+        msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode)
+        self.world_pub.publish(msg)
+        self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot))
+        if snapshot.step % max(1, self.markers_every) == 0:
+            self.marker_pub.publish(conversions.markers(msg))
+        return msg
+
+    def command_callback(self, msg: ArmCommand) -> None:
+        values = [msg.displacement.x, msg.displacement.y, msg.displacement.z, msg.gripper]
+        if self.mode == "lockstep" and msg.step != self.core.world.step_count:
+            self.get_logger().warn(f"dropped a stale command for step {msg.step} (now at {self.core.world.step_count})",
+                                   throttle_duration_sec=1.0)
+            return
+        check = check_command(values)
+        if check.warning:
+            self.get_logger().warn(check.warning, throttle_duration_sec=1.0)
+        if check.action is None:
+            return
+        if self.mode == "realtime":
+            self.held_command = check.action
+            return
+        self.core.step(check.action)
+        self.publish_state()
+
+    def realtime_step(self) -> None:
+        self.core.step(self.held_command)
+        self.publish_state()
+
+    def report(self, success: bool, message: str) -> None:
+        if success:
+            self.get_logger().info(message)
+        else:
+            self.get_logger().warning(message)
+
+    def reset_callback(self, request: ResetWorld.Request, response: ResetWorld.Response) -> ResetWorld.Response:
+        response.success, response.message = self.core.reset(request.task, request.seed)
+        self.report(response.success, response.message)
+        self.held_command = np.zeros(4)
+        response.world = self.publish_state()
+        response.state = conversions.semantic_state(response.world, conversions.semantic_vector(response.world))
+        return response
+
+    def move_block_callback(self, request: MoveBlock.Request, response: MoveBlock.Response) -> MoveBlock.Response:
+        p = request.position
+        response.success, response.message = self.core.move_block(request.block, np.array([p.x, p.y, p.z]))
+        self.report(response.success, response.message)
+        response.world = self.publish_state()
+        return response
+
+
+def main(args=None) -> None:
+    rclpy.init(args=args)
+    node = SimNode()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()

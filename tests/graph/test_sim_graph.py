@@ -1,0 +1,110 @@
+"""sim_node and predicate_node as processes: the test drives the arm in lockstep with the expert's
+commands over DDS and watches world and semantic state change; garbage commands do not stop the sim."""
+
+import math
+
+import numpy as np
+
+from conftest import GraphProbe, NodeProcesses
+from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
+from semgoal_msgs.srv import MoveBlock, ResetWorld
+from semgoal_sim import ros_interfaces as topics
+from semgoal_sim.conversions import block_positions
+from semgoal_sim.expert import WorldView, expert_action
+from semgoal_sim.vocabulary import SCENES, SubGoal
+
+
+def command(step: int, values) -> ArmCommand:
+    msg = ArmCommand(step=step, gripper=float(values[3]))
+    msg.displacement.x, msg.displacement.y, msg.displacement.z = (float(v) for v in values[:3])
+    return msg
+
+
+def view(msg: WorldState) -> WorldView:
+    positions, present = block_positions(msg)
+    names = SCENES[msg.scene].objects
+    g = msg.gripper_position
+    return WorldView({n: p for n, p, here in zip(names, positions, present, strict=True) if here},
+                     np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), SCENES[msg.scene].bin)
+
+
+class Graph:
+    """The test's side of the graph: latest world and semantic state, a command publisher."""
+
+    def __init__(self, probe: GraphProbe) -> None:
+        self.probe = probe
+        self.worlds: list[WorldState] = []
+        self.semantic: list[SemanticState] = []
+        probe.node.create_subscription(WorldState, topics.WORLD_STATE, self.worlds.append, topics.STREAM)
+        probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic.append, topics.LATCHED)
+        self.commands = probe.node.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
+
+    def call(self, service_type, name, request):
+        client = self.probe.node.create_client(service_type, name)
+        self.probe.spin_until(client.service_is_ready, 30, name)
+        return self.probe.spin_future(client.call_async(request), 30, name)
+
+    def step(self, values) -> WorldState:
+        """Send one command for the latest step and wait for the next world state."""
+        latest = self.worlds[-1]
+        count = len(self.worlds)
+        self.commands.publish(command(latest.step, values))
+        self.probe.spin_until(lambda: len(self.worlds) > count, 10, f"world state after step {latest.step}")
+        return self.worlds[-1]
+
+    def true_literals(self) -> set[str]:
+        state = self.semantic[-1]
+        return {f"{p.name}({','.join(p.args)})" for p in state.predicates if p.value}
+
+
+def test_expert_drives_sim_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    nodes.start("semgoal_sim", "sim_node", params={"scene": "two_blocks", "task": "MC-2", "seed": 3})
+    nodes.start("semgoal_sim", "predicate_node")
+    graph = Graph(probe)
+    reset = graph.call(ResetWorld, topics.RESET_WORLD, ResetWorld.Request(task="MC-2", seed=3))
+    assert reset.success, reset.message
+    probe.spin_until(lambda: graph.worlds and graph.worlds[-1].step == 0, 20, "world state of the reset")
+    probe.spin_until(lambda: graph.semantic, 20, "semantic state")
+    assert "close(red,green)" not in graph.true_literals()
+    start = graph.worlds[-1]
+    for subgoal in (SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "green"))):
+        for _ in range(60):
+            world = graph.step(expert_action(subgoal, view(graph.worlds[-1]), False))
+            probe.spin_until(lambda w=world: graph.semantic[-1].step >= w.step - 1, 5, "semantic state to follow")
+            if subgoal.kind == "pick" and "holding(red)" in graph.true_literals():
+                break
+            if subgoal.kind == "put_near" and "close(red,green)" in graph.true_literals() and \
+                    "holding(red)" not in graph.true_literals():
+                break
+    final = graph.worlds[-1]
+    assert final.step > start.step
+    assert "close(red,green)" in graph.true_literals()
+    moved = np.linalg.norm(block_positions(final)[0][0] - block_positions(start)[0][0])
+    assert moved > 0.05, "the red block moved"
+
+
+def test_garbage_commands_do_not_stop_the_sim(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    process = nodes.start("semgoal_sim", "sim_node", params={"scene": "desk_cleanup", "task": "DC-2"})
+    graph = Graph(probe)
+    probe.spin_until(lambda: graph.commands.get_subscription_count() > 0, 20, "sim_node")
+    graph.call(ResetWorld, topics.RESET_WORLD, ResetWorld.Request(task="DC-2", seed=1))
+    probe.spin_until(lambda: graph.worlds and graph.worlds[-1].step == 0, 20, "reset world state")
+    count = len(graph.worlds)
+    for values in ([math.nan, 0, 0, 0], [0, math.inf, 0, 0]):  # dropped: no step
+        graph.commands.publish(command(0, values))
+    graph.commands.publish(command(99, [0, 0, 1, 0]))  # stale: dropped
+    probe.spin_for(1.0)
+    assert len(graph.worlds) == count, "dropped commands must not step the world"
+    world = graph.step([5.0, -7.0, 0.0, 2.0])  # clamped and applied
+    assert world.step == 1 and all(math.isfinite(v) for v in world.observation)
+    refused = graph.call(ResetWorld, topics.RESET_WORLD, ResetWorld.Request(task="MC-2", seed=0))
+    assert not refused.success and "two_blocks" in refused.message
+    unknown = graph.call(MoveBlock, topics.MOVE_BLOCK, MoveBlock.Request(block="purple"))
+    assert not unknown.success and "unknown block 'purple'" in unknown.message
+    request = MoveBlock.Request(block="red")
+    request.position.x, request.position.y = 1.25, 0.6
+    moved = graph.call(MoveBlock, topics.MOVE_BLOCK, request)
+    assert moved.success, moved.message
+    assert abs(moved.world.blocks[0].pose.position.x - 1.25) < 1e-6
+    assert graph.step([0, 0, 0, 0]).step == 2  # still stepping
+    assert process.poll() is None

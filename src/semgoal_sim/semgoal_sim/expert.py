@@ -67,7 +67,7 @@ def _open(world: WorldView) -> float:
     return float(np.clip((GRASP_OPENING - world.opening) / 2, -1.0, 1.0))
 
 
-def _placement_candidates(step: float = 0.01) -> np.ndarray:
+def _placement_candidates(step: float = 0.005) -> np.ndarray:
     xs = np.arange(SPAWN_LOW[0] - 0.05, SPAWN_HIGH[0] + 0.05 + 1e-9, step)
     ys = np.arange(SPAWN_LOW[1] - 0.05, SPAWN_HIGH[1] + 0.03 + 1e-9, step)
     return np.array(list(itertools.product(xs, ys)))

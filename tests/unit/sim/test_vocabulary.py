@@ -1,0 +1,128 @@
+"""Predicates on hand-built configurations, edge cases included; literals, layouts, sub-goals."""
+
+import numpy as np
+import pytest
+
+from semgoal_sim.vocabulary import (
+    LAYOUTS,
+    THRESHOLDS,
+    Literal,
+    SubGoal,
+    VocabularyError,
+    evaluate,
+    parse_literal,
+    parse_subgoal,
+)
+
+TABLE = 0.4
+REST = TABLE + 0.025
+FAR_GRIP = np.array([1.3, 0.75, 0.7])
+OPEN = 0.1
+
+
+def truths(scene: str, positions, grip=FAR_GRIP, opening=OPEN, present=None) -> set[str]:
+    layout = LAYOUTS[scene]
+    vector = evaluate(layout, np.array(positions, dtype=float), np.asarray(grip), opening, TABLE, present)
+    return {str(lit) for lit in layout.true_literals(vector)}
+
+
+def test_layout_sizes_follow_the_paper() -> None:
+    assert LAYOUTS["two_blocks"].size == 1 + 2 + 2  # close pair, above both ways, holding
+    assert LAYOUTS["three_blocks"].size == 3 + 3  # close pairs, holding
+    assert LAYOUTS["desk_cleanup"].size == 4 + 4  # holding, in_bin
+
+
+def test_close_is_symmetric_and_thresholded() -> None:
+    d = THRESHOLDS.close_distance
+    assert "close(red,green)" in truths("two_blocks", [[1.2, 0.6, REST], [1.2 + d - 0.001, 0.6, REST]])
+    assert "close(red,green)" not in truths("two_blocks", [[1.2, 0.6, REST], [1.2 + d + 0.001, 0.6, REST]])
+    layout = LAYOUTS["two_blocks"]
+    assert layout.index(Literal("close", ("green", "red"))) == layout.index(Literal("close", ("red", "green")))
+
+
+def test_above_on_a_stack_and_a_block_resting_offset_on_another() -> None:
+    stacked = truths("two_blocks", [[1.2, 0.6, REST], [1.2, 0.6, REST + 0.05]])
+    assert {"above(green,red)", "close(red,green)"} <= stacked and "above(red,green)" not in stacked
+    offset = truths("two_blocks", [[1.2, 0.6, REST], [1.2 + 0.03, 0.6 + 0.02, REST + 0.05]])  # 3.6 cm off centre
+    assert "above(green,red)" in offset
+    overhanging = truths("two_blocks", [[1.2, 0.6, REST], [1.2 + 0.05, 0.6 + 0.02, REST + 0.045]])  # tipping off
+    assert "above(green,red)" not in overhanging
+    side_by_side = truths("two_blocks", [[1.2, 0.6, REST], [1.26, 0.6, REST]])
+    assert not any(t.startswith("above") for t in side_by_side)
+
+
+def test_holding_needs_the_block_between_closed_fingers() -> None:
+    block = [1.3, 0.7, REST + 0.1]
+    grip = np.array(block)
+    assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.049)
+    assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.1)  # open
+    assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.0)  # shut, empty
+    assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip + [0.05, 0, 0], 0.049)
+
+
+def test_a_grasped_block_still_touching_the_table_is_held() -> None:
+    block = [1.3, 0.7, REST]
+    assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], np.array(block) + [0, 0, 0.005], 0.048)
+
+
+def test_in_bin_inside_on_the_rim_and_outside() -> None:
+    bin_ = LAYOUTS["desk_cleanup"].scene.bin
+    cx, cy = bin_.center
+    floor = TABLE + bin_.floor_thickness + 0.025
+    rim = TABLE + bin_.floor_thickness + bin_.wall_height
+    inside = [cx, cy, floor]
+    on_rim = [cx + bin_.inner_half_size[0] + bin_.wall_thickness / 2, cy, rim + 0.025]
+    on_table = [1.2, 0.6, REST]
+    result = truths("desk_cleanup", [inside, on_rim, on_table, [1.4, 0.6, REST]])
+    assert "in_bin(red)" in result
+    assert "in_bin(green)" not in result and "in_bin(blue)" not in result
+
+
+def test_absent_blocks_never_hold() -> None:
+    bin_ = LAYOUTS["desk_cleanup"].scene.bin
+    positions = [[*bin_.center, TABLE + 0.036]] * 4
+    result = truths("desk_cleanup", positions, present=np.array([True, True, False, False]))
+    assert result == {"in_bin(red)", "in_bin(green)"}
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("close(red,green)", Literal("close", ("red", "green"))),
+    ("not in_bin(red)", Literal("in_bin", ("red",), False)),
+    ("  !Holding( Blue ) ", Literal("holding", ("blue",), False)),
+    ("¬above(red, green)", Literal("above", ("red", "green"), False)),
+])
+def test_parse_literal(text: str, expected: Literal) -> None:
+    assert parse_literal(text) == expected
+
+
+@pytest.mark.parametrize("literal, message", [
+    ("close(red,purple)", "unknown object 'purple'"),
+    ("closer(red,green)", "unknown predicate 'closer'"),
+    ("close(red)", "takes 2 argument"),
+    ("close(red,red)", "cannot be related to itself"),
+    ("in_bin(red)", "not used in scene 'two_blocks'"),
+])
+def test_validation_names_the_problem(literal: str, message: str) -> None:
+    with pytest.raises(VocabularyError, match=message):
+        LAYOUTS["two_blocks"].validate(parse_literal(literal))
+
+
+def test_encode_decode_round_trip_and_contradictions() -> None:
+    layout = LAYOUTS["three_blocks"]
+    literals = [Literal("close", ("red", "blue")), Literal("holding", ("green",), False)]
+    target, mask = layout.encode(literals)
+    assert sorted(layout.decode(target, mask)) == sorted(literals)
+    with pytest.raises(VocabularyError, match="contradictory"):
+        layout.encode([Literal("close", ("red", "blue")), Literal("close", ("blue", "red"), False)])
+
+
+def test_subgoal_literals_and_parsing() -> None:
+    assert SubGoal("put_near", ("blue", "red", "green")).literals() == [
+        Literal("close", ("blue", "red")), Literal("close", ("blue", "green")), Literal("holding", ("blue",), False)]
+    assert parse_subgoal("put_in_bin(red)", LAYOUTS["desk_cleanup"].scene) == SubGoal("put_in_bin", ("red",))
+    with pytest.raises(VocabularyError, match="not available in scene 'two_blocks'"):
+        parse_subgoal("put_in_bin(red)", LAYOUTS["two_blocks"].scene)
+    with pytest.raises(VocabularyError, match="takes 2 argument"):
+        parse_subgoal("put_on(red)")
+    with pytest.raises(VocabularyError, match="appears twice"):
+        parse_subgoal("put_near(red,red)")

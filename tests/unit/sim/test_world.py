@@ -1,0 +1,71 @@
+"""Scenes compile with what the code looks up; control and resets behave as the Fetch benchmark's."""
+
+import mujoco
+import numpy as np
+import pytest
+
+from semgoal_sim.scene import TABLE_HEIGHT, build_model
+from semgoal_sim.sim_core import SimCore, check_command
+from semgoal_sim.tasks import TASKS
+from semgoal_sim.world import FetchWorld
+
+
+@pytest.mark.parametrize("scene, blocks", [("two_blocks", None), ("three_blocks", None), ("desk_cleanup", 2),
+                                           ("desk_cleanup", 4)])
+def test_scene_compiles_with_named_parts(scene: str, blocks: int | None) -> None:
+    model = build_model(scene, blocks)
+    for name in ("robot0:mocap", "robot0:gripper_link", "block_red", "table0"):
+        assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, name) >= 0, name
+    assert model.actuator("robot0:l_gripper_finger_joint") is not None
+    assert (mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "bin") >= 0) == (scene == "desk_cleanup")
+    assert mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, "object0") == -1
+
+
+def test_reset_is_deterministic_and_blocks_rest_on_the_table() -> None:
+    world = FetchWorld("two_blocks")
+    positions, _ = TASKS["MC-2"].initial_state(4)
+    first = world.reset(positions)
+    second = world.reset(positions)
+    np.testing.assert_allclose(first.block_positions, second.block_positions, atol=1e-9)
+    assert np.allclose(first.block_positions[:, 2], TABLE_HEIGHT + 0.025, atol=0.002)
+    np.testing.assert_allclose(first.grip_position, world.home_grip_position, atol=0.01)
+
+
+def test_action_moves_the_gripper_like_fetch() -> None:
+    world = FetchWorld("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(0)[0])
+    start = world.snapshot().grip_position
+    for _ in range(5):
+        world.step(np.array([1.0, 0.0, 0.0, 0.0]))
+    moved = world.snapshot().grip_position - start
+    assert 0.15 < moved[0] < 0.26 and abs(moved[1]) < 0.01  # up to 0.05 m per step
+    world.step(np.array([np.nan, np.inf, 0.0, 0.0]))  # non-finite entries count as zero
+    assert np.all(np.isfinite(world.snapshot().grip_position))
+
+
+def test_stacked_start_settles_into_above() -> None:
+    world = FetchWorld("two_blocks")
+    positions, goal = TASKS["Swap-2"].initial_state(2)
+    world.reset(positions)
+    top = int(np.argmax(positions[:, 2]))
+    assert f"above({world.blocks[top]},{world.blocks[1 - top]})" in world.layout.readable(world.semantic_vector())
+
+
+def test_commands_are_checked() -> None:
+    assert check_command([0.1, 0, 0, -1]).warning == ""
+    assert check_command([np.nan, 0, 0, 0]).action is None
+    clamped = check_command([3, -2, 0, 0.5])
+    assert clamped.action.tolist() == [1, -1, 0, 0.5] and "clamped" in clamped.warning
+    assert check_command([1, 2]).action is None
+
+
+def test_sim_core_refuses_bad_requests_and_keeps_state() -> None:
+    core = SimCore("desk_cleanup", "DC-3", seed=5)
+    before = core.snapshot().block_positions
+    assert core.reset("MC-2", 0) == (False, "task MC-2 runs in scene two_blocks, this sim is desk_cleanup "
+                                            "(tasks here: DC-2, DC-3, DC-4)")
+    assert not core.move_block("red", np.array([3.0, 0.0, 0.0]))[0]
+    assert not core.move_block("purple", np.array([1.3, 0.7, 0.0]))[0]
+    np.testing.assert_array_equal(core.snapshot().block_positions, before)
+    ok, message = core.reset("DC-4", -1)
+    assert ok and "seed 6" in message and len(core.world.blocks) == 4

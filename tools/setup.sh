@@ -47,7 +47,7 @@ if ! ws_current; then
   step "building the workspace (colcon build --symlink-install)"
   (
     export PATH="$VENV/bin:$PATH" CMAKE_PREFIX_PATH="$VENV" AMENT_PREFIX_PATH="$VENV"
-    cd ros_ws
+    mkdir -p ros_ws && cd ros_ws
     colcon --log-level error build --symlink-install --base-paths ../src \
       --event-handlers console_cohesion- status- summary+ \
       --cmake-args -DPython3_EXECUTABLE="$VENV/bin/python" -DBUILD_TESTING=OFF

@@ -25,3 +25,16 @@ def test_doctor_reports_versions_and_dds_settings() -> None:
     assert "rclpy                          7.1.6" in result.stdout
     assert "ROS_AUTOMATIC_DISCOVERY_RANGE  LOCALHOST" in result.stdout
     assert "built and current" in result.stdout
+
+
+def test_demo_solves_a_task_through_the_graph() -> None:
+    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "MC-2", "--seed", "4"],
+                            capture_output=True, text=True, timeout=240)
+    assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
+    assert result.stdout.strip().splitlines()[-1] == "MC-2: success"
+    assert "done: put_near(red,green)" in result.stdout
+
+
+def test_demo_rejects_unknown_tasks() -> None:
+    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "XX-9"], capture_output=True, text=True)
+    assert result.returncode == 2 and "unknown task 'XX-9'" in result.stderr

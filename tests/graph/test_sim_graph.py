@@ -9,23 +9,15 @@ from conftest import GraphProbe, NodeProcesses
 from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.conversions import block_positions
-from semgoal_sim.expert import WorldView, expert_action
-from semgoal_sim.vocabulary import SCENES, SubGoal
+from semgoal_sim.conversions import block_positions, world_view
+from semgoal_sim.expert import expert_action
+from semgoal_sim.vocabulary import SubGoal
 
 
 def command(step: int, values) -> ArmCommand:
     msg = ArmCommand(step=step, gripper=float(values[3]))
     msg.displacement.x, msg.displacement.y, msg.displacement.z = (float(v) for v in values[:3])
     return msg
-
-
-def view(msg: WorldState) -> WorldView:
-    positions, present = block_positions(msg)
-    names = SCENES[msg.scene].objects
-    g = msg.gripper_position
-    return WorldView({n: p for n, p, here in zip(names, positions, present, strict=True) if here},
-                     np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), SCENES[msg.scene].bin)
 
 
 class Graph:
@@ -69,7 +61,7 @@ def test_expert_drives_sim_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) 
     start = graph.worlds[-1]
     for subgoal in (SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "green"))):
         for _ in range(60):
-            world = graph.step(expert_action(subgoal, view(graph.worlds[-1]), False))
+            world = graph.step(expert_action(subgoal, world_view(graph.worlds[-1]), False))
             probe.spin_until(lambda w=world: graph.semantic[-1].step >= w.step - 1, 5, "semantic state to follow")
             if subgoal.kind == "pick" and "holding(red)" in graph.true_literals():
                 break

@@ -8,6 +8,7 @@ from sensor_msgs.msg import JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
 from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
+from semgoal_sim.expert import WorldView
 from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
 from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
 from semgoal_sim.world import FetchWorld, Snapshot
@@ -57,6 +58,15 @@ def semantic_vector(msg: WorldState) -> np.ndarray:
     g = msg.gripper_position
     return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
                     float(sum(msg.finger_positions)), TABLE_HEIGHT, present)
+
+
+def world_view(msg: WorldState) -> WorldView:
+    """What the scripted expert reads, from a world state message."""
+    positions, present = block_positions(msg)
+    scene = SCENES[msg.scene]
+    g = msg.gripper_position
+    return WorldView({n: p for n, p, here in zip(scene.objects, positions, present, strict=True) if here},
+                     np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), scene.bin)
 
 
 def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.expert import expert_action
+from semgoal_sim.expert import WorldView, expert_action
 from semgoal_sim.tasks import get_task
 from semgoal_sim.vocabulary import Literal, SemanticLayout, SubGoal
 from semgoal_sim.world import FetchWorld
@@ -22,48 +22,47 @@ def satisfied(layout: SemanticLayout, vector: np.ndarray, literals: list[Literal
     return all(bool(vector[layout.index(lit)]) == lit.value for lit in literals)
 
 
-def _close_clique(world: FetchWorld, x: str, partners: list[str]) -> tuple[str, ...]:
+def _close_clique(layout: SemanticLayout, vector: np.ndarray, view: WorldView, x: str,
+                  partners: list[str]) -> tuple[str, ...]:
     """The largest set of ``partners`` that are pairwise close now (a single nearest one if none are)."""
-    vector = world.semantic_vector()
-    is_close = lambda a, b: bool(vector[world.layout.index(Literal("close", (a, b)))])  # noqa: E731
+    is_close = lambda a, b: bool(vector[layout.index(Literal("close", (a, b)))])  # noqa: E731
     for size in range(len(partners), 1, -1):
         for group in itertools.combinations(partners, size):
             if all(is_close(a, b) for a, b in itertools.combinations(group, 2)):
                 return group
-    positions = world.view().positions
-    return (min(partners, key=lambda p: np.linalg.norm(positions[p] - positions[x])),)
+    return (min(partners, key=lambda p: np.linalg.norm(view.positions[p] - view.positions[x])),)
 
 
-def expert_next_steps(goal: list[Literal], world: FetchWorld) -> list[SubGoal]:
+def expert_next_steps(goal: list[Literal], layout: SemanticLayout, vector: np.ndarray, view: WorldView) -> list[SubGoal]:
     """The expert's next one or two sub-goals toward ``goal`` from the current state (closed loop).
 
     Takes the first unsatisfied literal and returns the pick and the put that achieve it: a hand-
     written high level that re-decides after every move, so slips and disturbances are repaired.
     """
-    vector = world.semantic_vector()
-    holds = lambda lit: bool(vector[world.layout.index(lit)]) == lit.value  # noqa: E731
+    holds = lambda lit: bool(vector[layout.index(lit)]) == lit.value  # noqa: E731
+    blocks = list(view.positions)
     open_literals = [lit for lit in goal if not holds(lit) and lit.name != "holding"]
     if not open_literals:
         held = [lit.args[0] for lit in goal if lit.name == "holding" and not holds(lit)]
         if not held:
             return []
-        other = next(b for b in world.blocks if b != held[0])
-        return [SubGoal("put_on_table", (held[0],)) if world.scene.bin else SubGoal("put_near", (held[0], other))]
+        other = next(b for b in blocks if b != held[0])
+        return [SubGoal("put_on_table", (held[0],)) if view.bin else SubGoal("put_near", (held[0], other))]
     literal = open_literals[0]
     a = literal.args[0]
     if literal.name == "close" and literal.value:
         scores = {b: sum(holds(lit) for lit in goal if lit.name == "close" and b in lit.args) for b in literal.args}
-        x = min(literal.args, key=lambda b: (scores[b], -world.blocks.index(b)))
+        x = min(literal.args, key=lambda b: (scores[b], -blocks.index(b)))
         partners = [b for lit in goal if lit.name == "close" and lit.value and x in lit.args for b in lit.args if b != x]
-        put = SubGoal("put_near", (x, *_close_clique(world, x, partners)))
+        put = SubGoal("put_near", (x, *_close_clique(layout, vector, view, x, partners)))
     elif literal.name == "close":
         put = SubGoal("put_away", (a, literal.args[1]))
     elif literal.name == "above":
-        on_top = [lit.args[0] for lit in world.layout.true_literals(vector) if lit.name == "above" and lit.args[1] == a]
+        on_top = [lit.args[0] for lit in layout.true_literals(vector) if lit.name == "above" and lit.args[1] == a]
         put = SubGoal("put_away", (on_top[0], a)) if on_top else SubGoal("put_on", (a, literal.args[1]))
     else:  # in_bin
         put = SubGoal("put_in_bin", (a,)) if literal.value else SubGoal("put_on_table", (a,))
-    picked = bool(vector[world.layout.index(Literal("holding", (put.block,)))])
+    picked = bool(vector[layout.index(Literal("holding", (put.block,)))])
     return [put] if picked else [SubGoal("pick", (put.block,)), put]
 
 
@@ -102,7 +101,7 @@ def run_task(task_name: str, seed: int, controller: Controller = expert_controll
     world.reset(positions)
     steps = subgoals = 0
     while subgoals < max_subgoals and not satisfied(world.layout, world.semantic_vector(), goal):
-        for subgoal in expert_next_steps(goal, world):
+        for subgoal in expert_next_steps(goal, world.layout, world.semantic_vector(), world.view()):
             steps += run_subgoal(world, subgoal, controller, max_steps)[1]
             subgoals += 1
     return EpisodeResult(satisfied(world.layout, world.semantic_vector(), goal), steps, subgoals)

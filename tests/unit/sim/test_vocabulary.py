@@ -57,12 +57,12 @@ def test_holding_needs_the_block_between_closed_fingers() -> None:
     assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.049)
     assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.1)  # open
     assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip, opening=0.0)  # shut, empty
-    assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip + [0.05, 0, 0], 0.049)
+    assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip + np.array([0.05, 0, 0]), 0.049)
 
 
 def test_a_grasped_block_still_touching_the_table_is_held() -> None:
     block = [1.3, 0.7, REST]
-    assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], np.array(block) + [0, 0, 0.005], 0.048)
+    assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], np.array(block) + np.array([0, 0, 0.005]), 0.048)
 
 
 def test_in_bin_inside_on_the_rim_and_outside() -> None:

@@ -45,7 +45,7 @@ def test_action_moves_the_gripper_like_fetch() -> None:
 
 def test_stacked_start_settles_into_above() -> None:
     world = FetchWorld("two_blocks")
-    positions, goal = TASKS["Swap-2"].initial_state(2)
+    positions, _ = TASKS["Swap-2"].initial_state(2)
     world.reset(positions)
     top = int(np.argmax(positions[:, 2]))
     assert f"above({world.blocks[top]},{world.blocks[1 - top]})" in world.layout.readable(world.semantic_vector())

@@ -7,13 +7,12 @@ graph was there). Each message arriving on ``/semgoal/echo/in/<Type>`` is republ
 
 import time
 
-import rclpy
 from rclpy.action import ActionServer
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from semgoal_msgs import msg, srv
 from semgoal_msgs.action import ExecuteGoal
+from semgoal_sim import ros_interfaces as topics
 
 MESSAGE_TYPES = [msg.Predicate, msg.SemanticState, msg.BlockState, msg.WorldState, msg.ArmCommand,
                  msg.SubGoal, msg.Plan, msg.GoalRequest]
@@ -81,12 +80,4 @@ class EchoNode(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    rclpy.init(args=args)
-    node = EchoNode()
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+    topics.run_node(EchoNode, args)

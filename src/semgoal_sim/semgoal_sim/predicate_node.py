@@ -1,7 +1,5 @@
 """predicate_node: world state in, semantic state out (latched), on change and at a low rate."""
 
-import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 
 from semgoal_msgs.msg import SemanticState, WorldState
@@ -42,13 +40,5 @@ class PredicateNode(Node):
             self.publisher.publish(self.last)
 
 
-def main(args=None) -> None:
-    rclpy.init(args=args)
-    node = PredicateNode()
-    try:
-        rclpy.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+def main(args: list[str] | None = None) -> None:
+    topics.run_node(PredicateNode, args)

@@ -36,3 +36,19 @@ STREAM = QoSProfile(
     durability=DurabilityPolicy.VOLATILE,
 )
 """Per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step)."""
+
+
+def run_node(node_class: type, args: list[str] | None = None) -> None:
+    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy)."""
+    import rclpy
+    from rclpy.executors import ExternalShutdownException
+
+    rclpy.init(args=args)
+    node = node_class()
+    try:
+        rclpy.spin(node)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        node.destroy_node()
+        rclpy.try_shutdown()

@@ -53,6 +53,7 @@ def test_expert_drives_sim_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) 
     nodes.start("semgoal_sim", "sim_node", params={"scene": "two_blocks", "task": "MC-2", "seed": 3})
     nodes.start("semgoal_sim", "predicate_node")
     graph = Graph(probe)
+    probe.spin_until(lambda: probe.node.count_subscribers(topics.WORLD_STATE) >= 2, 30, "predicate_node listening")
     reset = graph.call(ResetWorld, topics.RESET_WORLD, ResetWorld.Request(task="MC-2", seed=3))
     assert reset.success, reset.message
     probe.spin_until(lambda: graph.worlds and graph.worlds[-1].step == 0, 20, "world state of the reset")
@@ -61,7 +62,7 @@ def test_expert_drives_sim_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) 
     start = graph.worlds[-1]
     for subgoal in (SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "green"))):
         for _ in range(60):
-            world = graph.step(expert_action(subgoal, world_view(graph.worlds[-1]), False))
+            world = graph.step(expert_action(subgoal, world_view(graph.worlds[-1])))
             probe.spin_until(lambda w=world: graph.semantic[-1].step >= w.step - 1, 5, "semantic state to follow")
             if subgoal.kind == "pick" and "holding(red)" in graph.true_literals():
                 break

@@ -86,14 +86,19 @@ def run_episode(task_name: str, seed: int) -> int:
         return True
 
     try:
-        if not spin_until(reset_client.service_is_ready, 30):
-            print("sim_node did not come up within 30 s: failure", file=sys.stderr)
+        # The reset's world state is published once (volatile stream): the predicates node must be
+        # listening before it, or no semantic state would come until the first command.
+        ready = lambda: reset_client.service_is_ready() and node.count_subscribers(topics.WORLD_STATE) >= 2  # noqa: E731
+        if not spin_until(ready, 30):
+            print("sim_node and predicate_node did not come up within 30 s: failure", file=sys.stderr)
             return 1
         future = reset_client.call_async(ResetWorld.Request(task=task.name, seed=seed))
         spin_until(future.done, 30)
         reply = future.result()
         spin_until(lambda: worlds and worlds[-1].step == 0 and worlds[-1].episode == reply.world.episode, 10)
-        spin_until(lambda: semantic, 10)
+        if not spin_until(lambda: semantic, 10):
+            print("no semantic state from predicate_node within 10 s: failure", file=sys.stderr)
+            return 1
         goal = task.initial_state(seed)[1]
         print(f"[demo] {task.name} ({task.description}), seed {seed}, ROS domain {os.environ['ROS_DOMAIN_ID']}")
         print(f"[demo] goal: {' & '.join(map(str, goal))}")
@@ -111,7 +116,7 @@ def run_episode(task_name: str, seed: int) -> int:
                 print(f"[demo] step {worlds[-1].step:4d}  done: {subgoal}   state: {layout.readable(vector)}")
                 queue.pop(0)
                 continue
-            action = expert_action(subgoal, world_view(worlds[-1]), False)
+            action = expert_action(subgoal, world_view(worlds[-1]))
             command = ArmCommand(step=worlds[-1].step, gripper=float(action[3]))
             command.displacement.x, command.displacement.y, command.displacement.z = (float(a) for a in action[:3])
             count = len(worlds)

@@ -166,17 +166,11 @@ def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
     return _move(grip, release, _open(world))
 
 
-def expert_action(subgoal: SubGoal, world: WorldView, satisfied: bool) -> np.ndarray:
-    """The expert's 4-D action for ``subgoal`` in ``world``.
-
-    :param satisfied: whether the sub-goal's literals hold now: then the expert backs off (rises with
-        the gripper open after a put, keeps lifting after a pick) instead of disturbing the result.
-    """
+def expert_action(subgoal: SubGoal, world: WorldView) -> np.ndarray:
+    """The expert's 4-D action for ``subgoal`` in ``world`` (callers stop asking once it holds)."""
     x = subgoal.block
     if subgoal.kind == "pick":
         return _pick(x, world)
-    if satisfied:  # back off upwards, fingers as they are
-        return _move(world.grip, world.grip + np.array([0.0, 0.0, 0.05]), 0.0)
     if not world.holds(x):
         return _pick(x, world)
     spot = destination(subgoal, world)

@@ -66,12 +66,12 @@ def expert_next_steps(goal: list[Literal], layout: SemanticLayout, vector: np.nd
     return [put] if picked else [SubGoal("pick", (put.block,)), put]
 
 
-Controller = Callable[[SubGoal, FetchWorld, bool], np.ndarray]
-"""(sub-goal, world, sub-goal satisfied now) -> action: the expert, or a trained policy."""
+Controller = Callable[[SubGoal, FetchWorld], np.ndarray]
+"""(sub-goal, world) -> action: the expert, or a trained policy."""
 
 
-def expert_controller(subgoal: SubGoal, world: FetchWorld, done: bool) -> np.ndarray:
-    return expert_action(subgoal, world.view(), done)
+def expert_controller(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
+    return expert_action(subgoal, world.view())
 
 
 def run_subgoal(world: FetchWorld, subgoal: SubGoal, controller: Controller = expert_controller,
@@ -79,7 +79,7 @@ def run_subgoal(world: FetchWorld, subgoal: SubGoal, controller: Controller = ex
     """Act until the sub-goal's literals hold (checked after every step) or ``max_steps`` ran out."""
     literals = subgoal.literals()
     for step in range(1, max_steps + 1):
-        world.step(controller(subgoal, world, False))
+        world.step(controller(subgoal, world))
         if satisfied(world.layout, world.semantic_vector(), literals):
             return True, step
     return False, max_steps

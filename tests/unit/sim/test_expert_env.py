@@ -24,7 +24,7 @@ def test_expert_achieves_sampled_subgoals(scene: str) -> None:
     for seed in range(12):
         env.reset(seed=seed)
         for _ in range(env.max_steps):
-            _, reward, _, _, _ = env.step(expert_action(env.subgoal, env.world.view(), False))
+            _, reward, _, _, _ = env.step(expert_action(env.subgoal, env.world.view()))
             if reward:
                 successes += 1
                 break

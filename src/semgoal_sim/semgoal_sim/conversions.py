@@ -71,7 +71,9 @@ def world_view(msg: WorldState) -> WorldView:
 
 def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     layout = LAYOUTS[msg.scene]
-    state = SemanticState(scene=msg.scene, step=msg.step, objects=list(layout.objects),
+    _, present = block_positions(msg)
+    objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
+    state = SemanticState(scene=msg.scene, step=msg.step, objects=objects,
                           vector=[bool(v) for v in vector])
     state.header = msg.header
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))

@@ -3,7 +3,8 @@
 Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
 ``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Put
 sub-goals start with the block in the gripper, as they do after a pick in a plan. Episodes never start
-with the sub-goal already achieved.
+with the sub-goal already achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
+``{"subgoal_type": "pick"}`` (the training curriculum picks types).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_sim import layout, tasks
+from semgoal_sim.expert import expert_action
 from semgoal_sim.vocabulary import SCENES, SubGoal, VocabularyError, parse_subgoal
 from semgoal_sim.world import FetchWorld
 
@@ -54,7 +56,7 @@ class SubgoalEnv(gym.Env):
             self.world = self.worlds[int(self.np_random.choice(self.block_counts))]
             self.world.reset(self._sample_positions())
             subgoal = (parse_subgoal(options["subgoal"], self.scene) if "subgoal" in options
-                       else self._sample_subgoal())
+                       else self._sample_subgoal(options.get("subgoal_type")))
             if subgoal is None:
                 continue
             if subgoal.kind != "pick":
@@ -98,9 +100,9 @@ class SubgoalEnv(gym.Env):
             return tasks.stack(rng, (0, 1) if rng.uniform() < 0.5 else (1, 0))
         return positions
 
-    def _sample_subgoal(self) -> SubGoal | None:
+    def _sample_subgoal(self, kind: str | None = None) -> SubGoal | None:
         rng, blocks = self.np_random, self.world.blocks
-        kind = str(rng.choice(self.subgoal_types))
+        kind = kind or str(rng.choice(self.subgoal_types))
         x, *others = rng.permutation(blocks).tolist()
         vector = self.world.semantic_vector()
         on_x = any(lit.name == "above" and lit.args[1] == x for lit in self.layout.true_literals(vector))
@@ -118,6 +120,15 @@ class SubgoalEnv(gym.Env):
     def _set_subgoal(self, subgoal: SubGoal) -> None:
         self.subgoal = subgoal
         self._target, self._mask = self.layout.encode(subgoal.literals())
+
+    @property
+    def subgoal_kind(self) -> str:
+        """The current sub-goal's type: what the training curriculum and evaluation group by."""
+        return self.subgoal.kind if self.subgoal else ""
+
+    def expert_action(self) -> np.ndarray:
+        """The scripted expert's action for the current sub-goal: the label for behaviour cloning."""
+        return expert_action(self.subgoal, self.world.view())
 
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:

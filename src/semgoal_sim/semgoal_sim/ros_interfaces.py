@@ -38,15 +38,18 @@ STREAM = QoSProfile(
 """Per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step)."""
 
 
-def run_node(node_class: type, args: list[str] | None = None) -> None:
-    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy)."""
+def run_node(node_class: type, args: list[str] | None = None, multithreaded: bool = False) -> None:
+    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy).
+
+    ``multithreaded``: spin on a MultiThreadedExecutor (a node whose action runs long next to its callbacks).
+    """
     import rclpy
-    from rclpy.executors import ExternalShutdownException
+    from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 
     rclpy.init(args=args)
     node = node_class()
     try:
-        rclpy.spin(node)
+        rclpy.spin(node, executor=MultiThreadedExecutor() if multithreaded else None)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:

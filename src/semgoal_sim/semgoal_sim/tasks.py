@@ -127,6 +127,19 @@ TASKS: dict[str, Task] = {
 }
 
 
+def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
+    """The task's goal for the world as it is now: Swap-2 reads which block is on top; the others are fixed."""
+    if task.sample is _swap:
+        stacked = [lit for lit in true_literals if lit.name == "above"]
+        if not stacked:
+            raise ValueError(f"{task.name} swaps a stacked pair, but no block is on another now")
+        top, bottom = stacked[0].args
+        goal = [Literal("above", (bottom, top))]
+    else:
+        goal = task.sample(np.random.default_rng(0), task.blocks)[1]
+    return goal + [Literal("holding", (block,), False) for block in task.blocks]
+
+
 def get_task(name: str) -> Task:
     """Look a task up by its paper name (case-insensitive), or raise with the list of valid names."""
     for task_name, task in TASKS.items():

@@ -1,0 +1,43 @@
+"""Planner subcommands of ./semgoal: `plan-pddl` (any STRIPS domain) and the operator's `goal` and `plan`."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from semgoal_planner.heuristics import HEURISTICS
+from semgoal_planner.search import SEARCHES
+
+
+def plan_pddl_main(argv: list[str]) -> int:
+    """`./semgoal plan-pddl DOMAIN PROBLEM --search S [--heuristic H]`: exit 0 plan, 1 unsolvable, 2 bad PDDL."""
+    from semgoal_planner.pddl import PddlError
+    from semgoal_planner.planner import solve_pddl
+
+    parser = argparse.ArgumentParser(prog="semgoal plan-pddl", description=plan_pddl_main.__doc__)
+    parser.add_argument("domain", type=Path)
+    parser.add_argument("problem", type=Path)
+    parser.add_argument("--search", choices=list(SEARCHES), default="bfs")
+    parser.add_argument("--heuristic", choices=list(HEURISTICS), help="default: blind (bfs), lmcut (astar), hff (gbfs)")
+    parser.add_argument("--stats", action="store_true", help="print expanded states and time to stderr")
+    args = parser.parse_args(argv)
+    try:
+        result = solve_pddl(args.domain.read_text(), args.problem.read_text(), args.search, args.heuristic)
+    except OSError as error:
+        print(f"semgoal plan-pddl: {error}", file=sys.stderr)
+        return 2
+    except PddlError as error:
+        print(f"semgoal plan-pddl: bad PDDL: {error}", file=sys.stderr)
+        return 2
+    if args.stats:
+        print(f"expanded {result.stats.expanded}, generated {result.stats.generated}, "
+              f"{result.seconds * 1000:.2f} ms", file=sys.stderr)
+    if result.plan is None:
+        print("unsolvable")
+        if result.reason:
+            print(result.reason, file=sys.stderr)
+        return 1
+    for op in result.plan:
+        print(op)
+    return 0

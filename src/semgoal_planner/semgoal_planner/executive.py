@@ -1,0 +1,284 @@
+"""The plan under execution: operator edits, the execution monitor and re-planning. No ROS here.
+
+``observe`` takes every new semantic state, ``tick`` every control step. The active step is done when
+its literals hold; a robot step that stalls for ``stall_steps`` control steps, or a plan that the
+observed state contradicts for ``contradiction_steps`` in a row (a block moved by hand, a dropped block),
+is re-planned from the observed state, at most ``max_replans`` times; then the goal fails with the
+reason. A step assigned to a human is waited for (its literals observed), without a stall limit.
+Every edit is checked by simulating the remaining steps from the observed state (see
+:meth:`SemanticPlanner.simulate`); a refused edit leaves the plan exactly as it was.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+
+from semgoal_planner.goals import GoalError, parse_goal
+from semgoal_planner.semantic import PlanningError, SemanticPlanner
+from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
+
+STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
+EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
+ASSIGNEES = ("robot", "human")
+
+
+@dataclass
+class PlanStep:
+    subgoal: SubGoal
+    status: str = "pending"
+    """pending, active, done, failed or skipped."""
+    assignee: str = "robot"
+
+
+@dataclass
+class Observation:
+    objects: tuple[str, ...]
+    literals: list[Literal]
+    """Every literal of the scene with its truth value now."""
+    step: int
+
+    def holds(self, literals: list[Literal]) -> bool:
+        values = {(lit.name, lit.args): lit.value for lit in self.literals}
+        return all(values.get((lit.name, lit.args), False) == lit.value for lit in literals)
+
+    @property
+    def true_literals(self) -> list[Literal]:
+        return [lit for lit in self.literals if lit.value]
+
+
+@dataclass
+class Executive:
+    planner: SemanticPlanner
+    stall_steps: int = 150
+    """Control steps a robot step may take before it is re-planned (the policy needs about 20 to 40)."""
+    contradiction_steps: int = 10
+    """Control steps the observed state must contradict the plan before a re-plan (debounces releases)."""
+    max_replans: int = 5
+    require_approval: bool = False
+    """New plans (and re-plans) wait for an operator's approve before they execute."""
+
+    goal: list[Literal] = field(default_factory=list)
+    goal_text: str = ""
+    steps: list[PlanStep] = field(default_factory=list)
+    current: int = 0
+    status: str = "empty"
+    revision: int = 0
+    replans: int = 0
+    message: str = ""
+    observation: Observation | None = None
+    step_started: int = 0
+    contradicted_since: int | None = None
+    goal_started: int = 0
+    events: list[str] = field(default_factory=list)
+    """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
+
+    # -- goals ---------------------------------------------------------------------------------------
+    def set_goal(self, text: str) -> tuple[bool, str]:
+        """Plan for a goal from the observed state; on failure the previous plan stays."""
+        if self.observation is None:
+            return False, "no semantic state observed yet: start the sim and predicates nodes first"
+        obs = self.observation
+        try:
+            goal = parse_goal(text, self.planner.scene, obs.objects, obs.true_literals)
+            steps = self.planner.plan(obs.objects, obs.true_literals, goal)
+        except (GoalError, PlanningError) as error:
+            return False, str(error)
+        self.goal, self.goal_text = goal, " & ".join(map(str, goal))
+        self.replans, self.goal_started = 0, obs.step
+        self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}")
+        self._advance()
+        return True, self.message
+
+    def cancel(self, reason: str = "cancelled by the operator") -> None:
+        if self.status in ("executing", "paused", "awaiting_approval"):
+            self._finish("failed", reason)
+
+    # -- monitoring ----------------------------------------------------------------------------------
+    def observe(self, observation: Observation) -> None:
+        changed = self.observation is None or observation.literals != self.observation.literals
+        self.observation = observation
+        if changed and self.status in ("executing", "paused", "awaiting_approval"):
+            self._advance()
+            if self.status == "executing":
+                self._check_consistency()
+
+    def tick(self, step: int) -> None:
+        """A control step happened (from the world state stream): stall and contradiction clocks."""
+        if self.observation is not None:
+            self.observation.step = max(self.observation.step, step)
+        if self.status != "executing" or self.current >= len(self.steps):
+            return
+        if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
+            self.replan("the observed state contradicts the plan")
+        elif self.steps[self.current].assignee == "robot" and step - self.step_started > self.stall_steps:
+            self.replan(f"step {self.current} {self.steps[self.current].subgoal} made no progress in "
+                        f"{self.stall_steps} control steps")
+
+    @property
+    def active(self) -> PlanStep | None:
+        """The step the policy should execute now; None while paused, waiting, done or on a human step."""
+        if self.status != "executing" or self.current >= len(self.steps):
+            return None
+        step = self.steps[self.current]
+        return step if step.assignee == "robot" else None
+
+    def _advance(self) -> None:
+        obs = self.observation
+        if obs is None or self.status in ("empty", "succeeded", "failed"):
+            return
+        if obs.holds(self.goal):
+            for step in self.steps[self.current:]:
+                step.status = "done" if obs.holds(step.subgoal.literals()) else "skipped"
+            self.current = len(self.steps)
+            self._finish("succeeded", f"goal {self.goal_text} holds")
+            return
+        while self.current < len(self.steps) and obs.holds(self.steps[self.current].subgoal.literals()):
+            self.steps[self.current].status = "done"
+            self._emit(f"step {self.current} {self.steps[self.current].subgoal} done")
+            self.current += 1
+            self.step_started, self.contradicted_since = obs.step, None
+            self.revision += 1
+        if self.current >= len(self.steps):
+            self.replan("all steps are done but the goal does not hold")
+        elif self.status == "executing" and self.steps[self.current].status != "active":
+            self.steps[self.current].status = "active"
+            self.step_started = obs.step
+            self._emit(f"step {self.current} {self.steps[self.current].subgoal} started "
+                       f"({self.steps[self.current].assignee})")
+
+    def _check_consistency(self) -> None:
+        obs = self.observation
+        try:
+            self._simulate([s.subgoal for s in self.steps[self.current:]])
+            self.contradicted_since = None
+        except PlanningError as error:
+            if self.contradicted_since is None:
+                self.contradicted_since = obs.step
+                self._emit(f"observed state contradicts the plan ({error}); re-planning unless it clears "
+                           f"within {self.contradiction_steps} steps")
+
+    # -- re-planning ---------------------------------------------------------------------------------
+    def replan(self, reason: str) -> tuple[bool, str]:
+        obs = self.observation
+        if self.status in ("empty", "succeeded", "failed") or obs is None:
+            return False, "nothing to re-plan: no goal is being executed"
+        if self.replans >= self.max_replans:
+            self._finish("failed", f"{reason}; gave up after {self.replans} re-plans")
+            return False, self.message
+        self.replans += 1
+        try:
+            steps = self.planner.plan(obs.objects, obs.true_literals, self.goal)
+        except PlanningError as error:
+            self._finish("failed", f"{reason}; re-planning failed: {error}")
+            return False, self.message
+        done = [s for s in self.steps[: self.current] if s.status == "done"]
+        self._install(done + [PlanStep(s) for s in steps], f"re-planned ({reason})", keep=len(done))
+        self._advance()
+        return True, self.message
+
+    def _install(self, steps: list[PlanStep], message: str, keep: int = 0) -> None:
+        self.steps, self.current = steps, keep
+        self.status = "awaiting_approval" if self.require_approval else "executing"
+        self.contradicted_since = None
+        self.step_started = self.observation.step if self.observation else 0
+        self._changed(message)
+
+    def _finish(self, status: str, message: str) -> None:
+        self.status = status
+        if status == "failed" and self.current < len(self.steps):
+            self.steps[self.current].status = "failed"
+        self._changed(message)
+
+    def _changed(self, message: str) -> None:
+        self.revision += 1
+        self.message = message
+        self._emit(message)
+
+    def _emit(self, line: str) -> None:
+        self.events.append(line)
+
+    def drain_events(self) -> list[str]:
+        events, self.events = self.events, []
+        return events
+
+    # -- operator edits ------------------------------------------------------------------------------
+    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "") -> tuple[bool, str]:
+        """Apply one operator edit; refuse it (plan unchanged) with the reason when it is invalid."""
+        op = op.strip().lower()
+        if op not in EDIT_OPS:
+            return False, f"unknown edit {op!r}; valid: {', '.join(EDIT_OPS)}"
+        if self.status in ("empty", "succeeded", "failed"):
+            return False, f"no plan to edit (plan is {self.status}); send a goal first"
+        if op == "approve":
+            if self.status != "awaiting_approval":
+                return False, f"nothing to approve: the plan is {self.status}"
+            self.status = "executing"
+            self._changed("plan approved")
+            self._advance()
+            return True, self.message
+        if op in ("pause", "resume"):
+            return self._pause(op == "pause")
+        if op == "replan":
+            return self.replan("asked by the operator")
+        return self._edit_steps(op, index, to_index, action)
+
+    def _pause(self, pause: bool) -> tuple[bool, str]:
+        if pause and self.status != "executing":
+            return False, f"cannot pause: the plan is {self.status}"
+        if not pause and self.status != "paused":
+            return False, f"cannot resume: the plan is {self.status}"
+        self.status = "paused" if pause else "executing"
+        if not pause and self.observation:
+            self.step_started = self.observation.step
+        self._changed("paused" if pause else "resumed")
+        if not pause:
+            self._advance()
+        return True, self.message
+
+    def _edit_steps(self, op: str, index: int, to_index: int, action: str) -> tuple[bool, str]:
+        steps = copy.deepcopy(self.steps)
+        pending = range(self.current, len(steps))
+        try:
+            if op == "insert":
+                if not self.current <= index <= len(steps):
+                    raise ValueError(f"insert position {index} is outside {self.current}..{len(steps)} (done steps stay)")
+                steps.insert(index, PlanStep(self._subgoal(action)))
+            elif index not in pending:
+                raise ValueError(f"step {index} is not a pending step (pending: {self._range_text()})")
+            elif op == "remove":
+                del steps[index]
+            elif op == "move":
+                if to_index not in pending:
+                    raise ValueError(f"target position {to_index} is not a pending position ({self._range_text()})")
+                steps.insert(to_index, steps.pop(index))
+            elif op == "replace":
+                steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee)
+            elif op == "assign":
+                who = action.strip().lower()
+                if who not in ASSIGNEES:
+                    raise ValueError(f"assign takes 'robot' or 'human', got {action!r}")
+                steps[index].assignee = who
+            self._simulate([s.subgoal for s in steps[self.current:]])
+        except (ValueError, PlanningError) as error:
+            return False, f"{op} refused: {error}"
+        for i, step in enumerate(steps):
+            if i >= self.current:
+                step.status = "pending"
+        self.steps = steps
+        self._changed(f"{op} applied")
+        self._advance()
+        return True, self.message
+
+    def _subgoal(self, action: str) -> SubGoal:
+        try:
+            return parse_subgoal(action, SCENES[self.planner.scene])
+        except VocabularyError as error:
+            raise ValueError(str(error)) from None
+
+    def _range_text(self) -> str:
+        return f"{self.current}..{len(self.steps) - 1}" if self.current < len(self.steps) else "none"
+
+    def _simulate(self, steps: list[SubGoal]) -> None:
+        obs = self.observation
+        self.planner.simulate(obs.objects, obs.true_literals, self.goal, steps)

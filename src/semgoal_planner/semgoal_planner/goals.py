@@ -1,0 +1,56 @@
+"""Goal requests: a task name (``DC-3``) or a conjunction of literals (``in_bin(red) & not close(red,green)``).
+
+Parsing checks every literal against the scene's vocabulary and the objects present, and refuses
+contradictions, so a planner only ever sees goals it can state.
+"""
+
+from __future__ import annotations
+
+import re
+
+from semgoal_sim.tasks import TASKS, get_task, goal_in_state
+from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
+
+_SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
+
+
+class GoalError(ValueError):
+    """A goal that cannot be stated in the scene: the message says what is wrong and what is valid."""
+
+
+def split_literals(text: str) -> list[str]:
+    """``a(x) & not b(x,y), c(y)`` -> the literal texts (commas inside parentheses are arguments)."""
+    parts = [p.strip() for p in _SEPARATORS.split(text.strip())]
+    if not text.strip() or any(not p for p in parts):
+        raise GoalError(f"cannot read goal {text!r}: expected a task ({', '.join(TASKS)}) or literals joined by '&'")
+    return parts
+
+
+def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+    """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
+    if any(text.strip().lower() == name.lower() for name in TASKS):
+        return task_goal(text, scene, objects, state)
+    layout = LAYOUTS[scene]
+    goal: dict[tuple[str, tuple[str, ...]], Literal] = {}
+    for part in split_literals(text):
+        try:
+            literal = layout.validate(parse_literal(part), objects)
+        except VocabularyError as error:
+            raise GoalError(str(error)) from None
+        key = (literal.name, literal.args)
+        if key in goal and goal[key].value != literal.value:
+            raise GoalError(f"contradictory goal: both {literal} and {literal.negated()}")
+        goal[key] = literal
+    return list(goal.values())
+
+
+def task_goal(name: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+    task = get_task(name)
+    if task.scene != scene:
+        raise GoalError(f"task {task.name} runs in scene {task.scene}, but this world is {scene}")
+    if tuple(objects) != task.blocks:
+        raise GoalError(f"task {task.name} needs blocks {', '.join(task.blocks)}; this world has {', '.join(objects)}")
+    try:
+        return goal_in_state(task, state)
+    except ValueError as error:
+        raise GoalError(str(error)) from None

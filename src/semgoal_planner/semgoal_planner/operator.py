@@ -1,0 +1,157 @@
+"""The operator's commands: what `ros2 topic pub`, `ros2 service call` and `ros2 action send_goal` do natively.
+
+    ./semgoal goal DC-3                        publish a goal (the planner plans and executes it)
+    ./semgoal goal "in_bin(red) & in_bin(green)" --wait   execute it through the action, print progress
+    ./semgoal plan show
+    ./semgoal plan insert 2 "pick(red)" | remove 2 | move 3 1 | replace 2 "put_in_bin(red)"
+    ./semgoal plan approve | pause | resume | replan | assign 2 human
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+WAIT_S = 10.0
+
+
+class OperatorClient:
+    """A short-lived rclpy node for one command."""
+
+    def __init__(self) -> None:
+        import rclpy
+
+        rclpy.init()
+        self.rclpy = rclpy
+        self.node = rclpy.create_node("semgoal_operator")
+
+    def close(self) -> None:
+        self.node.destroy_node()
+        self.rclpy.try_shutdown()
+
+    def call(self, service_type, name: str, request, timeout: float = WAIT_S):
+        client = self.node.create_client(service_type, name)
+        if not client.wait_for_service(timeout_sec=timeout):
+            raise TimeoutError(f"no {name} service: is planner_node running (same ROS_DOMAIN_ID)?")
+        future = client.call_async(request)
+        self.rclpy.spin_until_future_complete(self.node, future, timeout_sec=timeout)
+        if not future.done():
+            raise TimeoutError(f"{name} did not answer within {timeout:.0f} s")
+        return future.result()
+
+
+def format_plan(plan) -> str:
+    lines = [f"goal: {plan.goal or '(none)'}   status: {plan.status}   revision {plan.revision}   replans {plan.replans}"]
+    for step in plan.steps:
+        marker = ">" if step.index == plan.current and plan.status == "executing" else " "
+        lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")
+    return "\n".join(lines)
+
+
+def goal_main(argv: list[str]) -> int:
+    """`./semgoal goal TASK|LITERALS [--wait]`: send a goal to planner_node."""
+    parser = argparse.ArgumentParser(prog="semgoal goal", description=goal_main.__doc__)
+    parser.add_argument("goal", help="a task name (DC-3) or literals joined by '&'")
+    parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
+    parser.add_argument("--timeout", type=float, default=300.0)
+    args = parser.parse_args(argv)
+    from semgoal_msgs.msg import GoalRequest
+    from semgoal_sim import ros_interfaces as topics
+    from semgoal_sim.tasks import TASKS
+
+    is_task = any(args.goal.strip().lower() == name.lower() for name in TASKS)
+    request = GoalRequest(task=args.goal.strip() if is_task else "", literals=[] if is_task else [args.goal])
+    client = OperatorClient()
+    try:
+        if args.wait:
+            return _execute(client, request, args.timeout)
+        publisher = client.node.create_publisher(GoalRequest, topics.GOAL, 10)
+        deadline = time.monotonic() + WAIT_S
+        while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        if publisher.get_subscription_count() == 0:
+            print(f"semgoal goal: nobody subscribes to {topics.GOAL}: is planner_node running?", file=sys.stderr)
+            return 1
+        publisher.publish(request)
+        time.sleep(0.3)  # let DDS deliver before the node goes away
+        print(f"published goal {args.goal!r}; see it with ./semgoal plan show")
+        return 0
+    finally:
+        client.close()
+
+
+def _execute(client: OperatorClient, request, timeout: float) -> int:
+    from rclpy.action import ActionClient
+
+    from semgoal_msgs.action import ExecuteGoal
+    from semgoal_sim import ros_interfaces as topics
+
+    action = ActionClient(client.node, ExecuteGoal, topics.EXECUTE_GOAL)
+    if not action.wait_for_server(timeout_sec=WAIT_S):
+        print("semgoal goal: no execute_goal action server: is planner_node running?", file=sys.stderr)
+        return 1
+    last = [None]
+
+    def on_feedback(message) -> None:
+        plan = message.feedback.plan
+        key = (plan.revision, plan.current, plan.status)
+        if key != last[0]:
+            last[0] = key
+            print(format_plan(plan), flush=True)
+
+    sent = action.send_goal_async(ExecuteGoal.Goal(goal=request), feedback_callback=on_feedback)
+    client.rclpy.spin_until_future_complete(client.node, sent, timeout_sec=WAIT_S)
+    handle = sent.result()
+    result_future = handle.get_result_async()
+    client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=timeout)
+    if not result_future.done():
+        handle.cancel_goal_async()
+        print(f"semgoal goal: no result within {timeout:.0f} s; cancelled", file=sys.stderr)
+        return 1
+    result = result_future.result().result
+    print(f"{'success' if result.success else 'failure'}: {result.message} "
+          f"({result.control_steps} control steps, {result.sim_time:.1f} s sim time, {result.replans} re-plans)")
+    return 0 if result.success else 1
+
+
+EDITS_WITH_INDEX = {"insert": ("index", "action"), "remove": ("index",), "move": ("index", "to_index"),
+                    "replace": ("index", "action"), "assign": ("index", "action")}
+
+
+def plan_main(argv: list[str]) -> int:
+    """`./semgoal plan show | insert I ACTION | remove I | move I J | replace I ACTION | assign I robot|human
+    | approve | pause | resume | replan`: read or edit the plan through planner_node's services."""
+    parser = argparse.ArgumentParser(prog="semgoal plan", description=plan_main.__doc__)
+    parser.add_argument("op", choices=["show", *EDITS_WITH_INDEX, "approve", "pause", "resume", "replan"])
+    parser.add_argument("args", nargs="*")
+    args = parser.parse_args(argv)
+    fields = EDITS_WITH_INDEX.get(args.op, ())
+    if args.op != "show" and len(args.args) != len(fields):
+        parser.error(f"{args.op} takes {len(fields)} argument(s): {' '.join(f.upper() for f in fields) or '(none)'}")
+    from semgoal_msgs.srv import EditPlan, GetPlan
+    from semgoal_sim import ros_interfaces as topics
+
+    client = OperatorClient()
+    try:
+        if args.op == "show":
+            response = client.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
+            print(format_plan(response.plan))
+            return 0 if response.success else 1
+        request = EditPlan.Request(op=args.op)
+        for name, value in zip(fields, args.args, strict=True):
+            if name in ("index", "to_index"):
+                if not value.isdigit():
+                    parser.error(f"{name.upper()} must be a step number, got {value!r}")
+                setattr(request, name, int(value))
+            else:
+                request.action = value
+        response = client.call(EditPlan, topics.EDIT_PLAN, request)
+        print(("applied: " if response.success else "refused: ") + response.message)
+        print(format_plan(response.plan))
+        return 0 if response.success else 1
+    except TimeoutError as error:
+        print(f"semgoal plan: {error}", file=sys.stderr)
+        return 1
+    finally:
+        client.close()

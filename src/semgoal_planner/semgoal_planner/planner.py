@@ -1,0 +1,48 @@
+"""The planning pipeline: parse -> ground -> search -> plan, with the search and heuristic by name."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from semgoal_planner.grounding import Operator, Task, ground
+from semgoal_planner.heuristics import HEURISTICS
+from semgoal_planner.pddl import parse_domain, parse_problem
+from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats
+
+
+@dataclass
+class PlanResult:
+    plan: list[Operator] | None
+    """None: no plan exists."""
+    reason: str = ""
+    stats: SearchStats = field(default_factory=SearchStats)
+    seconds: float = 0.0
+
+
+def check_choice(search: str, heuristic: str | None) -> str:
+    """The heuristic to use; a ValueError naming the valid values for an unknown one."""
+    if search not in SEARCHES:
+        raise ValueError(f"unknown search {search!r}; valid: {', '.join(SEARCHES)}")
+    heuristic = heuristic or DEFAULT_HEURISTIC[search]
+    if heuristic not in HEURISTICS:
+        raise ValueError(f"unknown heuristic {heuristic!r}; valid: {', '.join(HEURISTICS)}")
+    return heuristic
+
+
+def solve_task(task: Task, search: str = "bfs", heuristic: str | None = None) -> PlanResult:
+    heuristic = check_choice(search, heuristic)
+    start = time.perf_counter()
+    if task.unsolvable_reason:
+        return PlanResult(None, task.unsolvable_reason, seconds=time.perf_counter() - start)
+    stats = SearchStats()
+    plan = SEARCHES[search](task, HEURISTICS[heuristic](task), stats)
+    reason = "" if plan is not None else "no state reachable from the initial state satisfies the goal"
+    return PlanResult(plan, reason, stats, time.perf_counter() - start)
+
+
+def solve_pddl(domain_text: str, problem_text: str, search: str = "bfs", heuristic: str | None = None) -> PlanResult:
+    """Parse, ground and search; raises :class:`~semgoal_planner.pddl.PddlError` on bad PDDL."""
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    return solve_task(task, search, heuristic)

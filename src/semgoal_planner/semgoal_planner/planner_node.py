@@ -1,0 +1,184 @@
+"""planner_node: goals and semantic states in; the plan and the active sub-goal out (latched).
+
+Wires the pure :class:`~semgoal_planner.executive.Executive` to ROS: the goal topic, GetPlan and
+EditPlan services, the ExecuteGoal action, and the world-state stream as the control-step clock.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+
+from rclpy.action import ActionServer, CancelResponse, GoalResponse
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.node import Node
+
+from semgoal_msgs.action import ExecuteGoal
+from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal, WorldState
+from semgoal_msgs.srv import EditPlan, GetPlan
+from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.semantic import SemanticPlanner
+from semgoal_sim import ros_interfaces as topics
+from semgoal_sim.layout import CONTROL_DT
+from semgoal_sim.vocabulary import SCENES, Literal
+
+FINAL = ("succeeded", "failed")
+
+
+def goal_text(msg: GoalRequest) -> str:
+    """A GoalRequest as the text the executive parses (a task, or literals joined by '&')."""
+    if msg.task.strip() and msg.literals:
+        raise ValueError("give a task or literals, not both")
+    return msg.task.strip() or " & ".join(msg.literals)
+
+
+class PlannerNode(Node):
+    def __init__(self) -> None:
+        super().__init__("planner")
+        scene = self.declare_parameter("scene", "desk_cleanup").value
+        if scene not in SCENES:
+            raise SystemExit(f"planner: unknown scene {scene!r}; valid: {', '.join(SCENES)}")
+        self.executive = Executive(
+            SemanticPlanner(scene, self.declare_parameter("search", "bfs").value),
+            stall_steps=self.declare_parameter("stall_steps", 150).value,
+            contradiction_steps=self.declare_parameter("contradiction_steps", 10).value,
+            max_replans=self.declare_parameter("max_replans", 5).value,
+            require_approval=self.declare_parameter("require_approval", False).value,
+        )
+        self.lock = threading.RLock()  # the action's execute thread reads what callbacks write
+        self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
+        self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
+        self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
+        self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.LATCHED)
+        self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
+        self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
+        self.create_service(EditPlan, topics.EDIT_PLAN, self.edit_plan_callback)
+        self.action_server = ActionServer(
+            self, ExecuteGoal, topics.EXECUTE_GOAL, self.execute_callback,
+            goal_callback=lambda _: GoalResponse.ACCEPT, cancel_callback=lambda _: CancelResponse.ACCEPT,
+            callback_group=ReentrantCallbackGroup())
+        self.last_published: tuple | None = None
+        self.last_state: SemanticState | None = None
+        self.publish()
+
+    # -- inputs --------------------------------------------------------------------------------------
+    def goal_callback(self, msg: GoalRequest) -> None:
+        self.start_goal(msg)
+
+    def start_goal(self, msg: GoalRequest) -> tuple[bool, str]:
+        with self.lock:
+            try:
+                ok, message = self.executive.set_goal(goal_text(msg))
+            except ValueError as error:
+                ok, message = False, str(error)
+            self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)}: {message}")
+            self.publish()
+            return ok, message
+
+    def semantic_callback(self, msg: SemanticState) -> None:
+        if msg.scene != self.executive.planner.scene:
+            self.get_logger().warn(f"ignored a semantic state of scene {msg.scene!r}", throttle_duration_sec=5.0)
+            return
+        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
+        with self.lock:
+            self.last_state = msg
+            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
+            self.publish()
+
+    def world_callback(self, msg: WorldState) -> None:
+        with self.lock:
+            self.executive.tick(int(msg.step))
+            self.publish()
+
+    def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
+        with self.lock:
+            response.plan = self.plan_message()
+            response.success = self.executive.status != "empty"
+            response.message = self.summary()
+        return response
+
+    def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
+        with self.lock:
+            response.success, response.message = self.executive.edit(
+                request.op, int(request.index), int(request.to_index), request.action)
+            self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
+            self.publish()
+            response.plan = self.plan_message()
+        return response
+
+    def execute_callback(self, handle) -> ExecuteGoal.Result:
+        result = ExecuteGoal.Result()
+        ok, message = self.start_goal(handle.request.goal)
+        start_step = self.executive.goal_started
+        while ok and self.executive.status not in FINAL:
+            if handle.is_cancel_requested:
+                with self.lock:
+                    self.executive.cancel()
+                    self.publish()
+                handle.canceled()
+                result.message = "cancelled"
+                return self._fill(result, start_step)
+            feedback = ExecuteGoal.Feedback(plan=self.plan_message())
+            if self.last_state is not None:
+                feedback.state = self.last_state
+            handle.publish_feedback(feedback)
+            time.sleep(0.05)
+        result.success = ok and self.executive.status == "succeeded"
+        result.message = self.executive.message if ok else message
+        (handle.succeed if result.success else handle.abort)()
+        return self._fill(result, start_step)
+
+    def _fill(self, result: ExecuteGoal.Result, start_step: int) -> ExecuteGoal.Result:
+        obs = self.executive.observation
+        result.replans = self.executive.replans
+        result.control_steps = max(0, (obs.step if obs else 0) - start_step)
+        result.sim_time = result.control_steps * CONTROL_DT
+        return result
+
+    def report(self, ok: bool, text: str) -> None:
+        # rclpy refuses one call site switching severity, so each severity has its own call
+        if ok:
+            self.get_logger().info(text)
+        else:
+            self.get_logger().warn(text)
+
+    # -- outputs -------------------------------------------------------------------------------------
+    def plan_message(self) -> Plan:
+        ex = self.executive
+        msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans)
+        msg.header.stamp = self.get_clock().now().to_msg()
+        msg.steps = [self.step_message(i, step.subgoal, step.status, step.assignee) for i, step in enumerate(ex.steps)]
+        return msg
+
+    @staticmethod
+    def step_message(index: int, subgoal, status: str, assignee: str) -> SubGoal:
+        return SubGoal(index=index, action=str(subgoal), status=status, assignee=assignee,
+                       goal=[Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in subgoal.literals()])
+
+    def publish(self) -> None:
+        """Publish plan and active sub-goal when they changed; log the executive's events."""
+        ex = self.executive
+        for line in ex.drain_events():
+            self.get_logger().info(line)
+        key = (ex.revision, ex.status, ex.current)
+        if key == self.last_published:
+            return
+        self.last_published = key
+        self.plan_publisher.publish(self.plan_message())
+        active = ex.active
+        if active is None:  # the policy holds still on anything but an active robot step
+            waiting = ex.status == "executing"  # executing without an active robot step: a human's turn
+            self.subgoal_publisher.publish(SubGoal(index=ex.current, status="waiting_for_human" if waiting else ex.status,
+                                                   assignee="human" if waiting else ""))
+        else:
+            self.subgoal_publisher.publish(self.step_message(ex.current, active.subgoal, "active", "robot"))
+
+    def summary(self) -> str:
+        ex = self.executive
+        lines = [f"goal: {ex.goal_text or '(none)'}  status: {ex.status}  revision {ex.revision}  replans {ex.replans}"]
+        lines += [f"{'>' if i == ex.current else ' '} {i}. {s.subgoal}  [{s.status}, {s.assignee}]" for i, s in enumerate(ex.steps)]
+        return "\n".join(lines)
+
+
+def main(args: list[str] | None = None) -> None:
+    topics.run_node(PlannerNode, args, multithreaded=True)

@@ -1,0 +1,123 @@
+"""Planning over the semantic vocabulary: problems from semantic states, Plan2Goals, plan validation.
+
+A scene's PDDL domain (``domains/<scene>.pddl``) has one action per sub-goal type; put near / put away
+with two references are the ``*_both`` actions. Problems are built from the true literals of a semantic
+state (close written in both orders; ``hand-empty`` when nothing is held) and goal literals.
+Plan2Goals maps every planned action to a :class:`~semgoal_sim.vocabulary.SubGoal`, whose literals
+are what the policy is conditioned on.
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from pathlib import Path
+
+from semgoal_planner.grounding import Operator, Task, ground
+from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
+from semgoal_planner.planner import solve_task
+from semgoal_sim.vocabulary import Literal, SubGoal
+
+DOMAIN_DIR = Path(__file__).resolve().parent / "domains"
+HAND_EMPTY = "hand-empty"
+ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
+    # PDDL action -> (sub-goal type, how many leading arguments the sub-goal keeps)
+    "pick": ("pick", 1),
+    "put_near": ("put_near", 2),
+    "put_near_both": ("put_near", 3),
+    "put_away": ("put_away", 2),
+    "put_away_both": ("put_away", 3),
+    "put_on": ("put_on", 2),
+    "put_on_table": ("put_on_table", 1),
+    "put_in_bin": ("put_in_bin", 1),
+}
+
+
+class PlanningError(ValueError):
+    """No plan, or an invalid one; the message says why in the vocabulary's terms."""
+
+
+@functools.cache
+def load_domain(scene: str) -> Domain:
+    path = DOMAIN_DIR / f"{scene}.pddl"
+    if not path.exists():
+        raise PlanningError(f"no PDDL domain for scene {scene!r} in {DOMAIN_DIR}")
+    return parse_domain(path.read_text())
+
+
+def plan2goal(op: Operator) -> SubGoal:
+    """Plan2Goals for one action: ``(put_near_both red green blue)`` -> ``put_near(red,green,blue)``."""
+    kind, keep = ACTION_SUBGOALS[op.name]
+    return SubGoal(kind, op.args[:keep])
+
+
+def _atoms(literal: Literal) -> list[Atom]:
+    atom = Atom(literal.name, literal.args)
+    return [atom, Atom(literal.name, literal.args[::-1])] if literal.name == "close" else [atom]
+
+
+def _literal(atom: Atom, value: bool = True) -> Literal:
+    return Literal(atom.predicate, atom.args, value)
+
+
+@dataclass
+class SemanticPlanner:
+    """Plans for one scene from semantic states (the true literals and the objects present)."""
+
+    scene: str
+    search: str = "bfs"
+    heuristic: str | None = None
+
+    @property
+    def domain(self) -> Domain:
+        return load_domain(self.scene)
+
+    def problem(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> Problem:
+        init = {atom for lit in state if lit.value for atom in _atoms(lit)}
+        if not any(lit.name == "holding" and lit.value for lit in state):
+            init.add(Atom(HAND_EMPTY, ()))
+        conditions = tuple(Condition(Atom(lit.name, lit.args), lit.value) for lit in goal)
+        return Problem(f"{self.scene}-now", self.domain.name, dict.fromkeys(objects, "block"), init, conditions)
+
+    def task(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> Task:
+        return ground(self.domain, self.problem(objects, state, goal))
+
+    def plan(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> list[SubGoal]:
+        """The sub-goals of a shortest plan (bfs) from ``state`` to ``goal``; PlanningError if none exists."""
+        result = solve_task(self.task(objects, state, goal), self.search, self.heuristic)
+        if result.plan is None:
+            goal_text = " & ".join(map(str, goal))
+            raise PlanningError(f"no plan reaches {goal_text} from the current state: {result.reason}")
+        return [plan2goal(op) for op in result.plan]
+
+    def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
+                 steps: list[SubGoal]) -> None:
+        """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError."""
+        task = self.task(objects, state, goal)
+        current = task.init
+        for number, step in enumerate(steps, start=1):
+            candidates = [op for op in task.operators if plan2goal(op) == step]
+            if not candidates:
+                raise PlanningError(f"step {number} {step}: not an action of scene {self.scene} with these objects")
+            runnable = next((op for op in candidates if op.applicable(current)), None)
+            if runnable is None:
+                missing = self._unmet(task, candidates[0], current)
+                raise PlanningError(f"step {number} {step} cannot run: it needs {missing}, which does not hold by then")
+            current = runnable.apply(current)
+        if not task.goal_reached(current) or task.unsolvable_reason:
+            unmet = [str(_literal(c.atom, c.positive)) for c in self.problem(objects, state, goal).goal
+                     if not self._holds(task, c, current)]
+            raise PlanningError(f"the plan does not reach the goal: after the last step {', '.join(unmet)} "
+                                f"{'does' if len(unmet) == 1 else 'do'} not hold")
+
+    @staticmethod
+    def _holds(task: Task, condition: Condition, state: int) -> bool:
+        true = condition.atom in task.facts and bool(state >> task.facts.index(condition.atom) & 1)
+        return true == condition.positive
+
+    @staticmethod
+    def _unmet(task: Task, op: Operator, state: int) -> str:
+        needed = [_literal(f) for i, f in enumerate(task.facts) if op.pre >> i & 1 and not state >> i & 1]
+        needed += [_literal(f, False) for i, f in enumerate(task.facts) if op.pre_neg >> i & 1 and state >> i & 1]
+        text = ["a free gripper" if lit.name == HAND_EMPTY else str(lit) for lit in needed]
+        return " and ".join(text) or "a state the plan does not reach"

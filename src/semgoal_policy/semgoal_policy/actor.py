@@ -1,0 +1,122 @@
+"""The goal-conditioned actor: its network, and the exported form the policy node and evaluation load.
+
+An exported actor is a directory with ``actor.pt`` (a plain ``state_dict`` plus the observation
+normaliser; no SB3, no pickled classes) and ``actor.json`` (the observation/goal layout it was trained
+on, training steps, wall time, command, evaluation). Loading compares the stored layout with
+:func:`semgoal_sim.layout.describe` for the current code and refuses a mismatch.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import torch
+from torch import nn
+
+from semgoal_sim import layout
+
+HIDDEN = (256, 256)
+LOG_STD_RANGE = (-5.0, 2.0)
+OBS_CLIP = 5.0
+"""Normalised observations are clipped to +-5 standard deviations (as in the HER baselines)."""
+MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
+"""Shipped actors: ``models/<scene>/`` (hierarchical) and ``models/<scene>-<agent>/`` (baselines)."""
+
+
+class LayoutMismatchError(RuntimeError):
+    """The exported actor was trained on another observation or goal layout than the code defines."""
+
+
+def mlp(inputs: int, outputs: int, hidden: tuple[int, ...] = HIDDEN) -> nn.Sequential:
+    layers: list[nn.Module] = []
+    for width in hidden:
+        layers += [nn.Linear(inputs, width), nn.ReLU()]
+        inputs = width
+    return nn.Sequential(*layers, nn.Linear(inputs, outputs))
+
+
+class Normaliser(nn.Module):
+    """Running mean and standard deviation of observations; part of the actor's state."""
+
+    def __init__(self, size: int) -> None:
+        super().__init__()
+        self.register_buffer("count", torch.tensor(1e-4, dtype=torch.float64))
+        self.register_buffer("mean", torch.zeros(size, dtype=torch.float64))
+        self.register_buffer("var", torch.ones(size, dtype=torch.float64))
+
+    def update(self, batch: np.ndarray) -> None:
+        """Chan's parallel update of mean and variance with a batch of observations."""
+        x = torch.as_tensor(batch, dtype=torch.float64).reshape(-1, self.mean.numel())
+        n, mean, var = x.shape[0], x.mean(0), x.var(0, unbiased=False)
+        delta, total = mean - self.mean, self.count + n
+        self.var.copy_((self.var * self.count + var * n + delta**2 * self.count * n / total) / total)
+        self.mean.add_(delta * n / total)
+        self.count.fill_(total)
+
+    def forward(self, obs: torch.Tensor) -> torch.Tensor:
+        std = torch.sqrt(self.var + 1e-8).float()
+        return torch.clamp((obs - self.mean.float()) / std, -OBS_CLIP, OBS_CLIP)
+
+
+class Actor(nn.Module):
+    """Squashed Gaussian policy over (normalised observation, goal); goals are 0/1 and used as is."""
+
+    def __init__(self, obs_size: int, goal_size: int, hidden: tuple[int, ...] = HIDDEN) -> None:
+        super().__init__()
+        self.obs_size, self.goal_size = obs_size, goal_size
+        self.normaliser = Normaliser(obs_size)
+        self.net = mlp(obs_size + goal_size, 8, hidden)
+
+    def features(self, obs: torch.Tensor, goal: torch.Tensor) -> torch.Tensor:
+        return torch.cat([self.normaliser(obs), goal], dim=-1)
+
+    def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(mean, log_std) of the pre-tanh Gaussian."""
+        mean, log_std = self.net(self.features(obs, goal)).chunk(2, dim=-1)
+        return mean, torch.clamp(log_std, *LOG_STD_RANGE)
+
+    def sample(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """(action, log_prob, deterministic action): reparameterised tanh-Gaussian (SAC, appendix C)."""
+        mean, log_std = self(obs, goal)
+        pre_tanh = mean + log_std.exp() * torch.randn_like(mean)
+        action = torch.tanh(pre_tanh)
+        log_prob = torch.distributions.Normal(mean, log_std.exp()).log_prob(pre_tanh)
+        log_prob = (log_prob - torch.log1p(-action.pow(2) + 1e-6)).sum(-1)
+        return action, log_prob, torch.tanh(mean)
+
+    @torch.inference_mode()
+    def act(self, obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
+        """Deterministic action(s) in [-1, 1] for numpy input (one row or a batch)."""
+        mean, _ = self(torch.as_tensor(obs, dtype=torch.float32), torch.as_tensor(goal, dtype=torch.float32))
+        return torch.tanh(mean).numpy()
+
+
+def export(actor: Actor, directory: Path, scene: str, info: dict) -> None:
+    """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``."""
+    directory.mkdir(parents=True, exist_ok=True)
+    torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
+    meta = {"layout": layout.describe(scene), "hidden": list(HIDDEN), **info}
+    (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
+
+
+def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
+    """Load an exported actor; refuse it when its layout differs from the current code's."""
+    directory = Path(directory)
+    meta_path, weights_path = directory / "actor.json", directory / "actor.pt"
+    if not meta_path.exists() or not weights_path.exists():
+        raise FileNotFoundError(f"no exported actor in {directory} (expected actor.json and actor.pt); "
+                                f"train one with ./semgoal train --scene SCENE")
+    meta = json.loads(meta_path.read_text())
+    stored = meta["layout"]
+    scene = scene or stored["scene"]
+    current = layout.describe(scene)
+    if stored != current:
+        diff = sorted(k for k in current if stored.get(k) != current[k])
+        raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "
+                                  f"scene {scene!r} (differs in: {', '.join(diff)}); retrain or use a matching actor")
+    actor = Actor(current["observation_size"], current["goal_size"], tuple(meta["hidden"]))
+    actor.load_state_dict(torch.load(weights_path, weights_only=True))
+    actor.eval()
+    return actor, meta

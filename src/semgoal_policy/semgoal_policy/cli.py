@@ -1,0 +1,55 @@
+"""Policy subcommands of ./semgoal: `train` and `eval-subgoals`."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import shlex
+import sys
+from pathlib import Path
+
+from semgoal_sim.vocabulary import SCENES
+
+
+def train_main(argv: list[str]) -> int:
+    """`./semgoal train --scene S [--agent A] --steps N --seed S [--resume]`: train with SAC+HER and export."""
+    from semgoal_policy.agents import AGENTS
+    from semgoal_policy.sac import SacConfig
+    from semgoal_policy.trainer import TrainConfig, Trainer
+
+    defaults = TrainConfig(scene="two_blocks")
+    parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)
+    parser.add_argument("--scene", required=True, choices=list(SCENES))
+    parser.add_argument("--agent", default="hierarchical", choices=list(AGENTS))
+    parser.add_argument("--steps", type=int, default=defaults.steps)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--resume", action="store_true", help="continue the run's last checkpoint")
+    parser.add_argument("--envs", type=int, default=defaults.n_envs)
+    parser.add_argument("--updates-per-step", type=float, default=defaults.updates_per_step)
+    parser.add_argument("--demo-fraction", type=float, default=defaults.demo_fraction,
+                        help="share of episodes run by the scripted expert (0: no demonstrations)")
+    parser.add_argument("--bc-weight", type=float, default=SacConfig.bc_weight, help="0: no behaviour cloning")
+    parser.add_argument("--no-curriculum", action="store_true")
+    parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
+    parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
+    parser.add_argument("--final-eval-episodes", type=int, default=defaults.final_eval_episodes)
+    parser.add_argument("--max-wall-min", type=float, default=defaults.max_wall_s / 60)
+    parser.add_argument("--run-dir", type=Path, help="checkpoints and logs (default runs/SCENE-AGENT/seedS)")
+    parser.add_argument("--export-dir", type=Path, help="where the actor is exported (default models/...)")
+    args = parser.parse_args(argv)
+    config = TrainConfig(
+        scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
+        updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
+        eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
+        max_wall_s=args.max_wall_min * 60, sac=SacConfig(bc_weight=args.bc_weight),
+        run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
+    )
+    trainer = Trainer(config)
+    try:
+        final = trainer.run(resume=args.resume)
+    except FileExistsError as error:
+        print(f"semgoal train: {error}", file=sys.stderr)
+        return 2
+    print(json.dumps({"scene": args.scene, "agent": args.agent, "env_steps": trainer.env_steps,
+                      "wall_s": round(trainer.wall_s, 1), "per_kind": final, "export": str(trainer.export_dir)}))
+    return 0

@@ -1,0 +1,91 @@
+"""Episode replay buffer with vectorised HER ("future" strategy) and the expert's action labels.
+
+Episodes have a fixed length T. Each stored step keeps the action taken and the scripted expert's action
+in that state for the episode's own goal, so behaviour cloning can use every state the agent visited
+(DAgger-style labels) and not only the demonstrations. Relabelled samples carry no expert label.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+RewardFn = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
+class Batch(NamedTuple):
+    obs: np.ndarray
+    goal: np.ndarray
+    action: np.ndarray
+    reward: np.ndarray
+    next_obs: np.ndarray
+    expert_action: np.ndarray
+    has_label: np.ndarray
+    """1 where ``goal`` is the episode's own goal (the expert label applies), 0 where HER relabelled."""
+
+
+class EpisodeReplay:
+    """Ring buffer of whole episodes: obs and achieved goals (T+1 rows), actions and labels (T rows)."""
+
+    FIELDS = ("obs", "achieved", "goal", "action", "expert_action")
+
+    def __init__(self, capacity_episodes: int, horizon: int, obs_size: int, goal_size: int,
+                 reward_fn: RewardFn, her_ratio: float = 0.8) -> None:
+        self.capacity, self.horizon, self.reward_fn, self.her_ratio = capacity_episodes, horizon, reward_fn, her_ratio
+        e, t = capacity_episodes, horizon
+        self.obs = np.zeros((e, t + 1, obs_size), np.float32)
+        self.achieved = np.zeros((e, t + 1, goal_size), np.float32)
+        self.goal = np.zeros((e, goal_size), np.float32)
+        self.action = np.zeros((e, t, 4), np.float32)
+        self.expert_action = np.zeros((e, t, 4), np.float32)
+        self.next_index = 0
+        self.size = 0
+
+    @property
+    def transitions(self) -> int:
+        return self.size * self.horizon
+
+    def add(self, obs: np.ndarray, achieved: np.ndarray, goal: np.ndarray, action: np.ndarray,
+            expert_action: np.ndarray) -> None:
+        """Store a batch of episodes: obs (B, T+1, O), achieved (B, T+1, G), goal (B, G), actions (B, T, 4)."""
+        for i in range(len(goal)):
+            j = self.next_index
+            self.obs[j], self.achieved[j], self.goal[j] = obs[i], achieved[i], goal[i]
+            self.action[j], self.expert_action[j] = action[i], expert_action[i]
+            self.next_index = (j + 1) % self.capacity
+            self.size = min(self.size + 1, self.capacity)
+
+    def sample(self, rng: np.random.Generator, batch_size: int, her_ratio: float | None = None) -> Batch:
+        """Transitions with HER relabelling at ``her_ratio`` (default: the buffer's; 0 for cloning batches)."""
+        episodes = rng.integers(0, self.size, batch_size)
+        steps = rng.integers(0, self.horizon, batch_size)
+        goal = self.goal[episodes].copy()
+        relabel = rng.uniform(size=batch_size) < (self.her_ratio if her_ratio is None else her_ratio)
+        # "future": a goal achieved later in the same episode (Andrychowicz et al. 2017, section 4.5)
+        future = steps + 1 + (rng.uniform(size=batch_size) * (self.horizon - steps)).astype(int)
+        goal[relabel] = self.achieved[episodes[relabel], future[relabel]]
+        # a relabelled goal equal to the episode's own keeps its label
+        has_label = ~relabel | np.all(goal == self.goal[episodes], axis=1)
+        return Batch(
+            obs=self.obs[episodes, steps],
+            goal=goal,
+            action=self.action[episodes, steps],
+            reward=self.reward_fn(self.achieved[episodes, steps + 1], goal),
+            next_obs=self.obs[episodes, steps + 1],
+            expert_action=self.expert_action[episodes, steps],
+            has_label=has_label.astype(np.float32),
+        )
+
+    def save(self, path: Path) -> None:
+        arrays = {name: getattr(self, name)[: self.size] for name in self.FIELDS}
+        np.savez(path, next_index=self.next_index, **arrays)
+
+    def load(self, path: Path) -> None:
+        with np.load(path) as data:
+            self.size = len(data["goal"])
+            for name in self.FIELDS:
+                getattr(self, name)[: self.size] = data[name]
+            self.next_index = int(data["next_index"])

@@ -1,0 +1,146 @@
+"""Soft actor-critic for goal-conditioned control with a Q-filtered behaviour-cloning term.
+
+Reads top to bottom like the maths: twin critics with Polyak targets, a tanh-Gaussian actor, automatic
+entropy tuning (Haarnoja et al. 2018). Expert supervision (paper, "Training the low-level policy"):
+the actor also imitates the scripted expert's action where the critic rates it higher than its own
+(the Q-filter of Nair et al. 2018), on a second batch drawn without relabelling, so every sample of it
+carries the expert's label for its goal (DAgger-style: labels on the states the agent visited).
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass
+
+import numpy as np
+import torch
+from torch import nn
+
+from semgoal_policy.actor import Actor, mlp
+from semgoal_policy.replay import Batch
+
+
+@dataclass
+class SacConfig:
+    gamma: float = 0.98
+    """Discount; the HER papers' value for 50-step Fetch episodes."""
+    tau: float = 0.005
+    """Polyak rate of the target critics."""
+    lr: float = 1e-3
+    batch_size: int = 256
+    bc_weight: float = 1.0
+    """Weight of the behaviour-cloning loss; 0 turns expert supervision off in the loss."""
+    q_filter: bool = True
+    """Clone the expert only where Q(s, a_expert) > Q(s, pi(s))."""
+
+
+class TwinCritic(nn.Module):
+    def __init__(self, inputs: int) -> None:
+        super().__init__()
+        self.q1, self.q2 = mlp(inputs + 4, 1), mlp(inputs + 4, 1)
+
+    def forward(self, features: torch.Tensor, action: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        x = torch.cat([features, action], dim=-1)
+        return self.q1(x).squeeze(-1), self.q2(x).squeeze(-1)
+
+
+class SacAgent:
+    """Actor, critics, targets, optimisers and the entropy temperature; ``update`` does one gradient step."""
+
+    def __init__(self, obs_size: int, goal_size: int, config: SacConfig) -> None:
+        self.config = config
+        self.actor = Actor(obs_size, goal_size)
+        self.critic = TwinCritic(obs_size + goal_size)
+        self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
+        self.log_alpha = torch.zeros(1, requires_grad=True)
+        self.target_entropy = -4.0
+        self.actor_optimizer = torch.optim.Adam(self.actor.net.parameters(), lr=config.lr)
+        self.critic_optimizer = torch.optim.Adam(self.critic.parameters(), lr=config.lr)
+        self.alpha_optimizer = torch.optim.Adam([self.log_alpha], lr=config.lr)
+        # values are sums of 0/1 rewards: clip targets to what a discounted sum can reach
+        self.q_max = 1.0 / (1.0 - config.gamma)
+
+    def update(self, batch: Batch, bc_batch: Batch | None = None) -> dict[str, float]:
+        """One gradient step of critics, actor (SAC + cloning on ``bc_batch``) and temperature."""
+        cfg = self.config
+        t = {name: torch.as_tensor(value) for name, value in batch._asdict().items()}
+        features = self.actor.features(t["obs"], t["goal"])
+        next_features = self.actor.features(t["next_obs"], t["goal"])
+        alpha = self.log_alpha.exp().detach()
+
+        with torch.no_grad():
+            next_action, next_log_pi, _ = self.actor.sample(t["next_obs"], t["goal"])
+            qf1_next, qf2_next = self.critic_target(next_features, next_action)
+            min_qf_next_target = torch.min(qf1_next, qf2_next) - alpha * next_log_pi
+            next_q_value = (t["reward"] + cfg.gamma * min_qf_next_target).clamp(0.0, self.q_max)
+        qf1, qf2 = self.critic(features, t["action"])
+        critic_loss = ((qf1 - next_q_value) ** 2).mean() + ((qf2 - next_q_value) ** 2).mean()
+        self.critic_optimizer.zero_grad()
+        critic_loss.backward()
+        self.critic_optimizer.step()
+
+        action, log_pi, _ = self.actor.sample(t["obs"], t["goal"])
+        self.critic.requires_grad_(False)
+        min_qf_pi = torch.min(*self.critic(features, action))
+        # scale-free SAC term (as TD3+BC does), so the BC weight means the same at every Q magnitude
+        q_scale = min_qf_pi.abs().mean().detach().clamp(min=1e-3)
+        sac_loss = ((alpha * log_pi - min_qf_pi) / q_scale).mean()
+        bc_loss, bc_fraction = self._bc_loss(bc_batch)
+        actor_loss = sac_loss + cfg.bc_weight * bc_loss
+        self.critic.requires_grad_(True)
+        self.actor_optimizer.zero_grad()
+        actor_loss.backward()
+        self.actor_optimizer.step()
+
+        alpha_loss = -(self.log_alpha * (log_pi.detach() + self.target_entropy)).mean()
+        self.alpha_optimizer.zero_grad()
+        alpha_loss.backward()
+        self.alpha_optimizer.step()
+
+        with torch.no_grad():
+            for p, p_target in zip(self.critic.parameters(), self.critic_target.parameters(), strict=True):
+                p_target.lerp_(p, cfg.tau)
+        return {"train/critic_loss": critic_loss.item(), "train/actor_loss": actor_loss.item(),
+                "train/bc_loss": bc_loss.item(), "train/bc_fraction": bc_fraction,
+                "train/alpha": alpha.item(), "train/q": min_qf_pi.mean().item()}
+
+    def _bc_loss(self, batch: Batch | None) -> tuple[torch.Tensor, float]:
+        if self.config.bc_weight == 0.0 or batch is None:
+            return torch.zeros(()), 0.0
+        t = {name: torch.as_tensor(value) for name, value in batch._asdict().items()}
+        features = self.actor.features(t["obs"], t["goal"])
+        mean_action = torch.tanh(self.actor(t["obs"], t["goal"])[0])
+        keep = t["has_label"]
+        if self.config.q_filter:
+            with torch.no_grad():
+                q_expert = torch.min(*self.critic(features, t["expert_action"]))
+                q_actor = torch.min(*self.critic(features, mean_action))
+            keep = keep * (q_expert >= q_actor).float()
+        per_sample = ((mean_action - t["expert_action"]) ** 2).sum(-1)
+        return (per_sample * keep).sum() / keep.sum().clamp(min=1.0), keep.mean().item()
+
+    # -- checkpoints ---------------------------------------------------------------------------------
+    def state_dict(self) -> dict:
+        return {
+            "actor": self.actor.state_dict(), "critic": self.critic.state_dict(),
+            "critic_target": self.critic_target.state_dict(), "log_alpha": self.log_alpha.detach(),
+            "actor_optimizer": self.actor_optimizer.state_dict(),
+            "critic_optimizer": self.critic_optimizer.state_dict(),
+            "alpha_optimizer": self.alpha_optimizer.state_dict(),
+        }
+
+    def load_state_dict(self, state: dict) -> None:
+        self.actor.load_state_dict(state["actor"])
+        self.critic.load_state_dict(state["critic"])
+        self.critic_target.load_state_dict(state["critic_target"])
+        with torch.no_grad():
+            self.log_alpha.copy_(state["log_alpha"])
+        self.actor_optimizer.load_state_dict(state["actor_optimizer"])
+        self.critic_optimizer.load_state_dict(state["critic_optimizer"])
+        self.alpha_optimizer.load_state_dict(state["alpha_optimizer"])
+
+    def explore(self, obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
+        """Stochastic actions for a batch of envs."""
+        with torch.no_grad():
+            action, _, _ = self.actor.sample(torch.as_tensor(obs), torch.as_tensor(goal))
+        return action.numpy()

@@ -1,0 +1,225 @@
+"""Training loop: batched collection, expert supervision, sub-goal curriculum, checkpoints, export.
+
+One cycle collects one episode in each of ``n_envs`` envs (some run by the scripted expert with noise:
+demonstrations), stores them with the expert's labels, then runs ``updates_per_step`` gradient steps
+per collected env step. Every ``eval_every`` env steps the deterministic actor is evaluated per sub-goal
+type, a CSV row is written and a checkpoint (model, optimisers, replay buffer, RNG, curriculum) saved,
+so ``--resume`` continues exactly where a killed run stopped.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import shlex
+import sys
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+import torch
+from tqdm import tqdm
+
+from semgoal_policy import actor as actor_io
+from semgoal_policy.agents import AGENTS, AgentSpec
+from semgoal_policy.evaluate import EVAL_SEED_BASE, run_episodes, success_by_kind
+from semgoal_policy.replay import EpisodeReplay
+from semgoal_policy.sac import SacAgent, SacConfig
+
+RUNS_DIR = Path("runs")
+
+
+@dataclass
+class TrainConfig:
+    scene: str
+    agent: str = "hierarchical"
+    """hierarchical (sub-goals), flat-semantic (task goals) or flat-continuous (block positions)."""
+    steps: int = 300_000
+    """Env steps to train for (all envs together)."""
+    seed: int = 0
+    n_envs: int = 8
+    """Envs stepped side by side; one episode each per collection cycle."""
+    updates_per_step: float = 0.25
+    """Gradient steps per collected env step (the HER baselines use 0.4 with 2 workers)."""
+    learning_starts: int = 2_000
+    demo_fraction: float = 0.25
+    """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
+    demo_noise: float = 0.2
+    curriculum: bool = True
+    """Sample sub-goal types more often the lower their recent success (else uniformly)."""
+    eval_every: int = 10_000
+    eval_episodes: int = 20
+    """Evaluation episodes per sub-goal type at each eval point (the final eval uses ``final_eval_episodes``)."""
+    final_eval_episodes: int = 100
+    max_wall_s: float = 2 * 3600
+    """Stop (and export) after this much wall time across resumes."""
+    torch_threads: int = 1
+    sac: SacConfig = field(default_factory=SacConfig)
+    run_dir: Path | None = None
+    export_dir: Path | None = None
+    command: str = ""
+
+
+class Curriculum:
+    """Recent training success per kind (moving average); kinds are drawn more the less they succeed."""
+
+    def __init__(self, kinds: tuple[str, ...], enabled: bool, rate: float = 0.05) -> None:
+        self.kinds, self.enabled, self.rate = kinds, enabled, rate
+        self.success = dict.fromkeys(kinds, 0.0)
+
+    def probabilities(self) -> np.ndarray:
+        if not self.enabled:
+            return np.full(len(self.kinds), 1.0 / len(self.kinds))
+        weights = np.array([1.0 - self.success[k] for k in self.kinds]) + 0.1
+        return weights / weights.sum()
+
+    def draw(self, rng: np.random.Generator, count: int) -> list[str]:
+        return [str(k) for k in rng.choice(self.kinds, size=count, p=self.probabilities())]
+
+    def record(self, kinds: list[str], success: np.ndarray) -> None:
+        for kind, ok in zip(kinds, success, strict=True):
+            self.success[kind] += self.rate * (float(ok) - self.success[kind])
+
+
+class Trainer:
+    def __init__(self, config: TrainConfig) -> None:
+        self.config = cfg = config
+        torch.set_num_threads(cfg.torch_threads)
+        torch.manual_seed(cfg.seed)
+        self.spec: AgentSpec = AGENTS[cfg.agent]
+        self.rng = np.random.default_rng(cfg.seed)
+        # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
+        self.envs = [self.spec.make_env(cfg.scene) for _ in range(cfg.n_envs)]
+        for i, env in enumerate(self.envs):
+            env.reset(seed=cfg.seed * 1000 + i)
+            env.action_space.seed(cfg.seed * 1000 + i)
+        probe = self.envs[0].observation_space
+        obs_size, goal_size = probe["observation"].shape[0], probe["desired_goal"].shape[0]
+        self.kinds = self.spec.kinds(cfg.scene)
+        self.agent = SacAgent(obs_size, goal_size, cfg.sac)
+        horizon = self.envs[0].max_steps
+        self.replay = EpisodeReplay(cfg.steps // horizon + cfg.n_envs, horizon, obs_size, goal_size,
+                                    self.spec.reward_fn)
+        self.curriculum = Curriculum(self.kinds, cfg.curriculum)
+        self.env_steps = 0
+        self.wall_s = 0.0
+        self.run_dir = cfg.run_dir or RUNS_DIR / f"{cfg.scene}-{cfg.agent}" / f"seed{cfg.seed}"
+        self.export_dir = cfg.export_dir or actor_io.MODELS_DIR / self.spec.model_name(cfg.scene)
+        self.last_metrics: dict[str, float] = {}
+
+    # -- checkpoints ---------------------------------------------------------------------------------
+    @property
+    def checkpoint_path(self) -> Path:
+        return self.run_dir / "checkpoint.pt"
+
+    def save(self) -> None:
+        self.run_dir.mkdir(parents=True, exist_ok=True)
+        self.replay.save(self.run_dir / "replay.npz")
+        state = {"agent": self.agent.state_dict(), "env_steps": self.env_steps, "wall_s": self.wall_s,
+                 "rng": self.rng.bit_generator.state, "torch_rng": torch.get_rng_state(),
+                 "curriculum": self.curriculum.success,
+                 "env_rngs": [env.np_random.bit_generator.state for env in self.envs]}
+        torch.save(state, self.checkpoint_path.with_suffix(".tmp"))
+        self.checkpoint_path.with_suffix(".tmp").replace(self.checkpoint_path)
+
+    def restore(self) -> None:
+        state = torch.load(self.checkpoint_path, weights_only=False)
+        self.agent.load_state_dict(state["agent"])
+        self.env_steps, self.wall_s = state["env_steps"], state["wall_s"]
+        self.rng.bit_generator.state = state["rng"]
+        torch.set_rng_state(state["torch_rng"])
+        self.curriculum.success = state["curriculum"]
+        for env, rng_state in zip(self.envs, state["env_rngs"], strict=True):
+            env.np_random.bit_generator.state = rng_state
+        self.replay.load(self.run_dir / "replay.npz")
+
+    # -- the loop ------------------------------------------------------------------------------------
+    def collect(self) -> None:
+        cfg, n = self.config, self.config.n_envs
+        kinds = self.curriculum.draw(self.rng, n)
+        expert = self.rng.uniform(size=n) < cfg.demo_fraction
+        if self.env_steps < cfg.learning_starts and cfg.demo_fraction > 0:
+            expert[:] = True  # the buffer starts with demonstrations only
+        result = run_episodes(self.envs, self.agent.explore, [{"subgoal_type": k} for k in kinds],
+                              expert_mask=expert, expert_noise=cfg.demo_noise, rng=self.rng)
+        self.replay.add(result.obs, result.achieved, result.goal, result.action, result.expert_action)
+        self.agent.actor.normaliser.update(result.obs)
+        agent_runs = ~expert
+        self.curriculum.record([k for k, a in zip(result.kinds, agent_runs, strict=True) if a], result.success[agent_runs])
+        self.env_steps += n * self.envs[0].max_steps
+
+    def train_step(self, env_steps: int) -> None:
+        cfg = self.config
+        if self.env_steps < cfg.learning_starts:
+            return
+        cloning = cfg.sac.bc_weight > 0
+        for _ in range(max(1, round(env_steps * cfg.updates_per_step))):
+            batch = self.replay.sample(self.rng, cfg.sac.batch_size)
+            bc_batch = self.replay.sample(self.rng, cfg.sac.batch_size, her_ratio=0.0) if cloning else None
+            self.last_metrics = self.agent.update(batch, bc_batch)
+
+    def evaluate(self, episodes: int) -> dict[str, float]:
+        self.agent.actor.eval()
+        rates = success_by_kind(self.envs, self.agent.actor.act, self.kinds, episodes, EVAL_SEED_BASE)
+        self.agent.actor.train()
+        return rates
+
+    def run(self, resume: bool = False) -> dict[str, float]:
+        cfg = self.config
+        if resume and self.checkpoint_path.exists():
+            self.restore()
+        elif not resume and self.checkpoint_path.exists():
+            raise FileExistsError(f"{self.run_dir} holds a checkpoint: pass --resume to continue it, or remove the folder")
+        self.run_dir.mkdir(parents=True, exist_ok=True)
+        (self.run_dir / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
+        csv_path = self.run_dir / "progress.csv"
+        next_eval = (self.env_steps // cfg.eval_every + 1) * cfg.eval_every
+        bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
+                   file=sys.stderr, mininterval=5, dynamic_ncols=True)
+        session_start, wall_at_start = time.perf_counter(), self.wall_s
+        while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
+            before = self.env_steps
+            self.collect()
+            self.train_step(self.env_steps - before)
+            self.wall_s = wall_at_start + time.perf_counter() - session_start
+            bar.update(self.env_steps - before)
+            if self.env_steps >= next_eval:
+                rates = self.evaluate(cfg.eval_episodes)
+                self._log(csv_path, rates)
+                bar.set_postfix(success=f"{np.mean(list(rates.values())):.2f}")
+                self.save()
+                next_eval += cfg.eval_every
+        bar.close()
+        self.save()
+        final = self.evaluate(cfg.final_eval_episodes)
+        self._export(final)
+        return final
+
+    def _log(self, csv_path: Path, rates: dict[str, float]) -> None:
+        row = {"env_steps": self.env_steps, "wall_s": round(self.wall_s, 1),
+               **{f"eval/success/{k}": v for k, v in rates.items()},
+               "eval/success/overall": float(np.mean(list(rates.values()))),
+               **{k: round(v, 5) for k, v in self.last_metrics.items()}}
+        new = not csv_path.exists()
+        with csv_path.open("a", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=list(row))
+            if new:
+                writer.writeheader()
+            writer.writerow(row)
+        print(f"[{self.env_steps} steps, {self.wall_s / 60:.1f} min] "
+              + " ".join(f"{k}={v:.2f}" for k, v in rates.items()), file=sys.stderr, flush=True)
+
+    def _export(self, final: dict[str, float]) -> None:
+        from semgoal_policy.plots import learning_curve
+
+        cfg = self.config
+        curve = learning_curve(self.run_dir / "progress.csv", self.export_dir / "learning_curve.png",
+                               f"{cfg.scene} / {cfg.agent} (seed {cfg.seed})")
+        info = {"agent": cfg.agent, "seed": cfg.seed, "env_steps": self.env_steps, "wall_s": round(self.wall_s, 1),
+                "command": cfg.command or shlex.join(sys.argv), "kinds": list(self.kinds),
+                "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
+                               "per_kind": final, "overall": float(np.mean(list(final.values())))},
+                "first_reached_95": curve, "config": json.loads(json.dumps(asdict(cfg), default=str))}
+        actor_io.export(self.agent.actor, self.export_dir, cfg.scene, info)
+        (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())

@@ -53,3 +53,33 @@ def train_main(argv: list[str]) -> int:
     print(json.dumps({"scene": args.scene, "agent": args.agent, "env_steps": trainer.env_steps,
                       "wall_s": round(trainer.wall_s, 1), "per_kind": final, "export": str(trainer.export_dir)}))
     return 0
+
+
+def eval_subgoals_main(argv: list[str]) -> int:
+    """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
+    from semgoal_policy.actor import MODELS_DIR, load
+    from semgoal_policy.agents import get_agent
+    from semgoal_policy.evaluate import success_by_kind
+
+    parser = argparse.ArgumentParser(prog="semgoal eval-subgoals", description=eval_subgoals_main.__doc__)
+    parser.add_argument("--scene", required=True, choices=list(SCENES))
+    parser.add_argument("--episodes", type=int, default=200, help="episodes per sub-goal type")
+    parser.add_argument("--seed", type=int, default=2_000_000, help="first episode seed (training uses seeds < 1e6)")
+    parser.add_argument("--model-dir", type=Path, help=f"exported actor (default {MODELS_DIR}/SCENE)")
+    parser.add_argument("--envs", type=int, default=10)
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args(argv)
+    import torch
+
+    torch.set_num_threads(1)
+    actor, _ = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
+    spec = get_agent("hierarchical")
+    envs = [spec.make_env(args.scene) for _ in range(args.envs)]
+    rates = success_by_kind(envs, actor.act, spec.kinds(args.scene), args.episodes, args.seed)
+    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "per_subgoal": rates,
+              "overall": sum(rates.values()) / len(rates)}
+    if not args.json:
+        for kind, rate in rates.items():
+            print(f"{kind:14s} {rate:6.1%}")
+    print(json.dumps(result) if args.json else f"{'overall':14s} {result['overall']:6.1%}")
+    return 0

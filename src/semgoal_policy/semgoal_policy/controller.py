@@ -1,0 +1,43 @@
+"""The policy's run-time core (no ROS): observation + active sub-goal -> a safe arm command."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from semgoal_policy import actor as actor_io
+from semgoal_sim import layout
+from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError
+
+HOLD = np.zeros(4, dtype=np.float32)
+"""Zero displacement and finger targets at their current positions: the arm holds still."""
+
+
+class SubgoalController:
+    """Wraps an exported actor for one scene; every output is finite and within [-1, 1]."""
+
+    def __init__(self, scene: str, model_dir: Path | str | None = None) -> None:
+        self.scene = scene
+        self.layout = LAYOUTS[scene]
+        self.actor, self.meta = actor_io.load(model_dir or actor_io.MODELS_DIR / scene, scene)
+        self.goal: np.ndarray | None = None
+        self.obs_size = layout.observation_size(scene)
+
+    def set_subgoal(self, literals: list[Literal]) -> None:
+        """Condition on a sub-goal's literals; an empty list means hold still. VocabularyError if invalid."""
+        if not literals:
+            self.goal = None
+            return
+        target, mask = self.layout.encode(literals)
+        self.goal = np.concatenate([target, mask])
+
+    def act(self, observation: np.ndarray) -> np.ndarray:
+        observation = np.asarray(observation, dtype=np.float32)
+        if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
+            return HOLD.copy()
+        action = self.actor.act(observation, self.goal)
+        return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
+
+
+__all__ = ["HOLD", "SubgoalController", "VocabularyError"]

@@ -1,0 +1,117 @@
+"""The executive: advancing, re-planning on stalls and contradictions, human steps, validated edits."""
+
+import copy
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from semgoal_planner.executive import EDIT_OPS, Executive, Observation
+from semgoal_planner.semantic import SemanticPlanner
+from semgoal_sim.vocabulary import LAYOUTS, Literal
+
+BLOCKS = ("red", "green", "blue")
+
+
+def observe(true: list[str], step: int = 0, scene: str = "desk_cleanup", objects=BLOCKS) -> Observation:
+    layout = LAYOUTS[scene]
+    literals = [Literal(name, args, f"{name}({','.join(args)})" in true) for name, args in layout.atoms
+                if all(a in objects for a in args)]
+    return Observation(objects, literals, step)
+
+
+def executive(**kwargs) -> Executive:
+    ex = Executive(SemanticPlanner("desk_cleanup"), **kwargs)
+    ex.observe(observe([]))
+    return ex
+
+
+def test_goal_is_planned_then_followed_to_success() -> None:
+    ex = executive()
+    ok, message = ex.set_goal("in_bin(red) & in_bin(green)")
+    assert ok, message
+    assert [str(s.subgoal) for s in ex.steps] == ["pick(green)", "put_in_bin(green)", "pick(red)", "put_in_bin(red)"]
+    assert ex.active.subgoal.kind == "pick" and ex.status == "executing"
+    ex.observe(observe(["holding(green)"], 20))
+    assert ex.current == 1 and ex.steps[0].status == "done"
+    ex.observe(observe(["in_bin(green)"], 40))
+    ex.observe(observe(["in_bin(green)", "holding(red)"], 60))
+    ex.observe(observe(["in_bin(green)", "in_bin(red)"], 80))
+    assert ex.status == "succeeded" and ex.active is None
+
+
+def test_bad_goal_keeps_the_previous_plan() -> None:
+    ex = executive()
+    ex.set_goal("DC-3")
+    before = copy.deepcopy(ex.steps)
+    ok, message = ex.set_goal("in_bin(purple)")
+    assert not ok and "unknown object" in message
+    assert ex.steps == before
+
+
+def test_stall_replans_then_gives_up() -> None:
+    ex = executive(stall_steps=10, max_replans=2)
+    ex.set_goal("in_bin(red)")
+    for step in range(0, 100, 5):
+        ex.tick(step)
+    assert ex.status == "failed" and ex.replans == 2
+    assert "gave up after 2 re-plans" in ex.message
+
+
+def test_contradiction_replans_after_the_debounce() -> None:
+    ex = executive(contradiction_steps=5)
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    ex.observe(observe(["holding(green)"], 10))
+    ex.observe(observe([], 12))  # green dropped: put_in_bin(green) cannot run
+    ex.tick(14)
+    assert ex.replans == 0
+    ex.tick(18)
+    assert ex.replans == 1 and str(ex.active.subgoal) == "pick(green)"
+
+
+def test_human_step_is_waited_for_without_stall() -> None:
+    ex = executive(stall_steps=5)
+    ex.set_goal("in_bin(red)")
+    ok, _ = ex.edit("assign", 0, action="human")
+    assert ok and ex.active is None
+    ex.tick(100)
+    assert ex.replans == 0
+    ex.observe(observe(["holding(red)"], 120))
+    assert ex.active is not None and str(ex.active.subgoal) == "put_in_bin(red)"
+
+
+def test_valid_edits_apply_and_invalid_ones_change_nothing() -> None:
+    ex = executive(require_approval=True)
+    ex.set_goal("in_bin(red)")
+    assert ex.status == "awaiting_approval" and ex.active is None
+    ok, _ = ex.edit("insert", 2, action="pick(green)")  # after the goal holds: harmless, so valid
+    assert ok and len(ex.steps) == 3
+    before = copy.deepcopy(ex.steps)
+    for op, index, to_index, action in [("insert", 1, 0, "pick(green)"),
+                                        ("remove", 0, 0, ""), ("move", 1, 0, ""), ("replace", 1, 0, "put_on_table(red)"),
+                                        ("insert", 9, 0, "pick(red)"), ("assign", 0, 0, "robot-arm"),
+                                        ("replace", 0, 0, "fly(red)"), ("resume", 0, 0, ""), ("explode", 0, 0, "")]:
+        ok, message = ex.edit(op, index, to_index, action)
+        assert not ok and message, (op, message)
+        assert ex.steps == before
+    ok, message = ex.edit("insert", 1, action="pick(green)")
+    assert "needs a free gripper" in message
+    assert ex.edit("remove", 2)[0] and len(ex.steps) == 2
+    assert ex.edit("approve")[0] and ex.status == "executing"
+    assert ex.edit("pause")[0] and ex.active is None
+    assert ex.edit("resume")[0] and ex.active is not None
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from([*EDIT_OPS, "bogus", ""]), st.integers(-3, 12), st.integers(-3, 12),
+                          st.sampled_from(["", "pick(red)", "pick(blue)", "put_in_bin(red)", "put_on_table(green)",
+                                           "human", "robot", "pick(", "put_in_bin(red,green)", "in_bin(red)"])),
+                max_size=8))
+def test_fuzzed_edit_sequences_never_raise_and_refusals_change_nothing(edits) -> None:
+    ex = executive()
+    ex.set_goal("DC-3")
+    for op, index, to_index, action in edits:
+        before = (copy.deepcopy(ex.steps), ex.current, ex.status)
+        ok, message = ex.edit(op, index, to_index, action)
+        assert message
+        if not ok and op not in ("replan",):
+            assert (ex.steps, ex.current, ex.status) == before

@@ -1,0 +1,55 @@
+"""Goal parsing: tasks and literal conjunctions; every bad goal is a GoalError with a message."""
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from semgoal_planner.goals import GoalError, parse_goal
+from semgoal_sim.vocabulary import Literal
+
+BLOCKS = ("red", "green", "blue")
+
+
+def test_conjunctions_with_every_separator() -> None:
+    goal = parse_goal("close(red,green) & not close(red, blue) and close(green,blue), holding(red)",
+                      "three_blocks", BLOCKS, [])
+    assert goal == [Literal("close", ("red", "green")), Literal("close", ("red", "blue"), False),
+                    Literal("close", ("green", "blue")), Literal("holding", ("red",))]
+
+
+def test_task_names_are_case_insensitive_and_resolved_against_the_state() -> None:
+    goal = parse_goal("dc-2", "desk_cleanup", ("red", "green"), [])
+    assert Literal("in_bin", ("red",)) in goal and Literal("holding", ("green",), False) in goal
+
+
+@pytest.mark.parametrize(("text", "words"), [
+    ("close(red,purple)", "unknown object 'purple'"),
+    ("hover(red)", "unknown predicate 'hover'"),
+    ("close(red)", "takes 2 argument"),
+    ("above(red,green)", "not used in scene"),
+    ("close(red,green) & not close(green,red)", "contradictory"),
+    ("close(red,green) &", "cannot read goal"),
+    ("MC-2", "runs in scene two_blocks"),
+    ("DC-4", "runs in scene desk_cleanup"),
+])
+def test_bad_goals_are_explained(text: str, words: str) -> None:
+    with pytest.raises(GoalError, match=words):
+        parse_goal(text, "three_blocks", BLOCKS, [])
+
+
+def test_task_needing_other_blocks_is_refused() -> None:
+    with pytest.raises(GoalError, match="needs blocks red, green, blue, yellow"):
+        parse_goal("DC-4", "desk_cleanup", BLOCKS, [])
+    with pytest.raises(GoalError, match="no block is on another"):
+        parse_goal("Swap-2", "two_blocks", ("red", "green"), [])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet="()&,! ~abcdeglnortu_-MCAD234", max_size=40) | st.text(max_size=30))
+def test_fuzzed_goal_strings_never_raise_anything_but_goal_errors(text: str) -> None:
+    try:
+        goal = parse_goal(text, "three_blocks", BLOCKS, [])
+    except GoalError as error:
+        assert str(error)
+    else:
+        assert goal and all(lit.name in ("close", "holding") for lit in goal)

@@ -1,0 +1,55 @@
+"""The PDDL reader: valid domains and problems, and malformed input named by line and column."""
+
+from pathlib import Path
+
+import pytest
+
+from semgoal_planner.pddl import PddlError, parse_domain, parse_problem
+
+FIXTURES = Path(__file__).parent / "fixtures"
+
+
+def test_reads_typed_domain_with_constants() -> None:
+    domain = parse_domain((FIXTURES / "gripper-domain.pddl").read_text())
+    assert domain.name == "gripper-typed"
+    assert domain.constants == {"left": "gripper", "right": "gripper"}
+    assert [a.name for a in domain.actions] == ["move", "pick", "drop"]
+    assert domain.predicates["carry"] == ("ball", "gripper")
+
+
+def test_reads_problem_with_objects_init_and_goal() -> None:
+    domain = parse_domain((FIXTURES / "blocksworld-domain.pddl").read_text())
+    problem = parse_problem((FIXTURES / "blocksworld-sussman.pddl").read_text(), domain)
+    assert set(problem.objects) == {"a", "b", "c"}
+    assert len(problem.init) == 6 and len(problem.goal) == 2
+
+
+DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates (p ?x) (q))\n"
+
+
+@pytest.mark.parametrize(("text", "where", "words"), [
+    ("(define (domain d)", "1:1", "never closed"),
+    ("(define (domain d)))", "1:20", "after the end"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (or (p ?x) (q)) :effect (q)))", "3:44", "not STRIPS"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (r ?x) :effect (q)))", "3:44", "unknown predicate"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?y) :effect (q)))", "3:47", "unknown variable"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?x ?x) :effect (q)))", "3:44", "takes 1 argument"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (not (p ?x)) :effect (q)))", "3:44", "negative-preconditions"),
+    (DOMAIN_HEAD + " (:functions (f)))", "3:2", "unsupported domain section"),
+    ("(define (domain d) (:requirements :fluents))", "1:20", "unsupported requirement"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x - thing) :effect (q)))", "3:26", "unknown type"),
+])
+def test_malformed_domain_names_line_and_column(text: str, where: str, words: str) -> None:
+    with pytest.raises(PddlError) as error:
+        parse_domain(text)
+    assert str(error.value).startswith(where) and words in str(error.value)
+
+
+def test_malformed_problem_names_the_problem() -> None:
+    domain = parse_domain((FIXTURES / "blocksworld-domain.pddl").read_text())
+    with pytest.raises(PddlError, match="unknown object or constant 'z'"):
+        parse_problem("(define (problem p) (:domain blocksworld) (:objects a) (:init (clear z)) (:goal (clear a)))", domain)
+    with pytest.raises(PddlError, match="not 'blocksworld'"):
+        parse_problem("(define (problem p) (:domain other) (:objects a) (:init) (:goal (clear a)))", domain)
+    with pytest.raises(PddlError, match=":goal"):
+        parse_problem("(define (problem p) (:domain blocksworld) (:objects a) (:init))", domain)

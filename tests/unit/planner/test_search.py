@@ -1,0 +1,81 @@
+"""Grounding, heuristics and searches on standard STRIPS domains: optimal lengths, unsolvable tasks."""
+
+from pathlib import Path
+
+import pytest
+
+from semgoal_planner.blocksworld import DOMAIN_PATH, problem
+from semgoal_planner.grounding import ground
+from semgoal_planner.heuristics import HEURISTICS
+from semgoal_planner.pddl import parse_domain, parse_problem
+from semgoal_planner.planner import solve_pddl, solve_task
+
+FIXTURES = Path(__file__).parent / "fixtures"
+COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff")]
+
+
+def fixture(name: str) -> str:
+    return (FIXTURES / f"{name}.pddl").read_text()
+
+
+def validate(domain_text: str, problem_text: str, plan) -> bool:
+    """Replays a plan on the grounded task: every step applicable, the goal reached."""
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    state = task.init
+    for op in plan:
+        match = next(o for o in task.operators if o.name == op.name and o.args == op.args)
+        assert match.applicable(state), f"{op} not applicable"
+        state = match.apply(state)
+    return task.goal_reached(state)
+
+
+@pytest.mark.parametrize(("search", "heuristic"), COMBOS)
+@pytest.mark.parametrize(("domain", "problem_name", "optimal"), [
+    ("blocksworld-domain", "blocksworld-sussman", 6), ("gripper-domain", "gripper-4balls", 11)])
+def test_every_search_finds_a_valid_plan(search, heuristic, domain, problem_name, optimal) -> None:
+    result = solve_pddl(fixture(domain), fixture(problem_name), search, heuristic)
+    assert validate(fixture(domain), fixture(problem_name), result.plan)
+    if search != "gbfs":
+        assert len(result.plan) == optimal
+
+
+def test_grounding_prunes_unreachable_operators() -> None:
+    domain = parse_domain(fixture("gripper-domain"))
+    task = ground(domain, parse_problem(fixture("gripper-4balls"), domain))
+    # move between 2 rooms (2, a self-move included by the domain: 4), pick/drop 4 balls x 2 rooms x 2 grippers
+    assert len(task.operators) == 4 + 16 + 16
+    assert "free" in {f.predicate for f in task.facts}
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_admissible_heuristics_never_exceed_the_optimal_cost(seed: int) -> None:
+    text = problem(5, seed)
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(text, domain))
+    optimal = len(solve_task(task, "bfs").plan)
+    for name in ("hmax", "lmcut"):
+        assert HEURISTICS[name](task)(task.init) <= optimal
+    assert HEURISTICS["lmcut"](task)(task.init) >= HEURISTICS["hmax"](task)(task.init)
+    assert len(solve_task(task, "astar", "lmcut").plan) == optimal
+
+
+def test_unsolvable_task_returns_no_plan_and_a_reason() -> None:
+    domain_text = fixture("blocksworld-domain")
+    unsolvable = ("(define (problem p) (:domain blocksworld) (:objects a b) "
+                  "(:init (on-table a) (on-table b) (clear a) (clear b)) (:goal (on a b)))")  # no arm-empty: stuck
+    for search, heuristic in COMBOS:
+        result = solve_pddl(domain_text, unsolvable, search, heuristic)
+        assert result.plan is None and result.reason
+
+
+def test_negative_preconditions_and_equality_are_honoured() -> None:
+    domain_text = """(define (domain toggles) (:requirements :negative-preconditions :equality)
+      (:predicates (on ?x) (linked ?x ?y))
+      (:action switch-on :parameters (?x ?y) :precondition (and (not (on ?x)) (not (= ?x ?y)) (linked ?x ?y))
+               :effect (on ?x)))"""
+    problem_text = """(define (problem t) (:domain toggles) (:objects a b)
+      (:init (linked a a) (linked b a)) (:goal (and (on b) (not (on a)))))"""
+    result = solve_pddl(domain_text, problem_text, "bfs")
+    assert [str(op) for op in result.plan] == ["(switch-on b a)"]
+    assert solve_pddl(domain_text, problem_text.replace("(on b)", "(on a)"), "bfs").plan is None

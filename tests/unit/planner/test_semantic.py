@@ -1,0 +1,63 @@
+"""Scene domains, Plan2Goals and plan simulation: the planner speaks the vocabulary's sub-goals."""
+
+import pytest
+
+from semgoal_planner.goals import parse_goal
+from semgoal_planner.grounding import Operator
+from semgoal_planner.semantic import PlanningError, SemanticPlanner, plan2goal
+from semgoal_sim.tasks import TASKS
+from semgoal_sim.vocabulary import SCENES, Literal, SubGoal
+
+STARTS = {  # a typical start state of each task (true literals)
+    "MC-2": [], "MA-2": [Literal("close", ("red", "green"))],
+    "Swap-2": [Literal("close", ("red", "green")), Literal("above", ("green", "red"))],
+    "MC-3": [], "MA-3": [Literal("close", p) for p in (("red", "green"), ("red", "blue"), ("green", "blue"))],
+    "DC-2": [], "DC-3": [], "DC-4": [],
+}
+OPTIMAL = {"MC-2": 2, "MA-2": 2, "Swap-2": 4, "MC-3": 4, "MA-3": 4, "DC-2": 4, "DC-3": 6, "DC-4": 8}
+
+
+def test_plan2goal_maps_every_action_to_its_subgoal() -> None:
+    op = Operator("put_near_both", ("red", "green", "blue"), 0, 0, 0, 0)
+    assert plan2goal(op) == SubGoal("put_near", ("red", "green", "blue"))
+    assert plan2goal(Operator("put_near", ("red", "green", "blue"), 0, 0, 0, 0)) == SubGoal("put_near", ("red", "green"))
+    assert plan2goal(Operator("pick", ("red", "green"), 0, 0, 0, 0)).literals() == [Literal("holding", ("red",))]
+
+
+@pytest.mark.parametrize("task_name", list(TASKS))
+def test_every_task_gets_a_shortest_plan_of_scene_subgoals(task_name: str) -> None:
+    task = TASKS[task_name]
+    planner = SemanticPlanner(task.scene)
+    goal = parse_goal(task_name, task.scene, task.blocks, STARTS[task_name])
+    steps = planner.plan(task.blocks, STARTS[task_name], goal)
+    assert len(steps) == OPTIMAL[task_name]
+    assert {s.kind for s in steps} <= set(SCENES[task.scene].subgoal_types)
+    planner.simulate(task.blocks, STARTS[task_name], goal, steps)  # raises if invalid
+
+
+def test_swap_plan_unstacks_before_stacking() -> None:
+    planner = SemanticPlanner("two_blocks")
+    goal = parse_goal("Swap-2", "two_blocks", ("red", "green"), STARTS["Swap-2"])
+    assert goal[0] == Literal("above", ("red", "green"))
+    steps = [str(s) for s in planner.plan(("red", "green"), STARTS["Swap-2"], goal)]
+    assert steps[0] == "pick(green)" and steps[-1] == "put_on(red,green)"
+
+
+def test_simulation_explains_what_is_wrong() -> None:
+    planner = SemanticPlanner("desk_cleanup")
+    blocks, goal = ("red", "green"), [Literal("in_bin", ("red",))]
+    with pytest.raises(PlanningError, match=r"step 1 put_in_bin\(red\) cannot run: it needs holding\(red\)"):
+        planner.simulate(blocks, [], goal, [SubGoal("put_in_bin", ("red",))])
+    with pytest.raises(PlanningError, match=r"does not reach the goal: .*in_bin\(red\)"):
+        planner.simulate(blocks, [], goal, [SubGoal("pick", ("red",)), SubGoal("put_on_table", ("red",))])
+    with pytest.raises(PlanningError, match="not an action"):
+        planner.simulate(blocks, [], goal, [SubGoal("pick", ("yellow",))])
+
+
+def test_unreachable_goal_is_reported() -> None:
+    planner = SemanticPlanner("desk_cleanup")
+    state = [Literal("holding", ("red",))]
+    # holding two blocks at once is impossible: hand-empty is needed for every pick
+    goal = [Literal("holding", ("red",)), Literal("holding", ("green",))]
+    with pytest.raises(PlanningError, match="no plan reaches"):
+        planner.plan(("red", "green"), state, goal)

@@ -1,10 +1,10 @@
-"""`./semgoal demo [--task T] [--seed S]`: the node graph solving a task, printed as it happens.
+"""`./semgoal demo [--task T] [--seed S] [--gif FILE]`: the whole node graph solving a task.
 
-Starts ``sim_node`` (lockstep) and ``predicate_node`` as separate processes in a fresh ROS domain,
-resets the world to the task, and closes the loop over DDS: every world state is answered with an arm
-command. Until the planner and the trained policy take their places, the scripted expert chooses the
-sub-goals and the commands (clearly a stand-in: the semantic state it is judged on comes from the
-predicates node). The last line says ``success`` when the task's goal holds.
+Starts sim (lockstep), predicates, planner and policy as separate processes in a fresh ROS domain,
+resets the world to the task, sends the goal through the planner's ExecuteGoal action, and prints as
+it happens the plan, each sub-goal starting and finishing, re-plans and the result. It writes a GIF
+of the episode with the active sub-goal on every frame. The last line says ``success`` when the
+task's goal holds.
 """
 
 from __future__ import annotations
@@ -12,131 +12,157 @@ from __future__ import annotations
 import argparse
 import os
 import random
-import subprocess
 import sys
 import time
 from pathlib import Path
 
-STEP_BUDGET = 1500
-"""Control steps allowed per episode (60 s of sim time)."""
-
-
-def start_nodes(root: Path, scene: str, task: str, seed: int) -> list[subprocess.Popen]:
-    run = [str(root / "semgoal"), "run"]
-    return [
-        subprocess.Popen([*run, "semgoal_sim", "sim_node", "--ros-args", "-p", f"scene:={scene}", "-p",
-                          f"task:={task}", "-p", f"seed:={seed}", "-p", "mode:=lockstep", "--log-level", "warn"]),
-        subprocess.Popen([*run, "semgoal_sim", "predicate_node", "--ros-args", "--log-level", "warn"]),
-    ]
+READY_TIMEOUT_S = 60.0
+EPISODE_TIMEOUT_S = 300.0
 
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.splitlines()[0])
     parser.add_argument("--task", default="DC-3")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped ones")
+    parser.add_argument("--gif", type=Path, help="where to write the episode GIF (default results/demo-TASK.gif)")
+    parser.add_argument("--no-gif", action="store_true")
     args = parser.parse_args(argv)
     os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))  # per-run domain: parallel demos never meet
 
+    from semgoal_bringup.graph import start_graph, stop_graph
     from semgoal_sim.tasks import get_task
 
     try:
         task = get_task(args.task)
     except KeyError as error:
         parser.error(str(error.args[0]))
-    processes = start_nodes(Path(os.environ["SEMGOAL_ROOT"]), task.scene, task.name, args.seed)
+    gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
+    processes = start_graph(task.name, args.seed, models=args.models)
     try:
-        return run_episode(task.name, args.seed)
+        return DemoClient(task.name, args.seed).run(gif)
     finally:
-        for process in processes:
-            process.terminate()
-        for process in processes:
-            process.wait()
+        stop_graph(processes)
 
 
-def run_episode(task_name: str, seed: int) -> int:
-    import numpy as np
-    import rclpy
+class DemoClient:
+    """The operator's side: reset, send the goal, print progress, record frames for the GIF."""
 
-    from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
-    from semgoal_msgs.srv import ResetWorld
-    from semgoal_sim import ros_interfaces as topics
-    from semgoal_sim.conversions import world_view
-    from semgoal_sim.expert import expert_action
-    from semgoal_sim.rollout import expert_next_steps, satisfied
-    from semgoal_sim.tasks import get_task
-    from semgoal_sim.vocabulary import LAYOUTS
+    def __init__(self, task_name: str, seed: int) -> None:
+        import rclpy
+        from rclpy.action import ActionClient
+        from sensor_msgs.msg import JointState
 
-    task = get_task(task_name)
-    layout = LAYOUTS[task.scene]
-    rclpy.init(domain_id=int(os.environ["ROS_DOMAIN_ID"]))
-    node = rclpy.create_node("semgoal_demo")
-    worlds: list[WorldState] = []
-    semantic: list[SemanticState] = []
-    node.create_subscription(WorldState, topics.WORLD_STATE, worlds.append, topics.STREAM)
-    node.create_subscription(SemanticState, topics.SEMANTIC_STATE, semantic.append, topics.LATCHED)
-    commands = node.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
-    reset_client = node.create_client(ResetWorld, topics.RESET_WORLD)
+        from semgoal_msgs.action import ExecuteGoal
+        from semgoal_msgs.msg import SemanticState, SubGoal, WorldState
+        from semgoal_msgs.srv import ResetWorld
+        from semgoal_sim import ros_interfaces as topics
+        from semgoal_sim.tasks import get_task
 
-    def spin_until(condition, timeout: float) -> bool:
+        self.rclpy, self.topics, self.task, self.seed = rclpy, topics, get_task(task_name), seed
+        rclpy.init(domain_id=int(os.environ["ROS_DOMAIN_ID"]))
+        self.node = node = rclpy.create_node("semgoal_demo")
+        self.world: WorldState | None = None
+        self.joints: JointState | None = None
+        self.semantic: SemanticState | None = None
+        self.caption = ""
+        self.frames: list = []
+        node.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
+        node.create_subscription(JointState, topics.JOINT_STATES, self.joints_callback, topics.STREAM)
+        node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.LATCHED)
+        node.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
+        self.reset_client = node.create_client(ResetWorld, topics.RESET_WORLD)
+        self.action = ActionClient(node, ExecuteGoal, topics.EXECUTE_GOAL)
+        self.ExecuteGoal, self.ResetWorld = ExecuteGoal, ResetWorld
+        self.seen_steps: dict[int, str] = {}
+        self.plan_revision = -1
+
+    # -- subscriptions -------------------------------------------------------------------------------
+    def world_callback(self, msg) -> None:
+        self.world = msg
+        if msg.step % 2 == 0 and self.joints is not None:
+            from semgoal_bringup.episode_gif import Frame
+
+            poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
+                              b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
+            self.frames.append(Frame(int(msg.step), dict(zip(self.joints.name, self.joints.position, strict=True)),
+                                     poses, self.caption))
+
+    def joints_callback(self, msg) -> None:
+        self.joints = msg
+
+    def semantic_callback(self, msg) -> None:
+        self.semantic = msg
+
+    def subgoal_callback(self, msg) -> None:
+        self.caption = msg.action if msg.status == "active" else f"({msg.status})"
+
+    # -- the episode ---------------------------------------------------------------------------------
+    def spin_until(self, condition, timeout: float) -> bool:
         deadline = time.monotonic() + timeout
         while not condition():
             if time.monotonic() > deadline:
                 return False
-            rclpy.spin_once(node, timeout_sec=0.05)
+            self.rclpy.spin_once(self.node, timeout_sec=0.05)
         return True
 
-    try:
-        # The reset's world state is published once (volatile stream): the predicates node must be
-        # listening before it, or no semantic state would come until the first command.
-        ready = lambda: reset_client.service_is_ready() and node.count_subscribers(topics.WORLD_STATE) >= 2  # noqa: E731
-        if not spin_until(ready, 30):
-            print("sim_node and predicate_node did not come up within 30 s: failure", file=sys.stderr)
-            return 1
-        future = reset_client.call_async(ResetWorld.Request(task=task.name, seed=seed))
-        spin_until(future.done, 30)
-        reply = future.result()
-        spin_until(lambda: worlds and worlds[-1].step == 0 and worlds[-1].episode == reply.world.episode, 10)
-        if not spin_until(lambda: semantic, 10):
-            print("no semantic state from predicate_node within 10 s: failure", file=sys.stderr)
-            return 1
-        goal = task.initial_state(seed)[1]
-        print(f"[demo] {task.name} ({task.description}), seed {seed}, ROS domain {os.environ['ROS_DOMAIN_ID']}")
-        print(f"[demo] goal: {' & '.join(map(str, goal))}")
-        started = time.perf_counter()
-        queue: list = []
-        while worlds[-1].step < STEP_BUDGET:
-            vector = np.array(semantic[-1].vector, dtype=bool)
-            if not queue:
-                queue = expert_next_steps(goal, layout, vector, world_view(worlds[-1]))
-                if not queue:
-                    break
-                print(f"[demo] step {worlds[-1].step:4d}  next: {', '.join(map(str, queue))}")
-            subgoal = queue[0]
-            if satisfied(layout, vector, subgoal.literals()):
-                print(f"[demo] step {worlds[-1].step:4d}  done: {subgoal}   state: {layout.readable(vector)}")
-                queue.pop(0)
-                continue
-            action = expert_action(subgoal, world_view(worlds[-1]))
-            command = ArmCommand(step=worlds[-1].step, gripper=float(action[3]))
-            command.displacement.x, command.displacement.y, command.displacement.z = (float(a) for a in action[:3])
-            count = len(worlds)
-            commands.publish(command)
-            # The semantic state comes on change only: one step late at worst, which the closed loop absorbs.
-            if not spin_until(lambda count=count: len(worlds) > count, 10):
-                print(f"[demo] no world state after step {command.step}: failure", file=sys.stderr)
+    def log(self, text: str) -> None:
+        step = self.world.step if self.world else 0
+        print(f"[demo] step {step:4d}  {text}", flush=True)
+
+    def feedback_callback(self, message) -> None:
+        plan = message.feedback.plan
+        if plan.revision != self.plan_revision and plan.steps and plan.status in ("executing", "awaiting_approval"):
+            if self.plan_revision < 0 or plan.replans:
+                what = "plan" if self.plan_revision < 0 else f"re-plan {plan.replans}"
+                self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps))
+            self.plan_revision = plan.revision
+        for step in plan.steps:
+            if self.seen_steps.get(step.index) != f"{step.action}:{step.status}" and step.status in ("active", "done"):
+                self.seen_steps[step.index] = f"{step.action}:{step.status}"
+                verb = "started" if step.status == "active" else "done   "
+                self.log(f"{verb} {step.index}. {step.action}")
+
+    def run(self, gif: Path | None) -> int:
+        topics = self.topics
+        try:
+            ready = lambda: (self.reset_client.service_is_ready() and self.action.server_is_ready()  # noqa: E731
+                             and self.node.count_subscribers(topics.WORLD_STATE) >= 3
+                             and self.node.count_subscribers(topics.SUBGOAL) >= 2)
+            if not self.spin_until(ready, READY_TIMEOUT_S):
+                print(f"the four nodes did not come up within {READY_TIMEOUT_S:.0f} s: failure", file=sys.stderr)
                 return 1
-        elapsed = time.perf_counter() - started
-        spin_until(lambda: False, 0.6)  # the predicates node republishes at 2 Hz: take the settled state
-        vector = np.array(semantic[-1].vector, dtype=bool)
-        steps = worlds[-1].step
-        print(f"[demo] final state: {layout.readable(vector)}")
-        print(f"[demo] {steps} control steps ({steps * 0.04:.1f} s sim time) in {elapsed:.1f} s wall, "
-              f"{steps / max(elapsed, 1e-9):.0f} steps/s through the graph")
-        if satisfied(layout, vector, goal):
-            print(f"{task.name}: success")
-            return 0
-        print(f"{task.name}: failure (goal not reached within {STEP_BUDGET} steps)")
-        return 1
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
+            future = self.reset_client.call_async(self.ResetWorld.Request(task=self.task.name, seed=self.seed))
+            self.spin_until(future.done, 30)
+            reply = future.result()
+            if not reply.success:
+                print(f"reset failed: {reply.message}", file=sys.stderr)
+                return 1
+            self.spin_until(lambda: self.semantic is not None and self.semantic.step == 0, 10)
+            self.spin_until(lambda: False, 0.5)  # the planner sees the same latched state
+            print(f"[demo] {self.task.name} ({self.task.description}), seed {self.seed}, "
+                  f"ROS domain {os.environ['ROS_DOMAIN_ID']}", flush=True)
+            started = time.perf_counter()
+            goal = self.ExecuteGoal.Goal()
+            goal.goal.task = self.task.name
+            sent = self.action.send_goal_async(goal, feedback_callback=self.feedback_callback)
+            self.spin_until(sent.done, 10)
+            result_future = sent.result().get_result_async()
+            if not self.spin_until(result_future.done, EPISODE_TIMEOUT_S):
+                print(f"no result within {EPISODE_TIMEOUT_S:.0f} s: failure", file=sys.stderr)
+                return 1
+            result = result_future.result().result
+            elapsed = time.perf_counter() - started
+            self.log(f"result: {result.message} ({result.replans} re-plans)")
+            print(f"[demo] {result.control_steps} control steps ({result.sim_time:.1f} s sim time) in {elapsed:.1f} s "
+                  f"wall: {result.control_steps / max(elapsed, 1e-9):.0f} steps/s through the graph", flush=True)
+            if gif is not None and self.frames:
+                from semgoal_bringup.episode_gif import write_gif
+
+                write_gif(self.task.scene, self.task.n_blocks, self.frames, gif)
+                print(f"[demo] episode GIF: {gif} ({len(self.frames)} frames)", flush=True)
+            print(f"{self.task.name}: {'success' if result.success else 'failure'}")
+            return 0 if result.success else 1
+        finally:
+            self.node.destroy_node()
+            self.rclpy.try_shutdown()

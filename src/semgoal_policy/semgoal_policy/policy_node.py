@@ -4,6 +4,8 @@ outside [-1, 1]."""
 
 from __future__ import annotations
 
+import time
+
 from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
@@ -30,6 +32,7 @@ class PolicyNode(Node):
         self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
         self.latest: WorldState | None = None
         self.answered_step = -1
+        self.answered_at = 0.0
         # realtime: act at rate_hz; lockstep while idle: keep the clock going without spinning flat out
         self.create_timer(1.0 / (rate_hz if self.mode == "realtime" else idle_hz), self.timer_callback)
         self.subgoal_text = ""
@@ -55,7 +58,9 @@ class PolicyNode(Node):
     def timer_callback(self) -> None:
         if self.latest is None:
             return
-        if self.mode == "realtime" or self.latest.step != self.answered_step:
+        # lockstep: answer a step once, again after a second in case the command was lost
+        stale = time.monotonic() - self.answered_at > 1.0
+        if self.mode == "realtime" or self.latest.step != self.answered_step or stale:
             self.answer(self.latest)
 
     def answer(self, msg: WorldState) -> None:
@@ -64,7 +69,7 @@ class PolicyNode(Node):
         command.header.stamp = self.get_clock().now().to_msg()
         command.displacement.x, command.displacement.y, command.displacement.z = (float(v) for v in action[:3])
         self.publisher.publish(command)
-        self.answered_step = msg.step
+        self.answered_step, self.answered_at = msg.step, time.monotonic()
 
 
 def main(args: list[str] | None = None) -> None:

@@ -30,6 +30,7 @@ class SimNode(Node):
         self.mode = self.declare_parameter("mode", "lockstep").value
         self.rate_hz = self.declare_parameter("rate_hz", 25.0).value
         self.markers_every = self.declare_parameter("markers_every", 5).value
+        heartbeat_hz = self.declare_parameter("heartbeat_hz", 2.0).value
         if self.mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {self.mode!r}")
         self.core = SimCore(scene, task, seed)
@@ -43,6 +44,9 @@ class SimNode(Node):
         self.add_on_set_parameters_callback(self.parameters_callback)
         if self.mode == "realtime":
             self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step)
+        elif heartbeat_hz > 0:  # lockstep: a late joiner (or a lost command) would otherwise wait forever
+            self.create_timer(1.0 / heartbeat_hz, self.heartbeat)
+        self.heartbeat_step = -1
         self.publish_state()
         self.get_logger().info(f"{scene} ready: task {self.core.task}, seed {self.core.seed}, {self.mode} mode")
 
@@ -77,6 +81,12 @@ class SimNode(Node):
             return
         self.core.step(check.action)
         self.publish_state()
+
+    def heartbeat(self) -> None:
+        """Republish the world state when lockstep has not moved since the last heartbeat."""
+        if self.core.world.step_count == self.heartbeat_step:
+            self.publish_state()
+        self.heartbeat_step = self.core.world.step_count
 
     def realtime_step(self) -> None:
         self.core.step(self.held_command)

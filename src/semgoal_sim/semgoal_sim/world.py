@@ -111,11 +111,11 @@ class FetchWorld:
             self.step(np.zeros(4), count=False)
         return self.snapshot()
 
-    def set_block_pose(self, block: str, position: np.ndarray) -> None:
-        """Teleport a block (upright, at rest): operator intervention and perturbation tests."""
+    def set_block_pose(self, block: str, position: np.ndarray, quaternion=(1.0, 0.0, 0.0, 0.0)) -> None:
+        """Teleport a block (upright unless told, at rest): operator intervention, perturbation tests, replay."""
         i = self.blocks.index(block)
         addr, dof = self._block_qpos[i], self._block_qvel[i]
-        self.data.qpos[addr: addr + 7] = [*position, 1.0, 0.0, 0.0, 0.0]
+        self.data.qpos[addr: addr + 7] = [*position, *quaternion]
         self.data.qvel[dof: dof + 6] = 0.0
         mujoco.mj_forward(self.model, self.data)
 

@@ -1,0 +1,51 @@
+"""An animated GIF of an episode seen over ROS: joint states and block poses replayed into a local
+MuJoCo model and rendered offscreen, with the active sub-goal written on every frame."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from semgoal_sim.render import FrameRenderer
+from semgoal_sim.world import FetchWorld
+
+
+@dataclass
+class Frame:
+    step: int
+    joints: dict[str, float]
+    block_poses: dict[str, tuple[float, ...]]
+    """name -> (x, y, z, qw, qx, qy, qz)."""
+    caption: str
+
+
+def write_gif(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps: float = 12.5) -> Path:
+    import imageio.v3 as iio
+    from PIL import Image, ImageDraw
+
+    world = FetchWorld(scene, n_blocks)
+    model, data = world.model, world.data
+    renderer = FrameRenderer(world, width=400, height=300)
+    images = []
+    try:
+        for frame in frames:
+            for name, value in frame.joints.items():
+                joint = model.joint(name)
+                data.qpos[joint.qposadr[0]] = value
+            for name, pose in frame.block_poses.items():
+                if name in world.blocks:
+                    world.set_block_pose(name, pose[:3], pose[3:])
+            mujoco.mj_forward(model, data)
+            image = Image.fromarray(renderer.frame())
+            draw = ImageDraw.Draw(image)
+            draw.rectangle((0, 0, image.width, 22), fill=(0, 0, 0))
+            draw.text((6, 5), f"step {frame.step:4d}  {frame.caption}", fill=(255, 255, 255))
+            images.append(np.asarray(image))
+    finally:
+        renderer.close()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    iio.imwrite(path, np.stack(images), duration=1000.0 / fps, loop=0)
+    return path

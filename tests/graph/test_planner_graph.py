@@ -1,0 +1,125 @@
+"""planner_node in its own process: the test plays the predicates node (semantic states) and the
+operator (goals, plan edits, the ExecuteGoal action) and checks the plan and sub-goal topics."""
+
+from rclpy.action import ActionClient
+
+from conftest import GraphProbe, NodeProcesses
+from semgoal_msgs.action import ExecuteGoal
+from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
+from semgoal_msgs.srv import EditPlan, GetPlan
+from semgoal_sim import ros_interfaces as topics
+from semgoal_sim.vocabulary import LAYOUTS
+
+BLOCKS = ("red", "green", "blue")
+
+
+def semantic_state(true: set[str], step: int) -> SemanticState:
+    layout = LAYOUTS["desk_cleanup"]
+    msg = SemanticState(scene="desk_cleanup", step=step, objects=list(BLOCKS))
+    for name, args in layout.atoms:
+        if all(a in BLOCKS for a in args):
+            msg.predicates.append(Predicate(name=name, args=list(args), value=f"{name}({','.join(args)})" in true))
+    msg.vector = [p.value for p in msg.predicates]
+    return msg
+
+
+class Operator:
+    def __init__(self, probe: GraphProbe) -> None:
+        self.probe = probe
+        self.plans: list[Plan] = []
+        self.subgoals: list[SubGoal] = []
+        node = probe.node
+        node.create_subscription(Plan, topics.PLAN, self.plans.append, topics.LATCHED)
+        node.create_subscription(SubGoal, topics.SUBGOAL, self.subgoals.append, topics.LATCHED)
+        self.states = node.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.LATCHED)
+        self.goals = node.create_publisher(GoalRequest, topics.GOAL, 10)
+
+    def call(self, service_type, name, request):
+        client = self.probe.node.create_client(service_type, name)
+        self.probe.spin_until(client.service_is_ready, 30, name)
+        return self.probe.spin_future(client.call_async(request), 30, name)
+
+    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "") -> EditPlan.Response:
+        return self.call(EditPlan, topics.EDIT_PLAN, EditPlan.Request(op=op, index=index, to_index=to_index, action=action))
+
+    def observe(self, true: set[str], step: int) -> None:
+        self.states.publish(semantic_state(true, step))
+        self.probe.spin_for(0.3)
+
+    def actions(self) -> list[str]:
+        return [s.action for s in self.plans[-1].steps]
+
+
+def test_goal_plan_edits_and_subgoals(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
+    op = Operator(probe)
+    probe.spin_until(lambda: op.plans and op.subgoals, 30, "latched plan and sub-goal")
+    assert op.plans[-1].status == "empty" and op.subgoals[-1].status == "empty"
+    probe.spin_until(lambda: op.states.get_subscription_count() > 0, 20, "planner subscribed")
+    op.observe(set(), 0)
+
+    op.goals.publish(GoalRequest(task="", literals=["in_bin(purple)"]))  # bad goal: refused, node lives on
+    op.goals.publish(GoalRequest(task="DC-3"))
+    probe.spin_until(lambda: op.plans[-1].status == "executing", 20, "plan for DC-3")
+    assert op.actions() == ["pick(blue)", "put_in_bin(blue)", "pick(green)", "put_in_bin(green)", "pick(red)", "put_in_bin(red)"]
+    probe.spin_until(lambda: op.subgoals[-1].action == "pick(blue)", 10, "active sub-goal")
+    assert op.subgoals[-1].status == "active"
+    assert [(p.name, list(p.args), p.value) for p in op.subgoals[-1].goal] == [("holding", ["blue"], True)]
+
+    refused = op.edit("remove", 0)
+    assert not refused.success and "cannot run" in refused.message
+    assert [s.action for s in refused.plan.steps] == op.actions()
+    assert not op.edit("insert", 1, action="fly(red)").success
+    moved = op.edit("move", 2, 0)  # pick(green) first, then put_in_bin(blue) cannot run
+    assert not moved.success
+    swapped = op.edit("replace", 0, action="pick(red)")
+    assert not swapped.success  # put_in_bin(blue) would then need holding(blue)
+    reordered = [op.edit("replace", 4, action="pick(blue)"), op.edit("replace", 0, action="pick(red)")]
+    assert not reordered[0].success and not reordered[1].success
+    assert op.edit("assign", 0, action="human").success
+    probe.spin_until(lambda: op.subgoals[-1].status == "waiting_for_human", 10, "human step")
+    assert op.edit("assign", 0, action="robot").success
+    assert op.edit("pause").success
+    probe.spin_until(lambda: op.subgoals[-1].status == "paused", 10, "paused sub-goal")
+    assert op.edit("resume").success
+
+    op.observe({"holding(blue)"}, 20)  # the pick is done: the put becomes active
+    probe.spin_until(lambda: op.subgoals[-1].action == "put_in_bin(blue)", 10, "next sub-goal")
+    shown = op.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
+    assert shown.success and shown.plan.current == 1 and shown.plan.steps[0].status == "done"
+
+
+def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
+    op = Operator(probe)
+    probe.spin_until(lambda: op.states.get_subscription_count() > 0, 30, "planner subscribed")
+    op.observe(set(), 0)
+    client = ActionClient(probe.node, ExecuteGoal, topics.EXECUTE_GOAL)
+    probe.spin_until(client.server_is_ready, 20, "execute_goal server")
+    goal = ExecuteGoal.Goal()
+    goal.goal.literals = ["in_bin(red)"]
+    feedback = []
+    handle = probe.spin_future(client.send_goal_async(goal, feedback_callback=feedback.append), 10, "goal accepted")
+    result_future = handle.get_result_async()
+    probe.spin_until(lambda: op.plans and op.plans[-1].status == "executing", 10, "plan executing")
+    assert op.actions() == ["pick(red)", "put_in_bin(red)"]
+    op.observe({"holding(red)"}, 25)
+    op.observe({"in_bin(red)"}, 50)
+    result = probe.spin_future(result_future, 20, "action result").result
+    assert result.success and "holds" in result.message
+    assert result.control_steps == 50 and abs(result.sim_time - 2.0) < 1e-9 and result.replans == 0
+    assert feedback and feedback[-1].feedback.plan.steps
+
+    bad = ExecuteGoal.Goal()
+    bad.goal.task = "MC-2"  # wrong scene: refused with the reason
+    handle = probe.spin_future(client.send_goal_async(bad), 10, "goal accepted")
+    result = probe.spin_future(handle.get_result_async(), 20, "action result").result
+    assert not result.success and "runs in scene two_blocks" in result.message
+
+    cancel_goal = ExecuteGoal.Goal()
+    cancel_goal.goal.literals = ["in_bin(green)"]
+    handle = probe.spin_future(client.send_goal_async(cancel_goal), 10, "goal accepted")
+    probe.spin_for(0.3)
+    probe.spin_future(handle.cancel_goal_async(), 10, "cancel")
+    result = probe.spin_future(handle.get_result_async(), 20, "cancelled result").result
+    assert not result.success and result.message == "cancelled"

@@ -1,0 +1,86 @@
+"""Policy cores: HER replay, the normaliser, actor export/load with the layout check, the safe controller."""
+
+import json
+
+import numpy as np
+import pytest
+import torch
+
+from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, export, load
+from semgoal_policy.controller import HOLD, SubgoalController
+from semgoal_policy.replay import EpisodeReplay
+from semgoal_sim import layout
+from semgoal_sim.vocabulary import Literal, VocabularyError
+
+SCENE = "two_blocks"
+
+
+def test_her_relabels_with_future_achieved_goals_and_keeps_labels_only_for_own_goals() -> None:
+    horizon, goal_size = 5, 4
+    replay = EpisodeReplay(10, horizon, 3, goal_size, layout.goal_reward, her_ratio=1.0)
+    achieved = np.zeros((1, horizon + 1, goal_size), np.float32)
+    achieved[0, :, 2:] = 1.0  # mask travels with the achieved goal
+    achieved[0, 3:, 0] = 1.0  # entry 0 becomes true at step 3
+    goal = np.array([[1.0, 0.0, 1.0, 1.0]], np.float32)
+    replay.add(np.zeros((1, horizon + 1, 3)), achieved, goal, np.zeros((1, horizon, 4)), np.ones((1, horizon, 4)))
+    batch = replay.sample(np.random.default_rng(0), 2000)
+    assert batch.reward.shape == (2000,)
+    # relabelled goals are achieved ones: entry 0 false (early) or true (from step 3); both rewards occur
+    assert set(np.unique(batch.goal[:, 0])) == {0.0, 1.0} and set(np.unique(batch.reward)) == {0.0, 1.0}
+    own = np.all(batch.goal == goal, axis=1)
+    assert np.array_equal(batch.has_label.astype(bool), own)
+    clone = replay.sample(np.random.default_rng(1), 100, her_ratio=0.0)
+    assert clone.has_label.all() and np.all(clone.goal == goal)
+
+
+def test_normaliser_tracks_mean_and_variance() -> None:
+    rng = np.random.default_rng(0)
+    data = rng.normal(3.0, 2.0, size=(5000, 4))
+    norm = Normaliser(4)
+    for chunk in np.split(data, 10):
+        norm.update(chunk)
+    assert np.allclose(norm.mean.numpy(), data.mean(0), atol=1e-6)
+    assert np.allclose(norm.var.numpy(), data.var(0), rtol=1e-3)
+
+
+def _actor() -> Actor:
+    torch.manual_seed(0)
+    return Actor(layout.observation_size(SCENE), layout.goal_size(SCENE))
+
+
+def test_export_and_load_round_trip(tmp_path) -> None:
+    actor = _actor()
+    export(actor, tmp_path, SCENE, {"env_steps": 7})
+    loaded, meta = load(tmp_path, SCENE)
+    obs = np.random.default_rng(0).normal(size=(3, layout.observation_size(SCENE))).astype(np.float32)
+    goal = np.zeros((3, layout.goal_size(SCENE)), np.float32)
+    assert np.allclose(actor.act(obs, goal), loaded.act(obs, goal))
+    assert meta["env_steps"] == 7
+
+
+def test_load_refuses_another_layout(tmp_path) -> None:
+    export(_actor(), tmp_path, SCENE, {})
+    meta = json.loads((tmp_path / "actor.json").read_text())
+    meta["layout"]["semantic_atoms"] = meta["layout"]["semantic_atoms"][::-1]
+    (tmp_path / "actor.json").write_text(json.dumps(meta))
+    with pytest.raises(LayoutMismatchError, match="semantic_atoms"):
+        load(tmp_path, SCENE)
+    with pytest.raises(FileNotFoundError, match="no exported actor"):
+        load(tmp_path / "missing", SCENE)
+
+
+def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
+    actor = _actor()
+    with torch.no_grad():
+        actor.net[-1].bias.fill_(50.0)  # a saturating actor
+    export(actor, tmp_path, SCENE, {})
+    controller = SubgoalController(SCENE, tmp_path)
+    obs = np.ones(layout.observation_size(SCENE), np.float32)
+    assert np.array_equal(controller.act(obs), HOLD)  # no sub-goal: hold still
+    controller.set_subgoal([Literal("holding", ("red",))])
+    action = controller.act(obs)
+    assert np.isfinite(action).all() and np.abs(action).max() <= 1.0 and not np.array_equal(action, HOLD)
+    assert np.array_equal(controller.act(np.full_like(obs, np.nan)), HOLD)
+    assert np.array_equal(controller.act(obs[:5]), HOLD)
+    with pytest.raises(VocabularyError):
+        controller.set_subgoal([Literal("in_bin", ("red",))])

@@ -14,6 +14,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "plan-pddl": ("semgoal_planner.cli:plan_pddl_main", "plan with our STRIPS planner on any PDDL domain and problem"),
     "goal": ("semgoal_planner.operator:goal_main", "send a goal to the planner (ros2 topic pub / action send_goal)"),
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
+    "bench-planner": ("semgoal_planner.bench", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
     "train": ("semgoal_policy.cli:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
     "eval-subgoals": ("semgoal_policy.cli:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }

@@ -1,0 +1,139 @@
+"""`./semgoal bench-planner [--json]`: our planner beside pyperplan on blocksworld and the project's tasks.
+
+pyperplan (GPL) is installed by this benchmark into a throwaway venv (``.bench/pyperplan``), never
+imported by the product. Each (planner, problem, search) runs in its own subprocess under a time limit
+and times parse + ground + search in-process, ``--repeats`` times; the median is reported, with the
+ratio pyperplan / ours. pyperplan has no negative preconditions, so the project's scene domains run
+on our planner only (against the 5 ms target).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from semgoal_planner.blocksworld import DOMAIN_PATH, problem
+
+PYPERPLAN = "pyperplan==2.1"
+VENV = Path(".bench/pyperplan")
+COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
+SIZES = (4, 6, 8, 10, 12)
+
+OURS_RUNNER = """
+import json, sys, time
+from semgoal_planner.planner import solve_pddl
+domain, prob, search, heur, repeats = sys.argv[1:6]
+d, p = open(domain).read(), open(prob).read()
+times = []
+for _ in range(int(repeats)):
+    start = time.perf_counter(); result = solve_pddl(d, p, search, heur); times.append(time.perf_counter() - start)
+print(json.dumps({"length": None if result.plan is None else len(result.plan), "seconds": times}))
+"""
+PYPERPLAN_RUNNER = """
+import json, logging, sys, time
+from pyperplan.planner import HEURISTICS, SEARCHES, search_plan
+logging.disable(logging.CRITICAL)
+domain, prob, search, heur, repeats = sys.argv[1:6]
+search = {"gbfs": "gbf"}.get(search, search)
+heuristic = None if search == "bfs" else HEURISTICS[heur]
+times = []
+for _ in range(int(repeats)):
+    start = time.perf_counter(); plan = search_plan(domain, prob, SEARCHES[search], heuristic); times.append(time.perf_counter() - start)
+print(json.dumps({"length": None if plan is None else len(plan), "seconds": times}))
+"""
+
+
+def ensure_pyperplan() -> Path:
+    python = VENV / "bin" / "python"
+    if not python.exists():
+        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
+        subprocess.run([str(python), "-m", "pip", "install", "-q", PYPERPLAN], check=True)
+    return python
+
+
+def run_one(python: str, runner: str, domain: Path, prob: Path, search: str, heuristic: str, repeats: int,
+            timeout: float) -> dict:
+    try:
+        out = subprocess.run([python, "-c", runner, str(domain), str(prob), search, heuristic, str(repeats)],
+                             capture_output=True, text=True, timeout=timeout, check=True).stdout
+    except subprocess.TimeoutExpired:
+        return {"length": None, "median_ms": None, "status": f"timeout ({timeout:.0f} s)"}
+    except subprocess.CalledProcessError as error:
+        return {"length": None, "median_ms": None, "status": f"error: {error.stderr.strip().splitlines()[-1]}"}
+    data = json.loads(out.strip().splitlines()[-1])
+    return {"length": data["length"], "median_ms": round(statistics.median(data["seconds"]) * 1000, 3), "status": "ok"}
+
+
+def project_tasks(repeats: int) -> dict[str, dict]:
+    """Each task planned from a typical start state with breadth-first search, in this process."""
+    from semgoal_planner.goals import parse_goal
+    from semgoal_planner.semantic import SemanticPlanner
+    from semgoal_sim.tasks import TASKS
+    from semgoal_sim.vocabulary import Literal
+
+    starts = {"MA-2": [Literal("close", ("red", "green"))],
+              "Swap-2": [Literal("close", ("red", "green")), Literal("above", ("green", "red"))],
+              "MA-3": [Literal("close", p) for p in (("red", "green"), ("red", "blue"), ("green", "blue"))]}
+    rows = {}
+    for name, task in TASKS.items():
+        state = starts.get(name, [])
+        planner = SemanticPlanner(task.scene)
+        goal = parse_goal(name, task.scene, task.blocks, state)
+        times = []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            steps = planner.plan(task.blocks, state, goal)
+            times.append(time.perf_counter() - start)
+        rows[name] = {"length": len(steps), "median_ms": round(statistics.median(times) * 1000, 3)}
+    return rows
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal bench-planner", description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner, problem and search")
+    parser.add_argument("--sizes", default=",".join(map(str, SIZES)))
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args(argv)
+    pyperplan = str(ensure_pyperplan())
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in map(int, args.sizes.split(",")):
+            prob = Path(tmp) / f"bw-{n}.pddl"
+            prob.write_text(problem(n, seed=1))
+            for search, heuristic in COMBOS:
+                ours = run_one(sys.executable, OURS_RUNNER, DOMAIN_PATH, prob, search, heuristic, args.repeats, args.timeout)
+                theirs = run_one(pyperplan, PYPERPLAN_RUNNER, DOMAIN_PATH, prob, search, heuristic, args.repeats, args.timeout)
+                ratio = (round(theirs["median_ms"] / ours["median_ms"], 1)
+                         if ours["median_ms"] and theirs["median_ms"] else None)
+                rows.append({"problem": f"blocksworld-{n}", "search": f"{search}/{heuristic}", "ours": ours,
+                             "pyperplan": theirs, "speedup": ratio})
+                if not args.json:
+                    print(f"bw-{n:<3d} {search:5s}/{heuristic:6s} ours {_cell(ours)}  pyperplan {_cell(theirs)}  "
+                          f"speedup {ratio if ratio else '-'}", flush=True)
+    tasks = project_tasks(max(args.repeats, 20))
+    if not args.json:
+        for name, row in tasks.items():
+            print(f"{name:7s} bfs plan length {row['length']}  {row['median_ms']:.2f} ms (ours; pyperplan: no negative preconditions)")
+    by_search: dict[str, list[float]] = {}
+    for row in rows:
+        if row["speedup"]:
+            by_search.setdefault(row["search"], []).append(row["speedup"])
+    summary = {"median_speedup": {k: statistics.median(v) for k, v in by_search.items()},
+               "same_length_optimal": all(r["ours"]["length"] == r["pyperplan"]["length"] for r in rows
+                                          if r["search"] != "gbfs/hff" and r["ours"]["length"] and r["pyperplan"]["length"]),
+               "max_task_ms": max(r["median_ms"] for r in tasks.values())}
+    print(json.dumps({"blocksworld": rows, "tasks": tasks, "summary": summary}) if args.json else json.dumps(summary))
+    return 0
+
+
+def _cell(result: dict) -> str:
+    if result["status"] != "ok":
+        return f"{result['status']:>22s}"
+    return f"len {result['length']!s:>3s} {result['median_ms']:9.1f} ms"

@@ -28,11 +28,12 @@ def test_doctor_reports_versions_and_dds_settings() -> None:
 
 
 def test_demo_solves_a_task_through_the_graph() -> None:
-    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "MC-2", "--seed", "4"],
+    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "MC-2", "--seed", "4", "--gif", "/tmp/semgoal-test-demo.gif"],
                             capture_output=True, text=True, timeout=240)
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     assert result.stdout.strip().splitlines()[-1] == "MC-2: success"
-    assert "done: pick(" in result.stdout and "done: put_near(" in result.stdout
+    assert "plan: 0. pick(" in result.stdout and "started 0. pick(" in result.stdout
+    assert "episode GIF" in result.stdout
 
 
 def test_demo_rejects_unknown_tasks() -> None:

@@ -8,6 +8,9 @@ from conftest import ROOT, GraphProbe, NodeProcesses
 def test_semgoal_run_starts_a_node_seen_in_the_graph(nodes: NodeProcesses, probe: GraphProbe) -> None:
     process = nodes.start("semgoal_bringup", "echo_node", params={"feedback_count": 5})
     probe.spin_until(lambda: "semgoal_echo" in probe.node.get_node_names(), 20, "node semgoal_echo")
+    # stop it only once fully up (its action server exists), or SIGINT lands mid-construction
+    probe.spin_until(lambda: any("_action/send_goal" in name for name, _ in probe.node.get_service_names_and_types()),
+                     20, "echo action server")
     assert process.poll() is None
     assert nodes.stop(process) in (0, -2)  # clean exit on SIGINT
 

@@ -4,7 +4,8 @@ One cycle collects one episode in each of ``n_envs`` envs (some run by the scrip
 demonstrations), stores them with the expert's labels, then runs ``updates_per_step`` gradient steps
 per collected env step. Every ``eval_every`` env steps the deterministic actor is evaluated per sub-goal
 type, a CSV row is written and a checkpoint (model, optimisers, replay buffer, RNG, curriculum) saved,
-so ``--resume`` continues exactly where a killed run stopped.
+so ``--resume`` continues exactly where a killed run stopped. Without its ``replay.npz`` (the
+committed checkpoints leave it out: 35-50 MB each) a resumed run refills the buffer first.
 """
 
 from __future__ import annotations
@@ -132,14 +133,19 @@ class Trainer:
         self.curriculum.success = state["curriculum"]
         for env, rng_state in zip(self.envs, state["env_rngs"], strict=True):
             env.np_random.bit_generator.state = rng_state
-        self.replay.load(self.run_dir / "replay.npz")
+        replay_path = self.run_dir / "replay.npz"
+        if replay_path.exists():
+            self.replay.load(replay_path)
+        else:  # a committed checkpoint ships without its buffer: refill it before updates resume
+            print(f"{replay_path} missing: refilling the replay buffer ({self.config.learning_starts} steps) "
+                  "before training resumes", file=sys.stderr)
 
     # -- the loop ------------------------------------------------------------------------------------
     def collect(self) -> None:
         cfg, n = self.config, self.config.n_envs
         kinds = self.curriculum.draw(self.rng, n)
         expert = self.rng.uniform(size=n) < cfg.demo_fraction
-        if self.env_steps < cfg.learning_starts and cfg.demo_fraction > 0:
+        if self.replay.transitions < cfg.learning_starts and cfg.demo_fraction > 0:
             expert[:] = True  # the buffer starts with demonstrations only
         result = run_episodes(self.envs, self.agent.explore, [{"subgoal_type": k} for k in kinds],
                               expert_mask=expert, expert_noise=cfg.demo_noise, rng=self.rng)
@@ -151,7 +157,7 @@ class Trainer:
 
     def train_step(self, env_steps: int) -> None:
         cfg = self.config
-        if self.env_steps < cfg.learning_starts:
+        if self.replay.transitions < cfg.learning_starts:
             return
         cloning = cfg.sac.bc_weight > 0
         for _ in range(max(1, round(env_steps * cfg.updates_per_step))):

@@ -24,3 +24,11 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     _, meta = load(tmp_path / "export", "two_blocks")
     assert meta["env_steps"] == 800 and set(meta["final_eval"]["per_kind"]) == {"pick", "put_near", "put_away", "put_on"}
     assert (tmp_path / "export" / "learning_curve.png").stat().st_size > 1000
+
+
+def test_resume_without_replay_buffer_refills_it(tmp_path) -> None:
+    Trainer(config(tmp_path, 400)).run()
+    (tmp_path / "run" / "replay.npz").unlink()
+    resumed = Trainer(config(tmp_path, 800))
+    resumed.run(resume=True)
+    assert resumed.env_steps == 800 and resumed.replay.size == 400 // 50

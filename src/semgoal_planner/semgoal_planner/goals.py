@@ -26,9 +26,14 @@ def split_literals(text: str) -> list[str]:
     return parts
 
 
+def is_task_name(text: str) -> bool:
+    """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
+    return any(text.strip().lower() == name.lower() for name in TASKS)
+
+
 def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
     """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
-    if any(text.strip().lower() == name.lower() for name in TASKS):
+    if is_task_name(text):
         return task_goal(text, scene, objects, state)
     layout = LAYOUTS[scene]
     goal: dict[tuple[str, tuple[str, ...]], Literal] = {}

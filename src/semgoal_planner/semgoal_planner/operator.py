@@ -57,10 +57,10 @@ def goal_main(argv: list[str]) -> int:
     parser.add_argument("--timeout", type=float, default=300.0)
     args = parser.parse_args(argv)
     from semgoal_msgs.msg import GoalRequest
+    from semgoal_planner.goals import is_task_name
     from semgoal_sim import ros_interfaces as topics
-    from semgoal_sim.tasks import TASKS
 
-    is_task = any(args.goal.strip().lower() == name.lower() for name in TASKS)
+    is_task = is_task_name(args.goal)
     request = GoalRequest(task=args.goal.strip() if is_task else "", literals=[] if is_task else [args.goal])
     client = OperatorClient()
     try:

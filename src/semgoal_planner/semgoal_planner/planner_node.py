@@ -17,6 +17,7 @@ from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal, WorldState
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.operator import format_plan
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.layout import CONTROL_DT
@@ -94,7 +95,7 @@ class PlannerNode(Node):
         with self.lock:
             response.plan = self.plan_message()
             response.success = self.executive.status != "empty"
-            response.message = self.summary()
+            response.message = format_plan(response.plan)
         return response
 
     def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
@@ -173,11 +174,6 @@ class PlannerNode(Node):
         else:
             self.subgoal_publisher.publish(self.step_message(ex.current, active.subgoal, "active", "robot"))
 
-    def summary(self) -> str:
-        ex = self.executive
-        lines = [f"goal: {ex.goal_text or '(none)'}  status: {ex.status}  revision {ex.revision}  replans {ex.replans}"]
-        lines += [f"{'>' if i == ex.current else ' '} {i}. {s.subgoal}  [{s.status}, {s.assignee}]" for i, s in enumerate(ex.steps)]
-        return "\n".join(lines)
 
 
 def main(args: list[str] | None = None) -> None:

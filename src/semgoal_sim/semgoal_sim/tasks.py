@@ -48,8 +48,11 @@ class Task:
     def initial_state(self, seed: int) -> tuple[np.ndarray, list[Literal]]:
         """Block centres and goal literals for episode ``seed`` (same seed, same start)."""
         positions, goal = self.sample(np.random.default_rng(seed), self.blocks)
-        released = [Literal("holding", (block,), False) for block in self.blocks]
-        return positions, goal + released
+        return positions, goal + self.released()
+
+    def released(self) -> list[Literal]:
+        """Every task ends with nothing in the gripper."""
+        return [Literal("holding", (block,), False) for block in self.blocks]
 
 
 def _resting(xy: np.ndarray) -> np.ndarray:
@@ -137,7 +140,7 @@ def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
         goal = [Literal("above", (bottom, top))]
     else:
         goal = task.sample(np.random.default_rng(0), task.blocks)[1]
-    return goal + [Literal("holding", (block,), False) for block in task.blocks]
+    return goal + task.released()
 
 
 def get_task(name: str) -> Task:

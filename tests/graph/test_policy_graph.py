@@ -1,5 +1,6 @@
 """sim_node, predicate_node and policy_node as processes: the test sets the sub-goal pick(red) and the
-shipped actor achieves it in lockstep within the step budget; an empty sub-goal makes the arm hold still."""
+shipped actor achieves it in lockstep within the step budget; without an active sub-goal the lockstep
+world waits (the arm holds still)."""
 
 import numpy as np
 
@@ -27,8 +28,10 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     reset = probe.node.create_client(ResetWorld, topics.RESET_WORLD)
     probe.spin_until(reset.service_is_ready, 20, "reset service")
     assert probe.spin_future(reset.call_async(ResetWorld.Request(task="MC-2", seed=11)), 20, "reset").success
-    probe.spin_until(lambda: worlds and worlds[-1].step >= 5, 20, "idle steps")
-    grip = [np.array([w.gripper_position.x, w.gripper_position.y, w.gripper_position.z]) for w in worlds[-5:]]
+    probe.spin_until(lambda: worlds and worlds[-1].step == 0, 20, "reset world state")
+    probe.spin_for(1.5)  # heartbeats repeat step 0: no command came for it
+    assert all(w.step == 0 for w in worlds)
+    grip = [np.array([w.gripper_position.x, w.gripper_position.y, w.gripper_position.z]) for w in worlds]
     assert max(np.linalg.norm(g - grip[0]) for g in grip) < 0.005
 
     start = worlds[-1].step

@@ -32,6 +32,14 @@ class SubgoalController:
         target, mask = self.layout.encode(literals)
         self.goal = np.concatenate([target, mask])
 
+    def achieved(self, semantic_vector: np.ndarray) -> bool:
+        """Whether the active sub-goal's literals hold in this semantic state (False when there is none)."""
+        if self.goal is None:
+            return False
+        size = self.layout.size
+        achieved = np.concatenate([np.asarray(semantic_vector, dtype=np.float32), self.goal[size:]])
+        return bool(layout.goal_reward(achieved, self.goal))
+
     def act(self, observation: np.ndarray) -> np.ndarray:
         observation = np.asarray(observation, dtype=np.float32)
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():

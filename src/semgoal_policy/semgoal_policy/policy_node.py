@@ -1,15 +1,18 @@
 """policy_node: world state and the active sub-goal in, one ArmCommand per world state out (lockstep) or
-at ``rate_hz`` (realtime). It holds still when no sub-goal is active and never publishes NaN or values
+at ``rate_hz`` (realtime). Without an active sub-goal, or once it holds, it holds still (realtime: zero
+commands; lockstep: no command, so the world waits for the planner). It never publishes NaN or values
 outside [-1, 1]."""
 
 from __future__ import annotations
 
 import time
 
+import numpy as np
 from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
-from semgoal_policy.controller import SubgoalController, VocabularyError
+from semgoal_policy.controller import HOLD, SubgoalController, VocabularyError
+from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.vocabulary import SCENES, Literal
 
@@ -21,7 +24,6 @@ class PolicyNode(Node):
         model_dir = self.declare_parameter("model_dir", "").value
         self.mode = self.declare_parameter("mode", "lockstep").value
         rate_hz = self.declare_parameter("rate_hz", 25.0).value
-        idle_hz = self.declare_parameter("idle_hz", 50.0).value
         if scene not in SCENES or self.mode not in ("lockstep", "realtime"):
             raise SystemExit(f"policy: bad parameters scene={scene!r} mode={self.mode!r}")
         self.controller = SubgoalController(scene, model_dir or None)
@@ -31,10 +33,10 @@ class PolicyNode(Node):
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
         self.latest: WorldState | None = None
-        self.answered_step = -1
-        self.answered_at = 0.0
-        # realtime: act at rate_hz; lockstep while idle: keep the clock going without spinning flat out
-        self.create_timer(1.0 / (rate_hz if self.mode == "realtime" else idle_hz), self.timer_callback)
+        self.answered_step, self.answered_at = -1, 0.0
+        # realtime: act at rate_hz. lockstep: the world waits while no sub-goal is active (runs are
+        # reproducible from the reset on); the timer only resends a command that may have been lost
+        self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
         self.subgoal_text = ""
 
     def subgoal_callback(self, msg: SubGoal) -> None:
@@ -49,22 +51,42 @@ class PolicyNode(Node):
         if text != self.subgoal_text:
             self.subgoal_text = text
             self.get_logger().info(f"sub-goal {text}")
+            if self.mode == "lockstep":
+                self.answered_step = -1
+                self.answer_lockstep()
 
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg
-        if self.mode == "lockstep" and self.controller.goal is not None:
-            self.answer(msg)
+        if self.mode == "lockstep":
+            self.answer_lockstep()
 
     def timer_callback(self) -> None:
         if self.latest is None:
             return
-        # lockstep: answer a step once, again after a second in case the command was lost
-        stale = time.monotonic() - self.answered_at > 1.0
-        if self.mode == "realtime" or self.latest.step != self.answered_step or stale:
-            self.answer(self.latest)
+        if self.mode == "realtime":
+            self.publish_command(self.latest, self.decide(self.latest))
+        elif time.monotonic() - self.answered_at > 1.0:
+            self.answered_step = -1  # lockstep: the command for this step may have been lost; send it again
+            self.answer_lockstep()
 
-    def answer(self, msg: WorldState) -> None:
-        action = self.controller.act(msg.observation)
+    def decide(self, msg: WorldState) -> np.ndarray | None:
+        """The command for a world state; None once the sub-goal holds (the planner names the next one)."""
+        if self.controller.goal is not None and self.controller.achieved(conversions.semantic_vector(msg)):
+            return None
+        return self.controller.act(msg.observation)
+
+    def answer_lockstep(self) -> None:
+        """One command per step while a sub-goal is active and not yet achieved; otherwise the world waits,
+        so the next sub-goal starts from exactly the state where the last one was achieved."""
+        msg = self.latest
+        if msg is None or self.controller.goal is None or msg.step == self.answered_step:
+            return
+        action = self.decide(msg)
+        if action is not None:
+            self.publish_command(msg, action)
+
+    def publish_command(self, msg: WorldState, action: np.ndarray | None) -> None:
+        action = HOLD if action is None else action
         command = ArmCommand(step=msg.step, gripper=float(action[3]))
         command.header.stamp = self.get_clock().now().to_msg()
         command.displacement.x, command.displacement.y, command.displacement.z = (float(v) for v in action[:3])

@@ -84,3 +84,14 @@ def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
     assert np.array_equal(controller.act(obs[:5]), HOLD)
     with pytest.raises(VocabularyError):
         controller.set_subgoal([Literal("in_bin", ("red",))])
+
+
+def test_controller_knows_when_its_subgoal_holds(tmp_path) -> None:
+    export(_actor(), tmp_path, SCENE, {})
+    controller = SubgoalController(SCENE, tmp_path)
+    vector = np.zeros(controller.layout.size, np.float32)
+    assert not controller.achieved(vector)  # no sub-goal
+    controller.set_subgoal([Literal("holding", ("red",))])
+    assert not controller.achieved(vector)
+    vector[controller.layout.index(Literal("holding", ("red",)))] = 1.0
+    assert controller.achieved(vector)

@@ -16,6 +16,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
     "bench-planner": ("semgoal_planner.bench", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
     "train": ("semgoal_policy.cli:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
+    "eval": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
     "eval-subgoals": ("semgoal_policy.cli:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }
 

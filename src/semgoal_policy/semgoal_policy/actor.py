@@ -93,11 +93,11 @@ class Actor(nn.Module):
         return torch.tanh(mean).numpy()
 
 
-def export(actor: Actor, directory: Path, scene: str, info: dict) -> None:
+def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "semantic") -> None:
     """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``."""
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
-    meta = {"layout": layout.describe(scene), "hidden": list(HIDDEN), **info}
+    meta = {"layout": layout.describe(scene, goal), "hidden": list(HIDDEN), **info}
     (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
@@ -111,7 +111,7 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
     meta = json.loads(meta_path.read_text())
     stored = meta["layout"]
     scene = scene or stored["scene"]
-    current = layout.describe(scene)
+    current = layout.describe(scene, stored.get("goal", "semantic"))
     if stored != current:
         diff = sorted(k for k in current if stored.get(k) != current[k])
         raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "

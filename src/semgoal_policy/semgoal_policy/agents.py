@@ -1,4 +1,12 @@
-"""The agents that can be trained: what env each uses, what it groups success by, where it is shipped."""
+"""The agents that can be trained: what env each uses, what it groups success by, where it is shipped.
+
+``hierarchical`` is the paper's low level: one policy over the scene's sub-goal types, driven by the
+planner. The paper's two flat baselines ("Baselines") learn whole tasks with one policy and no planner:
+``flat-semantic`` on the task's semantic goal (sparse reward), ``flat-continuous`` on block positions of
+a goal configuration (dense distance reward). All three get the same budget and the same expert
+supervision (demonstrations and behaviour cloning from the scripted expert), so the comparison isolates
+the hierarchy and the goal representation.
+"""
 
 from __future__ import annotations
 
@@ -7,19 +15,26 @@ from dataclasses import dataclass
 
 from semgoal_sim import layout
 from semgoal_sim.env import SubgoalEnv
+from semgoal_sim.task_env import TaskEnv, scene_tasks
 from semgoal_sim.vocabulary import SCENES
 
 
 @dataclass(frozen=True)
 class AgentSpec:
     make_env: Callable[[str], object]
-    """scene -> a goal-conditioned env with ``max_steps``, ``subgoal_kind`` and ``expert_action()``."""
+    """scene -> a goal-conditioned env with ``max_steps``, ``kind``, ``expert_action()`` and an
+    ``is_success`` info entry; ``reset(options={"kind": k})`` fixes the kind."""
     kinds: Callable[[str], tuple[str, ...]]
-    """scene -> the goal kinds the curriculum draws and evaluation reports (``subgoal_type`` option)."""
+    """scene -> the goal kinds the curriculum draws and evaluation reports (sub-goal types or tasks)."""
     reward_fn: Callable
     """(achieved, desired) -> reward, vectorised: the function HER relabels with."""
-    model_name: Callable[[str], str]
-    """scene -> folder under ``models/`` for the exported actor."""
+    goal: str = "semantic"
+    """The goal layout (:data:`semgoal_sim.layout.GOAL_KINDS`), stored with the exported actor."""
+    suffix: str = ""
+    """Appended to the scene for the export folder under ``models/``."""
+
+    def model_name(self, scene: str) -> str:
+        return scene + self.suffix
 
 
 AGENTS: dict[str, AgentSpec] = {
@@ -27,7 +42,19 @@ AGENTS: dict[str, AgentSpec] = {
         make_env=SubgoalEnv,
         kinds=lambda scene: SCENES[scene].subgoal_types,
         reward_fn=layout.goal_reward,
-        model_name=lambda scene: scene,
+    ),
+    "flat-semantic": AgentSpec(
+        make_env=lambda scene: TaskEnv(scene, "semantic"),
+        kinds=scene_tasks,
+        reward_fn=layout.goal_reward,
+        suffix="-flat-semantic",
+    ),
+    "flat-continuous": AgentSpec(
+        make_env=lambda scene: TaskEnv(scene, "positions"),
+        kinds=scene_tasks,
+        reward_fn=layout.position_reward,
+        goal="positions",
+        suffix="-flat-continuous",
     ),
 }
 

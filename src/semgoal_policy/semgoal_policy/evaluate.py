@@ -62,23 +62,23 @@ def run_episodes(envs: Sequence, act: ActFn, options: Sequence[dict], seeds: Seq
             action[expert_mask] = np.clip(noisy[expert_mask], -1.0, 1.0)
         actions[:, t] = action
         for i, env in enumerate(envs[:count]):
-            step_obs, reward, _, _, _ = env.step(action[i])
+            step_obs, _, _, _, info = env.step(action[i])
             obs[i, t + 1], achieved[i, t + 1] = step_obs["observation"], step_obs["achieved_goal"]
-            success[i] |= reward > 0
-    kinds = [env.subgoal_kind for env in envs[:count]]
+            success[i] |= info["is_success"]
+    kinds = [env.kind for env in envs[:count]]
     return Episodes(obs, achieved, goal, actions, labels, success, kinds)
 
 
 def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: int, seed: int = EVAL_SEED_BASE
                     ) -> dict[str, float]:
-    """Deterministic success rate per sub-goal type (or task), ``episodes`` each, batched over ``envs``."""
+    """Deterministic success rate per kind (sub-goal type, or task for the flat agents), ``episodes`` each, batched over ``envs``."""
     rates = {}
     for k, kind in enumerate(kinds):
         wins = 0
         for start in range(0, episodes, len(envs)):
             batch = min(len(envs), episodes - start)
             seeds = [seed + 10_000 * k + start + i for i in range(batch)]
-            result = run_episodes(envs, act, [{"subgoal_type": kind}] * batch, seeds, label=False)
+            result = run_episodes(envs, act, [{"kind": kind}] * batch, seeds, label=False)
             wins += int(result.success.sum())
         rates[kind] = wins / episodes
     return rates

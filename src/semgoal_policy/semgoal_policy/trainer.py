@@ -147,7 +147,7 @@ class Trainer:
         expert = self.rng.uniform(size=n) < cfg.demo_fraction
         if self.replay.transitions < cfg.learning_starts and cfg.demo_fraction > 0:
             expert[:] = True  # the buffer starts with demonstrations only
-        result = run_episodes(self.envs, self.agent.explore, [{"subgoal_type": k} for k in kinds],
+        result = run_episodes(self.envs, self.agent.explore, [{"kind": k} for k in kinds],
                               expert_mask=expert, expert_noise=cfg.demo_noise, rng=self.rng)
         self.replay.add(result.obs, result.achieved, result.goal, result.action, result.expert_action)
         self.agent.actor.normaliser.update(result.obs)
@@ -227,5 +227,5 @@ class Trainer:
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
                 "first_reached_95": curve, "config": json.loads(json.dumps(asdict(cfg), default=str))}
-        actor_io.export(self.agent.actor, self.export_dir, cfg.scene, info)
+        actor_io.export(self.agent.actor, self.export_dir, cfg.scene, info, self.spec.goal)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())

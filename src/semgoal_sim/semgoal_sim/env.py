@@ -4,7 +4,7 @@ Each episode draws a start state and a sub-goal of the scene's types (paper, tab
 ``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Put
 sub-goals start with the block in the gripper, as they do after a pick in a plan. Episodes never start
 with the sub-goal already achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
-``{"subgoal_type": "pick"}`` (the training curriculum picks types).
+``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ class SubgoalEnv(gym.Env):
             self.world = self.worlds[int(self.np_random.choice(self.block_counts))]
             self.world.reset(self._sample_positions())
             subgoal = (parse_subgoal(options["subgoal"], self.scene) if "subgoal" in options
-                       else self._sample_subgoal(options.get("subgoal_type")))
+                       else self._sample_subgoal(options.get("kind")))
             if subgoal is None:
                 continue
             if subgoal.kind != "pick":
@@ -122,7 +122,7 @@ class SubgoalEnv(gym.Env):
         self._target, self._mask = self.layout.encode(subgoal.literals())
 
     @property
-    def subgoal_kind(self) -> str:
+    def kind(self) -> str:
         """The current sub-goal's type: what the training curriculum and evaluation group by."""
         return self.subgoal.kind if self.subgoal else ""
 

@@ -29,11 +29,18 @@ def observation_size(scene: str) -> int:
     return ARM_SIZE + BLOCK_SIZE * SCENES[scene].max_blocks
 
 
-def goal_size(scene: str) -> int:
-    return 2 * LAYOUTS[scene].size
+GOAL_KINDS = ("semantic", "positions")
+"""Semantic goals (target + mask over the predicate vector) or, for the flat-continuous baseline, the
+block centres of a goal configuration (one (x, y, z) slot per block of the scene, absent ones zero)."""
 
 
-def describe(scene: str) -> dict:
+def goal_size(scene: str, goal: str = "semantic") -> int:
+    if goal not in GOAL_KINDS:
+        raise ValueError(f"unknown goal kind {goal!r}; valid: {', '.join(GOAL_KINDS)}")
+    return 2 * LAYOUTS[scene].size if goal == "semantic" else 3 * SCENES[scene].max_blocks
+
+
+def describe(scene: str, goal: str = "semantic") -> dict:
     """The layout as data: stored next to exported actors and checked when they are loaded."""
     return {
         "scene": scene,
@@ -42,7 +49,8 @@ def describe(scene: str) -> dict:
         "block_features": [list(f) for f in BLOCK_FEATURES],
         "blocks": list(SCENES[scene].objects),
         "semantic_atoms": [f"{name}({','.join(args)})" for name, args in LAYOUTS[scene].atoms],
-        "goal_size": goal_size(scene),
+        "goal": goal,
+        "goal_size": goal_size(scene, goal),
     }
 
 
@@ -82,3 +90,11 @@ def goal_reward(achieved_goal: np.ndarray, desired_goal: np.ndarray) -> np.ndarr
     target, mask = desired_goal[..., :n], desired_goal[..., n:]
     mismatch = (np.abs(achieved_goal[..., :n] - target) > 0.5) & (mask > 0.5)
     return (~mismatch.any(axis=-1)).astype(np.float32)
+
+
+def position_reward(achieved_goal: np.ndarray, desired_goal: np.ndarray) -> np.ndarray:
+    """Dense reward of the flat-continuous baseline (paper, "Baselines"): minus the summed distance (m)
+    between the block centres and their goal centres, vectorised over leading axes. Absent blocks are
+    zero in both and add nothing."""
+    slots = achieved_goal.reshape(*achieved_goal.shape[:-1], -1, 3) - desired_goal.reshape(*desired_goal.shape[:-1], -1, 3)
+    return -np.linalg.norm(slots, axis=-1).sum(axis=-1).astype(np.float32)

@@ -1,0 +1,106 @@
+"""Task episodes in one process, for evaluation: the hierarchy and the two flat baselines.
+
+The hierarchical episode composes the same cores the nodes wrap (no ROS): the planner node's
+:class:`Executive`, the policy node's :class:`SubgoalController` and the sim node's :class:`FetchWorld`,
+stepped as the graph steps them in lockstep: the policy acts only while the active sub-goal does not yet
+hold, the executive sees every new semantic state and every control step. So an in-process episode and
+one through the graph (``./semgoal eval --via-ros``) follow the same rules.
+
+Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
+test: the task's goal literals hold.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.semantic import SemanticPlanner
+from semgoal_policy import actor as actor_io
+from semgoal_policy.agents import get_agent
+from semgoal_policy.controller import SubgoalController
+from semgoal_sim.tasks import Task, get_task
+from semgoal_sim.world import FetchWorld
+
+TASK_STEP_BUDGET = 600
+"""Control steps per task episode for every agent (24 s of sim time; the expert needs 27 to 165)."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    task: str
+    seed: int
+    success: bool
+    steps: int
+    replans: int = 0
+
+
+def observe(world: FetchWorld) -> Observation:
+    """The semantic state as the planner node receives it: present objects and every literal's value."""
+    vector = world.semantic_vector()
+    present = [name for name, here in zip(world.layout.objects, world.present, strict=True) if here]
+    return Observation(tuple(present), world.layout.decode(vector), world.step_count)
+
+
+class HierarchicalAgent:
+    """Planner executive + one scene's sub-goal actor; one world per task kept between episodes."""
+
+    def __init__(self, scene: str, actor_dir: Path) -> None:
+        self.scene = scene
+        self.controller = SubgoalController(scene, actor_dir)
+        self._worlds: dict[str, FetchWorld] = {}
+
+    def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
+        task = _scene_task(task_name, self.scene)
+        world = self._worlds.get(task.name) or self._worlds.setdefault(task.name, FetchWorld(task.scene, task.n_blocks))
+        world.reset(task.initial_state(seed)[0])
+        executive = Executive(SemanticPlanner(task.scene))
+        executive.observe(observe(world))
+        planned, _ = executive.set_goal(task.name)
+        steps = 0
+        while planned and executive.status == "executing" and steps < budget:
+            active = executive.active
+            if active is None:  # a human step: nobody acts in an evaluation
+                break
+            self.controller.set_subgoal(active.subgoal.literals())
+            world.step(self.controller.act(world.observation()))
+            steps += 1
+            executive.tick(steps)
+            executive.observe(observe(world))
+        return Outcome(task.name, seed, executive.status == "succeeded", steps, executive.replans)
+
+
+class FlatAgent:
+    """A flat baseline's exported actor (``flat-semantic`` or ``flat-continuous``) on whole tasks."""
+
+    def __init__(self, agent: str, scene: str, actor_dir: Path) -> None:
+        self.scene = scene
+        self.actor = actor_io.load(actor_dir, scene)[0]
+        self.env = get_agent(agent).make_env(scene)
+
+    def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
+        task = _scene_task(task_name, self.scene)
+        obs, _ = self.env.reset(seed=seed, options={"kind": task.name, "start_seed": seed})
+        for step in range(1, budget + 1):
+            action = np.clip(self.actor.act(obs["observation"], obs["desired_goal"]), -1.0, 1.0)
+            obs, _, _, _, info = self.env.step(action)
+            if info["is_success"]:
+                return Outcome(task.name, seed, True, step)
+        return Outcome(task.name, seed, False, budget)
+
+
+def _scene_task(task_name: str, scene: str) -> Task:
+    task = get_task(task_name)
+    if task.scene != scene:
+        raise ValueError(f"task {task.name} is set in {task.scene}; this agent's actor is for {scene}")
+    return task
+
+
+def make_agent(agent: str, scene: str, actor_dir: Path | None = None) -> HierarchicalAgent | FlatAgent:
+    """The runner for ``agent`` on ``scene``; ``actor_dir`` defaults to the shipped actor."""
+    spec = get_agent(agent)  # KeyError with the valid names
+    actor_dir = actor_dir or actor_io.MODELS_DIR / spec.model_name(scene)
+    return HierarchicalAgent(scene, actor_dir) if agent == "hierarchical" else FlatAgent(agent, scene, actor_dir)

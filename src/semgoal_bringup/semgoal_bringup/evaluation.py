@@ -1,0 +1,269 @@
+"""`./semgoal eval`: task completion of the agents on the paper's eight tasks: Table 1, side by side.
+
+    ./semgoal eval --tasks all --episodes 50 --seeds 3 --agents hierarchical,flat-semantic,flat-continuous \\
+        --via-ros --json --out results/
+
+Every agent meets the same starts (episode ``i`` of a task uses the task sampler's seed ``--seed + i``),
+the same step budget and the same success test (the task's goal literals hold). ``--seeds N`` averages
+up to N training seeds of each agent where exported actors exist (the shipped one, plus
+``models/seeds/<name>/seedK``); the table says how many each row has. ``--via-ros`` also runs the
+hierarchical agent through the real node graph in lockstep (:mod:`semgoal_bringup.graph_eval`).
+Writes ``table1.md``, ``table1.csv`` and ``table1.png`` under ``--out``; the last line printed is the
+JSON ``{task: {agent: rate}}``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from semgoal_sim.tasks import TASKS, get_task
+
+PAPER_TABLE1 = {
+    "flat-semantic": {"MC-2": 10, "MA-2": 80, "Swap-2": 0, "MC-3": 5, "MA-3": 10, "DC-2": 30, "DC-3": 0, "DC-4": 0},
+    "flat-continuous": {"MC-2": 5, "MA-2": 10, "Swap-2": 0, "MC-3": 0, "MA-3": 0, "DC-2": 0, "DC-3": 0, "DC-4": 0},
+    "hierarchical": {"MC-2": 95, "MA-2": 100, "Swap-2": 92, "MC-3": 95, "MA-3": 96, "DC-2": 94, "DC-3": 91, "DC-4": 90},
+}
+"""Task completion (%) in the paper's Table 1: 2M training steps, 50 episodes, mean of three seeds."""
+PAPER_NAMES = {"flat-semantic": "Flat Semantic", "flat-continuous": "Flat Continuous",
+               "hierarchical": "Hierarchical Semantic"}
+AGENT_NAMES = ("hierarchical", "flat-semantic", "flat-continuous")
+DEFAULT_SEED = 3_000_000
+"""First task seed: above the sub-goal evaluation seeds (1e6, 2e6); training never draws task seeds."""
+VIA_ROS = "hierarchical (via ROS)"
+
+
+@dataclass
+class Row:
+    """One agent's results: per task, the successes over every (training seed, episode)."""
+
+    agent: str
+    training_seeds: dict[str, int] = field(default_factory=dict)
+    """Per task: how many training seeds' actors were evaluated."""
+    env_steps: set[int] = field(default_factory=set)
+    """Training env steps of the actors evaluated."""
+    wins: dict[str, int] = field(default_factory=dict)
+    episodes: dict[str, int] = field(default_factory=dict)
+    steps: dict[str, int] = field(default_factory=dict)
+    wall_s: float = 0.0
+
+    def add(self, task: str, success: bool, steps: int) -> None:
+        self.wins[task] = self.wins.get(task, 0) + int(success)
+        self.episodes[task] = self.episodes.get(task, 0) + 1
+        self.steps[task] = self.steps.get(task, 0) + steps
+
+    def rate(self, task: str) -> float:
+        return self.wins[task] / self.episodes[task]
+
+    def margin(self, task: str) -> float:
+        """Half-width of the normal-approximation 95 % interval (binomial)."""
+        p, n = self.rate(task), self.episodes[task]
+        return 1.96 * math.sqrt(p * (1 - p) / n)
+
+
+def parse_tasks(text: str) -> list[str]:
+    if text.strip().lower() == "all":
+        return list(TASKS)
+    return [get_task(name).name for name in text.split(",") if name.strip()]
+
+
+def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Path]:
+    """Exported actors of ``agent`` for ``scene``: the shipped one first, then extra training seeds."""
+    from semgoal_policy.agents import get_agent
+
+    name = get_agent(agent).model_name(scene)
+    extra = sorted((models_dir / "seeds" / name).glob("seed*")) if (models_dir / "seeds" / name).is_dir() else []
+    return [d for d in [models_dir / name, *extra] if (d / "actor.json").exists()][:seeds]
+
+
+def evaluate_agent(agent: str, task_names: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
+                   progress) -> Row:
+    """In-process episodes of one agent, every task, every available training seed."""
+    from semgoal_bringup.episodes import make_agent
+
+    row = Row(agent)
+    started = time.perf_counter()
+    for task_name in task_names:
+        scene = get_task(task_name).scene
+        dirs = actor_dirs(agent, scene, seeds, models_dir)
+        if not dirs:
+            raise FileNotFoundError(f"no exported {agent} actor for {scene} under {models_dir}: "
+                                    f"train one with ./semgoal train --scene {scene} --agent {agent}")
+        row.training_seeds[task_name] = len(dirs)
+        for directory in dirs:
+            row.env_steps.add(json.loads((directory / "actor.json").read_text())["env_steps"])
+            runner = make_agent(agent, scene, directory)
+            for i in range(episodes):
+                outcome = runner.run(task_name, seed + i)
+                row.add(task_name, outcome.success, outcome.steps)
+                progress.update(1)
+    row.wall_s = time.perf_counter() - started
+    return row
+
+
+def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, progress) -> Row:
+    from semgoal_bringup.graph_eval import run_via_ros
+    from semgoal_policy import actor as actor_io
+
+    row = Row(VIA_ROS)
+    started = time.perf_counter()
+    for outcome in run_via_ros(task_names, episodes, seed):
+        row.add(outcome.task, outcome.success, outcome.steps)
+        row.training_seeds[outcome.task] = 1
+        meta = json.loads((actor_io.MODELS_DIR / get_task(outcome.task).scene / "actor.json").read_text())
+        row.env_steps.add(meta["env_steps"])
+        progress.update(1)
+    row.wall_s = time.perf_counter() - started
+    return row
+
+
+# -- reports ---------------------------------------------------------------------------------------------
+def _steps_text(row: Row) -> str:
+    low, high = min(row.env_steps), max(row.env_steps)
+    return f"{low // 1000}k" if low == high else f"{low // 1000}k-{high // 1000}k"
+
+
+def _seeds_text(row: Row) -> str:
+    counts = set(row.training_seeds.values())
+    return str(min(counts)) if len(counts) == 1 else f"{min(counts)}-{max(counts)}"
+
+
+def write_markdown(rows: list[Row], tasks: list[str], episodes: int, seed: int, path: Path) -> None:
+    header = "| Method | training seeds | training steps | " + " | ".join(tasks) + " |"
+    lines = [
+        "# Table 1: task completion (%)",
+        "",
+        f"Ours: {episodes} episodes per task and training seed, task seeds {seed}..{seed + episodes - 1} (the same "
+        f"starts for every agent), at most {_budget()} control steps each; ± is the 95 % interval half-width. "
+        "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
+        "Regenerate: `./semgoal eval --tasks all --episodes "
+        f"{episodes} --seeds 3 --agents {','.join(r.agent for r in rows if r.agent != VIA_ROS)}"
+        f"{' --via-ros' if any(r.agent == VIA_ROS for r in rows) else ''} --json --out results/`",
+        "",
+        header,
+        "|" + "---|" * (3 + len(tasks)),
+    ]
+    for agent in AGENT_NAMES:
+        if any(r.agent.startswith(agent) for r in rows):
+            paper = PAPER_TABLE1[agent]
+            lines.append(f"| {PAPER_NAMES[agent]} (paper) | 3 | 2000k | "
+                         + " | ".join(f"{paper[t]}" for t in tasks) + " |")
+        for row in rows:
+            if row.agent.split(" ")[0] == agent:
+                cells = [f"{100 * row.rate(t):.0f} ± {100 * row.margin(t):.0f}" for t in tasks]
+                lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row)} | {_steps_text(row)} | "
+                             + " | ".join(cells) + " |")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def _budget() -> int:
+    from semgoal_bringup.episodes import TASK_STEP_BUDGET
+
+    return TASK_STEP_BUDGET
+
+
+def write_csv(rows: list[Row], tasks: list[str], path: Path) -> None:
+    with path.open("w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(["agent", "source", "task", "success_rate", "episodes", "ci95", "mean_steps",
+                         "training_seeds", "training_steps"])
+        for agent in AGENT_NAMES:
+            if any(r.agent.startswith(agent) for r in rows):
+                for t in tasks:
+                    writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", 3, 2_000_000])
+        for row in rows:
+            for t in tasks:
+                writer.writerow([row.agent, "ours", t, round(row.rate(t), 4), row.episodes[t], round(row.margin(t), 4),
+                                 round(row.steps[t] / row.episodes[t], 1), row.training_seeds[t],
+                                 "/".join(map(str, sorted(row.env_steps)))])
+
+
+def write_chart(rows: list[Row], tasks: list[str], path: Path) -> None:
+    """Grouped bars per task: ours solid (with 95 % intervals), the paper's hatched beside them."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    colours = {"hierarchical": "tab:blue", VIA_ROS: "tab:cyan", "flat-semantic": "tab:orange",
+               "flat-continuous": "tab:green"}
+    series = []
+    for agent in AGENT_NAMES:
+        ours = [r for r in rows if r.agent.split(" ")[0] == agent]
+        if ours:
+            series.append((f"{PAPER_NAMES[agent]} (paper)", [PAPER_TABLE1[agent][t] for t in tasks], None,
+                           colours[agent], "//"))
+        series += [(f"{r.agent} (ours)", [100 * r.rate(t) for t in tasks], [100 * r.margin(t) for t in tasks],
+                    colours[r.agent], None) for r in ours]
+    width = 0.8 / len(series)
+    x = np.arange(len(tasks))
+    fig, ax = plt.subplots(figsize=(11, 4.2), dpi=110)
+    for i, (label, values, errors, colour, hatch) in enumerate(series):
+        ax.bar(x + (i - (len(series) - 1) / 2) * width, values, width, yerr=errors, label=label, capsize=2,
+               color="white" if hatch else colour, edgecolor=colour, hatch=hatch, linewidth=1)
+    ax.set_xticks(x, tasks)
+    ax.set(ylabel="task completion (%)", ylim=(0, 105), title="Table 1: ours beside the paper's")
+    ax.grid(axis="y", alpha=0.3)
+    ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.08))
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal eval", description=__doc__.splitlines()[0])
+    parser.add_argument("--tasks", default="all", help="comma-separated task names, or all")
+    parser.add_argument("--episodes", type=int, default=50, help="episodes per task and training seed")
+    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (fixes every start)")
+    parser.add_argument("--seeds", type=int, default=3, help="training seeds to average where actors exist")
+    parser.add_argument("--agents", default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
+    parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
+    parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
+    parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
+    parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
+    args = parser.parse_args(argv)
+    try:
+        tasks = parse_tasks(args.tasks)
+    except KeyError as error:
+        parser.error(str(error.args[0]))
+    agents = [a.strip() for a in args.agents.split(",") if a.strip()]
+    unknown = [a for a in agents if a not in AGENT_NAMES]
+    if unknown or not agents or not tasks or args.episodes < 1:
+        parser.error(f"need tasks, episodes >= 1 and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
+    import torch
+    from tqdm import tqdm
+
+    from semgoal_policy import actor as actor_io
+
+    torch.set_num_threads(1)
+    models_dir = args.models or actor_io.MODELS_DIR
+    actors = sum(len(actor_dirs(a, get_task(t).scene, args.seeds, models_dir)) for a in agents for t in tasks)
+    total = args.episodes * (actors + len(tasks) * args.via_ros)
+    rows = []
+    with tqdm(total=total, unit="episode", desc="eval", file=sys.stderr, mininterval=2) as progress:
+        try:
+            rows += [evaluate_agent(a, tasks, args.episodes, args.seed, args.seeds, models_dir, progress) for a in agents]
+        except FileNotFoundError as error:
+            print(f"semgoal eval: {error}", file=sys.stderr)
+            return 2
+        if args.via_ros:
+            rows.append(evaluate_via_ros(tasks, args.episodes, args.seed, progress))
+    for row in rows:
+        print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
+              + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
+    if args.out:
+        args.out.mkdir(parents=True, exist_ok=True)
+        write_markdown(rows, tasks, args.episodes, args.seed, args.out / "table1.md")
+        write_csv(rows, tasks, args.out / "table1.csv")
+        write_chart(rows, tasks, args.out / "table1.png")
+        print(f"wrote {args.out}/table1.md, table1.csv, table1.png", file=sys.stderr)
+    if args.json:
+        print(json.dumps({t: {row.agent: round(row.rate(t), 4) for row in rows} for t in tasks}))
+    return 0

@@ -1,0 +1,140 @@
+"""The operator's side of a running node graph: reset the world, send a goal, wait for the result.
+
+Used by the demo (one episode, printed and recorded), by ``./semgoal eval --via-ros`` (many episodes on
+one graph), by the graph benchmark and by the robustness tests. Needs ``rclpy.init`` done by the caller's
+process (:meth:`GraphClient.open` does it on the current ROS_DOMAIN_ID).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+READY_TIMEOUT_S = 60.0
+EPISODE_TIMEOUT_S = 300.0
+
+
+@dataclass(frozen=True)
+class GoalResult:
+    success: bool
+    message: str
+    replans: int
+    control_steps: int
+    sim_time: float
+    wall_s: float
+
+
+class GraphClient:
+    """An rclpy node with the sim's reset and move services, the planner's ExecuteGoal, and the state streams."""
+
+    def __init__(self, name: str = "semgoal_operator") -> None:
+        import rclpy
+        from rclpy.action import ActionClient
+
+        from semgoal_msgs.action import ExecuteGoal
+        from semgoal_msgs.msg import SemanticState, SubGoal, WorldState
+        from semgoal_msgs.srv import MoveBlock, ResetWorld
+        from semgoal_sim import ros_interfaces as topics
+
+        if not rclpy.ok():
+            rclpy.init(domain_id=int(os.environ["ROS_DOMAIN_ID"]))
+        self.rclpy, self.topics = rclpy, topics
+        self.node = node = rclpy.create_node(name)
+        self.world: WorldState | None = None
+        self.semantic: SemanticState | None = None
+        self.subgoal: SubGoal | None = None
+        self.world_listeners: list[Callable] = []
+        node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.STREAM)
+        node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self._on_semantic, topics.LATCHED)
+        node.create_subscription(SubGoal, topics.SUBGOAL, self._on_subgoal, topics.LATCHED)
+        self.reset_client = node.create_client(ResetWorld, topics.RESET_WORLD)
+        self.move_client = node.create_client(MoveBlock, topics.MOVE_BLOCK)
+        self.action = ActionClient(node, ExecuteGoal, topics.EXECUTE_GOAL)
+        self.ExecuteGoal, self.ResetWorld, self.MoveBlock = ExecuteGoal, ResetWorld, MoveBlock
+
+    # -- streams -------------------------------------------------------------------------------------
+    def _on_world(self, msg) -> None:
+        self.world = msg
+        for listener in self.world_listeners:
+            listener(msg)
+
+    def _on_semantic(self, msg) -> None:
+        self.semantic = msg
+
+    def _on_subgoal(self, msg) -> None:
+        self.subgoal = msg
+
+    def spin_until(self, condition: Callable[[], bool], timeout: float) -> bool:
+        deadline = time.monotonic() + timeout
+        while not condition():
+            if time.monotonic() > deadline:
+                return False
+            self.rclpy.spin_once(self.node, timeout_sec=0.05)
+        return True
+
+    # -- calls ---------------------------------------------------------------------------------------
+    def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True) -> bool:
+        """Sim services, the planner's action, the predicates and (with ``policy``) the policy are up.
+
+        Counts include this client's own subscriptions: world state is read by this client, predicates,
+        planner and policy; the sub-goal by this client and the policy."""
+        world_readers, subgoal_readers = (4, 2) if policy else (3, 1)
+        return self.spin_until(lambda: (self.reset_client.service_is_ready() and self.action.server_is_ready()
+                                        and self.node.count_subscribers(self.topics.WORLD_STATE) >= world_readers
+                                        and self.node.count_subscribers(self.topics.SUBGOAL) >= subgoal_readers),
+                               timeout)
+
+    def call(self, client, request, timeout: float = 30.0):
+        future = client.call_async(request)
+        return future.result() if self.spin_until(future.done, timeout) else None
+
+    def reset(self, task: str, seed: int) -> tuple[bool, str]:
+        """Reset the world to a task's start; returns once the planner can see the new semantic state."""
+        reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
+        if reply is None or not reply.success:
+            return False, reply.message if reply else "reset_world did not answer"
+        self.semantic = None
+        if not self.spin_until(lambda: self.semantic is not None and self.semantic.step == 0, 10):
+            return False, "no semantic state after the reset"
+        self.spin_until(lambda: False, 0.3)  # the planner receives the same latched state
+        return True, reply.message
+
+    def move_block(self, block: str, x: float, y: float, z: float) -> tuple[bool, str]:
+        request = self.MoveBlock.Request(block=block)
+        request.position.x, request.position.y, request.position.z = float(x), float(y), float(z)
+        reply = self.call(self.move_client, request)
+        return (reply.success, reply.message) if reply else (False, "move_block did not answer")
+
+    def execute(self, goal_text: str, feedback: Callable | None = None, timeout: float = EPISODE_TIMEOUT_S,
+                max_steps: int | None = None) -> GoalResult:
+        """Send a goal through ExecuteGoal and wait for its result; cancel it after ``max_steps`` control steps."""
+        goal = self.ExecuteGoal.Goal()
+        goal.goal.task = goal_text
+        started = time.perf_counter()
+        first_step = self.world.step if self.world else 0
+        sent = self.action.send_goal_async(goal, feedback_callback=feedback)
+        if not self.spin_until(sent.done, 10) or not sent.result().accepted:
+            return GoalResult(False, "the planner did not accept the goal", 0, 0, 0.0, 0.0)
+        handle = sent.result()
+        result_future = handle.get_result_async()
+        cancelled = False
+
+        def done() -> bool:
+            nonlocal cancelled
+            if (max_steps is not None and not cancelled and self.world is not None
+                    and self.world.step - first_step >= max_steps):
+                handle.cancel_goal_async()
+                cancelled = True
+            return result_future.done()
+
+        if not self.spin_until(done, timeout):
+            return GoalResult(False, f"no result within {timeout:.0f} s", 0, 0, 0.0, time.perf_counter() - started)
+        result = result_future.result().result
+        return GoalResult(bool(result.success), result.message, int(result.replans), int(result.control_steps),
+                          float(result.sim_time), time.perf_counter() - started)
+
+    def close(self) -> None:
+        self.node.destroy_node()
+        self.rclpy.try_shutdown()

@@ -66,7 +66,7 @@ class HierarchicalAgent:
             if active is None:  # a human step: nobody acts in an evaluation
                 break
             self.controller.set_subgoal(active.subgoal.literals())
-            world.step(self.controller.act(world.observation()))
+            world.step(self.controller.act(world.observation(), (seed, steps)))
             steps += 1
             executive.tick(steps)
             executive.observe(observe(world))

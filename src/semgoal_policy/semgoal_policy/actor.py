@@ -87,9 +87,12 @@ class Actor(nn.Module):
         return action, log_prob, torch.tanh(mean)
 
     @torch.inference_mode()
-    def act(self, obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
-        """Deterministic action(s) in [-1, 1] for numpy input (one row or a batch)."""
-        mean, _ = self(torch.as_tensor(obs, dtype=torch.float32), torch.as_tensor(goal, dtype=torch.float32))
+    def act(self, obs: np.ndarray, goal: np.ndarray, noise: np.ndarray | None = None) -> np.ndarray:
+        """Action(s) in [-1, 1] for numpy input (one row or a batch): the policy's mean, or with ``noise``
+        (standard normal, the action's shape) a sample of the policy's Gaussian, reproducible from it."""
+        mean, log_std = self(torch.as_tensor(obs, dtype=torch.float32), torch.as_tensor(goal, dtype=torch.float32))
+        if noise is not None:
+            mean = mean + log_std.exp() * torch.as_tensor(noise, dtype=torch.float32)
         return torch.tanh(mean).numpy()
 
 

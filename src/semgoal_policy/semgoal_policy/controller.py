@@ -14,11 +14,19 @@ HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""
 
 
+ACTION_MODES = ("sample", "mean")
+"""How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by episode and step, so
+runs stay reproducible), ``mean`` takes its mean. Sampling is the default: the deterministic mean can
+hover in place for good (MC-2, task seeds 3000000+: 10 of 12 solved with the mean, 12 of 12 sampled)."""
+
+
 class SubgoalController:
     """Wraps an exported actor for one scene; every output is finite and within [-1, 1]."""
 
-    def __init__(self, scene: str, model_dir: Path | str | None = None) -> None:
-        self.scene = scene
+    def __init__(self, scene: str, model_dir: Path | str | None = None, mode: str = "sample") -> None:
+        if mode not in ACTION_MODES:
+            raise ValueError(f"unknown action mode {mode!r}; valid: {', '.join(ACTION_MODES)}")
+        self.scene, self.mode = scene, mode
         self.layout = LAYOUTS[scene]
         self.actor, self.meta = actor_io.load(model_dir or actor_io.MODELS_DIR / scene, scene)
         self.goal: np.ndarray | None = None
@@ -40,12 +48,14 @@ class SubgoalController:
         achieved = np.concatenate([np.asarray(semantic_vector, dtype=np.float32), self.goal[size:]])
         return bool(layout.goal_reward(achieved, self.goal))
 
-    def act(self, observation: np.ndarray) -> np.ndarray:
+    def act(self, observation: np.ndarray, noise_key: tuple[int, ...] = (0,)) -> np.ndarray:
+        """The command for an observation; ``noise_key`` (e.g. episode, step) seeds the sampled noise."""
         observation = np.asarray(observation, dtype=np.float32)
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
-        action = self.actor.act(observation, self.goal)
+        noise = np.random.default_rng(noise_key).standard_normal(4) if self.mode == "sample" else None
+        action = self.actor.act(observation, self.goal, noise)
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 
-__all__ = ["HOLD", "SubgoalController", "VocabularyError"]
+__all__ = ["ACTION_MODES", "HOLD", "SubgoalController", "VocabularyError"]

@@ -11,7 +11,7 @@ import numpy as np
 from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
-from semgoal_policy.controller import HOLD, SubgoalController, VocabularyError
+from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
 from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.vocabulary import SCENES, Literal
@@ -24,9 +24,10 @@ class PolicyNode(Node):
         model_dir = self.declare_parameter("model_dir", "").value
         self.mode = self.declare_parameter("mode", "lockstep").value
         rate_hz = self.declare_parameter("rate_hz", 25.0).value
-        if scene not in SCENES or self.mode not in ("lockstep", "realtime"):
-            raise SystemExit(f"policy: bad parameters scene={scene!r} mode={self.mode!r}")
-        self.controller = SubgoalController(scene, model_dir or None)
+        action_mode = self.declare_parameter("action_mode", "sample").value
+        if scene not in SCENES or self.mode not in ("lockstep", "realtime") or action_mode not in ACTION_MODES:
+            raise SystemExit(f"policy: bad parameters scene={scene!r} mode={self.mode!r} action_mode={action_mode!r}")
+        self.controller = SubgoalController(scene, model_dir or None, action_mode)
         self.get_logger().info(f"actor for {scene}: {self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
@@ -73,7 +74,7 @@ class PolicyNode(Node):
         """The command for a world state; None once the sub-goal holds (the planner names the next one)."""
         if self.controller.goal is not None and self.controller.achieved(conversions.semantic_vector(msg)):
             return None
-        return self.controller.act(msg.observation)
+        return self.controller.act(msg.observation, (msg.episode, msg.step))
 
     def answer_lockstep(self) -> None:
         """One command per step while a sub-goal is active and not yet achieved; otherwise the world waits,

@@ -95,3 +95,26 @@ def test_controller_knows_when_its_subgoal_holds(tmp_path) -> None:
     assert not controller.achieved(vector)
     vector[controller.layout.index(Literal("holding", ("red",)))] = 1.0
     assert controller.achieved(vector)
+
+
+def test_sampled_actions_are_reproducible_from_their_key_and_differ_from_the_mean(tmp_path) -> None:
+    export(_actor(), tmp_path, SCENE, {})
+    sampled, mean = SubgoalController(SCENE, tmp_path), SubgoalController(SCENE, tmp_path, mode="mean")
+    for controller in (sampled, mean):
+        controller.set_subgoal([Literal("holding", ("red",))])
+    obs = np.ones(layout.observation_size(SCENE), np.float32)
+    assert np.array_equal(sampled.act(obs, (3, 7)), sampled.act(obs, (3, 7)))
+    assert not np.array_equal(sampled.act(obs, (3, 7)), sampled.act(obs, (3, 8)))
+    assert np.array_equal(mean.act(obs, (3, 7)), mean.act(obs, (4, 9)))
+    assert not np.array_equal(sampled.act(obs, (3, 7)), mean.act(obs))
+    with pytest.raises(ValueError, match="action mode"):
+        SubgoalController(SCENE, tmp_path, mode="greedy")
+
+
+def test_flat_continuous_actors_keep_their_goal_layout(tmp_path) -> None:
+    actor = Actor(layout.observation_size(SCENE), layout.goal_size(SCENE, "positions"))
+    export(actor, tmp_path, SCENE, {}, goal="positions")
+    loaded, meta = load(tmp_path, SCENE)
+    assert meta["layout"]["goal"] == "positions" and loaded.goal_size == 3 * 2
+    with pytest.raises(ValueError, match="goal kind"):
+        layout.goal_size(SCENE, "pixels")

@@ -32,3 +32,12 @@ def test_resume_without_replay_buffer_refills_it(tmp_path) -> None:
     resumed = Trainer(config(tmp_path, 800))
     resumed.run(resume=True)
     assert resumed.env_steps == 800 and resumed.replay.size == 400 // 50
+
+
+def test_flat_baseline_trains_on_whole_tasks_and_exports_with_its_goal_layout(tmp_path) -> None:
+    cfg = config(tmp_path, 2 * 4 * 120)
+    cfg.agent, cfg.learning_starts, cfg.eval_every = "flat-semantic", 480, 960
+    trainer = Trainer(cfg)
+    trainer.run()
+    _, meta = load(tmp_path / "export", "two_blocks")
+    assert meta["agent"] == "flat-semantic" and set(meta["final_eval"]["per_kind"]) == {"MC-2", "MA-2", "Swap-2"}

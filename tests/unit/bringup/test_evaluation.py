@@ -1,0 +1,43 @@
+"""In-process task episodes and the Table 1 reports (the shipped actors, a few episodes)."""
+
+import csv
+import json
+
+import pytest
+
+from semgoal_bringup import evaluation
+from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
+
+
+def test_hierarchical_episode_is_reproducible_and_bounded() -> None:
+    agent = make_agent("hierarchical", "two_blocks")
+    first, again = agent.run("MA-2", 3_000_000), agent.run("MA-2", 3_000_000)
+    assert first == again and 0 < first.steps <= TASK_STEP_BUDGET
+    with pytest.raises(ValueError, match="three_blocks"):
+        agent.run("MC-3", 0)
+
+
+def test_parse_tasks() -> None:
+    assert evaluation.parse_tasks("all") == ["MC-2", "MA-2", "Swap-2", "MC-3", "MA-3", "DC-2", "DC-3", "DC-4"]
+    assert evaluation.parse_tasks("swap-2, dc-4") == ["Swap-2", "DC-4"]
+    with pytest.raises(KeyError, match="unknown task"):
+        evaluation.parse_tasks("MC-2,XX-1")
+
+
+def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
+    code = evaluation.main(["--tasks", "MA-2", "--episodes", "2", "--json", "--out", str(tmp_path)])
+    assert code == 0
+    summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert set(summary) == {"MA-2"} and 0.0 <= summary["MA-2"]["hierarchical"] <= 1.0
+    table = (tmp_path / "table1.md").read_text()
+    assert "Hierarchical Semantic (paper) | 3 | 2000k | 100" in table and "**hierarchical (ours)** | 1 |" in table
+    rows = list(csv.DictReader((tmp_path / "table1.csv").open()))
+    assert {(r["source"], r["task"]) for r in rows} == {("paper", "MA-2"), ("ours", "MA-2")}
+    assert (tmp_path / "table1.png").stat().st_size > 5000
+
+
+def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> None:
+    with pytest.raises(SystemExit):
+        evaluation.main(["--tasks", "MC-2", "--agents", "oracle"])
+    assert evaluation.main(["--tasks", "MC-2", "--episodes", "1", "--models", str(tmp_path)]) == 2
+    assert "no exported hierarchical actor" in capsys.readouterr().err

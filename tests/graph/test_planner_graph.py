@@ -8,7 +8,7 @@ from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.vocabulary import LAYOUTS
+from semgoal_sim.vocabulary import LAYOUTS, SUBGOAL_CONFIRM_STEPS
 
 BLOCKS = ("red", "green", "blue")
 
@@ -42,9 +42,12 @@ class Operator:
     def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "") -> EditPlan.Response:
         return self.call(EditPlan, topics.EDIT_PLAN, EditPlan.Request(op=op, index=index, to_index=to_index, action=action))
 
-    def observe(self, true: set[str], step: int) -> None:
-        self.states.publish(semantic_state(true, step))
-        self.probe.spin_for(0.3)
+    def observe(self, true: set[str], step: int, held: bool = True) -> None:
+        """The world as the predicates would report it at ``step`` (and, ``held``, long enough after it to
+        confirm a robot step)."""
+        for held in (step, step + SUBGOAL_CONFIRM_STEPS - 1)[: 2 if held else 1]:
+            self.states.publish(semantic_state(true, held))
+            self.probe.spin_for(0.3)
 
     def actions(self) -> list[str]:
         return [s.action for s in self.plans[-1].steps]
@@ -93,7 +96,7 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
     op = Operator(probe)
     probe.spin_until(lambda: op.states.get_subscription_count() > 0, 30, "planner subscribed")
-    op.observe(set(), 0)
+    op.observe(set(), 0, held=False)
     client = ActionClient(probe.node, ExecuteGoal, topics.EXECUTE_GOAL)
     probe.spin_until(client.server_is_ready, 20, "execute_goal server")
     goal = ExecuteGoal.Goal()

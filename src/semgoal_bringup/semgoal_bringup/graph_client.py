@@ -108,8 +108,11 @@ class GraphClient:
         return (reply.success, reply.message) if reply else (False, "move_block did not answer")
 
     def execute(self, goal_text: str, feedback: Callable | None = None, timeout: float = EPISODE_TIMEOUT_S,
-                max_steps: int | None = None) -> GoalResult:
-        """Send a goal through ExecuteGoal and wait for its result; cancel it after ``max_steps`` control steps."""
+                max_steps: int | None = None, while_running: Callable[[], None] | None = None) -> GoalResult:
+        """Send a goal through ExecuteGoal and wait for its result; cancel it after ``max_steps`` control steps.
+
+        ``while_running`` is called between spins (not inside a callback, so it may call services): the
+        robustness tests intervene there."""
         goal = self.ExecuteGoal.Goal()
         goal.goal.task = goal_text
         started = time.perf_counter()
@@ -123,6 +126,8 @@ class GraphClient:
 
         def done() -> bool:
             nonlocal cancelled
+            if while_running is not None:
+                while_running()
             if (max_steps is not None and not cancelled and self.world is not None
                     and self.world.step - first_step >= max_steps):
                 handle.cancel_goal_async()

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
-from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal
 
 STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
@@ -55,6 +55,8 @@ class Executive:
     contradiction_steps: int = 10
     """Control steps the observed state must contradict the plan before a re-plan (debounces releases)."""
     max_replans: int = 5
+    confirm_steps: int = SUBGOAL_CONFIRM_STEPS
+    """A robot step is done once its literals held over this many consecutive control steps."""
     require_approval: bool = False
     """New plans (and re-plans) wait for an operator's approve before they execute."""
 
@@ -69,6 +71,8 @@ class Executive:
     observation: Observation | None = None
     step_started: int = 0
     contradicted_since: int | None = None
+    achieved_since: int | None = None
+    """First control step of the current run of steps in which the active step's literals hold."""
     goal_started: int = 0
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
@@ -98,7 +102,8 @@ class Executive:
     def observe(self, observation: Observation) -> None:
         changed = self.observation is None or observation.literals != self.observation.literals
         self.observation = observation
-        if changed and self.status in ("executing", "paused", "awaiting_approval"):
+        confirming = self.achieved_since is not None
+        if (changed or confirming) and self.status in ("executing", "paused", "awaiting_approval"):
             self._advance()
             if self.status == "executing":
                 self._check_consistency()
@@ -109,6 +114,8 @@ class Executive:
             self.observation.step = max(self.observation.step, step)
         if self.status != "executing" or self.current >= len(self.steps):
             return
+        if self.achieved_since is not None:
+            self._advance()
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
         elif self.steps[self.current].assignee == "robot" and step - self.step_started > self.stall_steps:
@@ -133,7 +140,7 @@ class Executive:
             self.current = len(self.steps)
             self._finish("succeeded", f"goal {self.goal_text} holds")
             return
-        while self.current < len(self.steps) and obs.holds(self.steps[self.current].subgoal.literals()):
+        while self.current < len(self.steps) and self._achieved(self.steps[self.current], obs):
             self.steps[self.current].status = "done"
             self._emit(f"step {self.current} {self.steps[self.current].subgoal} done")
             self.current += 1
@@ -146,6 +153,21 @@ class Executive:
             self.step_started = obs.step
             self._emit(f"step {self.current} {self.steps[self.current].subgoal} started "
                        f"({self.steps[self.current].assignee})")
+
+    def _achieved(self, step: PlanStep, obs: Observation) -> bool:
+        """The step's literals hold, for ``confirm_steps`` control steps in a row if the robot runs it
+        (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
+        if not obs.holds(step.subgoal.literals()):
+            self.achieved_since = None
+            return False
+        if step.assignee == "human" or self.status != "executing":
+            return True
+        if self.achieved_since is None:
+            self.achieved_since = obs.step
+        if obs.step - self.achieved_since + 1 < self.confirm_steps:
+            return False
+        self.achieved_since = None
+        return True
 
     def _check_consistency(self) -> None:
         obs = self.observation
@@ -178,7 +200,7 @@ class Executive:
         return True, self.message
 
     def _install(self, steps: list[PlanStep], message: str, keep: int = 0) -> None:
-        self.steps, self.current = steps, keep
+        self.steps, self.current, self.achieved_since = steps, keep, None
         self.status = "awaiting_approval" if self.require_approval else "executing"
         self.contradicted_since = None
         self.step_started = self.observation.step if self.observation else 0

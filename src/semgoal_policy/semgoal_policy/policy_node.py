@@ -1,5 +1,6 @@
 """policy_node: world state and the active sub-goal in, one ArmCommand per world state out (lockstep) or
-at ``rate_hz`` (realtime). Without an active sub-goal, or once it holds, it holds still (realtime: zero
+at ``rate_hz`` (realtime). Without an active sub-goal, or once it is confirmed (its literals held for
+``SUBGOAL_CONFIRM_STEPS`` steps, the planner's rule), it holds still (realtime: zero
 commands; lockstep: no command, so the world waits for the planner). It never publishes NaN or values
 outside [-1, 1]."""
 
@@ -71,8 +72,8 @@ class PolicyNode(Node):
             self.answer_lockstep()
 
     def decide(self, msg: WorldState) -> np.ndarray | None:
-        """The command for a world state; None once the sub-goal holds (the planner names the next one)."""
-        if self.controller.goal is not None and self.controller.achieved(conversions.semantic_vector(msg)):
+        """The command for a world state; None once the sub-goal is confirmed (the planner names the next one)."""
+        if self.controller.goal is not None and self.controller.confirmed(msg.step, conversions.semantic_vector(msg)):
             return None
         return self.controller.act(msg.observation, (msg.episode, msg.step))
 

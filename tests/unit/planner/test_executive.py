@@ -20,7 +20,8 @@ def observe(true: list[str], step: int = 0, scene: str = "desk_cleanup", objects
 
 
 def executive(**kwargs) -> Executive:
-    ex = Executive(SemanticPlanner("desk_cleanup"), **kwargs)
+    """Steps are done as soon as their literals hold (confirmation is tested on its own below)."""
+    ex = Executive(SemanticPlanner("desk_cleanup"), **{"confirm_steps": 1, **kwargs})
     ex.observe(observe([]))
     return ex
 
@@ -37,6 +38,20 @@ def test_goal_is_planned_then_followed_to_success() -> None:
     ex.observe(observe(["in_bin(green)", "holding(red)"], 60))
     ex.observe(observe(["in_bin(green)", "in_bin(red)"], 80))
     assert ex.status == "succeeded" and ex.active is None
+
+
+def test_a_robot_step_is_done_only_once_its_literals_held_for_the_confirmation_steps() -> None:
+    ex = executive(confirm_steps=3)
+    ex.set_goal("in_bin(red)")
+    ex.observe(observe(["holding(red)"], 20))
+    ex.tick(21)
+    assert ex.current == 0  # held for 2 steps only
+    ex.observe(observe([], 22))  # a brushing grasp: lost again
+    ex.observe(observe(["holding(red)"], 23))
+    ex.tick(24)
+    assert ex.current == 0
+    ex.tick(25)
+    assert ex.current == 1 and ex.steps[0].status == "done" and ex.active.subgoal.kind == "put_in_bin"
 
 
 def test_bad_goal_keeps_the_previous_plan() -> None:

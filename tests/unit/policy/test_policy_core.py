@@ -10,7 +10,7 @@ from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, export,
 from semgoal_policy.controller import HOLD, SubgoalController
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_sim import layout
-from semgoal_sim.vocabulary import Literal, VocabularyError
+from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
 
 SCENE = "two_blocks"
 
@@ -95,6 +95,13 @@ def test_controller_knows_when_its_subgoal_holds(tmp_path) -> None:
     assert not controller.achieved(vector)
     vector[controller.layout.index(Literal("holding", ("red",)))] = 1.0
     assert controller.achieved(vector)
+    # confirmed (the planner's rule) only once it held over SUBGOAL_CONFIRM_STEPS distinct steps
+    assert [controller.confirmed(step, vector) for step in range(10, 10 + SUBGOAL_CONFIRM_STEPS)] == \
+        [False] * (SUBGOAL_CONFIRM_STEPS - 1) + [True]
+    controller.set_subgoal([Literal("holding", ("red",))])  # the same sub-goal again: the count goes on
+    assert controller.confirmed(10 + SUBGOAL_CONFIRM_STEPS, vector)
+    controller.set_subgoal([Literal("holding", ("green",))])
+    assert not controller.confirmed(20, np.zeros_like(vector))
 
 
 def test_sampled_actions_are_reproducible_from_their_key_and_differ_from_the_mean(tmp_path) -> None:

@@ -45,8 +45,8 @@ class Operator:
     def observe(self, true: set[str], step: int, held: bool = True) -> None:
         """The world as the predicates would report it at ``step`` (and, ``held``, long enough after it to
         confirm a robot step)."""
-        for held in (step, step + SUBGOAL_CONFIRM_STEPS - 1)[: 2 if held else 1]:
-            self.states.publish(semantic_state(true, held))
+        for at in (step, step + SUBGOAL_CONFIRM_STEPS - 1)[: 2 if held else 1]:
+            self.states.publish(semantic_state(true, at))
             self.probe.spin_for(0.3)
 
     def actions(self) -> list[str]:

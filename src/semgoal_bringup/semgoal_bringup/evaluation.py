@@ -18,6 +18,7 @@ import argparse
 import csv
 import json
 import math
+import os
 import sys
 import time
 from dataclasses import dataclass, field
@@ -82,32 +83,63 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
     return [d for d in [models_dir / name, *extra] if (d / "actor.json").exists()][:seeds]
 
 
-def evaluate_agent(agent: str, task_names: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
-                   progress) -> Row:
-    """In-process episodes of one agent, every task, every available training seed."""
+def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: int, models_dir: Path) -> Row:
+    """In-process episodes of one agent on one task, for every available training seed (one job)."""
+    import torch
+
     from semgoal_bringup.episodes import make_agent
 
+    torch.set_num_threads(1)
     row = Row(agent)
     started = time.perf_counter()
-    for task_name in task_names:
-        scene = get_task(task_name).scene
-        dirs = actor_dirs(agent, scene, seeds, models_dir)
-        if not dirs:
-            raise FileNotFoundError(f"no exported {agent} actor for {scene} under {models_dir}: "
-                                    f"train one with ./semgoal train --scene {scene} --agent {agent}")
-        row.training_seeds[task_name] = len(dirs)
-        for directory in dirs:
-            row.env_steps.add(json.loads((directory / "actor.json").read_text())["env_steps"])
-            runner = make_agent(agent, scene, directory)
-            for i in range(episodes):
-                outcome = runner.run(task_name, seed + i)
-                row.add(task_name, outcome.success, outcome.steps)
-                progress.update(1)
+    scene = get_task(task_name).scene
+    dirs = actor_dirs(agent, scene, seeds, models_dir)
+    if not dirs:
+        raise FileNotFoundError(f"no exported {agent} actor for {scene} under {models_dir}: "
+                                f"train one with ./semgoal train --scene {scene} --agent {agent}")
+    row.training_seeds[task_name] = len(dirs)
+    for directory in dirs:
+        row.env_steps.add(json.loads((directory / "actor.json").read_text())["env_steps"])
+        runner = make_agent(agent, scene, directory)
+        for i in range(episodes):
+            outcome = runner.run(task_name, seed + i)
+            row.add(task_name, outcome.success, outcome.steps)
     row.wall_s = time.perf_counter() - started
     return row
 
 
-def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, progress) -> Row:
+def merge(rows: list[Row]) -> list[Row]:
+    """One row per agent from per-task rows, in first-seen order."""
+    merged: dict[str, Row] = {}
+    for part in rows:
+        row = merged.setdefault(part.agent, Row(part.agent))
+        row.training_seeds.update(part.training_seeds)
+        row.env_steps |= part.env_steps
+        for table, values in ((row.wins, part.wins), (row.episodes, part.episodes), (row.steps, part.steps)):
+            table.update(values)
+        row.wall_s += part.wall_s
+    return list(merged.values())
+
+
+def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
+                        jobs: int) -> list[Row]:
+    """Every (agent, task) as a job on ``jobs`` worker processes (each job is seeded: results do not depend on it)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from tqdm import tqdm
+
+    work = [(agent, task) for agent in agents for task in tasks]
+    with ProcessPoolExecutor(max_workers=jobs) as pool, tqdm(total=len(work), unit="task", desc="eval",
+                                                              file=sys.stderr) as progress:
+        futures = [pool.submit(evaluate_task, agent, task, episodes, seed, seeds, models_dir) for agent, task in work]
+        parts = []
+        for future in futures:
+            parts.append(future.result())
+            progress.update(1)
+    return merge(parts)
+
+
+def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
     from semgoal_bringup.graph_eval import run_via_ros
     from semgoal_policy import actor as actor_io
 
@@ -118,7 +150,6 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, progress) 
         row.training_seeds[outcome.task] = 1
         meta = json.loads((actor_io.MODELS_DIR / get_task(outcome.task).scene / "actor.json").read_text())
         row.env_steps.add(meta["env_steps"])
-        progress.update(1)
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -228,6 +259,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
     args = parser.parse_args(argv)
     try:
         tasks = parse_tasks(args.tasks)
@@ -237,24 +269,16 @@ def main(argv: list[str]) -> int:
     unknown = [a for a in agents if a not in AGENT_NAMES]
     if unknown or not agents or not tasks or args.episodes < 1:
         parser.error(f"need tasks, episodes >= 1 and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
-    import torch
-    from tqdm import tqdm
-
     from semgoal_policy import actor as actor_io
 
-    torch.set_num_threads(1)
     models_dir = args.models or actor_io.MODELS_DIR
-    actors = sum(len(actor_dirs(a, get_task(t).scene, args.seeds, models_dir)) for a in agents for t in tasks)
-    total = args.episodes * (actors + len(tasks) * args.via_ros)
-    rows = []
-    with tqdm(total=total, unit="episode", desc="eval", file=sys.stderr, mininterval=2) as progress:
-        try:
-            rows += [evaluate_agent(a, tasks, args.episodes, args.seed, args.seeds, models_dir, progress) for a in agents]
-        except FileNotFoundError as error:
-            print(f"semgoal eval: {error}", file=sys.stderr)
-            return 2
-        if args.via_ros:
-            rows.append(evaluate_via_ros(tasks, args.episodes, args.seed, progress))
+    try:
+        rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs)
+    except FileNotFoundError as error:
+        print(f"semgoal eval: {error}", file=sys.stderr)
+        return 2
+    if args.via_ros:
+        rows.append(evaluate_via_ros(tasks, args.episodes, args.seed))
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)

@@ -15,9 +15,10 @@ HOLD = np.zeros(4, dtype=np.float32)
 
 
 ACTION_MODES = ("sample", "mean")
-"""How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by episode and step, so
-runs stay reproducible), ``mean`` takes its mean. Sampling is the default: the deterministic mean can
-hover in place for good (MC-2, task seeds 3000000+: 10 of 12 solved with the mean, 12 of 12 sampled)."""
+"""How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
+step, so runs are reproducible and the graph and in-process evaluation act alike), ``mean`` takes its
+mean. Sampling is the default: the deterministic mean can hover in place for good (MC-2, task seeds
+3000000+: 10 of 12 solved with the mean, 12 of 12 sampled)."""
 
 
 class SubgoalController:
@@ -62,7 +63,7 @@ class SubgoalController:
         return bool(layout.goal_reward(achieved, self.goal))
 
     def act(self, observation: np.ndarray, noise_key: tuple[int, ...] = (0,)) -> np.ndarray:
-        """The command for an observation; ``noise_key`` (e.g. episode, step) seeds the sampled noise."""
+        """The command for an observation; ``noise_key`` (task seed, step) seeds the sampled noise."""
         observation = np.asarray(observation, dtype=np.float32)
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()

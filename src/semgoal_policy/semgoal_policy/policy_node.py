@@ -75,7 +75,7 @@ class PolicyNode(Node):
         """The command for a world state; None once the sub-goal is confirmed (the planner names the next one)."""
         if self.controller.goal is not None and self.controller.confirmed(msg.step, conversions.semantic_vector(msg)):
             return None
-        return self.controller.act(msg.observation, (msg.episode, msg.step))
+        return self.controller.act(msg.observation, (msg.seed, msg.step))
 
     def answer_lockstep(self) -> None:
         """One command per step while a sub-goal is active and not yet achieved; otherwise the world waits,

@@ -14,8 +14,8 @@ from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCEN
 from semgoal_sim.world import FetchWorld, Snapshot
 
 
-def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int) -> WorldState:
-    msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode)
+def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, seed: int = 0) -> WorldState:
+    msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode, seed=seed)
     msg.header.frame_id = "world"
     seconds = snapshot.time
     msg.header.stamp.sec, msg.header.stamp.nanosec = int(seconds), int((seconds % 1) * 1e9)

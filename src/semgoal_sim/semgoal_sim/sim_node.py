@@ -58,7 +58,7 @@ class SimNode(Node):
 
     def publish_state(self) -> WorldState:
         snapshot = self.core.snapshot()
-        msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode)
+        msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode, self.core.seed)
         self.world_pub.publish(msg)
         self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot))
         if snapshot.step % max(1, self.markers_every) == 0:

@@ -1,0 +1,115 @@
+"""`./semgoal bench-graph [--task T] [--episodes N] [--json]`: the four-node graph's speed, both modes.
+
+Lockstep: control steps per second of wall time, end to end (sim -> predicates -> planner -> policy ->
+sim, over DDS), over N episodes of the task, beside the same episodes in one process (no ROS) as the
+peer: the ratio is what the graph costs. Realtime: the sim steps at 25 Hz on its timer; the client
+records when each world state arrives and counts a step late when it comes more than half a period
+after its slot. Figures are medians over episodes; the last line is JSON with ``--json``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import random
+import statistics
+import time
+
+from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
+from semgoal_sim.tasks import get_task
+
+REALTIME_HZ = 25.0
+
+
+def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
+    """(control steps, wall seconds) per episode through the graph."""
+    from semgoal_bringup.graph import start_graph, stop_graph
+    from semgoal_bringup.graph_client import GraphClient
+
+    processes = start_graph(task, seed, mode="lockstep")
+    client = GraphClient("semgoal_bench")
+    try:
+        if not client.wait_ready():
+            raise RuntimeError("the node graph did not come up")
+        runs = []
+        for i in range(episodes):
+            client.reset(task, seed + i)
+            result = client.execute(task, max_steps=TASK_STEP_BUDGET)
+            runs.append((result.control_steps, result.wall_s))
+        return runs
+    finally:
+        client.close()
+        stop_graph(processes)
+
+
+def in_process(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
+    agent = make_agent("hierarchical", get_task(task).scene)
+    runs = []
+    for i in range(episodes):
+        started = time.perf_counter()
+        outcome = agent.run(task, seed + i)
+        runs.append((outcome.steps, time.perf_counter() - started))
+    return runs
+
+
+def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
+    """Arrival jitter of world states while the graph solves the task at 25 Hz."""
+    from semgoal_bringup.graph import start_graph, stop_graph
+    from semgoal_bringup.graph_client import GraphClient
+
+    processes = start_graph(task, seed, mode="realtime")
+    client = GraphClient("semgoal_bench")
+    arrivals: list[tuple[int, float]] = []
+    client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
+    try:
+        if not client.wait_ready():
+            raise RuntimeError("the node graph did not come up")
+        client.reset(task, seed)
+        arrivals.clear()
+        client.execute(task, timeout=seconds, max_steps=int(seconds * REALTIME_HZ))
+        client.spin_until(lambda: bool(arrivals) and arrivals[-1][1] - arrivals[0][1] >= seconds, seconds + 5)
+    finally:
+        client.close()
+        stop_graph(processes)
+    period = 1.0 / REALTIME_HZ
+    steps = {step: at for step, at in arrivals}  # heartbeats repeat a step: keep its last arrival
+    ordered = sorted(steps.items())
+    first_step, first_at = ordered[0]
+    late = sum(at - (first_at + (step - first_step) * period) > period / 2 for step, at in ordered)
+    span = ordered[-1][1] - first_at
+    return {"steps": len(ordered), "rate_hz": (ordered[-1][0] - first_step) / span if span else 0.0,
+            "late_fraction": late / len(ordered)}
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal bench-graph", description=__doc__.splitlines()[0])
+    parser.add_argument("--task", default="MC-2")
+    parser.add_argument("--episodes", type=int, default=5)
+    parser.add_argument("--seed", type=int, default=3_000_000)
+    parser.add_argument("--realtime-s", type=float, default=20.0, help="seconds of realtime running")
+    parser.add_argument("--json", action="store_true")
+    args = parser.parse_args(argv)
+    os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))
+    import torch
+
+    torch.set_num_threads(1)
+    task = get_task(args.task).name
+    graph = lockstep(task, args.episodes, args.seed)
+    local = in_process(task, args.episodes, args.seed)
+    rate = lambda runs: statistics.median(steps / wall for steps, wall in runs if wall > 0)  # noqa: E731
+    result = {"task": task, "episodes": args.episodes,
+              "lockstep_graph_steps_per_s": round(rate(graph), 1),
+              "in_process_steps_per_s": round(rate(local), 1),
+              "graph_over_in_process": round(rate(graph) / rate(local), 3),
+              "graph_steps": [s for s, _ in graph], "in_process_steps": [s for s, _ in local],
+              "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
+    print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
+          f"{args.episodes}); in one process: {result['in_process_steps_per_s']} steps/s; "
+          f"ratio {result['graph_over_in_process']}")
+    rt = result["realtime"]
+    print(f"realtime at {REALTIME_HZ:.0f} Hz: {rt['steps']} steps at {rt['rate_hz']:.2f} Hz, "
+          f"{100 * rt['late_fraction']:.2f} % late (> half a period behind its slot)")
+    if args.json:
+        print(json.dumps(result))
+    return 0

@@ -19,6 +19,7 @@ import csv
 import json
 import math
 import os
+import shlex
 import sys
 import time
 from dataclasses import dataclass, field
@@ -165,30 +166,29 @@ def _seeds_text(row: Row) -> str:
     return str(min(counts)) if len(counts) == 1 else f"{min(counts)}-{max(counts)}"
 
 
-def write_markdown(rows: list[Row], tasks: list[str], episodes: int, seed: int, path: Path) -> None:
-    header = "| Method | training seeds | training steps | " + " | ".join(tasks) + " |"
+def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, path: Path) -> None:
+    header = "| Method | training seeds | training steps | episodes per task | " + " | ".join(tasks) + " |"
     lines = [
         "# Table 1: task completion (%)",
         "",
-        f"Ours: {episodes} episodes per task and training seed, task seeds {seed}..{seed + episodes - 1} (the same "
-        f"starts for every agent), at most {_budget()} control steps each; ± is the 95 % interval half-width. "
+        f"Ours: task seeds from {seed} (episode i of every agent starts from the same state), at most "
+        f"{_budget()} control steps each; ± is the 95 % interval half-width. "
         "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
-        "Regenerate: `./semgoal eval --tasks all --episodes "
-        f"{episodes} --seeds 3 --agents {','.join(r.agent for r in rows if r.agent != VIA_ROS)}"
-        f"{' --via-ros' if any(r.agent == VIA_ROS for r in rows) else ''} --json --out results/`",
+        f"Regenerate: `{command}`",
         "",
         header,
-        "|" + "---|" * (3 + len(tasks)),
+        "|" + "---|" * (4 + len(tasks)),
     ]
     for agent in AGENT_NAMES:
         if any(r.agent.startswith(agent) for r in rows):
             paper = PAPER_TABLE1[agent]
-            lines.append(f"| {PAPER_NAMES[agent]} (paper) | 3 | 2000k | "
+            lines.append(f"| {PAPER_NAMES[agent]} (paper) | 3 | 2000k | 50 | "
                          + " | ".join(f"{paper[t]}" for t in tasks) + " |")
         for row in rows:
             if row.agent.split(" ")[0] == agent:
                 cells = [f"{100 * row.rate(t):.0f} ± {100 * row.margin(t):.0f}" for t in tasks]
                 lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row)} | {_steps_text(row)} | "
+                             f"{min(row.episodes.values())} | "
                              + " | ".join(cells) + " |")
     path.write_text("\n".join(lines) + "\n")
 
@@ -256,6 +256,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--seeds", type=int, default=3, help="training seeds to average where actors exist")
     parser.add_argument("--agents", default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
+    parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
@@ -278,13 +279,13 @@ def main(argv: list[str]) -> int:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2
     if args.via_ros:
-        rows.append(evaluate_via_ros(tasks, args.episodes, args.seed))
+        rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed))
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
-        write_markdown(rows, tasks, args.episodes, args.seed, args.out / "table1.md")
+        write_markdown(rows, tasks, shlex.join(["./semgoal", "eval", *argv]), args.seed, args.out / "table1.md")
         write_csv(rows, tasks, args.out / "table1.csv")
         write_chart(rows, tasks, args.out / "table1.png")
         print(f"wrote {args.out}/table1.md, table1.csv, table1.png", file=sys.stderr)

@@ -30,7 +30,7 @@ def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert set(summary) == {"MA-2"} and 0.0 <= summary["MA-2"]["hierarchical"] <= 1.0
     table = (tmp_path / "table1.md").read_text()
-    assert "Hierarchical Semantic (paper) | 3 | 2000k | 100" in table and "**hierarchical (ours)** | 1 |" in table
+    assert "Hierarchical Semantic (paper) | 3 | 2000k | 50 | 100" in table and "**hierarchical (ours)** | 1 |" in table
     rows = list(csv.DictReader((tmp_path / "table1.csv").open()))
     assert {(r["source"], r["task"]) for r in rows} == {("paper", "MA-2"), ("ours", "MA-2")}
     assert (tmp_path / "table1.png").stat().st_size > 5000

@@ -278,8 +278,13 @@ def main(argv: list[str]) -> int:
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2
+    failed = False
     if args.via_ros:
-        rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed))
+        try:
+            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed))
+        except RuntimeError as error:  # the in-process rows are still written
+            print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
+            failed = True
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
@@ -291,4 +296,4 @@ def main(argv: list[str]) -> int:
         print(f"wrote {args.out}/table1.md, table1.csv, table1.png", file=sys.stderr)
     if args.json:
         print(json.dumps({t: {row.agent: round(row.rate(t), 4) for row in rows} for t in tasks}))
-    return 0
+    return 1 if failed else 0

@@ -90,16 +90,21 @@ class GraphClient:
         future = client.call_async(request)
         return future.result() if self.spin_until(future.done, timeout) else None
 
-    def reset(self, task: str, seed: int) -> tuple[bool, str]:
-        """Reset the world to a task's start; returns once the planner can see the new semantic state."""
-        reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
-        if reply is None or not reply.success:
-            return False, reply.message if reply else "reset_world did not answer"
-        self.semantic = None
-        if not self.spin_until(lambda: self.semantic is not None and self.semantic.step == 0, 10):
-            return False, "no semantic state after the reset"
-        self.spin_until(lambda: False, 0.3)  # the planner receives the same latched state
-        return True, reply.message
+    def reset(self, task: str, seed: int, attempts: int = 2) -> tuple[bool, str]:
+        """Reset the world to a task's start; returns once the planner can see the new semantic state.
+
+        A policy still finishing the last episode's sub-goal can step the new world before it learns the
+        goal ended: then the reset is made again."""
+        message = "reset_world did not answer"
+        for _ in range(attempts):
+            reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
+            if reply is None or not reply.success:
+                return False, reply.message if reply else message
+            self.semantic, message = None, reply.message
+            if self.spin_until(lambda: self.semantic is not None and self.semantic.step == 0, 5):
+                self.spin_until(lambda: False, 0.3)  # the planner receives the same latched state
+                return True, message
+        return False, f"no semantic state of step 0 after {attempts} resets ({message})"
 
     def move_block(self, block: str, x: float, y: float, z: float) -> tuple[bool, str]:
         request = self.MoveBlock.Request(block=block)

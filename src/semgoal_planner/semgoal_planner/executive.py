@@ -73,6 +73,9 @@ class Executive:
     contradicted_since: int | None = None
     achieved_since: int | None = None
     """First control step of the current run of steps in which the active step's literals hold."""
+    last_tick: int = 0
+    """The latest control step seen by :meth:`tick`: world states reach the planner before the semantic
+    states the predicates derive from them, so confirmation counts up to here."""
     goal_started: int = 0
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
@@ -110,6 +113,7 @@ class Executive:
 
     def tick(self, step: int) -> None:
         """A control step happened (from the world state stream): stall and contradiction clocks."""
+        self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)
         if self.status != "executing" or self.current >= len(self.steps):
@@ -164,7 +168,7 @@ class Executive:
             return True
         if self.achieved_since is None:
             self.achieved_since = obs.step
-        if obs.step - self.achieved_since + 1 < self.confirm_steps:
+        if max(obs.step, self.last_tick) - self.achieved_since + 1 < self.confirm_steps:
             return False
         self.achieved_since = None
         return True

@@ -54,6 +54,15 @@ def test_a_robot_step_is_done_only_once_its_literals_held_for_the_confirmation_s
     assert ex.current == 1 and ex.steps[0].status == "done" and ex.active.subgoal.kind == "put_in_bin"
 
 
+def test_confirmation_counts_world_ticks_that_arrive_before_the_semantic_state() -> None:
+    ex = executive(confirm_steps=3)
+    ex.set_goal("in_bin(red)")
+    for step in (1, 2, 3):  # the lockstep world stops after the policy's confirmation at step 3
+        ex.tick(step)
+    ex.observe(observe(["holding(red)"], 1))  # the predicates' view of step 1 comes in last
+    assert ex.current == 1 and ex.steps[0].status == "done"
+
+
 def test_bad_goal_keeps_the_previous_plan() -> None:
     ex = executive()
     ex.set_goal("DC-3")

@@ -124,13 +124,15 @@ def merge(rows: list[Row]) -> list[Row]:
 
 def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
                         jobs: int) -> list[Row]:
-    """Every (agent, task) as a job on ``jobs`` worker processes (each job is seeded: results do not depend on it)."""
+    """Every (agent, task) as a job on ``jobs`` worker processes (each job is seeded: results do not depend on it).
+    Workers are spawned, not forked: a forked copy of a process that runs DDS threads can die at start."""
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
     from tqdm import tqdm
 
     work = [(agent, task) for agent in agents for task in tasks]
-    with ProcessPoolExecutor(max_workers=jobs) as pool, tqdm(total=len(work), unit="task", desc="eval",
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn")) as pool, tqdm(total=len(work), unit="task", desc="eval",
                                                               file=sys.stderr) as progress:
         futures = [pool.submit(evaluate_task, agent, task, episodes, seed, seeds, models_dir) for agent, task in work]
         parts = []

@@ -132,8 +132,9 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
     from tqdm import tqdm
 
     work = [(agent, task) for agent in agents for task in tasks]
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn")) as pool, tqdm(total=len(work), unit="task", desc="eval",
-                                                              file=sys.stderr) as progress:
+    spawn = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=spawn) as pool, \
+            tqdm(total=len(work), unit="task", desc="eval", file=sys.stderr) as progress:
         futures = [pool.submit(evaluate_task, agent, task, episodes, seed, seeds, models_dir) for agent, task in work]
         parts = []
         for future in futures:

@@ -24,23 +24,15 @@ REALTIME_HZ = 25.0
 
 def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
     """(control steps, wall seconds) per episode through the graph."""
-    from semgoal_bringup.graph import start_graph, stop_graph
-    from semgoal_bringup.graph_client import GraphClient
+    from semgoal_bringup.graph import running_graph
 
-    processes = start_graph(task, seed, mode="lockstep")
-    client = GraphClient("semgoal_bench")
-    try:
-        if not client.wait_ready():
-            raise RuntimeError("the node graph did not come up")
-        runs = []
+    runs = []
+    with running_graph(task, seed, client_name="semgoal_bench") as client:
         for i in range(episodes):
             client.reset(task, seed + i)
             result = client.execute(task, max_steps=TASK_STEP_BUDGET)
             runs.append((result.control_steps, result.wall_s))
-        return runs
-    finally:
-        client.close()
-        stop_graph(processes)
+    return runs
 
 
 def in_process(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
@@ -55,23 +47,15 @@ def in_process(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
 
 def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
     """Arrival jitter of world states while the graph solves the task at 25 Hz."""
-    from semgoal_bringup.graph import start_graph, stop_graph
-    from semgoal_bringup.graph_client import GraphClient
+    from semgoal_bringup.graph import running_graph
 
-    processes = start_graph(task, seed, mode="realtime")
-    client = GraphClient("semgoal_bench")
     arrivals: list[tuple[int, float]] = []
-    client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
-    try:
-        if not client.wait_ready():
-            raise RuntimeError("the node graph did not come up")
+    with running_graph(task, seed, mode="realtime", client_name="semgoal_bench") as client:
+        client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
         client.reset(task, seed)
         arrivals.clear()
         client.execute(task, timeout=seconds, max_steps=int(seconds * REALTIME_HZ))
         client.spin_until(lambda: bool(arrivals) and arrivals[-1][1] - arrivals[0][1] >= seconds, seconds + 5)
-    finally:
-        client.close()
-        stop_graph(processes)
     period = 1.0 / REALTIME_HZ
     steps = {step: at for step, at in arrivals}  # heartbeats repeat a step: keep its last arrival
     ordered = sorted(steps.items())

@@ -55,7 +55,9 @@ class HierarchicalAgent:
 
     def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
         task = _scene_task(task_name, self.scene)
-        world = self._worlds.get(task.name) or self._worlds.setdefault(task.name, FetchWorld(task.scene, task.n_blocks))
+        if task.name not in self._worlds:
+            self._worlds[task.name] = FetchWorld(task.scene, task.n_blocks)
+        world = self._worlds[task.name]
         world.reset(task.initial_state(seed)[0])
         executive = Executive(SemanticPlanner(task.scene))
         executive.observe(observe(world))

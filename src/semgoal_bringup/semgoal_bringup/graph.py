@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import os
 import subprocess
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from semgoal_sim.tasks import get_task
@@ -46,3 +48,23 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
             process.wait(timeout=10)
         except subprocess.TimeoutExpired:
             process.kill()
+
+
+@contextmanager
+def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
+                  models: str = "") -> Iterator:
+    """The four nodes and a :class:`GraphClient` on the current ROS domain, ready; all stopped on exit.
+    RuntimeError when the nodes do not come up."""
+    from semgoal_bringup.graph_client import GraphClient
+
+    processes = start_graph(task_name, seed, mode=mode, models=models)
+    client = None
+    try:
+        client = GraphClient(client_name)
+        if not client.wait_ready():
+            raise RuntimeError(f"the node graph for {task_name} did not come up")
+        yield client
+    finally:
+        if client is not None:
+            client.close()
+        stop_graph(processes)

@@ -16,19 +16,14 @@ from semgoal_sim.tasks import get_task
 
 def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "") -> Iterator[Outcome]:
     """Yield one :class:`Outcome` per episode, task by task, starting each scene's graph once."""
-    from semgoal_bringup.graph import start_graph, stop_graph
-    from semgoal_bringup.graph_client import GraphClient
+    from semgoal_bringup.graph import running_graph
 
     by_scene: dict[str, list[str]] = {}
     for name in task_names:
         by_scene.setdefault(get_task(name).scene, []).append(name)
     for scene_tasks in by_scene.values():
         os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))
-        processes = start_graph(scene_tasks[0], seed, mode="lockstep", models=models)
-        client = GraphClient("semgoal_eval")
-        try:
-            if not client.wait_ready():
-                raise RuntimeError(f"the node graph for {scene_tasks[0]} did not come up")
+        with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models) as client:
             for task_name in scene_tasks:
                 for i in range(episodes):
                     ok, message = client.reset(task_name, seed + i)
@@ -36,6 +31,3 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
                         raise RuntimeError(f"reset to {task_name} seed {seed + i} failed: {message}")
                     result = client.execute(task_name, max_steps=TASK_STEP_BUDGET)
                     yield Outcome(task_name, seed + i, result.success, result.control_steps, result.replans)
-        finally:
-            client.close()
-            stop_graph(processes)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
-from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
 
 STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
@@ -71,14 +71,17 @@ class Executive:
     observation: Observation | None = None
     step_started: int = 0
     contradicted_since: int | None = None
-    achieved_since: int | None = None
-    """First control step of the current run of steps in which the active step's literals hold."""
+    confirmation: Confirmation = field(init=False)
+    """Counts the control steps over which the active step's literals held."""
     last_tick: int = 0
     """The latest control step seen by :meth:`tick`: world states reach the planner before the semantic
     states the predicates derive from them, so confirmation counts up to here."""
     goal_started: int = 0
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
+
+    def __post_init__(self) -> None:
+        self.confirmation = Confirmation(self.confirm_steps)
 
     # -- goals ---------------------------------------------------------------------------------------
     def set_goal(self, text: str) -> tuple[bool, str]:
@@ -105,7 +108,7 @@ class Executive:
     def observe(self, observation: Observation) -> None:
         changed = self.observation is None or observation.literals != self.observation.literals
         self.observation = observation
-        confirming = self.achieved_since is not None
+        confirming = self.confirmation.pending
         if (changed or confirming) and self.status in ("executing", "paused", "awaiting_approval"):
             self._advance()
             if self.status == "executing":
@@ -118,7 +121,7 @@ class Executive:
             self.observation.step = max(self.observation.step, step)
         if self.status != "executing" or self.current >= len(self.steps):
             return
-        if self.achieved_since is not None:
+        if self.confirmation.pending:
             self._advance()
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
@@ -161,17 +164,13 @@ class Executive:
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold, for ``confirm_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
-        if not obs.holds(step.subgoal.literals()):
-            self.achieved_since = None
-            return False
-        if step.assignee == "human" or self.status != "executing":
+        holds = obs.holds(step.subgoal.literals())
+        if holds and (step.assignee == "human" or self.status != "executing"):
             return True
-        if self.achieved_since is None:
-            self.achieved_since = obs.step
-        if max(obs.step, self.last_tick) - self.achieved_since + 1 < self.confirm_steps:
-            return False
-        self.achieved_since = None
-        return True
+        done = self.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))
+        if done:
+            self.confirmation.reset()
+        return done
 
     def _check_consistency(self) -> None:
         obs = self.observation
@@ -204,7 +203,8 @@ class Executive:
         return True, self.message
 
     def _install(self, steps: list[PlanStep], message: str, keep: int = 0) -> None:
-        self.steps, self.current, self.achieved_since = steps, keep, None
+        self.steps, self.current = steps, keep
+        self.confirmation.reset()
         self.status = "awaiting_approval" if self.require_approval else "executing"
         self.contradicted_since = None
         self.step_started = self.observation.step if self.observation else 0

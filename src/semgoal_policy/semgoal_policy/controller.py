@@ -8,7 +8,7 @@ import numpy as np
 
 from semgoal_policy import actor as actor_io
 from semgoal_sim import layout
-from semgoal_sim.vocabulary import LAYOUTS, SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
+from semgoal_sim.vocabulary import LAYOUTS, Confirmation, Literal, VocabularyError
 
 HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""
@@ -31,7 +31,7 @@ class SubgoalController:
         self.layout = LAYOUTS[scene]
         self.actor, self.meta = actor_io.load(model_dir or actor_io.MODELS_DIR / scene, scene)
         self.goal: np.ndarray | None = None
-        self.achieved_since: int | None = None
+        self.confirmation = Confirmation()
         self.obs_size = layout.observation_size(scene)
 
     def set_subgoal(self, literals: list[Literal]) -> None:
@@ -41,18 +41,13 @@ class SubgoalController:
             target, mask = self.layout.encode(literals)
             goal = np.concatenate([target, mask])
         if goal is None or self.goal is None or not np.array_equal(goal, self.goal):
-            self.achieved_since = None  # a new sub-goal: its confirmation starts over
+            self.confirmation.reset()  # a new sub-goal: its confirmation starts over
         self.goal = goal
 
     def confirmed(self, step: int, semantic_vector: np.ndarray) -> bool:
         """Whether the sub-goal's literals held over the last ``SUBGOAL_CONFIRM_STEPS`` control steps up to
         ``step`` (the planner's rule for done); call it once per new control step."""
-        if not self.achieved(semantic_vector):
-            self.achieved_since = None
-            return False
-        if self.achieved_since is None:
-            self.achieved_since = step
-        return step - self.achieved_since + 1 >= SUBGOAL_CONFIRM_STEPS
+        return self.confirmation.update(self.achieved(semantic_vector), step)
 
     def achieved(self, semantic_vector: np.ndarray) -> bool:
         """Whether the active sub-goal's literals hold in this semantic state (False when there is none)."""

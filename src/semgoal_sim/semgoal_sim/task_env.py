@@ -106,14 +106,14 @@ class TaskEnv(gym.Env):
             self._desired = self._padded(goal_configuration(self.task, settled, self.np_random))
         self._steps = 0
         self._expert_subgoal = None
-        return self._obs(), self._info()
+        return self._read()
 
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
-        obs = self._obs()
+        obs, info = self._read()
         reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], None))
-        return obs, reward, False, self._steps >= self.max_steps, self._info()
+        return obs, reward, False, self._steps >= self.max_steps, info
 
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
         reward = layout.goal_reward if self.goal_kind == "semantic" else layout.position_reward
@@ -135,15 +135,14 @@ class TaskEnv(gym.Env):
         padded[: len(positions)] = positions
         return padded.ravel()
 
-    def _obs(self) -> dict[str, np.ndarray]:
+    def _read(self) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
+        """Observation and info from one snapshot and one evaluation of the predicates."""
         snapshot = self.world.snapshot()
+        vector = self.world.semantic_vector(snapshot)
         if self.goal_kind == "semantic":
-            achieved = np.concatenate([self.world.semantic_vector(snapshot).astype(np.float32), self._mask])
+            achieved = np.concatenate([vector.astype(np.float32), self._mask])
         else:
             achieved = self._padded(snapshot.block_positions)
-        return {"observation": self.world.observation(snapshot), "achieved_goal": achieved,
-                "desired_goal": self._desired.copy()}
-
-    def _info(self) -> dict[str, Any]:
-        solved = self.task is not None and satisfied(self.layout, self.world.semantic_vector(), self.goal_literals)
-        return {"task": self.kind, "is_success": solved}
+        obs = {"observation": self.world.observation(snapshot), "achieved_goal": achieved,
+               "desired_goal": self._desired.copy()}
+        return obs, {"task": self.kind, "is_success": satisfied(self.layout, vector, self.goal_literals)}

@@ -309,6 +309,33 @@ the grasp and settles the block. Measured in process (12 episodes, task seeds 30
 with 1 / 3 / 5 / 8 / 10 steps: 5 / 8 / 10 / 9 / 8 of 12; DC-3: 0 / 1 / 3 / 2 / 0."""
 
 
+
+@dataclass
+class Confirmation:
+    """The rule that ends a robot sub-goal, kept by the planner's executive and by the policy alike: its
+    literals held over ``steps`` consecutive control steps."""
+
+    steps: int = SUBGOAL_CONFIRM_STEPS
+    since: int | None = None
+    """First step of the current run of steps in which the literals hold."""
+
+    def update(self, holds: bool, step: int, now: int | None = None) -> bool:
+        """Record whether the literals hold at ``step``; True once they held from ``since`` up to ``now``
+        (default ``step``)."""
+        if not holds:
+            self.since = None
+            return False
+        if self.since is None:
+            self.since = step
+        return (step if now is None else now) - self.since + 1 >= self.steps
+
+    def reset(self) -> None:
+        self.since = None
+
+    @property
+    def pending(self) -> bool:
+        return self.since is not None
+
 @dataclass(frozen=True)
 class SubGoal:
     """A sub-goal: a typed symbolic action such as put_near(red,green)."""

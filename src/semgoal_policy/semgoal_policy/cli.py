@@ -29,6 +29,8 @@ def train_main(argv: list[str]) -> int:
     parser.add_argument("--demo-fraction", type=float, default=defaults.demo_fraction,
                         help="share of episodes run by the scripted expert (0: no demonstrations)")
     parser.add_argument("--bc-weight", type=float, default=SacConfig.bc_weight, help="0: no behaviour cloning")
+    parser.add_argument("--no-q-filter", action="store_true", help="clone the expert's label in every state, "
+                        "not only where the critic rates it above the actor's action")
     parser.add_argument("--no-curriculum", action="store_true")
     parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
     parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
@@ -41,7 +43,7 @@ def train_main(argv: list[str]) -> int:
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
-        max_wall_s=args.max_wall_min * 60, sac=SacConfig(bc_weight=args.bc_weight),
+        max_wall_s=args.max_wall_min * 60, sac=SacConfig(bc_weight=args.bc_weight, q_filter=not args.no_q_filter),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
     trainer = Trainer(config)

@@ -53,8 +53,7 @@ class SubgoalController:
         """Whether the active sub-goal's literals hold in this semantic state (False when there is none)."""
         if self.goal is None:
             return False
-        size = self.layout.size
-        achieved = np.concatenate([np.asarray(semantic_vector, dtype=np.float32), self.goal[size:]])
+        achieved = layout.achieved_goal(semantic_vector, self.goal[self.layout.size:])
         return bool(layout.goal_reward(achieved, self.goal))
 
     def act(self, observation: np.ndarray, noise_key: tuple[int, ...] = (0,)) -> np.ndarray:

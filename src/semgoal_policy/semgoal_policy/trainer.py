@@ -155,6 +155,13 @@ class Trainer:
         self.curriculum.record([k for k, a in zip(result.kinds, agent_runs, strict=True) if a], result.success[agent_runs])
         self.env_steps += n * self.envs[0].max_steps
 
+    def cycle(self) -> int:
+        """One collection cycle and its gradient steps; returns the env steps collected."""
+        before = self.env_steps
+        self.collect()
+        self.train_step(self.env_steps - before)
+        return self.env_steps - before
+
     def train_step(self, env_steps: int) -> None:
         cfg = self.config
         if self.replay.transitions < cfg.learning_starts:
@@ -185,11 +192,8 @@ class Trainer:
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
         session_start, wall_at_start = time.perf_counter(), self.wall_s
         while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
-            before = self.env_steps
-            self.collect()
-            self.train_step(self.env_steps - before)
+            bar.update(self.cycle())
             self.wall_s = wall_at_start + time.perf_counter() - session_start
-            bar.update(self.env_steps - before)
             if self.env_steps >= next_eval:
                 rates = self.evaluate(cfg.eval_episodes)
                 self._log(csv_path, rates)

@@ -16,12 +16,20 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_sim import layout, tasks
-from semgoal_sim.expert import expert_action
-from semgoal_sim.vocabulary import SCENES, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.expert import GAIN, expert_action
+from semgoal_sim.vocabulary import SCENES, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
 """Control steps per sub-goal episode (2 s of sim time; the expert needs about 15 to 25)."""
+HANDOVER_NOISE = 0.1
+"""Gaussian noise on the expert's actions while it picks the block a put starts with: varied grasps."""
+PLACED_START_SHARE = 0.2
+"""Share of put episodes that start with the block set straight into the closed gripper at the home pose
+instead (the grasp a person hands over; cheaper, and it keeps that start in the data)."""
+ARM_START_LOW = np.array([tasks.SPAWN_LOW[0] - 0.05, tasks.SPAWN_LOW[1] - 0.05, tasks.TABLE_TOP + 0.09])
+ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.05, tasks.TABLE_TOP + 0.22])
+"""Where a pick episode's grip site starts when it does not start at home: above block height (m)."""
 
 
 class SubgoalEnv(gym.Env):
@@ -57,10 +65,8 @@ class SubgoalEnv(gym.Env):
             self.world.reset(self._sample_positions())
             subgoal = (parse_subgoal(options["subgoal"], self.scene) if "subgoal" in options
                        else self._sample_subgoal(options.get("kind")))
-            if subgoal is None:
+            if subgoal is None or not self._start_for(subgoal):
                 continue
-            if subgoal.kind != "pick":
-                self.world.place_in_gripper(subgoal.block)
             self._set_subgoal(subgoal)
             if not self._success() or "subgoal" in options:
                 break
@@ -100,6 +106,34 @@ class SubgoalEnv(gym.Env):
             return tasks.stack(rng, (0, 1) if rng.uniform() < 0.5 else (1, 0))
         return positions
 
+    def _start_for(self, subgoal: SubGoal) -> bool:
+        """Bring the arm to where a plan would hand ``subgoal`` over; False when that failed (resample)."""
+        rng = self.np_random
+        if subgoal.kind == "pick":
+            if rng.uniform() < 0.5:
+                self._move_grip(rng.uniform(ARM_START_LOW, ARM_START_HIGH))
+            return True
+        if rng.uniform() < PLACED_START_SHARE:
+            self.world.place_in_gripper(subgoal.block)
+            return True
+        return self._pick_up(subgoal.block)
+
+    def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
+        for _ in range(steps):
+            error = target - self.world.view().grip
+            self.world.step(np.array([*np.clip(GAIN * error, -1.0, 1.0), 1.0]), count=False)
+
+    def _pick_up(self, block: str, max_steps: int = EPISODE_STEPS) -> bool:
+        """The expert picks ``block`` until holding it is confirmed, as the planner confirms a pick."""
+        pick, holding = SubGoal("pick", (block,)), self.layout.index(Literal("holding", (block,)))
+        confirmation = Confirmation()
+        for step in range(max_steps):
+            noise = HANDOVER_NOISE * self.np_random.standard_normal(4)
+            self.world.step(expert_action(pick, self.world.view()) + noise, count=False)
+            if confirmation.update(bool(self.world.semantic_vector()[holding]), step):
+                return True
+        return False
+
     def _sample_subgoal(self, kind: str | None = None) -> SubGoal | None:
         rng, blocks = self.np_random, self.world.blocks
         kind = kind or str(rng.choice(self.subgoal_types))
@@ -110,12 +144,17 @@ class SubgoalEnv(gym.Env):
             return None
         if kind in ("put_near", "put_away") and len(others) >= 2 and rng.uniform() < 0.3:
             refs = tuple(others[:2])
+            if kind == "put_near" and not self._close(vector, refs):
+                return None  # near both only fits where the references are close to each other (MC-3)
             try:
                 return parse_subgoal(f"{kind}({x},{','.join(refs)})", self.scene)
             except VocabularyError:
                 return None
         args = (x, others[0]) if kind in ("put_near", "put_away", "put_on") else (x,)
         return SubGoal(kind, args)
+
+    def _close(self, vector: np.ndarray, pair: tuple[str, str]) -> bool:
+        return bool(vector[self.layout.index(Literal("close", pair))])
 
     def _set_subgoal(self, subgoal: SubGoal) -> None:
         self.subgoal = subgoal
@@ -132,16 +171,14 @@ class SubgoalEnv(gym.Env):
 
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:
-        achieved = self.world.semantic_vector().astype(np.float32)
-        return bool(layout.goal_reward(np.concatenate([achieved, self._mask]),
-                                       np.concatenate([self._target, self._mask])))
+        achieved = layout.achieved_goal(self.world.semantic_vector(), self._mask)
+        return bool(layout.goal_reward(achieved, np.concatenate([self._target, self._mask])))
 
     def _obs(self) -> dict[str, np.ndarray]:
         snapshot = self.world.snapshot()
-        achieved = self.world.semantic_vector(snapshot).astype(np.float32)
         return {
             "observation": self.world.observation(snapshot),
-            "achieved_goal": np.concatenate([achieved, self._mask]),
+            "achieved_goal": layout.achieved_goal(self.world.semantic_vector(snapshot), self._mask),
             "desired_goal": np.concatenate([self._target, self._mask]),
         }
 

@@ -7,8 +7,9 @@ scene (absent blocks of a smaller desk-cleanup variant are zeros with ``present`
     block: present (1), position (3), position relative to the grip (3), linear velocity x dt (3)
 
 Goal: ``concat(target, mask)`` over the scene's semantic vector: mask 1 where a literal constrains the
-entry, target its value. The achieved goal is ``concat(semantic vector, the episode's mask)``, so HER
-can relabel by copying an achieved goal into the desired one and the mask travels along.
+entry, target its value, zero elsewhere. The achieved goal is ``concat(semantic vector x mask, mask)``
+(:func:`achieved_goal`), so HER relabels by copying an achieved goal into the desired one: the mask
+travels along and a relabelled goal looks like one the planner sends (zeros outside the mask).
 """
 
 from __future__ import annotations
@@ -78,6 +79,12 @@ def observation(
     blocks[:count, 4:7] = np.asarray(block_positions) - np.asarray(grip_position)
     blocks[:count, 7:10] = np.asarray(block_velocities)[:, :3] * CONTROL_DT
     return obs
+
+
+def achieved_goal(semantic_vector: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """The achieved goal of a state for an episode's ``mask``: the constrained entries of the semantic vector."""
+    mask = np.asarray(mask, dtype=np.float32)
+    return np.concatenate([np.asarray(semantic_vector, dtype=np.float32) * mask, mask])
 
 
 def goal_reward(achieved_goal: np.ndarray, desired_goal: np.ndarray) -> np.ndarray:

@@ -139,10 +139,8 @@ class TaskEnv(gym.Env):
         """Observation and info from one snapshot and one evaluation of the predicates."""
         snapshot = self.world.snapshot()
         vector = self.world.semantic_vector(snapshot)
-        if self.goal_kind == "semantic":
-            achieved = np.concatenate([vector.astype(np.float32), self._mask])
-        else:
-            achieved = self._padded(snapshot.block_positions)
+        achieved = (layout.achieved_goal(vector, self._mask) if self.goal_kind == "semantic"
+                    else self._padded(snapshot.block_positions))
         obs = {"observation": self.world.observation(snapshot), "achieved_goal": achieved,
                "desired_goal": self._desired.copy()}
         return obs, {"task": self.kind, "is_success": satisfied(self.layout, vector, self.goal_literals)}

@@ -51,3 +51,40 @@ def test_explicit_subgoal_option() -> None:
     _, info = env.reset(seed=0, options={"subgoal": "put_in_bin(blue)"})
     assert info["subgoal"] == "put_in_bin(blue)"
     assert "holding(blue)" in env.layout.readable(env.world.semantic_vector())
+
+
+def test_put_episodes_start_where_a_pick_leaves_the_arm() -> None:
+    """Most puts start after a confirmed expert pick, at the block's spot, not at the home pose."""
+    env = SubgoalEnv("three_blocks")
+    home = env.world.view().grip.copy()
+    away_from_home = 0
+    for seed in range(10):
+        env.reset(seed=seed, options={"kind": "put_away"})
+        assert f"holding({env.subgoal.block})" in env.layout.readable(env.world.semantic_vector())
+        away_from_home += np.linalg.norm(env.world.view().grip[:2] - home[:2]) > 0.02
+    assert away_from_home >= 6
+
+
+def test_pick_episodes_sometimes_start_with_the_arm_elsewhere() -> None:
+    env = SubgoalEnv("desk_cleanup")
+    grips = [env.reset(seed=seed, options={"kind": "pick"})[0]["observation"][:3] for seed in range(20)]
+    assert len({tuple(np.round(g, 2)) for g in grips}) >= 5  # about half of them leave the home pose
+
+
+def test_near_two_references_is_only_asked_where_they_are_close() -> None:
+    env = SubgoalEnv("three_blocks")
+    for seed in range(40):
+        env.reset(seed=seed, options={"kind": "put_near"})
+        if len(env.subgoal.references) == 2:
+            assert env._close(env.world.semantic_vector(), env.subgoal.references)
+
+
+def test_achieved_goal_keeps_only_the_masked_entries() -> None:
+    """A relabelled goal must look like one the planner sends: zeros outside the mask."""
+    env = SubgoalEnv("three_blocks")
+    obs, _ = env.reset(seed=1, options={"subgoal": "put_near(red,green)"})
+    size = env.layout.size
+    achieved, mask = obs["achieved_goal"][:size], obs["achieved_goal"][size:]
+    assert np.array_equal(mask, obs["desired_goal"][size:])
+    assert not achieved[mask == 0].any()
+    assert achieved[env.layout.index(env.subgoal.literals()[-1])] == 1.0  # holding(red), masked, is true

@@ -1,0 +1,161 @@
+"""`./semgoal bench-policy [--json]`: training throughput and actor latency beside Stable-Baselines3.
+
+Training: env steps per second with the gradient steps included, once the replay buffer holds its first
+episodes, on one torch thread:
+- ours (`Trainer.cycle`) on `two_blocks` sub-goals, with one gradient step per env step (the reference's
+  setting) and with the shipped setting (``TrainConfig.updates_per_step``);
+- SB3 SAC + HerReplayBuffer (batch 256, nets [256, 256], one gradient step per env step) on the same env,
+  and on gymnasium-robotics' FetchPickAndPlace-v4: the reference the policy issue measured (~47 steps/s).
+Each configuration runs in its own child process (``python -O``: gymnasium-robotics' asserts fail on
+mujoco >= 3.12), one after the other, ``--repeats`` times; the medians and the ratios to the reference
+are printed.
+
+Inference: latency of one action for one observation (what the policy node does per control step):
+``Actor.act``, ``SubgoalController.act`` (sampled noise, clipping) and SB3's ``policy.predict`` for a
+network of the same size; p50 and p99 over ``--calls`` calls.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+TRAIN_CONFIGS = ("ours:1", "ours:shipped", "sb3:two_blocks", "sb3:FetchPickAndPlace-v4")
+REFERENCE = "sb3:FetchPickAndPlace-v4"
+WARMUP_STEPS = 1_000
+
+
+def _sb3_model(env):
+    import torch
+    from stable_baselines3 import SAC, HerReplayBuffer
+
+    torch.set_num_threads(1)
+    return SAC("MultiInputPolicy", env, replay_buffer_class=HerReplayBuffer,
+               replay_buffer_kwargs={"n_sampled_goal": 4, "goal_selection_strategy": "future"},
+               batch_size=256, policy_kwargs={"net_arch": [256, 256]}, train_freq=1, gradient_steps=1,
+               learning_starts=WARMUP_STEPS, buffer_size=100_000, seed=0, verbose=0)
+
+
+def _sb3_env(name: str):
+    if name == "two_blocks":
+        from semgoal_sim.env import SubgoalEnv
+
+        return SubgoalEnv("two_blocks")
+    import gymnasium as gym
+    import gymnasium_robotics
+
+    gym.register_envs(gymnasium_robotics)
+    return gym.make(name)
+
+
+def train_rate(config: str, steps: int) -> float:
+    """Env steps/s of one training configuration over ``steps`` env steps after the warm-up."""
+    kind, _, arg = config.partition(":")
+    if kind == "ours":
+        from semgoal_policy.trainer import TrainConfig, Trainer
+
+        defaults = TrainConfig(scene="two_blocks")
+        updates = 1.0 if arg == "1" else defaults.updates_per_step
+        trainer = Trainer(TrainConfig(scene="two_blocks", seed=0, updates_per_step=updates,
+                                      learning_starts=WARMUP_STEPS, run_dir=None))
+        while trainer.replay.transitions < WARMUP_STEPS:
+            trainer.cycle()
+        start, done = time.perf_counter(), 0
+        while done < steps:
+            done += trainer.cycle()
+        return done / (time.perf_counter() - start)
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class Clock(BaseCallback):
+        """Time from the first gradient step on."""
+
+        def _on_step(self) -> bool:
+            if self.num_timesteps == WARMUP_STEPS:
+                self.locals["self"].bench_start = time.perf_counter()
+            return True
+
+    model = _sb3_model(_sb3_env(arg))
+    model.learn(total_timesteps=WARMUP_STEPS + steps, callback=Clock())
+    return steps / (time.perf_counter() - model.bench_start)
+
+
+def _percentiles(fn, calls: int) -> dict[str, float]:
+    times = []
+    for _ in range(calls):
+        start = time.perf_counter()
+        fn()
+        times.append((time.perf_counter() - start) * 1e3)
+    return {"p50_ms": round(float(np.percentile(times, 50)), 4), "p99_ms": round(float(np.percentile(times, 99)), 4)}
+
+
+def inference(calls: int) -> dict[str, dict[str, float]]:
+    """Latency of one action for one observation, ours and SB3's, on one thread."""
+    import torch
+
+    from semgoal_policy.controller import SubgoalController
+    from semgoal_sim.env import SubgoalEnv
+    from semgoal_sim.vocabulary import parse_literal
+
+    torch.set_num_threads(1)
+    env = SubgoalEnv("two_blocks")
+    obs, _ = env.reset(seed=0, options={"subgoal": "pick(red)"})
+    controller = SubgoalController("two_blocks")
+    controller.set_subgoal([parse_literal("holding(red)")])
+    actor = controller.actor
+    sb3 = _sb3_model(env)
+    return {
+        "ours:Actor.act": _percentiles(lambda: actor.act(obs["observation"], obs["desired_goal"]), calls),
+        "ours:SubgoalController.act": _percentiles(lambda: controller.act(obs["observation"], (0, 1)), calls),
+        "sb3:policy.predict": _percentiles(lambda: sb3.predict(obs, deterministic=True), calls),
+    }
+
+
+def _child(args: list[str]) -> str:
+    result = subprocess.run([sys.executable, "-O", "-m", "semgoal_policy.bench", *args], capture_output=True, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"bench worker {args} failed:\n{result.stderr[-2000:]}")
+    return result.stdout.strip().splitlines()[-1]
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal bench-policy", description=__doc__.split("\n")[0])
+    parser.add_argument("--steps", type=int, default=2_000, help="env steps timed per training run")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--calls", type=int, default=5_000, help="single-observation actions timed")
+    parser.add_argument("--json", action="store_true")
+    parser.add_argument("--worker", help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.worker:  # a child: one measurement, printed as its last line
+        print(json.dumps(inference(args.calls)) if args.worker == "inference" else train_rate(args.worker, args.steps))
+        return 0
+    out = sys.stderr if args.json else sys.stdout
+    rates: dict[str, list[float]] = {config: [] for config in TRAIN_CONFIGS}
+    for repeat in range(args.repeats):
+        for config in TRAIN_CONFIGS:
+            rates[config].append(float(_child(["--worker", config, "--steps", str(args.steps)])))
+            print(f"[repeat {repeat + 1}/{args.repeats}] {config:28s} {rates[config][-1]:7.1f} steps/s", file=out, flush=True)
+    medians = {config: round(statistics.median(values), 1) for config, values in rates.items()}
+    latency = json.loads(_child(["--worker", "inference", "--calls", str(args.calls)]))
+    result = {"training": {"unit": "env steps/s with gradient steps, median of repeats, one torch thread",
+                           "steps_per_second": medians,
+                           "ratio_to_reference": {c: round(v / medians[REFERENCE], 2) for c, v in medians.items()},
+                           "reference": REFERENCE},
+              "inference": latency}
+    for config, rate in medians.items():
+        print(f"{config:28s} {rate:7.1f} steps/s  x{result['training']['ratio_to_reference'][config]:.2f}", file=out)
+    for name, figures in latency.items():
+        print(f"{name:28s} p50 {figures['p50_ms']:.3f} ms  p99 {figures['p99_ms']:.3f} ms", file=out)
+    if args.json:
+        out.flush()
+        print(json.dumps(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -37,11 +37,10 @@ class NodeProcesses:
         self.log_dir = log_dir
         self.processes: list[tuple[str, subprocess.Popen]] = []
 
-    def start(self, package: str, executable: str, *args: str, params: dict | None = None) -> subprocess.Popen:
-        ros_args = [f"{key}:={value}" for key, value in (params or {}).items()]
-        command = [str(ROOT / "semgoal"), "run", package, executable, *args]
-        if ros_args:
-            command += ["--ros-args", *[token for arg in ros_args for token in ("-p", arg)]]
+    def start(self, package: str, executable: str, params: dict | None = None) -> subprocess.Popen:
+        from semgoal_bringup.graph import node_command
+
+        command = node_command(package, executable, params)
         log = open(self.log_dir / f"{executable}-{len(self.processes)}.log", "w")  # noqa: SIM115
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
         self.processes.append((executable, process))

@@ -15,7 +15,7 @@ NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
 
 
 def node_params(task_name: str, seed: int, mode: str, models: str = "") -> dict[str, dict[str, object]]:
-    """Parameters per executable for a task's scene (the YAML a launch file would pass)."""
+    """The task's own parameters per executable, set on top of :func:`params_file`."""
     task = get_task(task_name)
     return {
         "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode},
@@ -25,18 +25,34 @@ def node_params(task_name: str, seed: int, mode: str, models: str = "") -> dict[
     }
 
 
+def params_file() -> Path:
+    """The nodes' parameter file as installed: share/semgoal_bringup/config/semgoal.yaml."""
+    from ament_index_python.packages import get_package_share_directory
+
+    return Path(get_package_share_directory("semgoal_bringup")) / "config" / "semgoal.yaml"
+
+
+def node_command(package: str, executable: str, params: dict | None = None, log_level: str | None = None) -> list[str]:
+    """`./semgoal run PKG EXE --ros-args --params-file semgoal.yaml -p key:=value ...`: the file's values,
+    then ``params`` on top, as a launch file passes a YAML and per-launch overrides."""
+    args = [str(Path(os.environ["SEMGOAL_ROOT"]) / "semgoal"), "run", package, executable,
+            "--ros-args", "--params-file", str(params_file())]
+    if log_level:
+        args += ["--log-level", log_level]
+    for key, value in (params or {}).items():
+        args += ["-p", f"{key}:={value}"]
+    return args
+
+
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "") -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones."""
-    root = Path(os.environ["SEMGOAL_ROOT"])
     processes = {}
     for package, executable in NODES:
         if executable in skip:
             continue
-        args = [str(root / "semgoal"), "run", package, executable, "--ros-args", "--log-level", log_level]
-        for key, value in node_params(task_name, seed, mode, models)[executable].items():
-            args += ["-p", f"{key}:={value}"]
-        processes[executable] = subprocess.Popen(args)
+        params = node_params(task_name, seed, mode, models)[executable]
+        processes[executable] = subprocess.Popen(node_command(package, executable, params, log_level))
     return processes
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from geometry_msgs.msg import Point, Vector3
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
 from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
@@ -115,3 +115,11 @@ def markers(msg: WorldState) -> MarkerArray:
         p = block.pose.position
         items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
     return MarkerArray(markers=items)
+
+
+def image(frame: np.ndarray, step: int) -> Image:
+    """An rgb8 sensor_msgs/Image of a rendered (height, width, 3) uint8 frame; frame_id names the camera."""
+    msg = Image(height=frame.shape[0], width=frame.shape[1], encoding="rgb8", step=3 * frame.shape[1])
+    msg.header.frame_id = f"sim_camera/step_{step}"
+    msg.data = np.ascontiguousarray(frame, dtype=np.uint8).tobytes()
+    return msg

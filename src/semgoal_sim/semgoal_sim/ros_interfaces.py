@@ -15,6 +15,7 @@ PLAN = f"{NAMESPACE}/plan"
 SUBGOAL = f"{NAMESPACE}/subgoal"
 ARM_COMMAND = f"{NAMESPACE}/arm_command"
 MARKERS = f"{NAMESPACE}/markers"
+CAMERA_IMAGE = f"{NAMESPACE}/camera/image_raw"
 RESET_WORLD = f"{NAMESPACE}/reset_world"
 MOVE_BLOCK = f"{NAMESPACE}/move_block"
 GET_PLAN = f"{NAMESPACE}/get_plan"
@@ -36,6 +37,14 @@ STREAM = QoSProfile(
     durability=DurabilityPolicy.VOLATILE,
 )
 """Per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step)."""
+
+CAMERA = QoSProfile(
+    depth=1,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.BEST_EFFORT,
+    durability=DurabilityPolicy.VOLATILE,
+)
+"""Rendered frames: only the newest matters, a dropped one is no loss (ROS's sensor-data profile)."""
 
 
 def run_node(node_class: type, args: list[str] | None = None, multithreaded: bool = False) -> None:

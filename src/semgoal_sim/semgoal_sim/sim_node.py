@@ -3,13 +3,14 @@
 Publishes /joint_states, /semgoal/world_state and /semgoal/markers; takes /semgoal/arm_command; serves
 /semgoal/reset_world and /semgoal/move_block. In ``lockstep`` mode one command for the step just
 published advances one control step (as fast as the graph goes); in ``realtime`` mode a timer steps at
-``rate_hz`` with the last good command.
+``rate_hz`` with the last good command. With ``render`` on, an offscreen camera (OSMesa where there
+is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``.
 """
 
 import numpy as np
 from rcl_interfaces.msg import SetParametersResult
 from rclpy.node import Node
-from sensor_msgs.msg import JointState
+from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import MarkerArray
 
 from semgoal_msgs.msg import ArmCommand, WorldState
@@ -31,6 +32,10 @@ class SimNode(Node):
         self.rate_hz = self.declare_parameter("rate_hz", 25.0).value
         self.markers_every = self.declare_parameter("markers_every", 5).value
         heartbeat_hz = self.declare_parameter("heartbeat_hz", 2.0).value
+        render = self.declare_parameter("render", False).value
+        render_hz = self.declare_parameter("render_hz", 5.0).value
+        self.render_size = (self.declare_parameter("render_width", 480).value,
+                            self.declare_parameter("render_height", 360).value)
         if self.mode not in MODES:
             raise ValueError(f"mode must be one of {MODES}, got {self.mode!r}")
         self.core = SimCore(scene, task, seed)
@@ -42,6 +47,10 @@ class SimNode(Node):
         self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
         self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
         self.add_on_set_parameters_callback(self.parameters_callback)
+        self.renderer = None
+        if render:
+            self.image_pub = self.create_publisher(Image, topics.CAMERA_IMAGE, topics.CAMERA)
+            self.create_timer(1.0 / render_hz, self.publish_image)
         if self.mode == "realtime":
             self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step)
         elif heartbeat_hz > 0:  # lockstep: a late joiner (or a lost command) would otherwise wait forever
@@ -52,7 +61,7 @@ class SimNode(Node):
 
     def parameters_callback(self, params) -> SetParametersResult:
         for param in params:
-            if param.name in ("scene", "mode"):
+            if param.name in ("scene", "mode", "render", "render_hz"):
                 return SetParametersResult(successful=False, reason=f"{param.name} is fixed at start-up; restart the node")
         return SetParametersResult(successful=True)
 
@@ -64,6 +73,16 @@ class SimNode(Node):
         if snapshot.step % max(1, self.markers_every) == 0:
             self.marker_pub.publish(conversions.markers(msg))
         return msg
+
+    def publish_image(self) -> None:
+        """Render the current world (a reset may have built another one) and publish the frame."""
+        from semgoal_sim.render import FrameRenderer
+
+        if self.renderer is None or self.renderer.world is not self.core.world:
+            if self.renderer is not None:
+                self.renderer.close()
+            self.renderer = FrameRenderer(self.core.world, *self.render_size)
+        self.image_pub.publish(conversions.image(self.renderer.frame(), self.core.world.step_count))
 
     def command_callback(self, msg: ArmCommand) -> None:
         values = [msg.displacement.x, msg.displacement.y, msg.displacement.z, msg.gripper]

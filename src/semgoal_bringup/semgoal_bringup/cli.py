@@ -18,6 +18,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "train": ("semgoal_policy.cli:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
     "eval": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
     "bench-graph": ("semgoal_bringup.bench_graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),
+    "ablation": ("semgoal_policy.ablation", "train the recipe's variants side by side: what expert supervision buys"),
     "bench-policy": ("semgoal_policy.bench", "training steps/s and actor latency beside SB3 SAC+HER"),
     "eval-subgoals": ("semgoal_policy.cli:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }

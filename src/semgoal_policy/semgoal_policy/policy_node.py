@@ -40,6 +40,7 @@ class PolicyNode(Node):
         # reproducible from the reset on); the timer only resends a command that may have been lost
         self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
         self.subgoal_text = ""
+        self.nudging = False
 
     def subgoal_callback(self, msg: SubGoal) -> None:
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == "active" else []
@@ -51,7 +52,7 @@ class PolicyNode(Node):
             return
         text = msg.action if literals else f"(none: {msg.status or 'no plan'})"
         if text != self.subgoal_text:
-            self.subgoal_text = text
+            self.subgoal_text, self.nudging = text, False
             self.get_logger().info(f"sub-goal {text}")
             if self.mode == "lockstep":
                 self.answered_step = -1
@@ -69,7 +70,7 @@ class PolicyNode(Node):
             self.publish_command(self.latest, self.decide(self.latest))
         elif time.monotonic() - self.answered_at > 1.0:
             self.answered_step = -1  # lockstep: the command for this step may have been lost; send it again
-            self.answer_lockstep()
+            self.answer_lockstep(stalled=True)
 
     def decide(self, msg: WorldState) -> np.ndarray | None:
         """The command for a world state; None once the sub-goal is confirmed (the planner names the next one)."""
@@ -77,14 +78,23 @@ class PolicyNode(Node):
             return None
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
-    def answer_lockstep(self) -> None:
+    def answer_lockstep(self, stalled: bool = False) -> None:
         """One command per step while a sub-goal is active and not yet achieved; otherwise the world waits,
-        so the next sub-goal starts from exactly the state where the last one was achieved."""
+        so the next sub-goal starts from exactly the state where the last one was achieved.
+
+        ``stalled``: no command went out for a second. If the sub-goal is confirmed here but the planner
+        still names it (its confirmation began a step later, as messages raced), hold-still commands let
+        the world tick on until the sub-goal changes, so the planner confirms too instead of both
+        waiting for good (a graph stalled so once, in a long via-ROS evaluation under load)."""
         msg = self.latest
         if msg is None or self.controller.goal is None or msg.step == self.answered_step:
             return
         action = self.decide(msg)
-        if action is not None:
+        if action is None and stalled and not self.nudging:
+            self.nudging = True
+            self.get_logger().info(f"{self.subgoal_text} holds here but the planner still names it: "
+                                   "holding still while the world ticks on")
+        if action is not None or self.nudging:
             self.publish_command(msg, action)
 
     def publish_command(self, msg: WorldState, action: np.ndarray | None) -> None:

@@ -1,9 +1,11 @@
 """A goal-conditioned gymnasium environment over any scene, for training the low-level policy.
 
 Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
-``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Put
-sub-goals start with the block in the gripper, as they do after a pick in a plan. Episodes never start
-with the sub-goal already achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
+``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Episodes
+start where the previous step of a plan leaves the arm: a put starts once a pick of its block has been
+confirmed (the scripted expert picks it, with a little noise), a pick starts half the time with the arm
+moved somewhere over the table, as a put leaves it. Episodes never start with the sub-goal already
+achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
 ``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
 """
 
@@ -16,8 +18,9 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_sim import layout, tasks
-from semgoal_sim.expert import GAIN, expert_action
-from semgoal_sim.vocabulary import SCENES, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.expert import expert_action, move_to
+from semgoal_sim.rollout import run_subgoal
+from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
@@ -120,19 +123,17 @@ class SubgoalEnv(gym.Env):
 
     def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
         for _ in range(steps):
-            error = target - self.world.view().grip
-            self.world.step(np.array([*np.clip(GAIN * error, -1.0, 1.0), 1.0]), count=False)
+            self.world.step(move_to(self.world.view().grip, target, 1.0))
 
-    def _pick_up(self, block: str, max_steps: int = EPISODE_STEPS) -> bool:
-        """The expert picks ``block`` until holding it is confirmed, as the planner confirms a pick."""
-        pick, holding = SubGoal("pick", (block,)), self.layout.index(Literal("holding", (block,)))
-        confirmation = Confirmation()
-        for step in range(max_steps):
+    def _pick_up(self, block: str) -> bool:
+        """The expert picks ``block`` (with a little noise) until holding it is confirmed, as the planner
+        confirms a pick."""
+        def noisy_expert(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
             noise = HANDOVER_NOISE * self.np_random.standard_normal(4)
-            self.world.step(expert_action(pick, self.world.view()) + noise, count=False)
-            if confirmation.update(bool(self.world.semantic_vector()[holding]), step):
-                return True
-        return False
+            return expert_action(subgoal, world.view()) + noise
+
+        pick = SubGoal("pick", (block,))
+        return run_subgoal(self.world, pick, noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]
 
     def _sample_subgoal(self, kind: str | None = None) -> SubGoal | None:
         rng, blocks = self.np_random, self.world.blocks

@@ -58,7 +58,8 @@ class WorldView:
         return {name: pos for name, pos in self.positions.items() if name != block}
 
 
-def _move(grip: np.ndarray, target: np.ndarray, gripper: float) -> np.ndarray:
+def move_to(grip: np.ndarray, target: np.ndarray, gripper: float) -> np.ndarray:
+    """The action that moves the grip site toward ``target`` (saturating beyond 6.7 cm), fingers at ``gripper``."""
     return np.append(np.clip((target - grip) * GAIN, -1.0, 1.0), gripper)
 
 
@@ -134,19 +135,19 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
     grip = world.grip
     if world.holds(block):  # lift clear of everything
         carry_z = max(p[2] for p in world.positions.values()) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE
-        return _move(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
+        return move_to(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
     xy_error = np.linalg.norm(target[:2] - grip[:2])
     hover = target + np.array([0.0, 0.0, HOVER])
     if xy_error > ALIGN_XY:
         safe_z = max(p[2] for p in world.positions.values()) + HOVER
         if grip[2] < safe_z - 0.02 and xy_error > 0.03:  # rise before travelling, never sweep blocks
-            return _move(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
-        return _move(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
+            return move_to(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
+        return move_to(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
     if grip[2] - target[2] > ALIGN_Z:
         if world.opening < GRASP_OPENING - 0.006:
-            return _move(grip, np.array([target[0], target[1], grip[2]]), _open(world))
-        return _move(grip, target, _open(world))
-    return _move(grip, target, CLOSE)
+            return move_to(grip, np.array([target[0], target[1], grip[2]]), _open(world))
+        return move_to(grip, target, _open(world))
+    return move_to(grip, target, CLOSE)
 
 
 def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
@@ -159,11 +160,11 @@ def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
     xy_error = np.linalg.norm(spot[:2] - block[:2])
     if xy_error > ALIGN_XY:
         if grip[2] < carry_z - 0.02 and xy_error > 0.02:
-            return _move(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
-        return _move(grip, np.array([release[0], release[1], max(carry_z, release[2])]), CLOSE)
+            return move_to(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
+        return move_to(grip, np.array([release[0], release[1], max(carry_z, release[2])]), CLOSE)
     if grip[2] - release[2] > ALIGN_Z:
-        return _move(grip, release, CLOSE)
-    return _move(grip, release, _open(world))
+        return move_to(grip, release, CLOSE)
+    return move_to(grip, release, _open(world))
 
 
 def expert_action(subgoal: SubGoal, world: WorldView) -> np.ndarray:

@@ -10,7 +10,7 @@ import numpy as np
 
 from semgoal_sim.expert import WorldView, expert_action
 from semgoal_sim.tasks import get_task
-from semgoal_sim.vocabulary import Literal, SemanticLayout, SubGoal
+from semgoal_sim.vocabulary import Confirmation, Literal, SemanticLayout, SubGoal
 from semgoal_sim.world import FetchWorld
 
 SUBGOAL_STEPS = 60
@@ -75,12 +75,13 @@ def expert_controller(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
 
 
 def run_subgoal(world: FetchWorld, subgoal: SubGoal, controller: Controller = expert_controller,
-                max_steps: int = SUBGOAL_STEPS) -> tuple[bool, int]:
-    """Act until the sub-goal's literals hold (checked after every step) or ``max_steps`` ran out."""
-    literals = subgoal.literals()
+                max_steps: int = SUBGOAL_STEPS, confirm_steps: int = 1) -> tuple[bool, int]:
+    """Act until the sub-goal's literals held over ``confirm_steps`` consecutive steps (checked after every
+    step; the planner confirms a robot step over ``SUBGOAL_CONFIRM_STEPS``) or ``max_steps`` ran out."""
+    literals, confirmation = subgoal.literals(), Confirmation(confirm_steps)
     for step in range(1, max_steps + 1):
         world.step(controller(subgoal, world))
-        if satisfied(world.layout, world.semantic_vector(), literals):
+        if confirmation.update(satisfied(world.layout, world.semantic_vector(), literals), step):
             return True, step
     return False, max_steps
 

@@ -309,7 +309,6 @@ the grasp and settles the block. Measured in process (12 episodes, task seeds 30
 with 1 / 3 / 5 / 8 / 10 steps: 5 / 8 / 10 / 9 / 8 of 12; DC-3: 0 / 1 / 3 / 2 / 0."""
 
 
-
 @dataclass
 class Confirmation:
     """The rule that ends a robot sub-goal, kept by the planner's executive and by the policy alike: its
@@ -335,6 +334,7 @@ class Confirmation:
     @property
     def pending(self) -> bool:
         return self.since is not None
+
 
 @dataclass(frozen=True)
 class SubGoal:

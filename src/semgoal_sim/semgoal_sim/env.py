@@ -168,7 +168,7 @@ class SubgoalEnv(gym.Env):
 
     def expert_action(self) -> np.ndarray:
         """The scripted expert's action for the current sub-goal: the label for behaviour cloning."""
-        return expert_action(self.subgoal, self.world.view())
+        return expert_action(self.subgoal, self.world.view(), achieved=self._success())
 
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:

@@ -167,11 +167,24 @@ def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
     return move_to(grip, release, _open(world))
 
 
-def expert_action(subgoal: SubGoal, world: WorldView) -> np.ndarray:
-    """The expert's 4-D action for ``subgoal`` in ``world`` (callers stop asking once it holds)."""
+def _back_off(block: str, world: WorldView) -> np.ndarray:
+    """Once a put holds: raise the open fingers clear above the block, so the put stays achieved."""
+    clear_z = world.positions[block][2] + HOVER
+    return move_to(world.grip, np.array([world.grip[0], world.grip[1], max(world.grip[2], clear_z)]), _open(world))
+
+
+def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) -> np.ndarray:
+    """The expert's 4-D action for ``subgoal`` in ``world``.
+
+    :param achieved: the sub-goal's literals hold now. The expert then keeps them so (a pick lifts the
+        block, a put backs away from it) instead of starting over: as demonstrations and cloning labels,
+        the steps after success must teach staying done, not undoing it.
+    """
     x = subgoal.block
     if subgoal.kind == "pick":
         return _pick(x, world)
+    if achieved:
+        return _back_off(x, world)
     if not world.holds(x):
         return _pick(x, world)
     spot = destination(subgoal, world)

@@ -71,7 +71,8 @@ Controller = Callable[[SubGoal, FetchWorld], np.ndarray]
 
 
 def expert_controller(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
-    return expert_action(subgoal, world.view())
+    achieved = satisfied(world.layout, world.semantic_vector(), subgoal.literals())
+    return expert_action(subgoal, world.view(), achieved)
 
 
 def run_subgoal(world: FetchWorld, subgoal: SubGoal, controller: Controller = expert_controller,

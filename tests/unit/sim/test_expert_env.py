@@ -31,6 +31,19 @@ def test_expert_achieves_sampled_subgoals(scene: str) -> None:
     assert successes >= 11
 
 
+@pytest.mark.parametrize("kind", ["put_near", "put_away"])
+def test_expert_labels_keep_a_put_achieved_to_the_end_of_the_episode(kind: str) -> None:
+    """After a put holds, the expert backs away; re-picking the block would teach undoing the sub-goal."""
+    env = SubgoalEnv("three_blocks")
+    held_at_end = 0
+    for seed in range(6):
+        env.reset(seed=seed, options={"kind": kind})
+        for _ in range(env.max_steps):
+            _, reward, _, _, _ = env.step(env.expert_action())
+        held_at_end += int(reward)
+    assert held_at_end >= 5
+
+
 def test_env_contract_and_her_reward() -> None:
     env = SubgoalEnv("three_blocks")
     check_env(env, skip_render_check=True)

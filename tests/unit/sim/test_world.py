@@ -69,3 +69,19 @@ def test_sim_core_refuses_bad_requests_and_keeps_state() -> None:
     np.testing.assert_array_equal(core.snapshot().block_positions, before)
     ok, message = core.reset("DC-4", -1)
     assert ok and "seed 6" in message and len(core.world.blocks) == 4
+
+
+def test_only_the_hand_end_of_the_arm_collides_and_the_floor_catches_blocks() -> None:
+    """Collision filtering (scene.TOUCHING_LINKS) leaves the hand in contact and keeps the floor real."""
+    world = FetchWorld("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(0)[0])
+    model = world.model
+    assert model.geom_contype[model.geom("robot0:head_pan_link").id] == 0
+    assert model.geom_conaffinity[model.geom("robot0:r_gripper_finger_link").id] == 1
+    world.set_block_pose("red", np.array([0.9, 0.3, TABLE_HEIGHT + 0.1]))  # off the desk's edge, in the air
+    for _ in range(25):
+        world.step(np.zeros(4))
+    red = world.snapshot().block_positions[0]
+    assert red[2] == pytest.approx(0.025, abs=0.003), "a block off the desk rests on the floor"
+    base = world.data.xpos[model.body("robot0:base_link").id]
+    assert abs(base[2]) < 1e-4, "the base stays where its slide joints hold it without floor contacts"

@@ -41,3 +41,11 @@ def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> Non
         evaluation.main(["--tasks", "MC-2", "--agents", "oracle"])
     assert evaluation.main(["--tasks", "MC-2", "--episodes", "1", "--models", str(tmp_path)]) == 2
     assert "no exported hierarchical actor" in capsys.readouterr().err
+
+
+def test_wilson_interval_stays_wide_at_the_extremes() -> None:
+    low, high = evaluation.wilson_interval(10, 10)
+    assert high == 1.0 and 0.69 < low < 0.73  # 10 of 10 still admits ~72 %
+    assert evaluation.wilson_interval(0, 50)[1] > 0.05
+    low, high = evaluation.wilson_interval(25, 50)
+    assert low < 0.5 < high and high - low == pytest.approx(0.27, abs=0.01)

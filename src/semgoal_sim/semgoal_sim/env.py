@@ -58,6 +58,8 @@ class SubgoalEnv(gym.Env):
         self.subgoal: SubGoal | None = None
         self._target = self._mask = np.zeros(self.layout.size, dtype=np.float32)
         self._steps = 0
+        self._achieved = False
+        """Whether the sub-goal held after the latest reset or step (the expert's label reads it)."""
 
     # -- gymnasium API -------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
@@ -74,13 +76,16 @@ class SubgoalEnv(gym.Env):
             if not self._success() or "subgoal" in options:
                 break
         self._steps = 0
-        return self._obs(), self._info()
+        info = self._info()
+        self._achieved = info["is_success"]
+        return self._obs(), info
 
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
         obs = self._obs()
         reward = float(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
+        self._achieved = reward > 0
         return obs, reward, False, self._steps >= self.max_steps, self._info(success=reward > 0)
 
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
@@ -168,7 +173,7 @@ class SubgoalEnv(gym.Env):
 
     def expert_action(self) -> np.ndarray:
         """The scripted expert's action for the current sub-goal: the label for behaviour cloning."""
-        return expert_action(self.subgoal, self.world.view(), achieved=self._success())
+        return expert_action(self.subgoal, self.world.view(), achieved=self._achieved)
 
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:

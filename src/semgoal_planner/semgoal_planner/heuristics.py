@@ -3,12 +3,18 @@
 All of them ignore delete effects, negative preconditions and negative goals, which only relaxes the
 task further, so hmax and LM-cut stay admissible (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
 Helmert & Domshlak 2009). A heuristic is built once per task and then called with a state (int bitset).
+
+Actions cost 1, so hmax is the layer of a relaxed planning graph where the goal first appears, and
+hFF the size of a relaxed plan extracted backwards through those layers, as in FF. Both run on whole
+bitsets: one ``&`` per operator and layer. LM-cut changes operator costs between its rounds, so it runs a
+Dijkstra over facts instead.
 """
 
 from __future__ import annotations
 
 import heapq
 from collections.abc import Callable
+from typing import NamedTuple
 
 from semgoal_planner.grounding import Task
 
@@ -16,149 +22,215 @@ INF = float("inf")
 Heuristic = Callable[[int], float]
 
 
-def _bits(mask: int) -> list[int]:
-    out, i = [], 0
+def bits(mask: int) -> list[int]:
+    """Indices of the set bits of ``mask``, lowest first."""
+    out = []
     while mask:
-        if mask & 1:
-            out.append(i)
-        mask >>= 1
-        i += 1
+        low = mask & -mask
+        out.append(low.bit_length() - 1)
+        mask ^= low
     return out
 
 
-class RelaxedTask:
-    """Operators as index lists, plus an artificial goal operator (its add effect is fact ``goal_fact``)."""
-
-    def __init__(self, task: Task) -> None:
-        n = len(task.facts)
-        self.goal_fact = n
-        self.n_facts = n + 1
-        self.pre = [_bits(op.pre) for op in task.operators] + [_bits(task.goal)]
-        self.add = [_bits(op.add) for op in task.operators] + [[self.goal_fact]]
-        self.base_cost = [1.0] * len(task.operators) + [0.0]
-        self.goal_op = len(self.pre) - 1
-        self.consumers: list[list[int]] = [[] for _ in range(self.n_facts)]
-        for o, pre in enumerate(self.pre):
-            for f in pre:
-                self.consumers[f].append(o)
-        self.no_pre = [o for o, pre in enumerate(self.pre) if not pre]
-        self.achievers: list[list[int]] = [[] for _ in range(self.n_facts)]
-        for o, adds in enumerate(self.add):
-            for f in adds:
-                self.achievers[f].append(o)
-
-    def explore(self, state: int, cost: list[float], combine_sum: bool) -> tuple[list[float], list[int]]:
-        """Generalised Dijkstra: fact costs (hmax or hadd) and each fact's cheapest achiever (-1: none)."""
-        fact_cost = [INF] * self.n_facts
-        achiever = [-1] * self.n_facts
-        missing = [len(p) for p in self.pre]
-        op_value = [0.0] * len(self.pre)
-        heap: list[tuple[float, int]] = []
-        for f in _bits(state):
-            fact_cost[f] = 0.0
-            heap.append((0.0, f))
-
-        def fire(o: int) -> None:
-            value = op_value[o] + cost[o]
-            for f in self.add[o]:
-                if value < fact_cost[f]:
-                    fact_cost[f], achiever[f] = value, o
-                    heapq.heappush(heap, (value, f))
-
-        for o in self.no_pre:
-            fire(o)
-        while heap:
-            value, f = heapq.heappop(heap)
-            if value > fact_cost[f]:
-                continue
-            if f == self.goal_fact:
-                break
-            for o in self.consumers[f]:
-                op_value[o] = op_value[o] + value if combine_sum else max(op_value[o], value)
-                missing[o] -= 1
-                if missing[o] == 0:
-                    fire(o)
-        return fact_cost, achiever
+def relaxed_layers(operators: list[tuple[int, int]], state: int, goal: int) -> list[int] | None:
+    """Facts reached after 0, 1, 2 ... relaxed steps from ``state`` until ``goal`` holds; None if never."""
+    layers = [state]
+    reached = state
+    pending = operators
+    while reached & goal != goal:
+        grown, waiting = reached, []
+        for op in pending:
+            if op[0] & reached == op[0]:
+                grown |= op[1]
+            else:
+                waiting.append(op)
+        if grown == reached:
+            return None
+        reached, pending = grown, waiting
+        layers.append(reached)
+    return layers
 
 
 def blind(task: Task) -> Heuristic:
     return lambda state: 0.0 if task.goal_reached(state) else 1.0
 
 
+def _pre_add(task: Task) -> list[tuple[int, int]]:
+    """(precondition, add) masks of the operators that can add something."""
+    return [(op.pre, op.add) for op in task.operators if op.add]
+
+
 def hmax(task: Task) -> Heuristic:
-    relaxed = RelaxedTask(task)
-    return lambda state: relaxed.explore(state, relaxed.base_cost, combine_sum=False)[0][relaxed.goal_fact]
-
-
-def hff(task: Task) -> Heuristic:
-    """Size of a relaxed plan extracted from hadd's best achievers."""
-    relaxed = RelaxedTask(task)
+    operators, goal = _pre_add(task), task.goal
 
     def h(state: int) -> float:
-        fact_cost, achiever = relaxed.explore(state, relaxed.base_cost, combine_sum=True)
-        if fact_cost[relaxed.goal_fact] == INF:
-            return INF
-        plan, stack, seen = set(), list(relaxed.pre[relaxed.goal_op]), set()
-        while stack:
-            f = stack.pop()
-            if f in seen or fact_cost[f] == 0.0:
-                continue
-            seen.add(f)
-            o = achiever[f]
-            if o not in plan:
-                plan.add(o)
-                stack.extend(relaxed.pre[o])
-        return float(len(plan))
+        layers = relaxed_layers(operators, state, goal)
+        return INF if layers is None else float(len(layers) - 1)
 
     return h
 
 
-def lmcut(task: Task) -> Heuristic:
-    """Sum of the costs of disjunctive action landmarks found by repeated hmax cuts."""
-    relaxed = RelaxedTask(task)
-    goal_fact = relaxed.goal_fact
+def hff(task: Task) -> Heuristic:
+    """Relaxed plan size: each open fact is achieved by an operator applicable one layer earlier."""
+    operators, goal = _pre_add(task), task.goal
+    achievers: dict[int, list[tuple[int, int]]] = {}
+    for pre, add in operators:
+        for f in bits(add):
+            achievers.setdefault(f, []).append((pre, add))
 
     def h(state: int) -> float:
+        layers = relaxed_layers(operators, state, goal)
+        if layers is None:
+            return INF
+        open_at: list[int] = [0] * len(layers)  # per layer, the facts first reached there still to achieve
+        for f in bits(goal & ~state):
+            open_at[_first_layer(layers, 1 << f)] |= 1 << f
+        size = 0
+        for layer in range(len(layers) - 1, 0, -1):
+            below = layers[layer - 1]
+            while open_at[layer]:
+                f = open_at[layer] & -open_at[layer]
+                pre, add = next(op for op in achievers[f.bit_length() - 1] if op[0] & below == op[0])
+                size += 1
+                open_at[layer] &= ~add
+                open_at[layer - 1] &= ~add
+                for p in bits(pre & ~state):
+                    open_at[_first_layer(layers, 1 << p)] |= 1 << p
+        return float(size)
+
+    return h
+
+
+def _first_layer(layers: list[int], fact: int) -> int:
+    for i, reached in enumerate(layers):
+        if reached & fact:
+            return i
+    raise ValueError("fact not reached")
+
+
+class _CostedTask:
+    """Operators as fact-index lists for Dijkstra with changing costs, plus two artificial facts: the
+    goal (added by a zero-cost operator that needs the goal facts) and "true" (in every state, and
+    the precondition of operators that have none, so that every operator has a supporter)."""
+
+    def __init__(self, task: Task) -> None:
+        n = len(task.facts)
+        self.goal_fact, self.true_fact = n, n + 1
+        self.pre = [bits(op.pre) or [self.true_fact] for op in task.operators] + [bits(task.goal) or [self.true_fact]]
+        self.add = [bits(op.add) for op in task.operators] + [[self.goal_fact]]
+        self.base_cost = [1] * len(task.operators) + [0]
+        self.consumers: list[list[int]] = [[] for _ in range(n + 2)]
+        for o, pre in enumerate(self.pre):
+            for f in pre:
+                self.consumers[f].append(o)
+        self.achievers: list[list[int]] = [[] for _ in range(n + 2)]
+        for o, adds in enumerate(self.add):
+            for f in adds:
+                self.achievers[f].append(o)
+
+    def hmax(self, state: list[int], cost: list[int]) -> _Hmax:
+        """Dijkstra over facts. Facts pop in order of cost, so an operator's last precondition to pop
+        is a costliest one: its supporter."""
+        result = _Hmax([INF] * len(self.consumers), [-1] * len(self.pre), [0] * len(self.pre))
+        fact_cost, supporter, op_max = result
+        missing = [len(p) for p in self.pre]
+        heap = [(0, f) for f in state]
+        for f in state:
+            fact_cost[f] = 0
+        consumers = self.consumers
+        while heap:
+            value, f = heapq.heappop(heap)
+            if value > fact_cost[f]:
+                continue
+            for o in consumers[f]:
+                missing[o] -= 1
+                if not missing[o]:
+                    supporter[o], op_max[o] = f, value
+                    self._offer(result, o, value + cost[o], heap)
+        return result
+
+    def lower(self, result: _Hmax, cost: list[int], cheaper: set[int]) -> None:
+        """Update ``result`` after the operators in ``cheaper`` got cheaper (costs only ever fall, so only
+        what they reach can change): the incremental hmax of Helmert & Domshlak's LM-cut."""
+        fact_cost, supporter, op_max = result
+        heap: list[tuple[int, int]] = []
+        for o in cheaper:
+            self._offer(result, o, op_max[o] + cost[o], heap)
+        consumers, pre = self.consumers, self.pre
+        while heap:
+            value, f = heapq.heappop(heap)
+            if value > fact_cost[f]:
+                continue
+            for o in consumers[f]:
+                if supporter[o] == f:  # the costliest precondition fell: find the new one
+                    top = max(pre[o], key=fact_cost.__getitem__)
+                    supporter[o] = top
+                    if fact_cost[top] < op_max[o]:
+                        op_max[o] = fact_cost[top]
+                        self._offer(result, o, op_max[o] + cost[o], heap)
+
+    def _offer(self, result: _Hmax, o: int, value: int, heap: list[tuple[int, int]]) -> None:
+        fact_cost = result.fact_cost
+        for g in self.add[o]:
+            if value < fact_cost[g]:
+                fact_cost[g] = value
+                heapq.heappush(heap, (value, g))
+
+
+class _Hmax(NamedTuple):
+    fact_cost: list[float]
+    supporter: list[int]
+    """Per operator, a costliest precondition (-1: none, or the operator is unreachable)."""
+    op_max: list[int]
+    """Per operator, the cost of its supporter: the cost of reaching all its preconditions."""
+
+
+def lmcut(task: Task) -> Heuristic:
+    """Sum of the costs of disjunctive action landmarks found by repeated hmax cuts."""
+    relaxed = _CostedTask(task)
+    goal_fact, add, consumers = relaxed.goal_fact, relaxed.add, relaxed.consumers
+
+    def h(state: int) -> float:
+        facts = [*bits(state), relaxed.true_fact]
         cost = list(relaxed.base_cost)
-        total = 0.0
-        while True:
-            fact_cost, _ = relaxed.explore(state, cost, combine_sum=False)
-            if fact_cost[goal_fact] == INF:
-                return INF
-            if fact_cost[goal_fact] == 0.0:
-                return total
-            # precondition choice: each operator's costliest precondition (ties: first)
-            pcf = [max(pre, key=fact_cost.__getitem__) if pre else -1 for pre in relaxed.pre]
-            # goal zone: facts that reach the goal through zero-cost operators
+        hmax = relaxed.hmax(facts, cost)
+        fact_cost, supporter = hmax.fact_cost, hmax.supporter
+        if fact_cost[goal_fact] == INF:
+            return INF
+        total = 0
+        while fact_cost[goal_fact] > 0:
+            # goal zone: facts that reach the goal through zero-cost operators (via their supporters)
             zone, stack = {goal_fact}, [goal_fact]
             while stack:
-                f = stack.pop()
-                for o in relaxed.achievers[f]:
-                    if cost[o] == 0.0 and pcf[o] >= 0 and fact_cost[pcf[o]] < INF and pcf[o] not in zone:
-                        zone.add(pcf[o])
-                        stack.append(pcf[o])
-            # forward from the state (and precondition-free operators) without entering the zone
-            reached = set(_bits(state))
-            frontier = list(reached)
+                for o in relaxed.achievers[stack.pop()]:
+                    f = supporter[o]
+                    if cost[o] == 0 and f >= 0 and f not in zone:
+                        zone.add(f)
+                        stack.append(f)
+            # forward from the state, through operators whose supporter is reached, stopping at the zone
+            reached = set(facts)
+            stack = list(facts)
             cut: set[int] = set()
-            candidates = list(relaxed.no_pre)
-            while frontier or candidates:
-                ops = candidates + [o for f in frontier for o in relaxed.consumers[f] if pcf[o] == f]
-                candidates, frontier = [], []
-                for o in ops:
-                    if any(f in zone for f in relaxed.add[o]):
-                        cut.add(o)
-                        continue
-                    for f in relaxed.add[o]:
-                        if f not in reached:
-                            reached.add(f)
-                            frontier.append(f)
+            while stack:
+                f = stack.pop()
+                for o in consumers[f]:
+                    if supporter[o] == f:
+                        adds = add[o]
+                        if not zone.isdisjoint(adds):
+                            cut.add(o)
+                            continue
+                        for g in adds:
+                            if g not in reached:
+                                reached.add(g)
+                                stack.append(g)
             step = min(cost[o] for o in cut)
-            if step == 0.0:  # a degenerate cut: stop here, the sum so far is still a lower bound
-                return total
+            if step == 0:  # a degenerate cut: stop here, the sum so far is still a lower bound
+                break
             total += step
             for o in cut:
                 cost[o] -= step
+            relaxed.lower(hmax, cost, cut)
+        return float(total)
 
     return h
 

@@ -7,6 +7,7 @@ Anything outside that fragment (``or``, ``forall``, ``when``, numeric fluents) i
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
@@ -17,14 +18,14 @@ class PddlError(ValueError):
     """Malformed or unsupported PDDL; the message starts with ``line:column``."""
 
 
-@dataclass(frozen=True)
-class Token:
-    text: str
-    line: int
-    column: int
+Token = re.Match
+"""A name or a parenthesis as matched in the (lower-cased) source: ``token[0]`` is its text, and its
+offset gives line and column only when an error needs them."""
 
-    def where(self) -> str:
-        return f"{self.line}:{self.column}"
+
+def _where(token: Token) -> str:
+    source, offset = token.string, token.start()
+    return f"{source.count(chr(10), 0, offset) + 1}:{offset - source.rfind(chr(10), 0, offset)}"
 
 
 class SExpr(list):
@@ -37,33 +38,18 @@ class SExpr(list):
 
 def _error(at: Token | SExpr, message: str) -> PddlError:
     token = at.start if isinstance(at, SExpr) else at
-    return PddlError(f"{token.where()}: {message}")
+    return PddlError(f"{_where(token)}: {message}")
+
+
+_TOKEN = re.compile(r"[()]|[^\s();]+")
+_COMMENT = re.compile(r";[^\n]*")
 
 
 def tokenize(text: str) -> list[Token]:
-    tokens, line, column, i = [], 1, 1, 0
-    while i < len(text):
-        char = text[i]
-        if char == ";":
-            while i < len(text) and text[i] != "\n":
-                i += 1
-            continue
-        if char == "\n":
-            line, column, i = line + 1, 1, i + 1
-            continue
-        if char.isspace():
-            column, i = column + 1, i + 1
-            continue
-        if char in "()":
-            tokens.append(Token(char, line, column))
-            column, i = column + 1, i + 1
-            continue
-        start = i
-        while i < len(text) and not text[i].isspace() and text[i] not in "();":
-            i += 1
-        tokens.append(Token(text[start:i].lower(), line, column))
-        column += i - start
-    return tokens
+    text = text.lower()
+    if ";" in text:  # blank comments out, keeping every offset
+        text = _COMMENT.sub(lambda comment: " " * len(comment[0]), text)
+    return list(_TOKEN.finditer(text))
 
 
 def parse_sexpr(text: str) -> SExpr:
@@ -74,11 +60,12 @@ def parse_sexpr(text: str) -> SExpr:
     stack: list[tuple[Token, list]] = []
     result: SExpr | None = None
     for token in tokens:
+        word = token[0]
         if result is not None:
-            raise _error(token, f"unexpected {token.text!r} after the end of the definition")
-        if token.text == "(":
+            raise _error(token, f"unexpected {word!r} after the end of the definition")
+        if word == "(":
             stack.append((token, []))
-        elif token.text == ")":
+        elif word == ")":
             if not stack:
                 raise _error(token, "unbalanced ')'")
             start, items = stack.pop()
@@ -88,7 +75,7 @@ def parse_sexpr(text: str) -> SExpr:
             else:
                 result = expr
         elif not stack:
-            raise _error(token, f"expected '(' but found {token.text!r}")
+            raise _error(token, f"expected '(' but found {word!r}")
         else:
             stack[-1][1].append(token)
     if stack:
@@ -157,7 +144,7 @@ class Problem:
 def _name(item, what: str) -> str:
     if isinstance(item, SExpr):
         raise _error(item, f"expected {what}, found a parenthesised list")
-    return item.text
+    return item[0]
 
 
 def _typed_list(items: list, where: SExpr, variables: bool) -> list[tuple[str, str, Token]]:
@@ -209,7 +196,7 @@ def _atom(expr: SExpr, domain: Domain, variables: dict[str, str] | None, objects
         if scope is None or arg not in scope:
             what = "variable" if arg.startswith("?") else "object or constant"
             raise _error(token, f"unknown {what} {arg!r}")
-        if not domain.is_subtype(scope[arg], kind):
+        if kind != ROOT_TYPE and not domain.is_subtype(scope[arg], kind):
             raise _error(token, f"{arg!r} is a {scope[arg]}, but {predicate} expects a {kind}")
     return Atom(predicate, args)
 
@@ -239,7 +226,7 @@ def _literals(expr: SExpr, domain: Domain, variables: dict[str, str] | None, obj
 
 def _sub(item, what: str) -> SExpr:
     if not isinstance(item, SExpr):
-        raise _error(item, f"expected a parenthesised {what} element, found {item.text!r}")
+        raise _error(item, f"expected a parenthesised {what} element, found {item[0]!r}")
     return item
 
 

@@ -13,36 +13,49 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from semgoal_planner.grounding import Operator, Task
-from semgoal_planner.heuristics import INF, Heuristic
+from semgoal_planner.heuristics import INF, Heuristic, bits
 
 
 @dataclass
 class SearchStats:
     expanded: int = 0
     generated: int = 0
+    evaluated: int = 0
 
 
 class Successors:
-    """Applicable operators per state, found through the operators' first precondition fact."""
+    """The (child state, operator) pairs of a state.
+
+    Each operator is filed under one of its preconditions, the one that the fewest operators need, so a
+    state only looks at operators whose filed fact holds (unstack(a,b) under on(a,b), not arm-empty).
+    Only the state's set bits are visited."""
 
     def __init__(self, task: Task) -> None:
-        self.free = [op for op in task.operators if not op.pre]
-        self.by_fact: dict[int, list[Operator]] = {}
+        uses: dict[int, int] = {}
         for op in task.operators:
+            for f in bits(op.pre):
+                uses[f] = uses.get(f, 0) + 1
+        self.free: list[tuple[int, int, int, int, Operator]] = []
+        self.by_fact: dict[int, list[tuple[int, int, int, int, Operator]]] = {}
+        for op in task.operators:
+            entry = (op.pre, op.pre_neg, ~op.delete, op.add, op)
             if op.pre:
-                lowest = (op.pre & -op.pre).bit_length() - 1
-                self.by_fact.setdefault(lowest, []).append(op)
-        self.fact_bits = sorted(self.by_fact)
+                key = min(bits(op.pre), key=uses.__getitem__)
+                self.by_fact.setdefault(1 << key, []).append(entry)
+            else:
+                self.free.append(entry)
 
-    def __call__(self, state: int):
-        for op in self.free:
-            if not state & op.pre_neg:
-                yield op
-        for f in self.fact_bits:
-            if state >> f & 1:
-                for op in self.by_fact[f]:
-                    if state & op.pre == op.pre and not state & op.pre_neg:
-                        yield op
+    def __call__(self, state: int) -> list[tuple[int, Operator]]:
+        out = [(state & keep | add, op) for _, neg, keep, add, op in self.free if not state & neg]
+        by_fact = self.by_fact
+        rest = state
+        while rest:
+            low = rest & -rest
+            rest ^= low
+            for pre, neg, keep, add, op in by_fact.get(low, ()):
+                if state & pre == pre and not state & neg:
+                    out.append((state & keep | add, op))
+        return out
 
 
 def _plan(parents: dict[int, tuple[int, Operator] | None], state: int) -> list[Operator]:
@@ -55,6 +68,7 @@ def _plan(parents: dict[int, tuple[int, Operator] | None], state: int) -> list[O
 
 def breadth_first(task: Task, heuristic: Heuristic | None = None, stats: SearchStats | None = None) -> list[Operator] | None:
     stats = stats or SearchStats()
+    goal, goal_neg = task.goal, task.goal_neg
     if task.goal_reached(task.init):
         return []
     successors = Successors(task)
@@ -63,48 +77,57 @@ def breadth_first(task: Task, heuristic: Heuristic | None = None, stats: SearchS
     while queue:
         state = queue.popleft()
         stats.expanded += 1
-        for op in successors(state):
-            child = (state & ~op.delete) | op.add
+        for child, op in successors(state):
             if child in parents:
                 continue
             stats.generated += 1
             parents[child] = (state, op)
-            if task.goal_reached(child):
+            if child & goal == goal and not child & goal_neg:
                 return _plan(parents, child)
             queue.append(child)
     return None
 
 
 def astar(task: Task, heuristic: Heuristic, stats: SearchStats | None = None) -> list[Operator] | None:
-    """A* (f = g + h; ties to the larger g); optimal when ``heuristic`` is admissible."""
+    """A* (f = g + h; ties to the larger g); optimal when ``heuristic`` is admissible.
+
+    Evaluation is deferred: a child is queued with its parent's h - 1, which bounds its own h from
+    below for any admissible heuristic (one action changes the true distance by at most 1), and is
+    evaluated when popped; if its f then grows it goes back into the queue. Most children are never
+    popped, so most evaluations are saved, and the plan stays optimal."""
     stats = stats or SearchStats()
     successors = Successors(task)
     best_g = {task.init: 0}
     parents: dict[int, tuple[int, Operator] | None] = {task.init: None}
-    h0 = heuristic(task.init)
-    if h0 == INF:
-        return None
-    heap = [(h0, 0, 0, task.init)]
+    h_of: dict[int, float] = {}
+    heap: list[tuple[float, int, int, int]] = [(0, 0, 0, task.init)]
     counter = 0
     while heap:
-        _, neg_g, _, state = heapq.heappop(heap)
+        f, neg_g, _, state = heapq.heappop(heap)
         g = -neg_g
         if g > best_g[state]:
+            continue
+        h = h_of.get(state)
+        if h is None:
+            h = h_of[state] = heuristic(state)
+            stats.evaluated += 1
+        if h == INF:
+            continue
+        if g + h > f:
+            counter += 1
+            heapq.heappush(heap, (g + h, neg_g, counter, state))
             continue
         if task.goal_reached(state):
             return _plan(parents, state)
         stats.expanded += 1
-        for op in successors(state):
-            child = (state & ~op.delete) | op.add
+        child_f = g + 1 + max(h - 1, 0)
+        for child, op in successors(state):
             if g + 1 >= best_g.get(child, INF):
                 continue
-            h = heuristic(child)
             stats.generated += 1
-            if h == INF:
-                continue
             best_g[child], parents[child] = g + 1, (state, op)
             counter += 1
-            heapq.heappush(heap, (g + 1 + h, -(g + 1), counter, child))
+            heapq.heappush(heap, (child_f, -(g + 1), counter, child))
     return None
 
 
@@ -123,13 +146,13 @@ def greedy_best_first(task: Task, heuristic: Heuristic, stats: SearchStats | Non
         if task.goal_reached(state):
             return _plan(parents, state)
         stats.expanded += 1
-        for op in successors(state):
-            child = (state & ~op.delete) | op.add
+        for child, op in successors(state):
             if child in parents:
                 continue
             parents[child] = (state, op)
             h = heuristic(child)
             stats.generated += 1
+            stats.evaluated += 1
             if h == INF:
                 continue
             counter += 1

@@ -29,6 +29,7 @@ DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates
 
 @pytest.mark.parametrize(("text", "where", "words"), [
     ("(define (domain d)", "1:1", "never closed"),
+    ("; a comment (with a paren\n(define (domain d) ; another (\n ) x", "3:4", "after the end"),
     ("(define (domain d)))", "1:20", "after the end"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (or (p ?x) (q)) :effect (q)))", "3:44", "not STRIPS"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (r ?x) :effect (q)))", "3:44", "unknown predicate"),

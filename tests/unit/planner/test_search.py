@@ -9,6 +9,7 @@ from semgoal_planner.grounding import ground
 from semgoal_planner.heuristics import HEURISTICS
 from semgoal_planner.pddl import parse_domain, parse_problem
 from semgoal_planner.planner import solve_pddl, solve_task
+from semgoal_planner.search import Successors
 
 FIXTURES = Path(__file__).parent / "fixtures"
 COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff")]
@@ -58,6 +59,35 @@ def test_admissible_heuristics_never_exceed_the_optimal_cost(seed: int) -> None:
         assert HEURISTICS[name](task)(task.init) <= optimal
     assert HEURISTICS["lmcut"](task)(task.init) >= HEURISTICS["hmax"](task)(task.init)
     assert len(solve_task(task, "astar", "lmcut").plan) == optimal
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_astar_with_hmax_and_blind_finds_optimal_plans(seed: int) -> None:
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(5, seed), domain))
+    optimal = len(solve_task(task, "bfs").plan)
+    for heuristic in ("hmax", "blind"):
+        result = solve_task(task, "astar", heuristic)
+        assert len(result.plan) == optimal
+        assert result.stats.evaluated <= result.stats.generated + 1  # deferred: never more than eager
+
+
+@pytest.mark.parametrize(("domain_name", "problem_text"), [
+    ("gripper-domain", fixture("gripper-4balls")), ("blocksworld", problem(6, 3))])
+def test_successor_generator_yields_exactly_the_applicable_operators(domain_name: str, problem_text: str) -> None:
+    domain_text = DOMAIN_PATH.read_text() if domain_name == "blocksworld" else fixture(domain_name)
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    successors = Successors(task)
+    frontier, seen = [task.init], {task.init}
+    while frontier and len(seen) < 500:  # a slice of the reachable states
+        state = frontier.pop()
+        expected = sorted((op.apply(state), str(op)) for op in task.operators if op.applicable(state))
+        assert sorted((child, str(op)) for child, op in successors(state)) == expected
+        for child, _ in expected:
+            if child not in seen:
+                seen.add(child)
+                frontier.append(child)
 
 
 def test_unsolvable_task_returns_no_plan_and_a_reason() -> None:

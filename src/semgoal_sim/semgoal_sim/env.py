@@ -33,6 +33,10 @@ instead (the grasp a person hands over; cheaper, and it keeps that start in the 
 ARM_START_LOW = np.array([tasks.SPAWN_LOW[0] - 0.05, tasks.SPAWN_LOW[1] - 0.05, tasks.TABLE_TOP + 0.09])
 ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.05, tasks.TABLE_TOP + 0.22])
 """Where a pick episode's grip site starts when it does not start at home: above block height (m)."""
+ABOVE_BIN_SHARE = 1 / 3
+"""Share of those starts, in a scene with a bin, above the bin instead: where a put_in_bin leaves the arm
+and so where the next pick of a desk clean-up begins (without them the actor had never started a pick
+there, and DC tasks stalled on their second and third picks)."""
 
 
 class SubgoalEnv(gym.Env):
@@ -119,12 +123,21 @@ class SubgoalEnv(gym.Env):
         rng = self.np_random
         if subgoal.kind == "pick":
             if rng.uniform() < 0.5:
-                self._move_grip(rng.uniform(ARM_START_LOW, ARM_START_HIGH))
+                self._move_grip(rng.uniform(*self._pick_start_box()))
             return True
         if rng.uniform() < PLACED_START_SHARE:
             self.world.place_in_gripper(subgoal.block)
             return True
         return self._pick_up(subgoal.block)
+
+    def _pick_start_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) corners of the box a pick's grip start is drawn from."""
+        bin_ = self.scene.bin
+        if bin_ is None or self.np_random.uniform() >= ABOVE_BIN_SHARE:
+            return ARM_START_LOW, ARM_START_HIGH
+        centre, half = np.array([*bin_.center, 0.0]), np.array([*bin_.inner_half_size, 0.0])
+        rim = tasks.TABLE_TOP + bin_.wall_height
+        return centre - half + [0.0, 0.0, rim + 0.04], centre + half + [0.0, 0.0, rim + 0.15]
 
     def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
         for _ in range(steps):

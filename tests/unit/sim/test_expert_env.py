@@ -8,6 +8,7 @@ from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.expert import expert_action
 from semgoal_sim.layout import goal_reward, observation_size
 from semgoal_sim.rollout import run_task
+from semgoal_sim import tasks
 from semgoal_sim.tasks import TASKS
 
 
@@ -82,6 +83,15 @@ def test_pick_episodes_sometimes_start_with_the_arm_elsewhere() -> None:
     env = SubgoalEnv("desk_cleanup")
     grips = [env.reset(seed=seed, options={"kind": "pick"})[0]["observation"][:3] for seed in range(20)]
     assert len({tuple(np.round(g, 2)) for g in grips}) >= 5  # about half of them leave the home pose
+
+
+def test_desk_cleanup_picks_sometimes_start_above_the_bin_where_a_put_in_bin_ends() -> None:
+    env = SubgoalEnv("desk_cleanup")
+    bin_ = env.scene.bin
+    grips = [env.reset(seed=seed, options={"kind": "pick"})[0]["observation"][:3] for seed in range(60)]
+    above_bin = [g for g in grips if np.all(np.abs(g[:2] - bin_.center) < np.array(bin_.inner_half_size) + 0.03)]
+    assert 4 <= len(above_bin) <= 20  # about a sixth of the starts
+    assert all(g[2] > tasks.TABLE_TOP + bin_.wall_height for g in above_bin)
 
 
 def test_near_two_references_is_only_asked_where_they_are_close() -> None:

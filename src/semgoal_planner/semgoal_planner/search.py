@@ -89,45 +89,36 @@ def breadth_first(task: Task, heuristic: Heuristic | None = None, stats: SearchS
 
 
 def astar(task: Task, heuristic: Heuristic, stats: SearchStats | None = None) -> list[Operator] | None:
-    """A* (f = g + h; ties to the larger g); optimal when ``heuristic`` is admissible.
-
-    Evaluation is deferred: a child is queued with its parent's h - 1, which bounds its own h from
-    below for any admissible heuristic (one action changes the true distance by at most 1), and is
-    evaluated when popped; if its f then grows it goes back into the queue. Most children are never
-    popped, so most evaluations are saved, and the plan stays optimal."""
+    """A* (f = g + h; ties to the larger g); optimal when ``heuristic`` is admissible."""
     stats = stats or SearchStats()
     successors = Successors(task)
     best_g = {task.init: 0}
     parents: dict[int, tuple[int, Operator] | None] = {task.init: None}
-    h_of: dict[int, float] = {}
-    heap: list[tuple[float, int, int, int]] = [(0, 0, 0, task.init)]
+    h0 = heuristic(task.init)
+    stats.evaluated += 1
+    if h0 == INF:
+        return None
+    heap = [(h0, 0, 0, task.init)]
     counter = 0
     while heap:
-        f, neg_g, _, state = heapq.heappop(heap)
+        _, neg_g, _, state = heapq.heappop(heap)
         g = -neg_g
         if g > best_g[state]:
-            continue
-        h = h_of.get(state)
-        if h is None:
-            h = h_of[state] = heuristic(state)
-            stats.evaluated += 1
-        if h == INF:
-            continue
-        if g + h > f:
-            counter += 1
-            heapq.heappush(heap, (g + h, neg_g, counter, state))
             continue
         if task.goal_reached(state):
             return _plan(parents, state)
         stats.expanded += 1
-        child_f = g + 1 + max(h - 1, 0)
         for child, op in successors(state):
             if g + 1 >= best_g.get(child, INF):
                 continue
+            h = heuristic(child)
             stats.generated += 1
+            stats.evaluated += 1
+            if h == INF:
+                continue
             best_g[child], parents[child] = g + 1, (state, op)
             counter += 1
-            heapq.heappush(heap, (child_f, -(g + 1), counter, child))
+            heapq.heappush(heap, (g + 1 + h, -(g + 1), counter, child))
     return None
 
 
@@ -137,6 +128,7 @@ def greedy_best_first(task: Task, heuristic: Heuristic, stats: SearchStats | Non
     successors = Successors(task)
     parents: dict[int, tuple[int, Operator] | None] = {task.init: None}
     h0 = heuristic(task.init)
+    stats.evaluated += 1
     if h0 == INF:
         return None
     heap = [(h0, 0, task.init)]

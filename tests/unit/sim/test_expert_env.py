@@ -4,11 +4,11 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
+from semgoal_sim import tasks
 from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.expert import expert_action
 from semgoal_sim.layout import goal_reward, observation_size
 from semgoal_sim.rollout import run_task
-from semgoal_sim import tasks
 from semgoal_sim.tasks import TASKS
 
 

@@ -20,7 +20,6 @@ from semgoal_planner.heuristics import INF, Heuristic, bits
 class SearchStats:
     expanded: int = 0
     generated: int = 0
-    evaluated: int = 0
 
 
 class Successors:
@@ -95,7 +94,6 @@ def astar(task: Task, heuristic: Heuristic, stats: SearchStats | None = None) ->
     best_g = {task.init: 0}
     parents: dict[int, tuple[int, Operator] | None] = {task.init: None}
     h0 = heuristic(task.init)
-    stats.evaluated += 1
     if h0 == INF:
         return None
     heap = [(h0, 0, 0, task.init)]
@@ -113,7 +111,6 @@ def astar(task: Task, heuristic: Heuristic, stats: SearchStats | None = None) ->
                 continue
             h = heuristic(child)
             stats.generated += 1
-            stats.evaluated += 1
             if h == INF:
                 continue
             best_g[child], parents[child] = g + 1, (state, op)
@@ -128,7 +125,6 @@ def greedy_best_first(task: Task, heuristic: Heuristic, stats: SearchStats | Non
     successors = Successors(task)
     parents: dict[int, tuple[int, Operator] | None] = {task.init: None}
     h0 = heuristic(task.init)
-    stats.evaluated += 1
     if h0 == INF:
         return None
     heap = [(h0, 0, task.init)]
@@ -144,7 +140,6 @@ def greedy_best_first(task: Task, heuristic: Heuristic, stats: SearchStats | Non
             parents[child] = (state, op)
             h = heuristic(child)
             stats.generated += 1
-            stats.evaluated += 1
             if h == INF:
                 continue
             counter += 1

@@ -4,7 +4,7 @@ Each episode draws a start state and a sub-goal of the scene's types (paper, tab
 ``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Episodes
 start where the previous step of a plan leaves the arm: a put starts once a pick of its block has been
 confirmed (the scripted expert picks it, with a little noise), a pick starts half the time with the arm
-moved somewhere over the table, as a put leaves it. Episodes never start with the sub-goal already
+moved somewhere over the table or the bin, as a put leaves it. Episodes never start with the sub-goal already
 achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
 ``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
 """

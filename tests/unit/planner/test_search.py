@@ -69,7 +69,6 @@ def test_astar_with_hmax_and_blind_finds_optimal_plans(seed: int) -> None:
     for heuristic in ("hmax", "blind"):
         result = solve_task(task, "astar", heuristic)
         assert len(result.plan) == optimal
-        assert result.stats.evaluated == result.stats.generated + 1  # every child once, and the start
 
 
 @pytest.mark.parametrize(("domain_name", "problem_text"), [

@@ -3,10 +3,11 @@
 Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
 ``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Episodes
 start where the previous step of a plan leaves the arm: a put starts once a pick of its block has been
-confirmed (the scripted expert picks it, with a little noise), a pick starts half the time with the arm
-moved somewhere over the table or the bin, as a put leaves it. Episodes never start with the sub-goal already
-achieved. ``reset(options=...)`` takes ``{"subgoal": "pick(red)"}`` or
-``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
+confirmed (the scripted expert picks it, with a little noise); a pick starts at the home pose, with the arm
+moved somewhere over the table, or right where the expert's put of another block was confirmed: open
+fingers just above that block, the desk as that put left it (in a bin, next to another block, ...).
+Episodes never start with the sub-goal already achieved. ``reset(options=...)`` takes
+``{"subgoal": "pick(red)"}`` or ``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 
 from semgoal_sim import layout, tasks
 from semgoal_sim.expert import expert_action, move_to
-from semgoal_sim.rollout import run_subgoal
+from semgoal_sim.rollout import run_subgoal, satisfied
 from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_sim.world import FetchWorld
 
@@ -33,10 +34,10 @@ instead (the grasp a person hands over; cheaper, and it keeps that start in the 
 ARM_START_LOW = np.array([tasks.SPAWN_LOW[0] - 0.05, tasks.SPAWN_LOW[1] - 0.05, tasks.TABLE_TOP + 0.09])
 ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.05, tasks.TABLE_TOP + 0.22])
 """Where a pick episode's grip site starts when it does not start at home: above block height (m)."""
-ABOVE_BIN_SHARE = 1 / 3
-"""Share of those starts, in a scene with a bin, above the bin instead: where a put_in_bin leaves the arm
-and so where the next pick of a desk clean-up begins (without them the actor had never started a pick
-there, and DC tasks stalled on their second and third picks)."""
+PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
+"""Where pick episodes start. ``after_put`` is where a plan hands the next pick over: without it the
+actor had never started a pick with its fingers around a block it had just put (in the bin, say), and
+DC tasks stalled on their second and later picks or dragged a binned block out again."""
 
 
 class SubgoalEnv(gym.Env):
@@ -122,22 +123,28 @@ class SubgoalEnv(gym.Env):
         """Bring the arm to where a plan would hand ``subgoal`` over; False when that failed (resample)."""
         rng = self.np_random
         if subgoal.kind == "pick":
-            if rng.uniform() < 0.5:
-                self._move_grip(rng.uniform(*self._pick_start_box()))
+            start = rng.choice(list(PICK_START_SHARES), p=list(PICK_START_SHARES.values()))
+            if start == "over_table":
+                self._move_grip(rng.uniform(ARM_START_LOW, ARM_START_HIGH))
+            elif start == "after_put":
+                return self._put_another(subgoal.block)
             return True
         if rng.uniform() < PLACED_START_SHARE:
             self.world.place_in_gripper(subgoal.block)
             return True
         return self._pick_up(subgoal.block)
 
-    def _pick_start_box(self) -> tuple[np.ndarray, np.ndarray]:
-        """(low, high) corners of the box a pick's grip start is drawn from."""
-        bin_ = self.scene.bin
-        if bin_ is None or self.np_random.uniform() >= ABOVE_BIN_SHARE:
-            return ARM_START_LOW, ARM_START_HIGH
-        centre, half = np.array([*bin_.center, 0.0]), np.array([*bin_.inner_half_size, 0.0])
-        rim = tasks.TABLE_TOP + bin_.wall_height
-        return centre - half + [0.0, 0.0, rim + 0.04], centre + half + [0.0, 0.0, rim + 0.15]
+    def _put_another(self, block: str) -> bool:
+        """The expert picks and puts some other block (a sampled put sub-goal) until the put is confirmed,
+        as the step before a pick of ``block`` leaves the world; False where that put failed or left
+        ``block`` under another."""
+        kinds = [kind for kind in self.subgoal_types if kind != "pick"]
+        other = self._sample_subgoal(str(self.np_random.choice(kinds)), exclude=block)
+        if other is None or not self._pick_up(other.block):
+            return False
+        if not run_subgoal(self.world, other, self._noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]:
+            return False
+        return not self._under_another(block, self.world.semantic_vector())
 
     def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
         for _ in range(steps):
@@ -146,20 +153,27 @@ class SubgoalEnv(gym.Env):
     def _pick_up(self, block: str) -> bool:
         """The expert picks ``block`` (with a little noise) until holding it is confirmed, as the planner
         confirms a pick."""
-        def noisy_expert(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
-            noise = HANDOVER_NOISE * self.np_random.standard_normal(4)
-            return expert_action(subgoal, world.view()) + noise
-
         pick = SubGoal("pick", (block,))
-        return run_subgoal(self.world, pick, noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]
+        return run_subgoal(self.world, pick, self._noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]
 
-    def _sample_subgoal(self, kind: str | None = None) -> SubGoal | None:
-        rng, blocks = self.np_random, self.world.blocks
+    def _noisy_expert(self, subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
+        """The expert as the trained actor behaves: once a put holds it backs away (over the steps that
+        confirm it), it does not pick the block again."""
+        achieved = satisfied(world.layout, world.semantic_vector(), subgoal.literals())
+        noise = HANDOVER_NOISE * self.np_random.standard_normal(4)
+        return expert_action(subgoal, world.view(), achieved=achieved) + noise
+
+    def _under_another(self, block: str, vector: np.ndarray) -> bool:
+        return any(lit.name == "above" and lit.args[1] == block for lit in self.layout.true_literals(vector))
+
+    def _sample_subgoal(self, kind: str | None = None, exclude: str | None = None) -> SubGoal | None:
+        """A sub-goal of ``kind`` (default: any type) for a random block other than ``exclude``."""
+        rng = self.np_random
         kind = kind or str(rng.choice(self.subgoal_types))
-        x, *others = rng.permutation(blocks).tolist()
+        x = str(rng.choice([b for b in self.world.blocks if b != exclude]))
+        others = rng.permutation([b for b in self.world.blocks if b != x]).tolist()
         vector = self.world.semantic_vector()
-        on_x = any(lit.name == "above" and lit.args[1] == x for lit in self.layout.true_literals(vector))
-        if on_x:  # a block under another cannot be picked: the plan would clear it first
+        if self._under_another(x, vector):  # a block under another cannot be picked: the plan would clear it first
             return None
         if kind in ("put_near", "put_away") and len(others) >= 2 and rng.uniform() < 0.3:
             refs = tuple(others[:2])

@@ -13,7 +13,8 @@ same predicates on the same Fetch blocks (5 cm cubes), except for close:
   sides up to 0.09 m when the threshold leaves a margin. 0.10 m still means "at most one block width
   between them".
 - ``above(a, b)``: ``a`` rests on ``b``: xy distance < 0.05 m and 0.03 m < z_a - z_b < 0.07 m.
-- ``holding(a)``: ``a`` sits between the fingers (xy within 0.03 m of the grip site, z within 0.03 m)
+- ``holding(a)``: ``a`` sits between the fingers (xy within 0.03 m of the grip site, z within 0.04 m:
+  a block grasped near its top edge hangs 3.4 cm below the grip site and is lifted all the same)
   and the fingers are closed on it (opening between 0.03 and 0.07 m: a 5 cm block, with give). A
   grasped block still touching the table is held.
 - ``in_bin(a)``: the centre lies inside the bin walls (xy) and below the rim: a block lying on the rim
@@ -57,7 +58,7 @@ class Thresholds:
     """...and by less than this (one block height is 0.05)."""
     holding_xy: float = 0.03
     """holding(a): block centre within this of the grip site in the table plane..."""
-    holding_z: float = 0.03
+    holding_z: float = 0.04
     """...and vertically..."""
     holding_opening_min: float = 0.03
     """...and finger opening (sum of both finger joints, 0 = shut, 0.1 = open) at least this..."""
@@ -74,9 +75,10 @@ class BinGeometry:
 
     center: tuple[float, float] = (1.30, 1.00)
     """Centre of the bin in the table plane (m)."""
-    inner_half_size: tuple[float, float] = (0.13, 0.055)
-    """Half of the inner extent in x and y (m): a row of four blocks along x, with room between them
-    for the fingers, which open along y."""
+    inner_half_size: tuple[float, float] = (0.16, 0.065)
+    """Half of the inner extent in x and y (m): a row of four blocks along x, 8 cm apart, so the last
+    block still has 3 cm of play between two binned ones (at 6.5 cm, puts into a three-quarter-full
+    bin missed); in y the open fingers (outer faces 5.5 cm from the block's centre) clear the walls."""
     wall_height: float = 0.04
     """Height of the walls above the floor's top (m): low, so blocks are dropped in from above."""
     wall_thickness: float = 0.01

@@ -9,7 +9,7 @@ setup:
 	@bash tools/setup.sh
 
 # The issue's default goal, DC-3; seed 7 is a start the shipped actors solve without a re-plan (others: DEMO_ARGS="--task DC-3 --seed S").
-DEMO_ARGS ?= --task DC-3 --seed 7
+DEMO_ARGS ?= --task DC-3 --seed 6
 demo: setup
 	@./semgoal demo $(DEMO_ARGS)
 

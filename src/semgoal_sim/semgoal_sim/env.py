@@ -35,9 +35,8 @@ ARM_START_LOW = np.array([tasks.SPAWN_LOW[0] - 0.05, tasks.SPAWN_LOW[1] - 0.05, 
 ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.05, tasks.TABLE_TOP + 0.22])
 """Where a pick episode's grip site starts when it does not start at home: above block height (m)."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
-"""Where pick episodes start. ``after_put`` is where a plan hands the next pick over: without it the
-actor had never started a pick with its fingers around a block it had just put (in the bin, say), and
-DC tasks stalled on their second and later picks or dragged a binned block out again."""
+"""Where pick episodes start. ``after_put`` is where a plan hands the next pick over: the open fingers
+just above a block that was just put (in the bin, say), which no training pick had started from before."""
 
 
 class SubgoalEnv(gym.Env):
@@ -158,8 +157,8 @@ class SubgoalEnv(gym.Env):
 
     def _noisy_expert(self, subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
         """The expert as the trained actor behaves: once a put holds it backs away (over the steps that
-        confirm it), it does not pick the block again."""
-        achieved = satisfied(world.layout, world.semantic_vector(), subgoal.literals())
+        confirm it), it does not pick the block again. Picks ignore ``achieved``: no semantic vector for them."""
+        achieved = subgoal.kind != "pick" and satisfied(world.layout, world.semantic_vector(), subgoal.literals())
         noise = HANDOVER_NOISE * self.np_random.standard_normal(4)
         return expert_action(subgoal, world.view(), achieved=achieved) + noise
 

@@ -1,6 +1,7 @@
-"""sim_node, predicate_node and policy_node as processes: the test sets the sub-goal pick(red) and the
-shipped actor achieves it in lockstep within the step budget; without an active sub-goal the lockstep
-world waits (the arm holds still)."""
+"""sim_node, predicate_node and policy_node as processes: the test plays the planner (it answers every
+semantic state with the sub-goal, stamped with the state's step) and sets pick(red); the shipped actor
+achieves it in lockstep within the step budget. Without an active sub-goal, or without the planner's
+answer for the current step, the lockstep world waits (the arm holds still)."""
 
 import numpy as np
 
@@ -18,13 +19,20 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     nodes.start("semgoal_policy", "policy_node", params={"scene": "two_blocks"})
     worlds: list[WorldState] = []
     semantic: list[SemanticState] = []
-    probe.node.create_subscription(WorldState, topics.WORLD_STATE, worlds.append, topics.STREAM)
-    probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, semantic.append, topics.LATCHED)
     subgoals = probe.node.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
+    planner = {"answers": True, "subgoal": SubGoal(status="empty")}  # nothing active: the arm holds still
+
+    def answer(state: SemanticState) -> None:
+        semantic.append(state)
+        if planner["answers"]:
+            planner["subgoal"].step = state.step
+            subgoals.publish(planner["subgoal"])
+
+    probe.node.create_subscription(WorldState, topics.WORLD_STATE, worlds.append, topics.STREAM)
+    probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, answer, topics.LATCHED)
     probe.spin_until(lambda: probe.node.count_subscribers(topics.WORLD_STATE) >= 3, 40, "predicates and policy listening")
     probe.spin_until(lambda: subgoals.get_subscription_count() >= 1, 20, "policy subscribed to sub-goals")
 
-    subgoals.publish(SubGoal(status="empty"))  # nothing active: the arm holds still
     reset = probe.node.create_client(ResetWorld, topics.RESET_WORLD)
     probe.spin_until(reset.service_is_ready, 20, "reset service")
     assert probe.spin_future(reset.call_async(ResetWorld.Request(task="MC-2", seed=11)), 20, "reset").success
@@ -35,8 +43,15 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     assert max(np.linalg.norm(g - grip[0]) for g in grip) < 0.005
 
     start = worlds[-1].step
-    subgoals.publish(SubGoal(index=0, action="pick(red)", status="active", assignee="robot",
-                             goal=[Predicate(name="holding", args=["red"], value=True)]))
+    pick_red = SubGoal(index=0, action="pick(red)", status="active", assignee="robot", step=start + 1,
+                       goal=[Predicate(name="holding", args=["red"], value=True)])
+    planner["answers"] = False
+    subgoals.publish(pick_red)  # decided for a step the world has not reached: the policy waits
+    probe.spin_for(1.5)
+    assert worlds[-1].step == start
+    pick_red.step = start
+    planner.update(answers=True, subgoal=pick_red)
+    subgoals.publish(pick_red)
 
     def holding_red() -> bool:
         return bool(semantic) and any(p.name == "holding" and p.args == ["red"] and p.value for p in semantic[-1].predicates)

@@ -78,11 +78,13 @@ class GraphClient:
     def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True) -> bool:
         """Sim services, the planner's action, the predicates and (with ``policy``) the policy are up.
 
-        Counts include this client's own subscriptions: world state is read by this client, predicates,
-        planner and policy; the sub-goal by this client and the policy."""
-        world_readers, subgoal_readers = (4, 2) if policy else (3, 1)
+        Counts include this client's own subscriptions: world state is read by this client, predicates
+        and policy; the semantic state by this client and the planner; the sub-goal by this client and
+        the policy."""
+        world_readers, subgoal_readers = (3, 2) if policy else (2, 1)
         return self.spin_until(lambda: (self.reset_client.service_is_ready() and self.action.server_is_ready()
                                         and self.node.count_subscribers(self.topics.WORLD_STATE) >= world_readers
+                                        and self.node.count_subscribers(self.topics.SEMANTIC_STATE) >= 2
                                         and self.node.count_subscribers(self.topics.SUBGOAL) >= subgoal_readers),
                                timeout)
 

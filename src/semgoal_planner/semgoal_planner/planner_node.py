@@ -1,7 +1,10 @@
 """planner_node: goals and semantic states in; the plan and the active sub-goal out (latched).
 
 Wires the pure :class:`~semgoal_planner.executive.Executive` to ROS: the goal topic, GetPlan and
-EditPlan services, the ExecuteGoal action, and the world-state stream as the control-step clock.
+EditPlan services, the ExecuteGoal action. The semantic state (one per world state, stamped with its
+control step) is also the clock: each one is a tick and an observation, in that order, as in the
+in-process episode, and each one gets an answer on the sub-goal topic stamped with its step, so the
+policy in lockstep acts on a world state only once the planner has decided on it.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.node import Node
 
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal, WorldState
+from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.operator import format_plan
@@ -51,7 +54,6 @@ class PlannerNode(Node):
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.LATCHED)
-        self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
         self.create_service(EditPlan, topics.EDIT_PLAN, self.edit_plan_callback)
         self.action_server = ActionServer(
@@ -83,13 +85,9 @@ class PlannerNode(Node):
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
         with self.lock:
             self.last_state = msg
-            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
-            self.publish()
-
-    def world_callback(self, msg: WorldState) -> None:
-        with self.lock:
             self.executive.tick(int(msg.step))
-            self.publish()
+            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
+            self.publish(decided=True)
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
         with self.lock:
@@ -156,23 +154,32 @@ class PlannerNode(Node):
         return SubGoal(index=index, action=str(subgoal), status=status, assignee=assignee,
                        goal=[Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in subgoal.literals()])
 
-    def publish(self) -> None:
-        """Publish plan and active sub-goal when they changed; log the executive's events."""
+    def publish(self, decided: bool = False) -> None:
+        """Publish the plan when it changed and the active sub-goal when it changed or ``decided`` (a new
+        semantic state was observed: the policy waits for this answer); log the executive's events."""
         ex = self.executive
         for line in ex.drain_events():
             self.get_logger().info(line)
         key = (ex.revision, ex.status, ex.current)
-        if key == self.last_published:
-            return
-        self.last_published = key
-        self.plan_publisher.publish(self.plan_message())
+        changed = key != self.last_published
+        if changed:
+            self.last_published = key
+            self.plan_publisher.publish(self.plan_message())
+        if changed or decided:
+            self.subgoal_publisher.publish(self.subgoal_message())
+
+    def subgoal_message(self) -> SubGoal:
+        """The active robot step; else an empty goal (the policy holds still) with the reason as status."""
+        ex = self.executive
         active = ex.active
-        if active is None:  # the policy holds still on anything but an active robot step
+        if active is None:
             waiting = ex.status == "executing"  # executing without an active robot step: a human's turn
-            self.subgoal_publisher.publish(SubGoal(index=ex.current, status="waiting_for_human" if waiting else ex.status,
-                                                   assignee="human" if waiting else ""))
+            msg = SubGoal(index=ex.current, status="waiting_for_human" if waiting else ex.status,
+                          assignee="human" if waiting else "")
         else:
-            self.subgoal_publisher.publish(self.step_message(ex.current, active.subgoal, "active", "robot"))
+            msg = self.step_message(ex.current, active.subgoal, "active", "robot")
+        msg.step = ex.observation.step if ex.observation else 0
+        return msg
 
 
 

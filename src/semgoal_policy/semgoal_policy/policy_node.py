@@ -1,8 +1,12 @@
-"""policy_node: world state and the active sub-goal in, one ArmCommand per world state out (lockstep) or
-at ``rate_hz`` (realtime). Without an active sub-goal, or once it is confirmed (its literals held for
-``SUBGOAL_CONFIRM_STEPS`` steps, the planner's rule), it holds still (realtime: zero
-commands; lockstep: no command, so the world waits for the planner). It never publishes NaN or values
-outside [-1, 1]."""
+"""policy_node: world state and the active sub-goal in, arm commands out.
+
+Lockstep: one ArmCommand per world state, sent once the planner has decided on that state's step (the
+sub-goal message carries it), so the node graph takes exactly the steps of the in-process episode;
+without an active sub-goal no command goes out and the world waits. Realtime: a command at ``rate_hz``
+with the latest sub-goal; once that holds (its literals held for ``SUBGOAL_CONFIRM_STEPS`` steps, the
+planner's rule) the arm holds still until the planner names the next. It never publishes NaN or values
+outside [-1, 1].
+"""
 
 from __future__ import annotations
 
@@ -35,14 +39,24 @@ class PolicyNode(Node):
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
         self.latest: WorldState | None = None
+        self.decided_step = -1
+        """The control step of the semantic state behind the latest sub-goal message."""
         self.answered_step, self.answered_at = -1, 0.0
-        # realtime: act at rate_hz. lockstep: the world waits while no sub-goal is active (runs are
-        # reproducible from the reset on); the timer only resends a command that may have been lost
+        # realtime: act at rate_hz. lockstep: the world waits for each command, so the timer only resends
+        # one that may have been lost
         self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
-        self.subgoal_text = ""
-        self.nudging = False
+        self.subgoal_key: tuple | None = None
 
     def subgoal_callback(self, msg: SubGoal) -> None:
+        self.decided_step = msg.step
+        key = (msg.status, msg.action, tuple((p.name, tuple(p.args), p.value) for p in msg.goal))
+        if key != self.subgoal_key:  # the planner answers every step; most answers repeat the last sub-goal
+            self.subgoal_key = key
+            self.set_subgoal(msg)
+        if self.mode == "lockstep":
+            self.answer_lockstep()
+
+    def set_subgoal(self, msg: SubGoal) -> None:
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == "active" else []
         try:
             self.controller.set_subgoal(literals)
@@ -51,12 +65,7 @@ class PolicyNode(Node):
             self.get_logger().warn(f"holding still: sub-goal {msg.action!r} is not valid here: {error}")
             return
         text = msg.action if literals else f"(none: {msg.status or 'no plan'})"
-        if text != self.subgoal_text:
-            self.subgoal_text, self.nudging = text, False
-            self.get_logger().info(f"sub-goal {text}")
-            if self.mode == "lockstep":
-                self.answered_step = -1
-                self.answer_lockstep()
+        self.get_logger().info(f"sub-goal {text}")
 
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg
@@ -67,38 +76,25 @@ class PolicyNode(Node):
         if self.latest is None:
             return
         if self.mode == "realtime":
-            self.publish_command(self.latest, self.decide(self.latest))
+            self.publish_command(self.latest, self.decide_realtime(self.latest))
         elif time.monotonic() - self.answered_at > 1.0:
             self.answered_step = -1  # lockstep: the command for this step may have been lost; send it again
-            self.answer_lockstep(stalled=True)
+            self.answer_lockstep()
 
-    def decide(self, msg: WorldState) -> np.ndarray | None:
-        """The command for a world state; None once the sub-goal is confirmed (the planner names the next one)."""
+    def decide_realtime(self, msg: WorldState) -> np.ndarray:
+        """The command for a world state; hold still once the sub-goal is confirmed (the planner names the next)."""
         if self.controller.goal is not None and self.controller.confirmed(msg.step, conversions.semantic_vector(msg)):
-            return None
+            return HOLD
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
-    def answer_lockstep(self, stalled: bool = False) -> None:
-        """One command per step while a sub-goal is active and not yet achieved; otherwise the world waits,
-        so the next sub-goal starts from exactly the state where the last one was achieved.
-
-        ``stalled``: no command went out for a second. If the sub-goal is confirmed here but the planner
-        still names it (its confirmation began a step later, as messages raced), hold-still commands let
-        the world tick on until the sub-goal changes, so the planner confirms too instead of both
-        waiting for good (a graph stalled so once, in a long via-ROS evaluation under load)."""
+    def answer_lockstep(self) -> None:
+        """Act once on the latest world state when the planner has decided on its step and names a sub-goal."""
         msg = self.latest
-        if msg is None or self.controller.goal is None or msg.step == self.answered_step:
+        if msg is None or self.controller.goal is None or msg.step != self.decided_step or msg.step == self.answered_step:
             return
-        action = self.decide(msg)
-        if action is None and stalled and not self.nudging:
-            self.nudging = True
-            self.get_logger().info(f"{self.subgoal_text} holds here but the planner still names it: "
-                                   "holding still while the world ticks on")
-        if action is not None or self.nudging:
-            self.publish_command(msg, action)
+        self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
 
-    def publish_command(self, msg: WorldState, action: np.ndarray | None) -> None:
-        action = HOLD if action is None else action
+    def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))
         command.header.stamp = self.get_clock().now().to_msg()
         command.displacement.x, command.displacement.y, command.displacement.z = (float(v) for v in action[:3])

@@ -1,0 +1,34 @@
+"""Lockstep through the four node processes is the in-process episode: the policy answers a world state
+only once the planner has decided on its step, so the graph takes exactly the steps and re-plans that
+:class:`HierarchicalAgent` takes with the same cores, seeds and actor. Each case re-plans in process, so
+the re-plan timing (the planner's stall and contradiction clocks) is compared too."""
+
+import pytest
+
+from conftest import NodeProcesses
+from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
+from semgoal_bringup.graph import NODES, node_params
+from semgoal_bringup.graph_client import GraphClient
+from semgoal_sim.tasks import get_task
+
+CASES = [("MC-2", 5), ("DC-2", 2)]
+"""Starts where the shipped actors re-plan in process (MC-2: once, DC-2: twice)."""
+
+
+@pytest.mark.parametrize(("task", "seed"), CASES)
+def test_the_graph_takes_the_in_process_steps(task: str, seed: int, nodes: NodeProcesses) -> None:
+    expected = make_agent("hierarchical", get_task(task).scene).run(task, seed)
+    assert expected.replans >= 1, "the case should exercise re-planning"
+    params = node_params(task, seed, "lockstep")
+    for package, exe in NODES:
+        nodes.start(package, exe, params=params[exe])
+    client = GraphClient("semgoal_test_operator")
+    try:
+        assert client.wait_ready(), "the four nodes did not come up"
+        ok, message = client.reset(task, seed)
+        assert ok, message
+        result = client.execute(task, max_steps=TASK_STEP_BUDGET)
+    finally:
+        client.close()
+    graph = (result.success, result.control_steps, result.replans)
+    assert graph == (expected.success, expected.steps, expected.replans), result.message

@@ -9,12 +9,10 @@ policy in lockstep acts on a world state only once the planner has decided on it
 
 from __future__ import annotations
 
-import threading
-import time
-
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
-from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.action.server import ServerGoalHandle
 from rclpy.node import Node
+from rclpy.task import Future
 
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
@@ -49,7 +47,6 @@ class PlannerNode(Node):
             max_replans=self.declare_parameter("max_replans", 5).value,
             require_approval=self.declare_parameter("require_approval", False).value,
         )
-        self.lock = threading.RLock()  # the action's execute thread reads what callbacks write
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
@@ -58,10 +55,12 @@ class PlannerNode(Node):
         self.create_service(EditPlan, topics.EDIT_PLAN, self.edit_plan_callback)
         self.action_server = ActionServer(
             self, ExecuteGoal, topics.EXECUTE_GOAL, self.execute_callback,
-            goal_callback=lambda _: GoalResponse.ACCEPT, cancel_callback=lambda _: CancelResponse.ACCEPT,
-            callback_group=ReentrantCallbackGroup())
+            goal_callback=lambda _: GoalResponse.ACCEPT, cancel_callback=self.cancel_callback)
         self.last_published: tuple | None = None
         self.last_state: SemanticState | None = None
+        self.action_goal: tuple[ServerGoalHandle, Future] | None = None
+        """The ExecuteGoal being executed and the future its coroutine awaits: resolved with the reason
+        when the goal ends (succeeded, failed, cancelled or superseded by another goal)."""
         self.publish()
 
     # -- inputs --------------------------------------------------------------------------------------
@@ -69,63 +68,78 @@ class PlannerNode(Node):
         self.start_goal(msg)
 
     def start_goal(self, msg: GoalRequest) -> tuple[bool, str]:
-        with self.lock:
-            try:
-                ok, message = self.executive.set_goal(goal_text(msg))
-            except ValueError as error:
-                ok, message = False, str(error)
-            self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)}: {message}")
-            self.publish()
-            return ok, message
+        try:
+            ok, message = self.executive.set_goal(goal_text(msg))
+        except ValueError as error:
+            ok, message = False, str(error)
+        self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)}: {message}")
+        if ok:
+            self.end_action_goal("superseded by a new goal")
+        self.publish()
+        return ok, message
 
     def semantic_callback(self, msg: SemanticState) -> None:
         if msg.scene != self.executive.planner.scene:
             self.get_logger().warn(f"ignored a semantic state of scene {msg.scene!r}", throttle_duration_sec=5.0)
             return
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
-        with self.lock:
-            self.last_state = msg
-            self.executive.tick(int(msg.step))
-            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
-            self.publish(decided=True)
+        self.last_state = msg
+        self.executive.tick(int(msg.step))
+        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
+        self.publish(decided=True)
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
-        with self.lock:
-            response.plan = self.plan_message()
-            response.success = self.executive.status != "empty"
-            response.message = format_plan(response.plan)
+        response.plan = self.plan_message()
+        response.success = self.executive.status != "empty"
+        response.message = format_plan(response.plan)
         return response
 
     def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
-        with self.lock:
-            response.success, response.message = self.executive.edit(
-                request.op, int(request.index), int(request.to_index), request.action)
-            self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
-            self.publish()
-            response.plan = self.plan_message()
+        response.success, response.message = self.executive.edit(
+            request.op, int(request.index), int(request.to_index), request.action)
+        self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
+        self.publish()
+        response.plan = self.plan_message()
         return response
 
-    def execute_callback(self, handle) -> ExecuteGoal.Result:
+    async def execute_callback(self, handle: ServerGoalHandle) -> ExecuteGoal.Result:
+        """Start the goal, then wait (without a thread: the callbacks go on) until it ends; feedback
+        goes out with every change of the plan (:meth:`publish`)."""
         result = ExecuteGoal.Result()
         ok, message = self.start_goal(handle.request.goal)
         start_step = self.executive.goal_started
-        while ok and self.executive.status not in FINAL:
-            if handle.is_cancel_requested:
-                with self.lock:
-                    self.executive.cancel()
-                    self.publish()
-                handle.canceled()
-                result.message = "cancelled"
-                return self._fill(result, start_step)
-            feedback = ExecuteGoal.Feedback(plan=self.plan_message())
-            if self.last_state is not None:
-                feedback.state = self.last_state
-            handle.publish_feedback(feedback)
-            time.sleep(0.05)
+        if ok and self.executive.status not in FINAL:
+            ended = Future(executor=self.executor)
+            self.action_goal = (handle, ended)
+            self.publish_feedback()
+            message = await ended
+        if handle.is_cancel_requested:
+            handle.canceled()
+            result.message = "cancelled"
+            return self._fill(result, start_step)
         result.success = ok and self.executive.status == "succeeded"
-        result.message = self.executive.message if ok else message
+        result.message = message
         (handle.succeed if result.success else handle.abort)()
         return self._fill(result, start_step)
+
+    def cancel_callback(self, handle: ServerGoalHandle) -> CancelResponse:
+        if self.action_goal is not None and self.action_goal[0] is handle:
+            self.executive.cancel()
+            self.publish()
+        return CancelResponse.ACCEPT
+
+    def end_action_goal(self, reason: str) -> None:
+        if self.action_goal is not None:
+            _, ended = self.action_goal
+            self.action_goal = None
+            ended.set_result(reason)
+
+    def publish_feedback(self) -> None:
+        handle, _ = self.action_goal
+        feedback = ExecuteGoal.Feedback(plan=self.plan_message())
+        if self.last_state is not None:
+            feedback.state = self.last_state
+        handle.publish_feedback(feedback)
 
     def _fill(self, result: ExecuteGoal.Result, start_step: int) -> ExecuteGoal.Result:
         obs = self.executive.observation
@@ -165,6 +179,11 @@ class PlannerNode(Node):
         if changed:
             self.last_published = key
             self.plan_publisher.publish(self.plan_message())
+            if self.action_goal is not None:
+                if ex.status in FINAL:
+                    self.end_action_goal(ex.message)
+                else:
+                    self.publish_feedback()
         if changed or decided:
             self.subgoal_publisher.publish(self.subgoal_message())
 
@@ -184,4 +203,4 @@ class PlannerNode(Node):
 
 
 def main(args: list[str] | None = None) -> None:
-    topics.run_node(PlannerNode, args, multithreaded=True)
+    topics.run_node(PlannerNode, args)

@@ -47,18 +47,15 @@ CAMERA = QoSProfile(
 """Rendered frames: only the newest matters, a dropped one is no loss (ROS's sensor-data profile)."""
 
 
-def run_node(node_class: type, args: list[str] | None = None, multithreaded: bool = False) -> None:
-    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy).
-
-    ``multithreaded``: spin on a MultiThreadedExecutor (a node whose action runs long next to its callbacks).
-    """
+def run_node(node_class: type, args: list[str] | None = None) -> None:
+    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy)."""
     import rclpy
-    from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+    from rclpy.executors import ExternalShutdownException
 
     rclpy.init(args=args)
     node = node_class()
     try:
-        rclpy.spin(node, executor=MultiThreadedExecutor() if multithreaded else None)
+        rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:

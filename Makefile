@@ -8,7 +8,7 @@ SHELL := /bin/bash
 setup:
 	@bash tools/setup.sh
 
-# The issue's default goal, DC-3; seed 6 is a start the shipped actors solve, in process without a re-plan (others: DEMO_ARGS="--task DC-3 --seed S").
+# The issue's default goal, DC-3; from seed 6 the shipped actors solve it with one re-plan (others: DEMO_ARGS="--task DC-3 --seed S").
 DEMO_ARGS ?= --task DC-3 --seed 6
 demo: setup
 	@./semgoal demo $(DEMO_ARGS)

@@ -93,7 +93,7 @@ class GraphClient:
         return future.result() if self.spin_until(future.done, timeout) else None
 
     def reset(self, task: str, seed: int, attempts: int = 2) -> tuple[bool, str]:
-        """Reset the world to a task's start; returns once the planner can see the new semantic state.
+        """Reset the world to a task's start; returns once the planner has answered its semantic state.
 
         A policy still finishing the last episode's sub-goal can step the new world before it learns the
         goal ended: then the reset is made again."""
@@ -104,8 +104,9 @@ class GraphClient:
                 return False, reply.message if reply else message
             self.semantic, message = None, reply.message
             if self.spin_until(lambda: self.semantic is not None and self.semantic.step == 0, 5):
-                self.spin_until(lambda: False, 0.3)  # the planner receives the same latched state
-                return True, message
+                self.subgoal = None  # the planner answers every semantic state: wait for its answer to this one
+                if self.spin_until(lambda: self.subgoal is not None and self.subgoal.step == 0, 5):
+                    return True, message
         return False, f"no semantic state of step 0 after {attempts} resets ({message})"
 
     def move_block(self, block: str, x: float, y: float, z: float) -> tuple[bool, str]:

@@ -58,6 +58,10 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        if rclpy.ok():
+            raise
+        # SIGINT shut the context down while the executor built its wait set (rclpy raises RCLError there)
     finally:
         node.destroy_node()
         rclpy.try_shutdown()

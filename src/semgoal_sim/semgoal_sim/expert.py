@@ -32,6 +32,13 @@ NEAR_RANGE = (0.055, 0.093)
 """Centre distances at which put_near places a block next to its references (close: <= 0.10 m)."""
 AWAY_DISTANCE = 0.16
 """Minimum distance put_away keeps from its references (m)."""
+COMPACT_SLACK = 0.005
+"""put_near picks among the spots whose summed distance to the references is within this of the least."""
+RELEASE_SLACK = 0.02
+"""A carried block already over a put_near spot this close to the most compact one is put down where it
+is, not carried on to the exact spot: a put that would already hold is finished, not started over."""
+BIN_WALL_MARGIN = 0.003
+"""A block let go over the bin keeps at least this much from the walls (m)."""
 MIN_CENTRE_DISTANCE = 0.058
 FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
 FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
@@ -105,29 +112,53 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
     if subgoal.kind == "put_in_bin":
         assert world.bin is not None, "put_in_bin needs a bin"
         floor = TABLE_TOP + world.bin.floor_thickness + BLOCK_HALF_SIZE
+        if _drops_into_bin(here, list(others.values()), world.bin):  # let go from just above the rim
+            rim = TABLE_TOP + world.bin.floor_thickness + world.bin.wall_height
+            return np.array([*here[:2], max(floor, min(here[2], rim + BLOCK_HALF_SIZE + 0.01))])
         slots = world.bin.slots()
         spot = _nearest(slots, _free(slots, list(others.values())), here)
         return None if spot is None else np.array([*spot, floor])
-    ok = _free(CANDIDATES, list(others.values()))
-    if world.bin is not None:  # never on or in the bin when a table spot is asked for
-        ok &= np.any(np.abs(CANDIDATES - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + 0.06, axis=1)
+    ok, spread = _table_spots(CANDIDATES, subgoal, world)
     if subgoal.kind == "put_near":  # the most compact admissible spot: leaves room for a third block
-        spread = np.zeros(len(CANDIDATES))
-        for ref in subgoal.references:
-            d = np.linalg.norm(CANDIDATES - others[ref][:2], axis=1)
-            ok &= (d >= NEAR_RANGE[0]) & (d <= NEAR_RANGE[1])
-            spread += d
         if not ok.any():
             return None
         best = spread[ok].min()
-        ok &= spread <= best + 0.005
-    elif subgoal.kind == "put_away":
-        for ref in subgoal.references:
-            ok &= np.linalg.norm(CANDIDATES - others[ref][:2], axis=1) >= AWAY_DISTANCE
-        # far from every other block too, so moving x makes nothing else close by accident
-        ok &= _free(CANDIDATES, list(others.values()), THRESHOLDS.close_distance + 0.03)
+        ok &= spread <= best + COMPACT_SLACK
+        here_ok, here_spread = _table_spots(here[None, :2], subgoal, world)
+        if here_ok[0] and here_spread[0] <= best + RELEASE_SLACK:
+            return np.array([*here[:2], rest_z])
     spot = _nearest(CANDIDATES, ok, here)
     return None if spot is None else np.array([*spot, rest_z])
+
+
+def _drops_into_bin(block: np.ndarray, others: list[np.ndarray], bin_: BinGeometry) -> bool:
+    """A carried block whose footprint lies over the bin's floor, clear of the blocks in it, is let go
+    where it is (it falls in) rather than carried on to a slot: once the fingers rest on a wall the arm
+    cannot lower it to the floor, and a put that would already hold is finished, not started over."""
+    offset = np.abs(block[:2] - np.asarray(bin_.center))
+    inside = np.all(offset <= np.asarray(bin_.inner_half_size) - BLOCK_HALF_SIZE - BIN_WALL_MARGIN)
+    return bool(inside and _free(block[None, :2], others)[0])
+
+
+def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tuple[np.ndarray, np.ndarray]:
+    """Which table ``points`` (M, 2) fit ``subgoal`` (put_near, put_away, put_on_table) and, for put_near,
+    their summed distance to the references (how compact the group they make is)."""
+    others = world.others(subgoal.block)
+    ok = _free(points, list(others.values()))
+    if world.bin is not None:  # never on or in the bin when a table spot is asked for
+        ok &= np.any(np.abs(points - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + 0.06, axis=1)
+    spread = np.zeros(len(points))
+    if subgoal.kind == "put_near":
+        for ref in subgoal.references:
+            d = np.linalg.norm(points - others[ref][:2], axis=1)
+            ok &= (d >= NEAR_RANGE[0]) & (d <= NEAR_RANGE[1])
+            spread += d
+    elif subgoal.kind == "put_away":
+        for ref in subgoal.references:
+            ok &= np.linalg.norm(points - others[ref][:2], axis=1) >= AWAY_DISTANCE
+        # far from every other block too, so moving x makes nothing else close by accident
+        ok &= _free(points, list(others.values()), THRESHOLDS.close_distance + 0.03)
+    return ok, spread
 
 
 def _pick(block: str, world: WorldView) -> np.ndarray:

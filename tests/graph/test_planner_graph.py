@@ -126,3 +126,15 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     probe.spin_future(handle.cancel_goal_async(), 10, "cancel")
     result = probe.spin_future(handle.get_result_async(), 20, "cancelled result").result
     assert not result.success and result.message == "cancelled"
+
+    first, second = ExecuteGoal.Goal(), ExecuteGoal.Goal()
+    first.goal.literals, second.goal.literals = ["in_bin(blue)"], ["holding(green)"]
+    first_handle = probe.spin_future(client.send_goal_async(first), 10, "goal accepted")
+    probe.spin_until(lambda: "put_in_bin(blue)" in op.actions(), 10, "first goal planned")
+    second_handle = probe.spin_future(client.send_goal_async(second), 10, "goal accepted")
+    result = probe.spin_future(first_handle.get_result_async(), 20, "superseded result").result
+    assert not result.success and "superseded" in result.message
+    probe.spin_until(lambda: op.actions() == ["pick(green)"], 10, "second goal planned")
+    op.observe({"holding(green)"}, 80)
+    result = probe.spin_future(second_handle.get_result_async(), 20, "second result").result
+    assert result.success and result.replans == 0

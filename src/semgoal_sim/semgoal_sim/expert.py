@@ -37,8 +37,6 @@ COMPACT_SLACK = 0.005
 RELEASE_SLACK = 0.02
 """A carried block already over a put_near spot this close to the most compact one is put down where it
 is, not carried on to the exact spot: a put that would already hold is finished, not started over."""
-BIN_WALL_MARGIN = 0.003
-"""A block let go over the bin keeps at least this much from the walls (m)."""
 MIN_CENTRE_DISTANCE = 0.058
 FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
 FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
@@ -112,9 +110,6 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
     if subgoal.kind == "put_in_bin":
         assert world.bin is not None, "put_in_bin needs a bin"
         floor = TABLE_TOP + world.bin.floor_thickness + BLOCK_HALF_SIZE
-        if _drops_into_bin(here, list(others.values()), world.bin):  # let go from just above the rim
-            rim = TABLE_TOP + world.bin.floor_thickness + world.bin.wall_height
-            return np.array([*here[:2], max(floor, min(here[2], rim + BLOCK_HALF_SIZE + 0.01))])
         slots = world.bin.slots()
         spot = _nearest(slots, _free(slots, list(others.values())), here)
         return None if spot is None else np.array([*spot, floor])
@@ -129,15 +124,6 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
             return np.array([*here[:2], rest_z])
     spot = _nearest(CANDIDATES, ok, here)
     return None if spot is None else np.array([*spot, rest_z])
-
-
-def _drops_into_bin(block: np.ndarray, others: list[np.ndarray], bin_: BinGeometry) -> bool:
-    """A carried block whose footprint lies over the bin's floor, clear of the blocks in it, is let go
-    where it is (it falls in) rather than carried on to a slot: once the fingers rest on a wall the arm
-    cannot lower it to the floor, and a put that would already hold is finished, not started over."""
-    offset = np.abs(block[:2] - np.asarray(bin_.center))
-    inside = np.all(offset <= np.asarray(bin_.inner_half_size) - BLOCK_HALF_SIZE - BIN_WALL_MARGIN)
-    return bool(inside and _free(block[None, :2], others)[0])
 
 
 def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tuple[np.ndarray, np.ndarray]:

@@ -11,7 +11,7 @@ from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
 from semgoal_sim.tasks import get_task
 
-CASES = [("MC-2", 5), ("DC-2", 2)]
+CASES = [("MC-2", 7), ("DC-2", 2)]
 """Starts where the shipped actors re-plan in process (MC-2: once, DC-2: twice)."""
 
 

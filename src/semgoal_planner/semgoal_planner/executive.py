@@ -119,10 +119,10 @@ class Executive:
         self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)
+        if self.status == "executing" and self.confirmation.pending:
+            self._advance()  # may finish the plan, re-plan, or fail the goal
         if self.status != "executing" or self.current >= len(self.steps):
             return
-        if self.confirmation.pending:
-            self._advance()
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
         elif self.steps[self.current].assignee == "robot" and step - self.step_started > self.stall_steps:

@@ -92,6 +92,21 @@ def test_contradiction_replans_after_the_debounce() -> None:
     assert ex.replans == 1 and str(ex.active.subgoal) == "pick(green)"
 
 
+def test_a_confirmation_that_ends_the_plan_inside_a_tick_fails_cleanly() -> None:
+    """The last step is confirmed by a tick, the goal does not hold (green left the bin) and no re-plan
+    is left: the goal fails with the reason instead of the tick indexing past the plan."""
+    ex = executive(confirm_steps=3, max_replans=0)
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    for step, true in enumerate((["holding(green)"], ["in_bin(green)"], ["in_bin(green)", "holding(red)"])):
+        for offset in range(3):
+            ex.observe(observe(true, 10 * step + offset))
+    assert str(ex.active.subgoal) == "put_in_bin(red)"
+    ex.observe(observe(["in_bin(red)"], 40))
+    ex.tick(41)
+    ex.tick(42)
+    assert ex.status == "failed" and "all steps are done but the goal does not hold" in ex.message
+
+
 def test_human_step_is_waited_for_without_stall() -> None:
     ex = executive(stall_steps=5)
     ex.set_goal("in_bin(red)")

@@ -28,6 +28,7 @@ def train_main(argv: list[str]) -> int:
     parser.add_argument("--updates-per-step", type=float, default=defaults.updates_per_step)
     parser.add_argument("--demo-fraction", type=float, default=defaults.demo_fraction,
                         help="share of episodes run by the scripted expert (0: no demonstrations)")
+    parser.add_argument("--lr", type=float, default=SacConfig.lr, help="Adam learning rate (also on --resume)")
     parser.add_argument("--bc-weight", type=float, default=SacConfig.bc_weight, help="0: no behaviour cloning")
     parser.add_argument("--no-q-filter", action="store_true", help="clone the expert's label in every state, "
                         "not only where the critic rates it above the actor's action")
@@ -43,7 +44,7 @@ def train_main(argv: list[str]) -> int:
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
-        max_wall_s=args.max_wall_min * 60, sac=SacConfig(bc_weight=args.bc_weight, q_filter=not args.no_q_filter),
+        max_wall_s=args.max_wall_min * 60, sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
     trainer = Trainer(config)

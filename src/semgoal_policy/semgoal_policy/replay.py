@@ -84,8 +84,16 @@ class EpisodeReplay:
         np.savez(path, next_index=self.next_index, **arrays)
 
     def load(self, path: Path) -> None:
+        """Restore a saved buffer; one holding more episodes than this buffer's capacity (a run resumed
+        with fewer ``--steps``) keeps its newest ``capacity`` episodes."""
         with np.load(path) as data:
-            self.size = len(data["goal"])
+            stored, next_index = len(data["goal"]), int(data["next_index"])
+            if stored <= self.capacity:
+                self.size, self.next_index = stored, next_index
+                for name in self.FIELDS:
+                    getattr(self, name)[:stored] = data[name]
+                return
+            newest = np.roll(np.arange(stored), -(next_index % stored))[-self.capacity:]  # oldest first
+            self.size, self.next_index = self.capacity, 0
             for name in self.FIELDS:
-                getattr(self, name)[: self.size] = data[name]
-            self.next_index = int(data["next_index"])
+                getattr(self, name)[:] = data[name][newest]

@@ -138,6 +138,9 @@ class SacAgent:
         self.actor_optimizer.load_state_dict(state["actor_optimizer"])
         self.critic_optimizer.load_state_dict(state["critic_optimizer"])
         self.alpha_optimizer.load_state_dict(state["alpha_optimizer"])
+        for optimiser in (self.actor_optimizer, self.critic_optimizer, self.alpha_optimizer):
+            for group in optimiser.param_groups:  # the configured rate wins: a resumed run may fine-tune slower
+                group["lr"] = self.config.lr
 
     def explore(self, obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """Stochastic actions for a batch of envs."""

@@ -33,6 +33,21 @@ def test_her_relabels_with_future_achieved_goals_and_keeps_labels_only_for_own_g
     assert clone.has_label.all() and np.all(clone.goal == goal)
 
 
+def test_a_saved_buffer_larger_than_the_capacity_loads_its_newest_episodes(tmp_path) -> None:
+    horizon, goal_size = 2, 2
+    big = EpisodeReplay(4, horizon, 1, goal_size, layout.goal_reward)
+    for episode in range(6):  # wraps: the ring holds episodes 2..5, the oldest (2) at next_index 2
+        big.add(np.zeros((1, horizon + 1, 1)), np.zeros((1, horizon + 1, goal_size)), np.full((1, goal_size), episode),
+                np.zeros((1, horizon, 4)), np.zeros((1, horizon, 4)))
+    big.save(tmp_path / "replay.npz")
+    same = EpisodeReplay(4, horizon, 1, goal_size, layout.goal_reward)
+    same.load(tmp_path / "replay.npz")
+    assert np.array_equal(same.goal, big.goal) and same.next_index == big.next_index == 2
+    small = EpisodeReplay(3, horizon, 1, goal_size, layout.goal_reward)
+    small.load(tmp_path / "replay.npz")
+    assert small.goal[:, 0].tolist() == [3, 4, 5] and small.size == 3 and small.next_index == 0
+
+
 def test_normaliser_tracks_mean_and_variance() -> None:
     rng = np.random.default_rng(0)
     data = rng.normal(3.0, 2.0, size=(5000, 4))

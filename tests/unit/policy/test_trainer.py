@@ -3,6 +3,7 @@
 import csv
 
 from semgoal_policy.actor import load
+from semgoal_policy.sac import SacAgent, SacConfig
 from semgoal_policy.trainer import TrainConfig, Trainer
 
 
@@ -24,6 +25,14 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     _, meta = load(tmp_path / "export", "two_blocks")
     assert meta["env_steps"] == 800 and set(meta["final_eval"]["per_kind"]) == {"pick", "put_near", "put_away", "put_on"}
     assert (tmp_path / "export" / "learning_curve.png").stat().st_size > 1000
+
+
+def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints() -> None:
+    saved = SacAgent(10, 6, SacConfig(lr=1e-3)).state_dict()
+    resumed = SacAgent(10, 6, SacConfig(lr=3e-4))
+    resumed.load_state_dict(saved)
+    optimisers = (resumed.actor_optimizer, resumed.critic_optimizer, resumed.alpha_optimizer)
+    assert {group["lr"] for opt in optimisers for group in opt.param_groups} == {3e-4}
 
 
 def test_resume_without_replay_buffer_refills_it(tmp_path) -> None:

@@ -90,8 +90,18 @@ def stack(rng: np.random.Generator, order: tuple[int, int]) -> np.ndarray:
     positions = np.zeros((2, 3))
     base = rng.uniform(SPAWN_LOW, SPAWN_HIGH)
     positions[order[0]] = [*base, REST_Z]
-    positions[order[1]] = [*(base + rng.uniform(-0.004, 0.004, 2)), REST_Z + 2 * BLOCK_HALF_SIZE + 0.001]
+    positions[order[1]] = _on_top(rng, base)
     return positions
+
+
+def stack_among(rng: np.random.Generator, count: int) -> np.ndarray:
+    """``count`` blocks in random order: one resting on another, the others scattered around them."""
+    positions = scatter(rng, count - 1)
+    return np.vstack([positions, _on_top(rng, positions[0, :2])])[rng.permutation(count)]
+
+
+def _on_top(rng: np.random.Generator, base_xy: np.ndarray) -> np.ndarray:
+    return np.array([*(base_xy + rng.uniform(-0.004, 0.004, 2)), REST_Z + 2 * BLOCK_HALF_SIZE + 0.001])
 
 
 def _pairs(blocks: tuple[str, ...], value: bool) -> list[Literal]:

@@ -99,6 +99,17 @@ def test_picks_sometimes_start_where_a_put_of_another_block_left_the_arm(scene: 
     assert 6 <= after_put <= 20  # about 40 % of the starts
 
 
+def test_three_blocks_sometimes_start_with_a_stack_and_never_ask_to_pick_its_bottom_block() -> None:
+    env = SubgoalEnv("three_blocks")
+    stacked = 0
+    for seed in range(40):
+        env.reset(seed=seed, options={"kind": "pick"})
+        heights = sorted(p[2] for p in env.world.view().positions.values())
+        stacked += heights[-1] - heights[0] > 0.04
+        assert not env._under_another(env.subgoal.block)
+    assert 2 <= stacked <= 14  # about 15 % of the starts
+
+
 def test_near_two_references_is_only_asked_where_they_are_close() -> None:
     env = SubgoalEnv("three_blocks")
     for seed in range(40):

@@ -21,7 +21,7 @@ import numpy as np
 from semgoal_sim import layout, tasks
 from semgoal_sim.expert import expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
@@ -170,9 +170,8 @@ class SubgoalEnv(gym.Env):
     def _under_another(self, block: str) -> bool:
         """Whether a block rests on ``block``, from the geometry (three_blocks has no above predicate)."""
         positions = self.world.view().positions
-        base = positions[block]
-        return any(np.linalg.norm(p[:2] - base[:2]) < BLOCK_HALF_SIZE and p[2] - base[2] > BLOCK_HALF_SIZE
-                   for name, p in positions.items() if name != block)
+        others = [p for name, p in positions.items() if name != block]
+        return bool(rests_on(np.array(others), positions[block]).any())
 
     def _sample_subgoal(self, kind: str | None = None, exclude: str | None = None) -> SubGoal | None:
         """A sub-goal of ``kind`` (default: any type) for a random block other than ``exclude``."""

@@ -253,6 +253,13 @@ class SemanticLayout:
 LAYOUTS: dict[str, SemanticLayout] = {name: SemanticLayout(scene) for name, scene in SCENES.items()}
 
 
+def rests_on(top: np.ndarray, bottom: np.ndarray, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
+    """The geometry of ``above``, for block centres (..., 3): also where a scene has no above predicate."""
+    delta = np.asarray(top) - np.asarray(bottom)
+    return ((np.linalg.norm(delta[..., :2], axis=-1) < thresholds.above_xy)
+            & (delta[..., 2] > thresholds.above_dz_min) & (delta[..., 2] < thresholds.above_dz_max))
+
+
 def evaluate(
     layout: SemanticLayout,
     block_positions: np.ndarray,
@@ -279,9 +286,7 @@ def evaluate(
             a, b = positions[args[:, 0]], positions[args[:, 1]]
             value = np.linalg.norm(a - b, axis=1) <= thresholds.close_distance
         elif name == "above":
-            delta = positions[args[:, 0]] - positions[args[:, 1]]
-            value = ((np.linalg.norm(delta[:, :2], axis=1) < thresholds.above_xy)
-                     & (delta[:, 2] > thresholds.above_dz_min) & (delta[:, 2] < thresholds.above_dz_max))
+            value = rests_on(positions[args[:, 0]], positions[args[:, 1]], thresholds)
         elif name == "holding":
             rel = positions[args[:, 0]] - np.asarray(grip_position)
             fingers_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max

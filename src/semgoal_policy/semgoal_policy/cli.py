@@ -36,6 +36,7 @@ def train_main(argv: list[str]) -> int:
     parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
     parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
     parser.add_argument("--final-eval-episodes", type=int, default=defaults.final_eval_episodes)
+    parser.add_argument("--snapshots", action="store_true", help="export the actor at every eval point too (run-dir/snapshots/)")
     parser.add_argument("--max-wall-min", type=float, default=defaults.max_wall_s / 60)
     parser.add_argument("--run-dir", type=Path, help="checkpoints and logs (default runs/SCENE-AGENT/seedS)")
     parser.add_argument("--export-dir", type=Path, help="where the actor is exported (default models/...)")
@@ -44,6 +45,7 @@ def train_main(argv: list[str]) -> int:
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
+        snapshots=args.snapshots,
         max_wall_s=args.max_wall_min * 60, sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )

@@ -1,6 +1,7 @@
 """The trainer end to end on a tiny budget: it learns-and-logs, checkpoints, resumes and exports."""
 
 import csv
+from dataclasses import replace
 
 from semgoal_policy.actor import load
 from semgoal_policy.sac import SacAgent, SacConfig
@@ -16,7 +17,7 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     first = Trainer(config(tmp_path, 400))
     first.run()
     assert first.env_steps == 400 and (tmp_path / "run" / "checkpoint.pt").exists()
-    resumed = Trainer(config(tmp_path, 800))
+    resumed = Trainer(replace(config(tmp_path, 800), snapshots=True))
     resumed.run(resume=True)
     assert resumed.env_steps == 800 and resumed.replay.size == 800 // 50
     rows = list(csv.DictReader((tmp_path / "run" / "progress.csv").open()))
@@ -25,6 +26,8 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     _, meta = load(tmp_path / "export", "two_blocks")
     assert meta["env_steps"] == 800 and set(meta["final_eval"]["per_kind"]) == {"pick", "put_near", "put_away", "put_on"}
     assert (tmp_path / "export" / "learning_curve.png").stat().st_size > 1000
+    assert sorted(p.name for p in (tmp_path / "run" / "snapshots").iterdir()) == ["800"]
+    assert load(tmp_path / "run" / "snapshots" / "800", "two_blocks")[1]["env_steps"] == 800
 
 
 def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints() -> None:

@@ -37,10 +37,6 @@ ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.0
 STACKED_START_SHARE = 0.15
 """three_blocks starts with one block resting on another: a put_near that lets go over its reference
 leaves one (close holds), and the pick and put after it must cope (MC-3's failures, session 10)."""
-BIN_PREFIX_SHARE = 0.2
-"""Share of bin-scene starts where the expert first puts one or more other blocks into the bin, as a
-desk-cleanup plan's earlier steps leave the desk: a crowded bin, the arm over it (DC-4's puts missed
-there; slot-placed starts rarely crowd it, session 11)."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
 """Where pick episodes start. ``after_put`` is where a plan hands the next pick over: the open fingers
 just above a block that was just put (in the bin, say), which no training pick had started from before."""
@@ -130,8 +126,6 @@ class SubgoalEnv(gym.Env):
     def _start_for(self, subgoal: SubGoal) -> bool:
         """Bring the arm to where a plan would hand ``subgoal`` over; False when that failed (resample)."""
         rng = self.np_random
-        if self.scene.bin is not None and rng.uniform() < BIN_PREFIX_SHARE and not self._bin_others(subgoal.block):
-            return False
         if subgoal.kind == "pick":
             start = rng.choice(list(PICK_START_SHARES), p=list(PICK_START_SHARES.values()))
             if start == "over_table":
@@ -150,22 +144,11 @@ class SubgoalEnv(gym.Env):
         ``block`` under another."""
         kinds = [kind for kind in self.subgoal_types if kind != "pick"]
         other = self._sample_subgoal(str(self.np_random.choice(kinds)), exclude=block)
-        return other is not None and self._expert_puts(other) and not self._under_another(block)
-
-    def _bin_others(self, block: str) -> bool:
-        """The expert puts one or more blocks other than ``block`` that are not binned yet into the bin,
-        one after another (a plan prefix); False where one of those puts failed."""
-        vector = self.world.semantic_vector()
-        loose = [b for b in self.world.blocks if b != block and not vector[self.layout.index(Literal("in_bin", (b,)))]]
-        if not loose:
-            return True
-        count = int(self.np_random.integers(1, len(loose) + 1))
-        return all(self._expert_puts(SubGoal("put_in_bin", (str(b),))) for b in self.np_random.permutation(loose)[:count])
-
-    def _expert_puts(self, put: SubGoal) -> bool:
-        """The expert picks the put's block, then puts it until the put is confirmed; False where either failed."""
-        return self._pick_up(put.block) and run_subgoal(self.world, put, self._noisy_expert, EPISODE_STEPS,
-                                                        SUBGOAL_CONFIRM_STEPS)[0]
+        if other is None or not self._pick_up(other.block):
+            return False
+        if not run_subgoal(self.world, other, self._noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]:
+            return False
+        return not self._under_another(block)
 
     def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
         for _ in range(steps):

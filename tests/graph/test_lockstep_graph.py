@@ -11,8 +11,8 @@ from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
 from semgoal_sim.tasks import get_task
 
-CASES = [("MC-2", 7), ("DC-2", 2)]
-"""Starts where the shipped actors re-plan in process (MC-2: once, DC-2: twice)."""
+CASES = [("Swap-2", 2), ("DC-2", 2)]
+"""Starts where the shipped actors re-plan in process (Swap-2: once, DC-2: twice)."""
 
 
 @pytest.mark.parametrize(("task", "seed"), CASES)

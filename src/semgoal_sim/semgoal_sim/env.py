@@ -113,14 +113,14 @@ class SubgoalEnv(gym.Env):
                                  for i, j in itertools.combinations(range(count), 2)) < tasks.MIN_SEPARATION:
                 positions = tasks.scatter(rng, count)
             return positions[rng.permutation(count)] if kind < 0.15 else positions
+        if kind > 1.0 - STACKED_START_SHARE.get(self.scene.name, 0.0):
+            return tasks.stack_among(rng, count)
         positions = tasks.scatter(rng, count)
         if self.scene.bin is not None and kind > 0.7:
             slots = self.scene.bin.slots()
             for i in range(count - 1):
                 if rng.uniform() < 0.5:
                     positions[i] = [*slots[i], tasks.TABLE_TOP + self.scene.bin.floor_thickness + 0.0251]
-        if kind > 1.0 - STACKED_START_SHARE.get(self.scene.name, 0.0):
-            return tasks.stack_among(rng, count)
         return positions
 
     def _start_for(self, subgoal: SubGoal) -> bool:

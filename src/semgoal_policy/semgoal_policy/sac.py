@@ -32,6 +32,10 @@ class SacConfig:
     """Weight of the behaviour-cloning loss; 0 turns expert supervision off in the loss."""
     q_filter: bool = True
     """Clone the expert only where Q(s, a_expert) > Q(s, pi(s))."""
+    target_entropy: float = -4.0
+    """Entropy the temperature is tuned toward; -4 (minus the action size) is SB3's default. With three
+    precise displacement dims the fourth, the fingers, takes up what is left: at -4 the trained actors'
+    finger std sits at its clamp (e^2), so sampled fingers open and close at random."""
 
 
 class TwinCritic(nn.Module):
@@ -53,7 +57,6 @@ class SacAgent:
         self.critic = TwinCritic(obs_size + goal_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
-        self.target_entropy = -4.0
         self.actor_optimizer = torch.optim.Adam(self.actor.net.parameters(), lr=config.lr)
         self.critic_optimizer = torch.optim.Adam(self.critic.parameters(), lr=config.lr)
         self.alpha_optimizer = torch.optim.Adam([self.log_alpha], lr=config.lr)
@@ -92,7 +95,7 @@ class SacAgent:
         actor_loss.backward()
         self.actor_optimizer.step()
 
-        alpha_loss = -(self.log_alpha * (log_pi.detach() + self.target_entropy)).mean()
+        alpha_loss = -(self.log_alpha * (log_pi.detach() + cfg.target_entropy)).mean()
         self.alpha_optimizer.zero_grad()
         alpha_loss.backward()
         self.alpha_optimizer.step()

@@ -140,3 +140,18 @@ def test_flat_continuous_actors_keep_their_goal_layout(tmp_path) -> None:
     assert meta["layout"]["goal"] == "positions" and loaded.goal_size == 3 * 2
     with pytest.raises(ValueError, match="goal kind"):
         layout.goal_size(SCENE, "pixels")
+
+
+@pytest.mark.parametrize(("target", "direction"), [(10.0, 1.0), (-100.0, -1.0)])
+def test_the_temperature_moves_toward_the_configured_target_entropy(target: float, direction: float) -> None:
+    from semgoal_policy.replay import Batch
+    from semgoal_policy.sac import SacAgent, SacConfig
+
+    rng = np.random.default_rng(0)
+    n, obs_size, goal_size = 32, 6, 4
+    batch = Batch(*(rng.standard_normal((n, k)).astype(np.float32) for k in (obs_size, goal_size, 4)),
+                  np.zeros(n, np.float32), rng.standard_normal((n, obs_size)).astype(np.float32),
+                  np.zeros((n, 4), np.float32), np.zeros(n, np.float32))
+    agent = SacAgent(obs_size, goal_size, SacConfig(target_entropy=target))
+    agent.update(batch)
+    assert np.sign(agent.log_alpha.item()) == direction

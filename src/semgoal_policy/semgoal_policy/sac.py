@@ -34,8 +34,8 @@ class SacConfig:
     """Clone the expert only where Q(s, a_expert) > Q(s, pi(s))."""
     target_entropy: float = -4.0
     """Entropy the temperature is tuned toward; -4 (minus the action size) is SB3's default. With three
-    precise displacement dims the fourth, the fingers, takes up what is left: at -4 the trained actors'
-    finger std sits at its clamp (e^2), so sampled fingers open and close at random."""
+    precise displacement dims the fourth, the fingers, takes up what is left: at -4 the shipped actors'
+    finger std sits at its clamp (e^2) in 6-17 % of steps, mostly while a block is held."""
 
 
 class TwinCritic(nn.Module):

@@ -25,7 +25,7 @@ def test_parse_tasks() -> None:
 
 
 def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
-    code = evaluation.main(["--tasks", "MA-2", "--episodes", "2", "--json", "--out", str(tmp_path)])
+    code = evaluation.main(["--tasks", "MA-2", "--episodes", "2", "--seeds", "1", "--json", "--out", str(tmp_path)])
     assert code == 0
     summary = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
     assert set(summary) == {"MA-2"} and 0.0 <= summary["MA-2"]["hierarchical"] <= 1.0
@@ -34,6 +34,16 @@ def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
     rows = list(csv.DictReader((tmp_path / "table1.csv").open()))
     assert {(r["source"], r["task"]) for r in rows} == {("paper", "MA-2"), ("ours", "MA-2")}
     assert (tmp_path / "table1.png").stat().st_size > 5000
+
+
+def test_extra_training_seeds_follow_the_shipped_actor(tmp_path) -> None:
+    for folder in ("two_blocks", "seeds/two_blocks/seed22", "seeds/two_blocks/seed21", "seeds/two_blocks/seed23-partial"):
+        (tmp_path / folder).mkdir(parents=True)
+        if not folder.endswith("partial"):
+            (tmp_path / folder / "actor.json").write_text("{}")
+    names = [d.relative_to(tmp_path).as_posix() for d in evaluation.actor_dirs("hierarchical", "two_blocks", 3, tmp_path)]
+    assert names == ["two_blocks", "seeds/two_blocks/seed21", "seeds/two_blocks/seed22"]
+    assert len(evaluation.actor_dirs("hierarchical", "two_blocks", 1, tmp_path)) == 1
 
 
 def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> None:

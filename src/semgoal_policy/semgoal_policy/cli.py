@@ -47,9 +47,8 @@ def train_main(argv: list[str]) -> int:
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
-        snapshots=args.snapshots,
-        max_wall_s=args.max_wall_min * 60, sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter,
-                                                               target_entropy=args.target_entropy),
+        snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
+        sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
     trainer = Trainer(config)

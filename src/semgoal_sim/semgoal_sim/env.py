@@ -179,9 +179,9 @@ class SubgoalEnv(gym.Env):
         kind = kind or str(rng.choice(self.subgoal_types))
         x = str(rng.choice([b for b in self.world.blocks if b != exclude]))
         others = rng.permutation([b for b in self.world.blocks if b != x]).tolist()
-        vector = self.world.semantic_vector()
         if self._under_another(x):  # a block under another cannot be picked: the plan would clear it first
             return None
+        vector = self.world.semantic_vector()
         if kind in ("put_near", "put_away") and len(others) >= 2 and rng.uniform() < 0.3:
             refs = tuple(others[:2])
             if kind == "put_near" and not self._close(vector, refs):

@@ -53,6 +53,10 @@ class Row:
     wins: dict[str, int] = field(default_factory=dict)
     episodes: dict[str, int] = field(default_factory=dict)
     steps: dict[str, int] = field(default_factory=dict)
+    per_seed: dict[str, dict[str, tuple[int, int]]] = field(default_factory=dict)
+    """Per training seed (``shipped``, ``seed21``, ...): per task, its successes and episodes."""
+    seed_steps: dict[str, set[int]] = field(default_factory=dict)
+    """Per training seed: the training env steps of its actors (one per scene)."""
     wall_s: float = 0.0
 
     def add(self, task: str, success: bool, steps: int) -> None:
@@ -107,11 +111,17 @@ def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: i
                                 f"train one with ./semgoal train --scene {scene} --agent {agent}")
     row.training_seeds[task_name] = len(dirs)
     for directory in dirs:
-        row.env_steps.add(json.loads((directory / "actor.json").read_text())["env_steps"])
+        label = "shipped" if directory.parent == models_dir else directory.name
+        env_steps = json.loads((directory / "actor.json").read_text())["env_steps"]
+        row.env_steps.add(env_steps)
+        row.seed_steps[label] = {env_steps}
         runner = make_agent(agent, scene, directory)
+        wins = 0
         for i in range(episodes):
             outcome = runner.run(task_name, seed + i)
             row.add(task_name, outcome.success, outcome.steps)
+            wins += outcome.success
+        row.per_seed[label] = {task_name: (wins, episodes)}
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -125,6 +135,9 @@ def merge(rows: list[Row]) -> list[Row]:
         row.env_steps |= part.env_steps
         for table, values in ((row.wins, part.wins), (row.episodes, part.episodes), (row.steps, part.steps)):
             table.update(values)
+        for label, results in part.per_seed.items():
+            row.per_seed.setdefault(label, {}).update(results)
+            row.seed_steps.setdefault(label, set()).update(part.seed_steps[label])
         row.wall_s += part.wall_s
     return list(merged.values())
 
@@ -167,8 +180,8 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
 
 
 # -- reports ---------------------------------------------------------------------------------------------
-def _steps_text(row: Row) -> str:
-    low, high = min(row.env_steps), max(row.env_steps)
+def _steps_text(env_steps: set[int]) -> str:
+    low, high = min(env_steps), max(env_steps)
     return f"{low // 1000}k" if low == high else f"{low // 1000}k-{high // 1000}k"
 
 
@@ -178,7 +191,7 @@ def _seeds_text(row: Row) -> str:
 
 
 def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, path: Path) -> None:
-    header = "| Method | training seeds | training steps | episodes per task | " + " | ".join(tasks) + " |"
+    header = "| Method | training seeds | training steps | episodes per task and seed | " + " | ".join(tasks) + " |"
     lines = [
         "# Table 1: task completion (%)",
         "",
@@ -199,10 +212,26 @@ def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, p
             if row.agent.split(" ")[0] == agent:
                 cells = [f"{100 * row.rate(t):.0f} [{100 * low:.0f}-{100 * high:.0f}]"
                          for t in tasks for low, high in [row.interval(t)]]
-                lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row)} | {_steps_text(row)} | "
-                             f"{min(row.episodes.values())} | "
+                lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row)} | {_steps_text(row.env_steps)} | "
+                             f"{min(row.episodes[t] // row.training_seeds[t] for t in tasks)} | "
                              + " | ".join(cells) + " |")
+    for row in rows:
+        if len(row.per_seed) > 1:
+            lines += _per_seed_lines(row, tasks)
     path.write_text("\n".join(lines) + "\n")
+
+
+def _per_seed_lines(row: Row, tasks: list[str]) -> list[str]:
+    """The row's rates split by training seed (blank where a seed has no actor for the task's scene): the
+    spread between seeds, which the pooled interval above does not show."""
+    lines = ["", f"{row.agent} (ours) by training seed (`shipped`: the actors under `models/`; others: "
+             "`models/seeds/<scene>/<seed>`):", "",
+             "| training seed | training steps | " + " | ".join(tasks) + " |", "|" + "---|" * (2 + len(tasks))]
+    for label in sorted(row.per_seed, key=lambda name: (name != "shipped", name)):
+        results = row.per_seed[label]
+        cells = [f"{100 * results[t][0] / results[t][1]:.0f}" if t in results else "" for t in tasks]
+        lines.append(f"| {label} | {_steps_text(row.seed_steps[label])} | " + " | ".join(cells) + " |")
+    return lines
 
 
 def _budget() -> int:

@@ -46,6 +46,24 @@ def test_extra_training_seeds_follow_the_shipped_actor(tmp_path) -> None:
     assert len(evaluation.actor_dirs("hierarchical", "two_blocks", 1, tmp_path)) == 1
 
 
+def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
+    """Two "seeds" that are the same shipped actor: pooled and per-seed rates must all agree."""
+    from semgoal_policy.actor import MODELS_DIR
+
+    models = tmp_path / "models"
+    (models / "seeds" / "two_blocks").mkdir(parents=True)
+    (models / "two_blocks").symlink_to(MODELS_DIR / "two_blocks")
+    (models / "seeds" / "two_blocks" / "seed9").symlink_to(MODELS_DIR / "two_blocks")
+    argv = ["--tasks", "MA-2", "--episodes", "2", "--seeds", "2", "--jobs", "1", "--models", str(models), "--json"]
+    assert evaluation.main([*argv, "--out", str(tmp_path)]) == 0
+    rate = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["MA-2"]["hierarchical"]
+    table = (tmp_path / "table1.md").read_text()
+    assert "**hierarchical (ours)** | 2 |" in table and "by training seed" in table
+    per_seed = [line for line in table.splitlines() if line.startswith(("| shipped |", "| seed9 |"))]
+    assert [line.split(" | ")[0] for line in per_seed] == ["| shipped", "| seed9"]
+    assert {line.split(" | ")[-1] for line in per_seed} == {f"{100 * rate:.0f} |"}
+
+
 def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> None:
     with pytest.raises(SystemExit):
         evaluation.main(["--tasks", "MC-2", "--agents", "oracle"])

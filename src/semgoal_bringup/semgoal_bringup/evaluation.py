@@ -48,8 +48,6 @@ class Row:
     agent: str
     training_seeds: dict[str, int] = field(default_factory=dict)
     """Per task: how many training seeds' actors were evaluated."""
-    env_steps: set[int] = field(default_factory=set)
-    """Training env steps of the actors evaluated."""
     wins: dict[str, int] = field(default_factory=dict)
     episodes: dict[str, int] = field(default_factory=dict)
     steps: dict[str, int] = field(default_factory=dict)
@@ -58,6 +56,11 @@ class Row:
     seed_steps: dict[str, set[int]] = field(default_factory=dict)
     """Per training seed: the training env steps of its actors (one per scene)."""
     wall_s: float = 0.0
+
+    @property
+    def env_steps(self) -> set[int]:
+        """Training env steps of the actors evaluated."""
+        return set().union(*self.seed_steps.values())
 
     def add(self, task: str, success: bool, steps: int) -> None:
         self.wins[task] = self.wins.get(task, 0) + int(success)
@@ -112,9 +115,7 @@ def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: i
     row.training_seeds[task_name] = len(dirs)
     for directory in dirs:
         label = "shipped" if directory.parent == models_dir else directory.name
-        env_steps = json.loads((directory / "actor.json").read_text())["env_steps"]
-        row.env_steps.add(env_steps)
-        row.seed_steps[label] = {env_steps}
+        row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
         wins = 0
         for i in range(episodes):
@@ -132,7 +133,6 @@ def merge(rows: list[Row]) -> list[Row]:
     for part in rows:
         row = merged.setdefault(part.agent, Row(part.agent))
         row.training_seeds.update(part.training_seeds)
-        row.env_steps |= part.env_steps
         for table, values in ((row.wins, part.wins), (row.episodes, part.episodes), (row.steps, part.steps)):
             table.update(values)
         for label, results in part.per_seed.items():
@@ -174,7 +174,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
     for task_name in task_names:  # the graph runs the shipped actor of each task's scene
         row.training_seeds[task_name] = 1
         meta = json.loads((actor_io.MODELS_DIR / get_task(task_name).scene / "actor.json").read_text())
-        row.env_steps.add(meta["env_steps"])
+        row.seed_steps.setdefault("shipped", set()).add(meta["env_steps"])
     row.wall_s = time.perf_counter() - started
     return row
 

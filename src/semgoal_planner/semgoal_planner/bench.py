@@ -24,28 +24,35 @@ PYPERPLAN = "pyperplan==2.1"
 VENV = Path(".bench/pyperplan")
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
 SIZES = (4, 6, 8, 10, 12)
+PHASES = ("parse_ground", "search")
 
 OURS_RUNNER = """
 import json, sys, time
-from semgoal_planner.planner import solve_pddl
+from semgoal_planner.grounding import ground
+from semgoal_planner.pddl import parse_domain, parse_problem
+from semgoal_planner.planner import solve_task
 domain, prob, search, heur, repeats = sys.argv[1:6]
-d, p = open(domain).read(), open(prob).read()
-times = []
+times, front = [], []
 for _ in range(int(repeats)):
-    start = time.perf_counter(); result = solve_pddl(d, p, search, heur); times.append(time.perf_counter() - start)
-print(json.dumps({"length": None if result.plan is None else len(result.plan), "seconds": times}))
+    start = time.perf_counter()
+    d, p = open(domain).read(), open(prob).read()
+    dom = parse_domain(d); task = ground(dom, parse_problem(p, dom)); front.append(time.perf_counter() - start)
+    result = solve_task(task, search, heur); times.append(time.perf_counter() - start)
+print(json.dumps({"length": None if result.plan is None else len(result.plan), "seconds": times, "front_seconds": front}))
 """
 PYPERPLAN_RUNNER = """
 import json, logging, sys, time
-from pyperplan.planner import HEURISTICS, SEARCHES, search_plan
+from pyperplan.planner import HEURISTICS, SEARCHES, _ground, _parse, _search
 logging.disable(logging.CRITICAL)
 domain, prob, search, heur, repeats = sys.argv[1:6]
 search = {"gbfs": "gbf"}.get(search, search)
 heuristic = None if search == "bfs" else HEURISTICS[heur]
-times = []
+times, front = [], []
 for _ in range(int(repeats)):
-    start = time.perf_counter(); plan = search_plan(domain, prob, SEARCHES[search], heuristic); times.append(time.perf_counter() - start)
-print(json.dumps({"length": None if plan is None else len(plan), "seconds": times}))
+    start = time.perf_counter()
+    task = _ground(_parse(domain, prob)); front.append(time.perf_counter() - start)
+    plan = _search(task, SEARCHES[search], heuristic and heuristic(task)); times.append(time.perf_counter() - start)
+print(json.dumps({"length": None if plan is None else len(plan), "seconds": times, "front_seconds": front}))
 """
 
 
@@ -67,7 +74,13 @@ def run_one(python: str, runner: str, domain: Path, prob: Path, search: str, heu
     except subprocess.CalledProcessError as error:
         return {"length": None, "median_ms": None, "status": f"error: {error.stderr.strip().splitlines()[-1]}"}
     data = json.loads(out.strip().splitlines()[-1])
-    return {"length": data["length"], "median_ms": round(statistics.median(data["seconds"]) * 1000, 3), "status": "ok"}
+    search_s = [total - front for total, front in zip(data["seconds"], data["front_seconds"], strict=True)]
+    return {"length": data["length"], "median_ms": _median_ms(data["seconds"]), "status": "ok",
+            "parse_ground_ms": _median_ms(data["front_seconds"]), "search_ms": _median_ms(search_s)}
+
+
+def _median_ms(seconds: list[float]) -> float:
+    return round(statistics.median(seconds) * 1000, 3)
 
 
 def project_tasks(repeats: int) -> dict[str, dict]:
@@ -112,22 +125,22 @@ def main(argv: list[str]) -> int:
                 theirs = run_one(pyperplan, PYPERPLAN_RUNNER, DOMAIN_PATH, prob, search, heuristic, args.repeats, args.timeout)
                 ratio, bound = speedup(ours, theirs, args.timeout)
                 rows.append({"problem": f"blocksworld-{n}", "search": f"{search}/{heuristic}", "ours": ours,
-                             "pyperplan": theirs, "speedup": ratio, "speedup_bound": bound})
+                             "pyperplan": theirs, "speedup": ratio, "speedup_bound": bound,
+                             **{f"{phase}_speedup": phase_speedup(ours, theirs, phase) for phase in PHASES}})
                 if not args.json:
                     print(f"bw-{n:<3d} {search:5s}/{heuristic:6s} ours {_cell(ours)}  pyperplan {_cell(theirs)}  "
-                          f"speedup {_ratio_cell(ratio, bound)}", flush=True)
+                          f"speedup {_ratio_cell(ratio, bound)}  (parse+ground {_ratio_cell(rows[-1]['parse_ground_speedup'], '')}, "
+                          f"search {_ratio_cell(rows[-1]['search_speedup'], '')})", flush=True)
     tasks = project_tasks(max(args.repeats, 20))
     if not args.json:
         for name, row in tasks.items():
             print(f"{name:7s} bfs plan length {row['length']}  {row['median_ms']:.2f} ms (ours; pyperplan: no negative preconditions)")
-    by_search: dict[str, list[float]] = {}
     bounds: dict[str, set[str]] = {}
     for row in rows:
-        if row["speedup"]:
-            by_search.setdefault(row["search"], []).append(row["speedup"])
-            if row["speedup_bound"]:
-                bounds.setdefault(row["search"], set()).add(row["speedup_bound"])
-    summary = {"median_speedup": {k: statistics.median(v) for k, v in by_search.items()},
+        if row["speedup"] and row["speedup_bound"]:
+            bounds.setdefault(row["search"], set()).add(row["speedup_bound"])
+    summary = {"median_speedup": _medians_by_search(rows, "speedup"),
+               **{f"median_{phase}_speedup": _medians_by_search(rows, f"{phase}_speedup") for phase in PHASES},
                "medians_with_bounds": {k: sorted(v) for k, v in bounds.items()},
                "same_length_optimal": all(r["ours"]["length"] == r["pyperplan"]["length"] for r in rows
                                           if r["search"] != "gbfs/hff" and r["ours"]["length"] and r["pyperplan"]["length"]),
@@ -148,6 +161,22 @@ def speedup(ours: dict, theirs: dict, timeout_s: float) -> tuple[float | None, s
     if theirs["median_ms"] and ours["status"].startswith("timeout"):
         return round(theirs["median_ms"] / limit_ms, 2), "upper"
     return None, ""
+
+
+def phase_speedup(ours: dict, theirs: dict, phase: str) -> float | None:
+    """pyperplan's time over ours in one phase (parse + ground, or search with the heuristic's set-up),
+    where both planners finished."""
+    if ours["status"] != "ok" or theirs["status"] != "ok" or not ours[f"{phase}_ms"]:
+        return None
+    return round(theirs[f"{phase}_ms"] / ours[f"{phase}_ms"], 1)
+
+
+def _medians_by_search(rows: list[dict], key: str) -> dict[str, float]:
+    values: dict[str, list[float]] = {}
+    for row in rows:
+        if row[key]:
+            values.setdefault(row["search"], []).append(row[key])
+    return {search: statistics.median(v) for search, v in values.items()}
 
 
 def _ratio_cell(ratio: float | None, bound: str) -> str:

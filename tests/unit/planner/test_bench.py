@@ -1,6 +1,10 @@
 """The planner benchmark's ratio: timeouts become bounds, never silent drops or made-up numbers."""
 
-from semgoal_planner.bench import speedup
+import sys
+from pathlib import Path
+
+from semgoal_planner.bench import OURS_RUNNER, phase_speedup, run_one, speedup
+from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 
 def result(ms: float | None, status: str = "ok") -> dict:
@@ -19,3 +23,19 @@ def test_a_pyperplan_timeout_gives_a_lower_bound_and_ours_an_upper_bound() -> No
 def test_no_ratio_when_neither_finished_or_one_failed() -> None:
     assert speedup(result(None, "timeout (60 s)"), result(None, "timeout (60 s)"), 60) == (None, "")
     assert speedup(result(2.0), result(None, "error: boom"), 60) == (None, "")
+
+
+def test_phase_speedup_splits_parse_and_ground_from_search() -> None:
+    ours = {**result(3.0), "parse_ground_ms": 1.0, "search_ms": 2.0}
+    theirs = {**result(25.0), "parse_ground_ms": 5.0, "search_ms": 20.0}
+    assert phase_speedup(ours, theirs, "parse_ground") == 5.0
+    assert phase_speedup(ours, theirs, "search") == 10.0
+    assert phase_speedup(ours, result(None, "timeout (60 s)"), "search") is None
+
+
+def test_our_runner_times_both_phases(tmp_path: Path) -> None:
+    prob = tmp_path / "bw-4.pddl"
+    prob.write_text(problem(4, seed=1))
+    row = run_one(sys.executable, OURS_RUNNER, DOMAIN_PATH, prob, "astar", "hmax", repeats=2, timeout=60)
+    assert row["status"] == "ok" and row["length"] == 8
+    assert 0 < row["parse_ground_ms"] < row["median_ms"] and 0 < row["search_ms"] < row["median_ms"]

@@ -42,17 +42,21 @@ VIA_ROS = "hierarchical (via ROS)"
 
 
 @dataclass
+class Tally:
+    """One training seed's episodes of one task."""
+
+    wins: int = 0
+    episodes: int = 0
+    steps: int = 0
+
+
+@dataclass
 class Row:
-    """One agent's results: per task, the successes over every (training seed, episode)."""
+    """One agent's results, kept per training seed; the pooled figures of a task sum its seeds' tallies."""
 
     agent: str
-    training_seeds: dict[str, int] = field(default_factory=dict)
-    """Per task: how many training seeds' actors were evaluated."""
-    wins: dict[str, int] = field(default_factory=dict)
-    episodes: dict[str, int] = field(default_factory=dict)
-    steps: dict[str, int] = field(default_factory=dict)
-    per_seed: dict[str, dict[str, tuple[int, int]]] = field(default_factory=dict)
-    """Per training seed (``shipped``, ``seed21``, ...): per task, its successes and episodes."""
+    per_seed: dict[str, dict[str, Tally]] = field(default_factory=dict)
+    """Per training seed (``shipped``, ``seed21``, ...): per task, the tally of its episodes."""
     seed_steps: dict[str, set[int]] = field(default_factory=dict)
     """Per training seed: the training env steps of its actors (one per scene)."""
     wall_s: float = 0.0
@@ -62,18 +66,35 @@ class Row:
         """Training env steps of the actors evaluated."""
         return set().union(*self.seed_steps.values())
 
-    def add(self, task: str, success: bool, steps: int) -> None:
-        self.wins[task] = self.wins.get(task, 0) + int(success)
-        self.episodes[task] = self.episodes.get(task, 0) + 1
-        self.steps[task] = self.steps.get(task, 0) + steps
+    def add(self, seed_label: str, task: str, success: bool, steps: int) -> None:
+        tally = self.per_seed.setdefault(seed_label, {}).setdefault(task, Tally())
+        tally.wins += int(success)
+        tally.episodes += 1
+        tally.steps += steps
+
+    def tallies(self, task: str) -> list[Tally]:
+        return [by_task[task] for by_task in self.per_seed.values() if task in by_task]
+
+    def training_seeds(self, task: str) -> int:
+        """How many training seeds' actors were evaluated on ``task``."""
+        return len(self.tallies(task))
+
+    def wins(self, task: str) -> int:
+        return sum(t.wins for t in self.tallies(task))
+
+    def episodes(self, task: str) -> int:
+        return sum(t.episodes for t in self.tallies(task))
+
+    def mean_steps(self, task: str) -> float:
+        return sum(t.steps for t in self.tallies(task)) / self.episodes(task)
 
     def rate(self, task: str) -> float:
-        return self.wins[task] / self.episodes[task]
+        return self.wins(task) / self.episodes(task)
 
     def interval(self, task: str) -> tuple[float, float]:
         """95 % Wilson score interval of the rate: unlike the normal approximation it stays wide at 0 and
         1 (10 of 10 episodes still admit a rate near 72 %)."""
-        return wilson_interval(self.wins[task], self.episodes[task])
+        return wilson_interval(self.wins(task), self.episodes(task))
 
 
 def wilson_interval(wins: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -112,17 +133,13 @@ def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: i
     if not dirs:
         raise FileNotFoundError(f"no exported {agent} actor for {scene} under {models_dir}: "
                                 f"train one with ./semgoal train --scene {scene} --agent {agent}")
-    row.training_seeds[task_name] = len(dirs)
     for directory in dirs:
         label = "shipped" if directory.parent == models_dir else directory.name
         row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
-        wins = 0
         for i in range(episodes):
             outcome = runner.run(task_name, seed + i)
-            row.add(task_name, outcome.success, outcome.steps)
-            wins += outcome.success
-        row.per_seed[label] = {task_name: (wins, episodes)}
+            row.add(label, task_name, outcome.success, outcome.steps)
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -132,9 +149,6 @@ def merge(rows: list[Row]) -> list[Row]:
     merged: dict[str, Row] = {}
     for part in rows:
         row = merged.setdefault(part.agent, Row(part.agent))
-        row.training_seeds.update(part.training_seeds)
-        for table, values in ((row.wins, part.wins), (row.episodes, part.episodes), (row.steps, part.steps)):
-            table.update(values)
         for label, results in part.per_seed.items():
             row.per_seed.setdefault(label, {}).update(results)
             row.seed_steps.setdefault(label, set()).update(part.seed_steps[label])
@@ -170,9 +184,8 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
     row = Row(VIA_ROS)
     started = time.perf_counter()
     for outcome in run_via_ros(task_names, episodes, seed):
-        row.add(outcome.task, outcome.success, outcome.steps)
-    for task_name in task_names:  # the graph runs the shipped actor of each task's scene
-        row.training_seeds[task_name] = 1
+        row.add("shipped", outcome.task, outcome.success, outcome.steps)  # the graph runs the shipped actors
+    for task_name in task_names:
         meta = json.loads((actor_io.MODELS_DIR / get_task(task_name).scene / "actor.json").read_text())
         row.seed_steps.setdefault("shipped", set()).add(meta["env_steps"])
     row.wall_s = time.perf_counter() - started
@@ -185,8 +198,8 @@ def _steps_text(env_steps: set[int]) -> str:
     return f"{low // 1000}k" if low == high else f"{low // 1000}k-{high // 1000}k"
 
 
-def _seeds_text(row: Row) -> str:
-    counts = set(row.training_seeds.values())
+def _seeds_text(row: Row, tasks: list[str]) -> str:
+    counts = {row.training_seeds(t) for t in tasks}
     return str(min(counts)) if len(counts) == 1 else f"{min(counts)}-{max(counts)}"
 
 
@@ -212,8 +225,8 @@ def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, p
             if row.agent.split(" ")[0] == agent:
                 cells = [f"{100 * row.rate(t):.0f} [{100 * low:.0f}-{100 * high:.0f}]"
                          for t in tasks for low, high in [row.interval(t)]]
-                lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row)} | {_steps_text(row.env_steps)} | "
-                             f"{min(row.episodes[t] // row.training_seeds[t] for t in tasks)} | "
+                lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row, tasks)} | {_steps_text(row.env_steps)} | "
+                             f"{min(tally.episodes for t in tasks for tally in row.tallies(t))} | "
                              + " | ".join(cells) + " |")
     for row in rows:
         if len(row.per_seed) > 1:
@@ -229,7 +242,7 @@ def _per_seed_lines(row: Row, tasks: list[str]) -> list[str]:
              "| training seed | training steps | " + " | ".join(tasks) + " |", "|" + "---|" * (2 + len(tasks))]
     for label in sorted(row.per_seed, key=lambda name: (name != "shipped", name)):
         results = row.per_seed[label]
-        cells = [f"{100 * results[t][0] / results[t][1]:.0f}" if t in results else "" for t in tasks]
+        cells = [f"{100 * results[t].wins / results[t].episodes:.0f}" if t in results else "" for t in tasks]
         lines.append(f"| {label} | {_steps_text(row.seed_steps[label])} | " + " | ".join(cells) + " |")
     return lines
 
@@ -251,9 +264,9 @@ def write_csv(rows: list[Row], tasks: list[str], path: Path) -> None:
                     writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000])
         for row in rows:
             for t in tasks:
-                writer.writerow([row.agent, "ours", t, round(row.rate(t), 4), row.episodes[t],
+                writer.writerow([row.agent, "ours", t, round(row.rate(t), 4), row.episodes(t),
                                  *(round(bound, 4) for bound in row.interval(t)),
-                                 round(row.steps[t] / row.episodes[t], 1), row.training_seeds[t],
+                                 round(row.mean_steps(t), 1), row.training_seeds(t),
                                  "/".join(map(str, sorted(row.env_steps)))])
 
 

@@ -29,16 +29,13 @@ PHASES = ("parse_ground", "search")
 
 OURS_RUNNER = """
 import json, sys, time
-from semgoal_planner.grounding import ground
-from semgoal_planner.pddl import parse_domain, parse_problem
-from semgoal_planner.planner import solve_task
+from semgoal_planner.planner import solve_pddl
 domain, prob, search, heur, repeats = sys.argv[1:6]
 times, front = [], []
 for _ in range(int(repeats)):
     start = time.perf_counter()
-    d, p = open(domain).read(), open(prob).read()
-    dom = parse_domain(d); task = ground(dom, parse_problem(p, dom)); front.append(time.perf_counter() - start)
-    result = solve_task(task, search, heur); times.append(time.perf_counter() - start)
+    result = solve_pddl(open(domain).read(), open(prob).read(), search, heur); times.append(time.perf_counter() - start)
+    front.append(times[-1] - result.seconds)  # result.seconds: the heuristic's set-up and the search
 print(json.dumps({"length": None if result.plan is None else len(result.plan), "seconds": times, "front_seconds": front}))
 """
 PYPERPLAN_RUNNER = """

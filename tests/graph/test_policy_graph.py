@@ -1,5 +1,5 @@
 """sim_node, predicate_node and policy_node as processes: the test plays the planner (it answers every
-semantic state with the sub-goal, stamped with the state's step) and sets pick(red); the shipped actor
+semantic state with the sub-goal, stamped with the state's episode and step) and sets pick(red); the shipped actor
 achieves it in lockstep within the step budget. Without an active sub-goal, or without the planner's
 answer for the current step, the lockstep world waits (the arm holds still)."""
 
@@ -25,7 +25,7 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     def answer(state: SemanticState) -> None:
         semantic.append(state)
         if planner["answers"]:
-            planner["subgoal"].step = state.step
+            planner["subgoal"].step, planner["subgoal"].episode = state.step, state.episode
             subgoals.publish(planner["subgoal"])
 
     probe.node.create_subscription(WorldState, topics.WORLD_STATE, worlds.append, topics.STREAM)
@@ -42,14 +42,18 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     grip = [np.array([w.gripper_position.x, w.gripper_position.y, w.gripper_position.z]) for w in worlds]
     assert max(np.linalg.norm(g - grip[0]) for g in grip) < 0.005
 
-    start = worlds[-1].step
-    pick_red = SubGoal(index=0, action="pick(red)", status="active", assignee="robot", step=start + 1,
+    start, episode = worlds[-1].step, worlds[-1].episode
+    pick_red = SubGoal(index=0, action="pick(red)", status="active", assignee="robot", step=start + 1, episode=episode,
                        goal=[Predicate(name="holding", args=["red"], value=True)])
     planner["answers"] = False
     subgoals.publish(pick_red)  # decided for a step the world has not reached: the policy waits
     probe.spin_for(1.5)
     assert worlds[-1].step == start
-    pick_red.step = start
+    pick_red.step, pick_red.episode = start, episode + 1
+    subgoals.publish(pick_red)  # decided for this step of another episode (a reset world): it waits too
+    probe.spin_for(1.5)
+    assert worlds[-1].step == start
+    pick_red.episode = episode
     planner.update(answers=True, subgoal=pick_red)
     subgoals.publish(pick_red)
 

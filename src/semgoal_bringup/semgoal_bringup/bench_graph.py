@@ -27,7 +27,7 @@ def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
     from semgoal_bringup.graph import running_graph
 
     runs = []
-    with running_graph(task, seed, client_name="semgoal_bench") as client:
+    with running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
         for i in range(episodes):
             client.reset(task, seed + i)
             result = client.execute(task, max_steps=TASK_STEP_BUDGET)

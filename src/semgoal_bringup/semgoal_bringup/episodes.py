@@ -61,9 +61,9 @@ class HierarchicalAgent:
         world.reset(task.initial_state(seed)[0])
         executive = Executive(SemanticPlanner(task.scene))
         executive.observe(observe(world))
-        planned, _ = executive.set_goal(task.name)
+        planned, _ = executive.set_goal(task.name, step_budget=budget)
         steps = 0
-        while planned and executive.status == "executing" and steps < budget:
+        while planned and executive.status == "executing":
             active = executive.active
             if active is None:  # a human step: nobody acts in an evaluation
                 break

@@ -68,15 +68,15 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
 
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
-                  models: str = "") -> Iterator:
+                  models: str = "", watch: bool = True) -> Iterator:
     """The four nodes and a :class:`GraphClient` on the current ROS domain, ready; all stopped on exit.
-    RuntimeError when the nodes do not come up."""
+    ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do not come up."""
     from semgoal_bringup.graph_client import GraphClient
 
     processes = start_graph(task_name, seed, mode=mode, models=models)
     client = None
     try:
-        client = GraphClient(client_name)
+        client = GraphClient(client_name, watch=watch)
         if not client.wait_ready():
             raise RuntimeError(f"the node graph for {task_name} did not come up")
         yield client

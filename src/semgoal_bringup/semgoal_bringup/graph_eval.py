@@ -23,7 +23,8 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
         by_scene.setdefault(get_task(name).scene, []).append(name)
     for scene_tasks in by_scene.values():
         os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))
-        with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models) as client:
+        with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models,
+                           watch=False) as client:
             for task_name in scene_tasks:
                 for i in range(episodes):
                     ok, message = client.reset(task_name, seed + i)

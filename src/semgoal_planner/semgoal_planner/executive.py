@@ -19,6 +19,8 @@ from semgoal_planner.semantic import PlanningError, SemanticPlanner
 from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
 
 STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
+UNDER_WAY = ("executing", "paused", "awaiting_approval")
+"""Statuses of a goal that has not ended yet."""
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
 ASSIGNEES = ("robot", "human")
 
@@ -77,6 +79,8 @@ class Executive:
     """The latest control step seen by :meth:`tick`: world states reach the planner before the semantic
     states the predicates derive from them, so confirmation counts up to here."""
     goal_started: int = 0
+    step_budget: int = 0
+    """Control steps the goal may take from ``goal_started`` before it fails (0: no limit)."""
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
 
@@ -84,8 +88,9 @@ class Executive:
         self.confirmation = Confirmation(self.confirm_steps)
 
     # -- goals ---------------------------------------------------------------------------------------
-    def set_goal(self, text: str) -> tuple[bool, str]:
-        """Plan for a goal from the observed state; on failure the previous plan stays."""
+    def set_goal(self, text: str, step_budget: int = 0) -> tuple[bool, str]:
+        """Plan for a goal from the observed state; on failure the previous plan stays. The goal fails
+        once ``step_budget`` control steps (0: no limit) are spent without it holding."""
         if self.observation is None:
             return False, "no semantic state observed yet: start the sim and predicates nodes first"
         obs = self.observation
@@ -95,13 +100,13 @@ class Executive:
         except (GoalError, PlanningError) as error:
             return False, str(error)
         self.goal, self.goal_text = goal, " & ".join(map(str, goal))
-        self.replans, self.goal_started = 0, obs.step
+        self.replans, self.goal_started, self.step_budget = 0, obs.step, max(0, step_budget)
         self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}")
         self._advance()
         return True, self.message
 
     def cancel(self, reason: str = "cancelled by the operator") -> None:
-        if self.status in ("executing", "paused", "awaiting_approval"):
+        if self.status in UNDER_WAY:
             self._finish("failed", reason)
 
     # -- monitoring ----------------------------------------------------------------------------------
@@ -109,10 +114,13 @@ class Executive:
         changed = self.observation is None or observation.literals != self.observation.literals
         self.observation = observation
         confirming = self.confirmation.pending
-        if (changed or confirming) and self.status in ("executing", "paused", "awaiting_approval"):
+        if (changed or confirming) and self.status in UNDER_WAY:
             self._advance()
             if self.status == "executing":
                 self._check_consistency()
+        if (self.step_budget and self.status in UNDER_WAY
+                and observation.step - self.goal_started >= self.step_budget):
+            self._finish("failed", f"the goal did not hold within its budget of {self.step_budget} control steps")
 
     def tick(self, step: int) -> None:
         """A control step happened (from the world state stream): stall and contradiction clocks."""

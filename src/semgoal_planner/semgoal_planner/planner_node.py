@@ -67,9 +67,9 @@ class PlannerNode(Node):
     def goal_callback(self, msg: GoalRequest) -> None:
         self.start_goal(msg)
 
-    def start_goal(self, msg: GoalRequest) -> tuple[bool, str]:
+    def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
         try:
-            ok, message = self.executive.set_goal(goal_text(msg))
+            ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
         except ValueError as error:
             ok, message = False, str(error)
         self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)}: {message}")
@@ -90,6 +90,8 @@ class PlannerNode(Node):
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
         response.plan = self.plan_message()
+        if self.last_state is not None:
+            response.state = self.last_state
         response.success = self.executive.status != "empty"
         response.message = format_plan(response.plan)
         return response
@@ -106,7 +108,7 @@ class PlannerNode(Node):
         """Start the goal, then wait (without a thread: the callbacks go on) until it ends; feedback
         goes out with every change of the plan (:meth:`publish`)."""
         result = ExecuteGoal.Result()
-        ok, message = self.start_goal(handle.request.goal)
+        ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
         start_step = self.executive.goal_started
         if ok and self.executive.status not in FINAL:
             ended = Future(executor=self.executor)
@@ -198,6 +200,7 @@ class PlannerNode(Node):
         else:
             msg = self.step_message(ex.current, active.subgoal, "active", "robot")
         msg.step = ex.observation.step if ex.observation else 0
+        msg.episode = self.last_state.episode if self.last_state else 0
         return msg
 
 

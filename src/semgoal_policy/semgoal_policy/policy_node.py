@@ -1,7 +1,7 @@
 """policy_node: world state and the active sub-goal in, arm commands out.
 
-Lockstep: one ArmCommand per world state, sent once the planner has decided on that state's step (the
-sub-goal message carries it), so the node graph takes exactly the steps of the in-process episode;
+Lockstep: one ArmCommand per world state, sent once the planner has decided on that state's episode and
+step (the sub-goal message carries both), so the node graph takes exactly the steps of the in-process episode;
 without an active sub-goal no command goes out and the world waits. Realtime: a command at ``rate_hz``
 with the latest sub-goal; once that holds (its literals held for ``SUBGOAL_CONFIRM_STEPS`` steps, the
 planner's rule) the arm holds still until the planner names the next. It never publishes NaN or values
@@ -39,16 +39,19 @@ class PolicyNode(Node):
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
         self.latest: WorldState | None = None
-        self.decided_step = -1
-        """The control step of the semantic state behind the latest sub-goal message."""
-        self.answered_step, self.answered_at = -1, 0.0
+        self.decided: tuple[int, int] | None = None
+        """(episode, control step) of the semantic state behind the latest sub-goal message."""
+        self.answered: tuple[int, int] | None = None
+        self.answered_at = 0.0
         # realtime: act at rate_hz. lockstep: the world waits for each command, so the timer only resends
         # one that may have been lost
         self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
         self.subgoal_key: tuple | None = None
+        self.prepared: tuple[tuple, np.ndarray] | None = None
+        """(episode, step, sub-goal key) and the command the actor gives for them."""
 
     def subgoal_callback(self, msg: SubGoal) -> None:
-        self.decided_step = msg.step
+        self.decided = (msg.episode, msg.step)
         key = (msg.status, msg.action, tuple((p.name, tuple(p.args), p.value) for p in msg.goal))
         if key != self.subgoal_key:  # the planner answers every step; most answers repeat the last sub-goal
             self.subgoal_key = key
@@ -70,6 +73,10 @@ class PolicyNode(Node):
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg
         if self.mode == "lockstep":
+            if self.controller.goal is not None:
+                # the planner's answer for this step is on its way and mostly repeats the sub-goal: the
+                # actor runs now, while the predicates and the planner work, instead of after them
+                self.command_for(msg)
             self.answer_lockstep()
 
     def timer_callback(self) -> None:
@@ -78,7 +85,7 @@ class PolicyNode(Node):
         if self.mode == "realtime":
             self.publish_command(self.latest, self.decide_realtime(self.latest))
         elif time.monotonic() - self.answered_at > 1.0:
-            self.answered_step = -1  # lockstep: the command for this step may have been lost; send it again
+            self.answered = None  # lockstep: the command for this step may have been lost; send it again
             self.answer_lockstep()
 
     def decide_realtime(self, msg: WorldState) -> np.ndarray:
@@ -90,16 +97,26 @@ class PolicyNode(Node):
     def answer_lockstep(self) -> None:
         """Act once on the latest world state when the planner has decided on its step and names a sub-goal."""
         msg = self.latest
-        if msg is None or self.controller.goal is None or msg.step != self.decided_step or msg.step == self.answered_step:
+        if msg is None or self.controller.goal is None:
             return
-        self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
+        world = (msg.episode, msg.step)
+        if world != self.decided or world == self.answered:
+            return
+        self.publish_command(msg, self.command_for(msg))
+
+    def command_for(self, msg: WorldState) -> np.ndarray:
+        """The actor's command for a world state under the current sub-goal, computed once."""
+        key = (msg.episode, msg.step, self.subgoal_key)
+        if self.prepared is None or self.prepared[0] != key:
+            self.prepared = (key, self.controller.act(msg.observation, (msg.seed, msg.step)))
+        return self.prepared[1]
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))
         command.header.stamp = self.get_clock().now().to_msg()
         command.displacement.x, command.displacement.y, command.displacement.z = (float(v) for v in action[:3])
         self.publisher.publish(command)
-        self.answered_step, self.answered_at = msg.step, time.monotonic()
+        self.answered, self.answered_at = (msg.episode, msg.step), time.monotonic()
 
 
 def main(args: list[str] | None = None) -> None:

@@ -73,7 +73,7 @@ def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     layout = LAYOUTS[msg.scene]
     _, present = block_positions(msg)
     objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
-    state = SemanticState(scene=msg.scene, step=msg.step, objects=objects,
+    state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
                           vector=[bool(v) for v in vector])
     state.header = msg.header
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))

@@ -63,6 +63,20 @@ def test_confirmation_counts_world_ticks_that_arrive_before_the_semantic_state()
     assert ex.current == 1 and ex.steps[0].status == "done"
 
 
+def test_a_goal_fails_once_its_step_budget_is_spent_but_may_succeed_on_its_last_step() -> None:
+    ex = executive()
+    ex.observe(observe([], 7))
+    ex.set_goal("in_bin(red)", step_budget=10)
+    ex.observe(observe(["holding(red)"], 16))
+    assert ex.status == "executing"
+    ex.observe(observe(["holding(red)"], 17))
+    assert ex.status == "failed" and "budget of 10 control steps" in ex.message
+    ex = executive()
+    ex.set_goal("in_bin(red)", step_budget=10)
+    ex.observe(observe(["in_bin(red)"], 10))
+    assert ex.status == "succeeded"
+
+
 def test_bad_goal_keeps_the_previous_plan() -> None:
     ex = executive()
     ex.set_goal("DC-3")

@@ -114,7 +114,6 @@ class GraphClient:
             reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
             if reply is None or not reply.success:
                 return False, reply.message if reply else message
-            message = reply.message
             state = self.planner_state(reply.world.episode)
             if state is None:
                 message = f"the planner saw no state of episode {reply.world.episode} ({reply.message})"

@@ -178,12 +178,15 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
 
 
 def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
+    from tqdm import tqdm
+
     from semgoal_bringup.graph_eval import run_via_ros
     from semgoal_policy import actor as actor_io
 
     row = Row(VIA_ROS)
     started = time.perf_counter()
-    for outcome in run_via_ros(task_names, episodes, seed):
+    outcomes = run_via_ros(task_names, episodes, seed)
+    for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
         row.add("shipped", outcome.task, outcome.success, outcome.steps)  # the graph runs the shipped actors
     for task_name in task_names:
         meta = json.loads((actor_io.MODELS_DIR / get_task(task_name).scene / "actor.json").read_text())

@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import random
 import statistics
 import time
 
@@ -29,7 +27,9 @@ def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
     runs = []
     with running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
         for i in range(episodes):
-            client.reset(task, seed + i)
+            ok, message = client.reset(task, seed + i)
+            if not ok:
+                raise RuntimeError(f"reset to {task} seed {seed + i} failed: {message}")
             result = client.execute(task, max_steps=TASK_STEP_BUDGET)
             runs.append((result.control_steps, result.wall_s))
     return runs
@@ -52,7 +52,9 @@ def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
     arrivals: list[tuple[int, float]] = []
     with running_graph(task, seed, mode="realtime", client_name="semgoal_bench") as client:
         client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
-        client.reset(task, seed)
+        ok, message = client.reset(task, seed)
+        if not ok:
+            raise RuntimeError(f"reset to {task} seed {seed} failed: {message}")
         arrivals.clear()
         client.execute(task, timeout=seconds, max_steps=int(seconds * REALTIME_HZ))
         client.spin_until(lambda: bool(arrivals) and arrivals[-1][1] - arrivals[0][1] >= seconds, seconds + 5)
@@ -74,7 +76,6 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--realtime-s", type=float, default=20.0, help="seconds of realtime running")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
-    os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))
     import torch
 
     torch.set_num_threads(1)

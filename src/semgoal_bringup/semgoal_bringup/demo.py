@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import random
 import sys
 from pathlib import Path
 
@@ -26,10 +25,10 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--gif", type=Path, help="where to write the episode GIF (default results/demo-TASK.gif)")
     parser.add_argument("--no-gif", action="store_true")
     args = parser.parse_args(argv)
-    os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))  # per-run domain: parallel demos never meet
-
-    from semgoal_bringup.graph import start_graph, stop_graph
+    from semgoal_bringup.graph import fresh_domain, start_graph, stop_graph
     from semgoal_sim.tasks import get_task
+
+    fresh_domain()  # per-run domain: parallel demos never meet
 
     try:
         task = get_task(args.task)

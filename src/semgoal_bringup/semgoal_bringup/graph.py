@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import random
 import subprocess
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -66,17 +67,26 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
             process.kill()
 
 
+def fresh_domain() -> str:
+    """Move this process to a random ROS domain other than the current one, so a graph started next
+    meets neither a graph run in parallel nor the participants of the last one still being torn down."""
+    current = os.environ.get("ROS_DOMAIN_ID")
+    os.environ["ROS_DOMAIN_ID"] = random.choice([str(d) for d in range(1, 101) if str(d) != current])
+    return os.environ["ROS_DOMAIN_ID"]
+
+
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
                   models: str = "", watch: bool = True) -> Iterator:
-    """The four nodes and a :class:`GraphClient` on the current ROS domain, ready; all stopped on exit.
+    """The four nodes and a :class:`GraphClient` on a fresh ROS domain, ready; all stopped on exit.
     ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do not come up."""
     from semgoal_bringup.graph_client import GraphClient
 
+    fresh_domain()
     processes = start_graph(task_name, seed, mode=mode, models=models)
     client = None
     try:
-        client = GraphClient(client_name, watch=watch)
+        client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")
         if not client.wait_ready():
             raise RuntimeError(f"the node graph for {task_name} did not come up")
         yield client

@@ -37,7 +37,7 @@ class GoalResult:
 class GraphClient:
     """An rclpy node with the sim's reset and move services, the planner's ExecuteGoal, and the state streams."""
 
-    def __init__(self, name: str = "semgoal_operator", watch: bool = True) -> None:
+    def __init__(self, name: str = "semgoal_operator", watch: bool = True, lockstep: bool = True) -> None:
         import rclpy
         from rclpy.action import ActionClient
 
@@ -54,7 +54,7 @@ class GraphClient:
         self.semantic: SemanticState | None = None
         self.subgoal: SubGoal | None = None
         self.world_listeners: list[Callable] = []
-        self.watch = watch
+        self.watch, self.lockstep = watch, lockstep
         if watch:
             node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.STREAM)
             node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self._on_semantic, topics.LATCHED)
@@ -107,8 +107,9 @@ class GraphClient:
         """Reset the world to a task's start; returns once the planner has decided on the new world's
         first state, so a goal sent next is planned from it.
 
-        Should the new world have stepped first (a goal still under way when it was reset), the reset
-        is made again."""
+        In lockstep, should the new world have stepped first (a goal still under way when it was reset),
+        the reset is made again; in realtime the world steps on the sim's clock from the start (the arm
+        holding still without a goal), and any state of the new world will do."""
         message = "reset_world did not answer"
         for _ in range(attempts):
             reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
@@ -117,7 +118,7 @@ class GraphClient:
             state = self.planner_state(reply.world.episode)
             if state is None:
                 message = f"the planner saw no state of episode {reply.world.episode} ({reply.message})"
-            elif state.step == 0:
+            elif state.step == 0 or not self.lockstep:
                 return True, reply.message
             else:
                 message = f"the world was at step {state.step} before a goal was sent ({reply.message})"

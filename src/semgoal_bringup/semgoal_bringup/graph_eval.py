@@ -6,8 +6,6 @@ through ExecuteGoal, read the result; an episode past the step budget is cancell
 
 from __future__ import annotations
 
-import os
-import random
 from collections.abc import Iterator
 
 from semgoal_bringup.episodes import TASK_STEP_BUDGET, Outcome
@@ -22,7 +20,6 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
     for name in task_names:
         by_scene.setdefault(get_task(name).scene, []).append(name)
     for scene_tasks in by_scene.values():
-        os.environ["ROS_DOMAIN_ID"] = str(random.randint(1, 100))
         with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models,
                            watch=False) as client:
             for task_name in scene_tasks:

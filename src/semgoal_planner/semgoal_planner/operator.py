@@ -2,6 +2,7 @@
 
     ./semgoal goal DC-3                        publish a goal (the planner plans and executes it)
     ./semgoal goal "in_bin(red) & in_bin(green)" --wait   execute it through the action, print progress
+    ./semgoal goal DC-3 --wait --max-steps 600             ... and let it fail after 600 control steps
     ./semgoal plan show
     ./semgoal plan insert 2 "pick(red)" | remove 2 | move 3 1 | replace 2 "put_in_bin(red)"
     ./semgoal plan approve | pause | resume | replan | assign 2 human
@@ -50,12 +51,18 @@ def format_plan(plan) -> str:
 
 
 def goal_main(argv: list[str]) -> int:
-    """`./semgoal goal TASK|LITERALS [--wait]`: send a goal to planner_node."""
+    """`./semgoal goal TASK|LITERALS [--wait [--max-steps N]]`: send a goal to planner_node."""
     parser = argparse.ArgumentParser(prog="semgoal goal", description=goal_main.__doc__)
     parser.add_argument("goal", help="a task name (DC-3) or literals joined by '&'")
     parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
+    parser.add_argument("--max-steps", type=int, default=0,
+                        help="with --wait: control steps the goal may take before it fails (default 0: no limit)")
     parser.add_argument("--timeout", type=float, default=300.0)
     args = parser.parse_args(argv)
+    if args.max_steps < 0:
+        parser.error(f"--max-steps must be 0 (no limit) or more, got {args.max_steps}")
+    if args.max_steps and not args.wait:
+        parser.error("--max-steps needs --wait: the budget travels with the ExecuteGoal action, not the goal topic")
     from semgoal_msgs.msg import GoalRequest
     from semgoal_planner.goals import is_task_name
     from semgoal_sim import ros_interfaces as topics
@@ -65,7 +72,7 @@ def goal_main(argv: list[str]) -> int:
     client = OperatorClient()
     try:
         if args.wait:
-            return _execute(client, request, args.timeout)
+            return _execute(client, request, args.timeout, args.max_steps)
         publisher = client.node.create_publisher(GoalRequest, topics.GOAL, 10)
         deadline = time.monotonic() + WAIT_S
         while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
@@ -81,7 +88,7 @@ def goal_main(argv: list[str]) -> int:
         client.close()
 
 
-def _execute(client: OperatorClient, request, timeout: float) -> int:
+def _execute(client: OperatorClient, request, timeout: float, max_steps: int) -> int:
     from rclpy.action import ActionClient
 
     from semgoal_msgs.action import ExecuteGoal
@@ -100,7 +107,7 @@ def _execute(client: OperatorClient, request, timeout: float) -> int:
             last[0] = key
             print(format_plan(plan), flush=True)
 
-    sent = action.send_goal_async(ExecuteGoal.Goal(goal=request), feedback_callback=on_feedback)
+    sent = action.send_goal_async(ExecuteGoal.Goal(goal=request, max_steps=max_steps), feedback_callback=on_feedback)
     client.rclpy.spin_until_future_complete(client.node, sent, timeout_sec=WAIT_S)
     handle = sent.result()
     result_future = handle.get_result_async()

@@ -27,9 +27,7 @@ def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
     runs = []
     with running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
         for i in range(episodes):
-            ok, message = client.reset(task, seed + i)
-            if not ok:
-                raise RuntimeError(f"reset to {task} seed {seed + i} failed: {message}")
+            client.must_reset(task, seed + i)
             result = client.execute(task, max_steps=TASK_STEP_BUDGET)
             runs.append((result.control_steps, result.wall_s))
     return runs
@@ -52,9 +50,7 @@ def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
     arrivals: list[tuple[int, float]] = []
     with running_graph(task, seed, mode="realtime", client_name="semgoal_bench") as client:
         client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
-        ok, message = client.reset(task, seed)
-        if not ok:
-            raise RuntimeError(f"reset to {task} seed {seed} failed: {message}")
+        client.must_reset(task, seed)
         arrivals.clear()
         client.execute(task, timeout=seconds, max_steps=int(seconds * REALTIME_HZ))
         client.spin_until(lambda: bool(arrivals) and arrivals[-1][1] - arrivals[0][1] >= seconds, seconds + 5)

@@ -67,12 +67,11 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
             process.kill()
 
 
-def fresh_domain() -> str:
+def fresh_domain() -> None:
     """Move this process to a random ROS domain other than the current one, so a graph started next
     meets neither a graph run in parallel nor the participants of the last one still being torn down."""
     current = os.environ.get("ROS_DOMAIN_ID")
     os.environ["ROS_DOMAIN_ID"] = random.choice([str(d) for d in range(1, 101) if str(d) != current])
-    return os.environ["ROS_DOMAIN_ID"]
 
 
 @contextmanager

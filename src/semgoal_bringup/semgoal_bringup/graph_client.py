@@ -124,6 +124,12 @@ class GraphClient:
                 message = f"the world was at step {state.step} before a goal was sent ({reply.message})"
         return False, f"{message}; tried {attempts} resets"
 
+    def must_reset(self, task: str, seed: int) -> None:
+        """:meth:`reset`, raising RuntimeError with the reason when it fails (for unattended runs)."""
+        ok, message = self.reset(task, seed)
+        if not ok:
+            raise RuntimeError(f"reset to {task} seed {seed} failed: {message}")
+
     def planner_state(self, episode: int, timeout: float = RESET_TIMEOUT_S):
         """The semantic state the planner last decided on, once it is of world ``episode``; None if it
         does not come within ``timeout``."""

@@ -1,7 +1,7 @@
 """Task episodes through the real node graph (``./semgoal eval --via-ros``): the hierarchical agent as
 deployed. One graph per scene (sim in lockstep, predicates, planner, policy: four processes on a fresh
 ROS domain) serves every episode of that scene's tasks: reset to the task's seeded start, send the task
-through ExecuteGoal, read the result; an episode past the step budget is cancelled and counts as failed.
+through ExecuteGoal, read the result; the planner fails an episode that spends its step budget.
 """
 
 from __future__ import annotations
@@ -24,8 +24,6 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
                            watch=False) as client:
             for task_name in scene_tasks:
                 for i in range(episodes):
-                    ok, message = client.reset(task_name, seed + i)
-                    if not ok:
-                        raise RuntimeError(f"reset to {task_name} seed {seed + i} failed: {message}")
+                    client.must_reset(task_name, seed + i)
                     result = client.execute(task_name, max_steps=TASK_STEP_BUDGET)
                     yield Outcome(task_name, seed + i, result.success, result.control_steps, result.replans)

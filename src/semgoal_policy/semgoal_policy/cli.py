@@ -25,6 +25,8 @@ def train_main(argv: list[str]) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--resume", action="store_true", help="continue the run's last checkpoint")
     parser.add_argument("--envs", type=int, default=defaults.n_envs)
+    parser.add_argument("--refill-steps", type=int, default=defaults.refill_steps,
+                        help="on --resume without the run's replay.npz: env steps collected before updates resume")
     parser.add_argument("--updates-per-step", type=float, default=defaults.updates_per_step)
     parser.add_argument("--demo-fraction", type=float, default=defaults.demo_fraction,
                         help="share of episodes run by the scripted expert (0: no demonstrations)")
@@ -44,7 +46,7 @@ def train_main(argv: list[str]) -> int:
     parser.add_argument("--export-dir", type=Path, help="where the actor is exported (default models/...)")
     args = parser.parse_args(argv)
     config = TrainConfig(
-        scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs,
+        scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs, refill_steps=args.refill_steps,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
         snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,

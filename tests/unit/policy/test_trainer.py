@@ -3,6 +3,8 @@
 import csv
 from dataclasses import replace
 
+import torch
+
 from semgoal_policy.actor import load
 from semgoal_policy.sac import SacAgent, SacConfig
 from semgoal_policy.trainer import TrainConfig, Trainer
@@ -38,12 +40,25 @@ def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints(
     assert {group["lr"] for opt in optimisers for group in opt.param_groups} == {3e-4}
 
 
-def test_resume_without_replay_buffer_refills_it(tmp_path) -> None:
+def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_path) -> None:
     Trainer(config(tmp_path, 400)).run()
     (tmp_path / "run" / "replay.npz").unlink()
-    resumed = Trainer(config(tmp_path, 800))
+    resumed = Trainer(config(tmp_path, 800))  # refill_steps 100k, capped at the 400 steps before the resume
     resumed.run(resume=True)
     assert resumed.env_steps == 800 and resumed.replay.size == 400 // 50
+
+
+def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
+    Trainer(config(tmp_path, 400)).run()
+    (tmp_path / "run" / "replay.npz").unlink()
+    resumed = Trainer(replace(config(tmp_path, 1200), refill_steps=300))
+    resumed.restore()
+    weights = [p.clone() for p in (*resumed.agent.actor.net.parameters(), *resumed.agent.critic.parameters())]
+    assert resumed.refill() == 400  # whole cycles of 4 envs x 50 steps until 300 are in
+    assert resumed.env_steps == 800 and resumed.replay.transitions == 400
+    after = (*resumed.agent.actor.net.parameters(), *resumed.agent.critic.parameters())
+    assert all(torch.equal(a, b) for a, b in zip(weights, after, strict=True))
+    assert resumed.refill() == 0  # a full enough buffer is left alone
 
 
 def test_flat_baseline_trains_on_whole_tasks_and_exports_with_its_goal_layout(tmp_path) -> None:

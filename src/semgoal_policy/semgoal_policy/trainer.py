@@ -16,6 +16,7 @@ import json
 import shlex
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -145,9 +146,10 @@ class Trainer:
         if replay_path.exists():
             self.replay.load(replay_path)
 
-    def refill(self) -> int:
+    def refill(self, progress: Callable[[int], object] = lambda steps: None) -> int:
         """Collect without updates until the buffer holds ``refill_steps`` transitions (a resumed run whose
-        buffer was not kept: the committed checkpoints); returns the env steps this took."""
+        buffer was not kept: the committed checkpoints); ``progress`` gets each cycle's env steps.
+        Returns the env steps this took."""
         target = min(self.config.refill_steps, self.env_steps, self.replay.capacity * self.envs[0].max_steps)
         if self.replay.transitions >= target:
             return 0
@@ -155,7 +157,9 @@ class Trainer:
               "before updates resume", file=sys.stderr)
         before = self.env_steps
         while self.replay.transitions < target:
+            steps = self.env_steps
             self.collect()
+            progress(self.env_steps - steps)
         return self.env_steps - before
 
     # -- the loop ------------------------------------------------------------------------------------
@@ -208,7 +212,7 @@ class Trainer:
         bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
         session_start, wall_at_start = time.perf_counter(), self.wall_s
-        bar.update(self.refill())
+        self.refill(bar.update)
         next_eval = (self.env_steps // cfg.eval_every + 1) * cfg.eval_every
         while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
             bar.update(self.cycle())

@@ -32,6 +32,10 @@ class SacConfig:
     """Weight of the behaviour-cloning loss; 0 turns expert supervision off in the loss."""
     q_filter: bool = True
     """Clone the expert only where Q(s, a_expert) > Q(s, pi(s))."""
+    actor_average_rate: float = 0.0
+    """Polyak rate of an averaged copy of the actor, the one evaluated and exported (0: off, the live actor
+    is). A few thousand gradient steps move a desk actor's DC-4 rate by tens of points (session 17): an
+    average over the last ~1/rate updates smooths that out; the live actor still explores."""
     target_entropy: float = -4.0
     """Entropy the temperature is tuned toward; -4 (minus the action size) is SB3's default. With three
     precise displacement dims the fourth, the fingers, takes up what is left: at -4 the shipped actors'
@@ -54,6 +58,7 @@ class SacAgent:
     def __init__(self, obs_size: int, goal_size: int, config: SacConfig) -> None:
         self.config = config
         self.actor = Actor(obs_size, goal_size)
+        self.actor_average = copy.deepcopy(self.actor).requires_grad_(False) if config.actor_average_rate else None
         self.critic = TwinCritic(obs_size + goal_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
@@ -103,6 +108,9 @@ class SacAgent:
         with torch.no_grad():
             for p, p_target in zip(self.critic.parameters(), self.critic_target.parameters(), strict=True):
                 p_target.lerp_(p, cfg.tau)
+            if self.actor_average is not None:
+                for p, p_average in zip(self.actor.net.parameters(), self.actor_average.net.parameters(), strict=True):
+                    p_average.lerp_(p, cfg.actor_average_rate)
         return {"train/critic_loss": critic_loss.item(), "train/actor_loss": actor_loss.item(),
                 "train/bc_loss": bc_loss.item(), "train/bc_fraction": bc_fraction,
                 "train/alpha": alpha.item(), "train/q": min_qf_pi.mean().item()}
@@ -122,10 +130,20 @@ class SacAgent:
         per_sample = ((mean_action - t["expert_action"]) ** 2).sum(-1)
         return (per_sample * keep).sum() / keep.sum().clamp(min=1.0), keep.mean().item()
 
+    @property
+    def policy(self) -> Actor:
+        """The actor to evaluate and export: the averaged one (with the live observation normaliser) when
+        averaging is on, else the live one."""
+        if self.actor_average is None:
+            return self.actor
+        self.actor_average.normaliser.load_state_dict(self.actor.normaliser.state_dict())
+        return self.actor_average
+
     # -- checkpoints ---------------------------------------------------------------------------------
     def state_dict(self) -> dict:
+        averaged = {} if self.actor_average is None else {"actor_average": self.actor_average.state_dict()}
         return {
-            "actor": self.actor.state_dict(), "critic": self.critic.state_dict(),
+            **averaged, "actor": self.actor.state_dict(), "critic": self.critic.state_dict(),
             "critic_target": self.critic_target.state_dict(), "log_alpha": self.log_alpha.detach(),
             "actor_optimizer": self.actor_optimizer.state_dict(),
             "critic_optimizer": self.critic_optimizer.state_dict(),
@@ -134,6 +152,8 @@ class SacAgent:
 
     def load_state_dict(self, state: dict) -> None:
         self.actor.load_state_dict(state["actor"])
+        if self.actor_average is not None:  # a checkpoint from before averaging starts it at the actor
+            self.actor_average.load_state_dict(state.get("actor_average", state["actor"]))
         self.critic.load_state_dict(state["critic"])
         self.critic_target.load_state_dict(state["critic_target"])
         with torch.no_grad():

@@ -195,9 +195,10 @@ class Trainer:
             self.last_metrics = self.agent.update(batch, bc_batch)
 
     def evaluate(self, episodes: int) -> dict[str, float]:
-        self.agent.actor.eval()
-        rates = success_by_kind(self.envs, self.agent.actor.act, self.kinds, episodes, EVAL_SEED_BASE)
-        self.agent.actor.train()
+        policy = self.agent.policy
+        policy.eval()
+        rates = success_by_kind(self.envs, policy.act, self.kinds, episodes, EVAL_SEED_BASE)
+        policy.train()
         return rates
 
     def run(self, resume: bool = False) -> dict[str, float]:
@@ -221,7 +222,7 @@ class Trainer:
                 rates = self.evaluate(cfg.eval_episodes)
                 self._log(csv_path, rates)
                 if cfg.snapshots:
-                    actor_io.export(self.agent.actor, self.run_dir / "snapshots" / str(self.env_steps), cfg.scene,
+                    actor_io.export(self.agent.policy, self.run_dir / "snapshots" / str(self.env_steps), cfg.scene,
                                     {"env_steps": self.env_steps, "eval": rates}, self.spec.goal)
                 bar.set_postfix(success=f"{np.mean(list(rates.values())):.2f}")
                 self.save()
@@ -257,5 +258,5 @@ class Trainer:
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
                 "first_reached_95": curve, "config": json.loads(json.dumps(asdict(cfg), default=str))}
-        actor_io.export(self.agent.actor, self.export_dir, cfg.scene, info, self.spec.goal)
+        actor_io.export(self.agent.policy, self.export_dir, cfg.scene, info, self.spec.goal)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())

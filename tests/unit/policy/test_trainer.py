@@ -3,9 +3,11 @@
 import csv
 from dataclasses import replace
 
+import numpy as np
 import torch
 
 from semgoal_policy.actor import load
+from semgoal_policy.replay import Batch
 from semgoal_policy.sac import SacAgent, SacConfig
 from semgoal_policy.trainer import TrainConfig, Trainer
 
@@ -68,3 +70,36 @@ def test_flat_baseline_trains_on_whole_tasks_and_exports_with_its_goal_layout(tm
     trainer.run()
     _, meta = load(tmp_path / "export", "two_blocks")
     assert meta["agent"] == "flat-semantic" and set(meta["final_eval"]["per_kind"]) == {"MC-2", "MA-2", "Swap-2"}
+
+
+def _batch(rng: np.random.Generator, size: int = 32) -> Batch:
+    def f(*shape: int) -> np.ndarray:
+        return rng.standard_normal((size, *shape)).astype(np.float32)
+    return Batch(obs=f(10), goal=(f(6) > 0).astype(np.float32), action=np.tanh(f(4)), reward=(f() > 0).astype(np.float32),
+                 next_obs=f(10), expert_action=np.tanh(f(4)), has_label=np.ones(size, np.float32))
+
+
+def test_the_averaged_actor_trails_the_live_one_and_is_the_one_evaluated() -> None:
+    agent = SacAgent(10, 6, SacConfig(actor_average_rate=0.25))
+    rng = np.random.default_rng(0)
+    before = [p.clone() for p in agent.actor.net.parameters()]
+    agent.update(_batch(rng), _batch(rng))
+    for old, new, average in zip(before, agent.actor.net.parameters(), agent.actor_average.net.parameters(), strict=True):
+        assert torch.allclose(average, 0.75 * old + 0.25 * new)
+    agent.actor.normaliser.update(rng.standard_normal((5, 10)))
+    assert agent.policy is agent.actor_average
+    assert torch.equal(agent.policy.normaliser.mean, agent.actor.normaliser.mean)
+
+
+def test_averaging_resumes_from_its_checkpoint_or_starts_at_the_actor() -> None:
+    agent = SacAgent(10, 6, SacConfig(actor_average_rate=0.25))
+    agent.update(_batch(np.random.default_rng(1)))
+    resumed = SacAgent(10, 6, SacConfig(actor_average_rate=0.25))
+    resumed.load_state_dict(agent.state_dict())
+    assert all(torch.equal(a, b) for a, b in zip(resumed.actor_average.parameters(), agent.actor_average.parameters(), strict=True))
+    plain = SacAgent(10, 6, SacConfig())
+    plain.load_state_dict(agent.state_dict())  # a checkpoint written with averaging loads without it
+    assert plain.policy is plain.actor
+    started = SacAgent(10, 6, SacConfig(actor_average_rate=0.25))
+    started.load_state_dict(plain.state_dict())  # one written without averaging starts the average at the actor
+    assert all(torch.equal(a, b) for a, b in zip(started.actor_average.parameters(), started.actor.parameters(), strict=True))

@@ -195,10 +195,15 @@ class Trainer:
             self.last_metrics = self.agent.update(batch, bc_batch)
 
     def evaluate(self, episodes: int) -> dict[str, float]:
+        # evaluation reseeds the envs: without this, every window of training after an evaluation would
+        # replay the same random starts (until session 17 it did)
+        training_rngs = [env.np_random.bit_generator.state for env in self.envs]
         policy = self.agent.policy
         policy.eval()
         rates = success_by_kind(self.envs, policy.act, self.kinds, episodes, EVAL_SEED_BASE)
         policy.train()
+        for env, state in zip(self.envs, training_rngs, strict=True):
+            env.np_random.bit_generator.state = state
         return rates
 
     def run(self, resume: bool = False) -> dict[str, float]:

@@ -34,6 +34,15 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     assert load(tmp_path / "run" / "snapshots" / "800", "two_blocks")[1]["env_steps"] == 800
 
 
+def test_evaluation_leaves_the_training_envs_random_streams_alone(tmp_path) -> None:
+    trainer = Trainer(config(tmp_path, 400))
+    before = [env.np_random.bit_generator.state for env in trainer.envs]
+    trainer.evaluate(2)
+    assert [env.np_random.bit_generator.state for env in trainer.envs] == before
+    trainer.collect()
+    assert [env.np_random.bit_generator.state for env in trainer.envs] != before
+
+
 def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints() -> None:
     saved = SacAgent(10, 6, SacConfig(lr=1e-3)).state_dict()
     resumed = SacAgent(10, 6, SacConfig(lr=3e-4))

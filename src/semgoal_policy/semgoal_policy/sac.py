@@ -58,7 +58,10 @@ class SacAgent:
     def __init__(self, obs_size: int, goal_size: int, config: SacConfig) -> None:
         self.config = config
         self.actor = Actor(obs_size, goal_size)
-        self.actor_average = copy.deepcopy(self.actor).requires_grad_(False) if config.actor_average_rate else None
+        self.actor_average = None
+        if config.actor_average_rate:
+            self.actor_average = copy.deepcopy(self.actor).requires_grad_(False)
+            self.actor_average.normaliser = self.actor.normaliser  # one set of observation statistics
         self.critic = TwinCritic(obs_size + goal_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
@@ -132,12 +135,8 @@ class SacAgent:
 
     @property
     def policy(self) -> Actor:
-        """The actor to evaluate and export: the averaged one (with the live observation normaliser) when
-        averaging is on, else the live one."""
-        if self.actor_average is None:
-            return self.actor
-        self.actor_average.normaliser.load_state_dict(self.actor.normaliser.state_dict())
-        return self.actor_average
+        """The actor to evaluate and export: the averaged one when averaging is on, else the live one."""
+        return self.actor if self.actor_average is None else self.actor_average
 
     # -- checkpoints ---------------------------------------------------------------------------------
     def state_dict(self) -> dict:

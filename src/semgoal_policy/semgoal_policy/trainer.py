@@ -49,7 +49,8 @@ class TrainConfig:
     refill_steps: int = 100_000
     """Env steps collected without updates when a run resumes without its replay buffer (at most the steps
     it had). With only ``learning_starts`` refilled, the critic fitted the small buffer (its loss fell
-    from 1.18 to 0.19 within 10k steps) and the desk actors lost DC-4 fast (session 16)."""
+    from 1.18 to 0.19 within 10k steps, session 16); the desk actors' loss of DC-4 on resuming is not
+    the refill's doing (it happened with this one too, session 17)."""
     demo_fraction: float = 0.25
     """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
     demo_noise: float = 0.2
@@ -157,13 +158,12 @@ class Trainer:
               "before updates resume", file=sys.stderr)
         before = self.env_steps
         while self.replay.transitions < target:
-            steps = self.env_steps
-            self.collect()
-            progress(self.env_steps - steps)
+            progress(self.collect())
         return self.env_steps - before
 
     # -- the loop ------------------------------------------------------------------------------------
-    def collect(self) -> None:
+    def collect(self) -> int:
+        """One episode in each env, stored with the expert's labels; returns the env steps collected."""
         cfg, n = self.config, self.config.n_envs
         kinds = self.curriculum.draw(self.rng, n)
         expert = self.rng.uniform(size=n) < cfg.demo_fraction
@@ -176,13 +176,13 @@ class Trainer:
         agent_runs = ~expert
         self.curriculum.record([k for k, a in zip(result.kinds, agent_runs, strict=True) if a], result.success[agent_runs])
         self.env_steps += n * self.envs[0].max_steps
+        return n * self.envs[0].max_steps
 
     def cycle(self) -> int:
         """One collection cycle and its gradient steps; returns the env steps collected."""
-        before = self.env_steps
-        self.collect()
-        self.train_step(self.env_steps - before)
-        return self.env_steps - before
+        steps = self.collect()
+        self.train_step(steps)
+        return steps
 
     def train_step(self, env_steps: int) -> None:
         cfg = self.config

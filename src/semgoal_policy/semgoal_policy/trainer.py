@@ -227,8 +227,7 @@ class Trainer:
                 rates = self.evaluate(cfg.eval_episodes)
                 self._log(csv_path, rates)
                 if cfg.snapshots:
-                    actor_io.export(self.agent.policy, self.run_dir / "snapshots" / str(self.env_steps), cfg.scene,
-                                    {"env_steps": self.env_steps, "eval": rates}, self.spec.goal)
+                    self._snapshot(rates)
                 bar.set_postfix(success=f"{np.mean(list(rates.values())):.2f}")
                 self.save()
                 next_eval += cfg.eval_every
@@ -237,6 +236,15 @@ class Trainer:
         final = self.evaluate(cfg.final_eval_episodes)
         self._export(final)
         return final
+
+    def _snapshot(self, rates: dict[str, float]) -> None:
+        """Export the evaluated actor to ``snapshots/<env steps>``; with averaging on, the live actor also goes
+        to ``snapshots/<env steps>-live``, so one run compares the two on the same training."""
+        snapshots, info = self.run_dir / "snapshots", {"env_steps": self.env_steps, "eval": rates}
+        actor_io.export(self.agent.policy, snapshots / str(self.env_steps), self.config.scene, info, self.spec.goal)
+        if self.agent.policy is not self.agent.actor:
+            actor_io.export(self.agent.actor, snapshots / f"{self.env_steps}-live", self.config.scene,
+                            {"env_steps": self.env_steps}, self.spec.goal)
 
     def _log(self, csv_path: Path, rates: dict[str, float]) -> None:
         row = {"env_steps": self.env_steps, "wall_s": round(self.wall_s, 1),

@@ -34,6 +34,14 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     assert load(tmp_path / "run" / "snapshots" / "800", "two_blocks")[1]["env_steps"] == 800
 
 
+def test_averaged_runs_snapshot_the_live_actor_beside_the_averaged_one(tmp_path) -> None:
+    Trainer(replace(config(tmp_path, 400), snapshots=True, sac=SacConfig(actor_average_rate=0.25))).run()
+    snapshots = tmp_path / "run" / "snapshots"
+    assert sorted(p.name for p in snapshots.iterdir()) == ["400", "400-live"]
+    averaged, live = (load(snapshots / name, "two_blocks")[0] for name in ("400", "400-live"))
+    assert not all(torch.equal(a, b) for a, b in zip(averaged.parameters(), live.parameters(), strict=True))
+
+
 def test_evaluation_leaves_the_training_envs_random_streams_alone(tmp_path) -> None:
     trainer = Trainer(config(tmp_path, 400))
     before = [env.np_random.bit_generator.state for env in trainer.envs]

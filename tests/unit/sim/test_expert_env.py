@@ -1,5 +1,7 @@
 """The scripted expert solves tasks and sub-goals; the env follows the gymnasium goal-env contract."""
 
+import itertools
+
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
@@ -9,7 +11,7 @@ from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.expert import expert_action
 from semgoal_sim.layout import goal_reward, observation_size
 from semgoal_sim.rollout import run_task
-from semgoal_sim.tasks import TASKS
+from semgoal_sim.tasks import TABLE_TOP, TASKS
 
 
 @pytest.mark.parametrize("task", list(TASKS))
@@ -130,3 +132,19 @@ def test_achieved_goal_keeps_only_the_masked_entries() -> None:
     assert np.array_equal(mask, obs["desired_goal"][size:])
     assert not achieved[mask == 0].any()
     assert achieved[env.layout.index(env.subgoal.literals()[-1])] == 1.0  # holding(red), masked, is true
+
+
+def test_desk_starts_fill_the_bin_with_any_number_of_blocks_apart_from_each_other() -> None:
+    env = SubgoalEnv("desk_cleanup", n_blocks=4)
+    env.reset(seed=0)
+    bin_, counts, per_block = env.scene.bin, [], np.zeros(4)
+    for _ in range(400):
+        positions = env._sample_positions()
+        inside = bin_.contains(positions, TABLE_TOP)
+        binned = positions[inside]
+        assert all(np.linalg.norm(a[:2] - b[:2]) >= 0.055 for a, b in itertools.combinations(binned, 2))
+        counts.append(int(inside.sum()))
+        per_block += inside
+    assert set(counts) == {0, 1, 2, 3}  # never all four: a put_in_bin needs a block left out
+    assert counts.count(3) >= 25  # a third of the 30 % of starts with binned blocks: about 40 (was 1/8: 15)
+    assert per_block.min() >= 30  # any block, yellow too (it never was)

@@ -40,10 +40,12 @@ class PlannerNode(Node):
         scene = self.declare_parameter("scene", "desk_cleanup").value
         if scene not in SCENES:
             raise SystemExit(f"planner: unknown scene {scene!r}; valid: {', '.join(SCENES)}")
-        tunables = ("stall_steps", "contradiction_steps", "max_replans", "require_approval")
         self.executive = Executive(
             SemanticPlanner(scene, self.declare_parameter("search", "bfs").value),
-            **{name: self.declare_parameter(name, Executive.__dataclass_fields__[name].default).value for name in tunables},
+            stall_steps=self.declare_parameter("stall_steps", 150).value,
+            contradiction_steps=self.declare_parameter("contradiction_steps", 10).value,
+            max_replans=self.declare_parameter("max_replans", 10).value,
+            require_approval=self.declare_parameter("require_approval", False).value,
         )
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)

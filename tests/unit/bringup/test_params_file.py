@@ -28,3 +28,13 @@ def test_yaml_matches_declared_parameters(node: str) -> None:
     assert set(values) == set(declared), f"{node}: YAML {sorted(values)} vs declared {sorted(declared)}"
     for name, value in values.items():
         assert type(value) is type(declared[name]), f"{node}.{name}: {value!r} is not a {type(declared[name]).__name__}"
+
+
+def test_planner_defaults_are_the_executives() -> None:
+    from semgoal_planner.executive import Executive
+
+    source = (ROOT / NODE_SOURCES["planner"]).read_text()
+    declared = {name: ast.literal_eval(default) for name, default in DECLARATION.findall(source)}
+    defaults = Executive.__dataclass_fields__
+    assert {name: value for name, value in declared.items() if name in defaults} == {
+        name: defaults[name].default for name in declared if name in defaults}

@@ -130,7 +130,8 @@ class SubgoalEnv(gym.Env):
         put_in_bin episodes (now 0.8 %: a third of the 4-block worlds' binned starts, one block in four left out)."""
         rng, count, bin_ = self.np_random, len(positions), self.scene.bin
         binned = rng.choice(count, size=int(rng.integers(1, count)), replace=False)
-        slots = bin_.slots()[rng.choice(len(bin_.slots()), size=len(binned), replace=False)]
+        slots = bin_.slots()
+        slots = slots[rng.choice(len(slots), size=len(binned), replace=False)]
         jitter = rng.uniform(-1, 1, size=(len(binned), 2)) * BIN_SLOT_JITTER
         resting = tasks.TABLE_TOP + bin_.floor_thickness + 0.0251
         positions[binned] = np.column_stack([slots + jitter, np.full(len(binned), resting)])

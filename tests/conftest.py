@@ -95,13 +95,29 @@ class GraphProbe:
         self.executor = SingleThreadedExecutor(context=self.context)
         self.executor.add_node(self.node)
 
-    def spin_until(self, condition: Callable[[], bool], timeout: float, what: str = "condition") -> None:
-        """Spin until ``condition()`` holds; fail the test with ``what`` after ``timeout`` seconds."""
+    def poll(self, condition: Callable[[], bool], timeout: float) -> bool:
+        """Spin until ``condition()`` holds; False after ``timeout`` seconds."""
         deadline = time.monotonic() + timeout
         while not condition():
             if time.monotonic() > deadline:
-                pytest.fail(f"timed out after {timeout:.0f} s waiting for {what}")
+                return False
             self.executor.spin_once(timeout_sec=0.05)
+        return True
+
+    def spin_until(self, condition: Callable[[], bool], timeout: float, what: str = "condition") -> None:
+        """Spin until ``condition()`` holds; fail the test with ``what`` after ``timeout`` seconds."""
+        if not self.poll(condition, timeout):
+            pytest.fail(f"timed out after {timeout:.0f} s waiting for {what}")
+
+    def send_goal(self, action, goal, feedback_callback=None):
+        """The goal's handle once the server answers (sent again if no answer comes, as the product's
+        clients do: :func:`semgoal_sim.ros_interfaces.send_goal`); fails the test without one."""
+        from semgoal_sim.ros_interfaces import GOAL_SEND_ATTEMPTS, send_goal
+
+        handle = send_goal(action, goal, self.poll, feedback_callback)
+        if handle is None:
+            pytest.fail(f"no answer to a goal after {GOAL_SEND_ATTEMPTS} tries")
+        return handle
 
     def spin_for(self, seconds: float) -> None:
         """Process callbacks for ``seconds`` (to show that something does NOT happen)."""

@@ -71,9 +71,10 @@ def test_action_gives_feedback_and_result(nodes: NodeProcesses, probe: GraphProb
     probe.spin_until(client.server_is_ready, 20, "ExecuteGoal server")
     feedback = []
     goal = ExecuteGoal.Goal(goal=msg.GoalRequest(task="Swap-2"))
-    handle = probe.spin_future(client.send_goal_async(goal, feedback_callback=feedback.append), 10, "accept")
+    handle = probe.send_goal(client, goal, feedback.append)
     assert handle.accepted
     result = probe.spin_future(handle.get_result_async(), 10, "result").result
     assert result.success and result.message == "echoed Swap-2" and result.control_steps == 3
+    feedback = [f for f in feedback if f.goal_id == handle.goal_id]  # a goal sent again leaves its first's
     assert [f.feedback.plan.current for f in feedback] == [0, 1, 2]
     assert all(f.feedback.plan.goal == "Swap-2" for f in feedback)

@@ -102,7 +102,7 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     goal = ExecuteGoal.Goal()
     goal.goal.literals = ["in_bin(red)"]
     feedback = []
-    handle = probe.spin_future(client.send_goal_async(goal, feedback_callback=feedback.append), 10, "goal accepted")
+    handle = probe.send_goal(client, goal, feedback.append)
     result_future = handle.get_result_async()
     probe.spin_until(lambda: op.plans and op.plans[-1].status == "executing", 10, "plan executing")
     assert op.actions() == ["pick(red)", "put_in_bin(red)"]
@@ -115,13 +115,13 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
 
     bad = ExecuteGoal.Goal()
     bad.goal.task = "MC-2"  # wrong scene: refused with the reason
-    handle = probe.spin_future(client.send_goal_async(bad), 10, "goal accepted")
+    handle = probe.send_goal(client, bad)
     result = probe.spin_future(handle.get_result_async(), 20, "action result").result
     assert not result.success and "runs in scene two_blocks" in result.message
 
     cancel_goal = ExecuteGoal.Goal()
     cancel_goal.goal.literals = ["in_bin(green)"]
-    handle = probe.spin_future(client.send_goal_async(cancel_goal), 10, "goal accepted")
+    handle = probe.send_goal(client, cancel_goal)
     probe.spin_for(0.3)
     probe.spin_future(handle.cancel_goal_async(), 10, "cancel")
     result = probe.spin_future(handle.get_result_async(), 20, "cancelled result").result
@@ -129,9 +129,9 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
 
     first, second = ExecuteGoal.Goal(), ExecuteGoal.Goal()
     first.goal.literals, second.goal.literals = ["in_bin(blue)"], ["holding(green)"]
-    first_handle = probe.spin_future(client.send_goal_async(first), 10, "goal accepted")
+    first_handle = probe.send_goal(client, first)
     probe.spin_until(lambda: "put_in_bin(blue)" in op.actions(), 10, "first goal planned")
-    second_handle = probe.spin_future(client.send_goal_async(second), 10, "goal accepted")
+    second_handle = probe.send_goal(client, second)
     result = probe.spin_future(first_handle.get_result_async(), 20, "superseded result").result
     assert not result.success and "superseded" in result.message
     probe.spin_until(lambda: op.actions() == ["pick(green)"], 10, "second goal planned")

@@ -78,12 +78,7 @@ class GraphClient:
         self.subgoal = msg
 
     def spin_until(self, condition: Callable[[], bool], timeout: float) -> bool:
-        deadline = time.monotonic() + timeout
-        while not condition():
-            if time.monotonic() > deadline:
-                return False
-            self.rclpy.spin_once(self.node, timeout_sec=0.05)
-        return True
+        return self.topics.spin_node_until(self.node, condition, timeout)
 
     # -- calls ---------------------------------------------------------------------------------------
     def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True) -> bool:
@@ -158,10 +153,9 @@ class GraphClient:
         goal.goal.task = goal_text
         goal.max_steps = max_steps
         started = time.perf_counter()
-        sent = self.action.send_goal_async(goal, feedback_callback=feedback)
-        if not self.spin_until(sent.done, 10) or not sent.result().accepted:
+        handle = self.topics.send_goal(self.action, goal, self.spin_until, feedback)
+        if handle is None or not handle.accepted:
             return GoalResult(False, "the planner did not accept the goal", 0, 0, 0.0, 0.0)
-        handle = sent.result()
         result_future = handle.get_result_async()
 
         def done() -> bool:

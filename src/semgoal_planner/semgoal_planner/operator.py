@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from functools import partial
 
 WAIT_S = 10.0
 
@@ -107,9 +108,11 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
             last[0] = key
             print(format_plan(plan), flush=True)
 
-    sent = action.send_goal_async(ExecuteGoal.Goal(goal=request, max_steps=max_steps), feedback_callback=on_feedback)
-    client.rclpy.spin_until_future_complete(client.node, sent, timeout_sec=WAIT_S)
-    handle = sent.result()
+    handle = topics.send_goal(action, ExecuteGoal.Goal(goal=request, max_steps=max_steps),
+                               partial(topics.spin_node_until, client.node), on_feedback)
+    if handle is None or not handle.accepted:
+        print("semgoal goal: the planner did not accept the goal", file=sys.stderr)
+        return 1
     result_future = handle.get_result_async()
     client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=timeout)
     if not result_future.done():

@@ -4,6 +4,9 @@ Latched state (world snapshot, semantic state, plan, active sub-goal) is reliabl
 depth 1, so a late joiner gets the last value at once. Streams (world state, arm commands) are keep-last.
 """
 
+import time
+from collections.abc import Callable
+
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 NAMESPACE = "/semgoal"
@@ -45,6 +48,39 @@ CAMERA = QoSProfile(
     durability=DurabilityPolicy.VOLATILE,
 )
 """Rendered frames: only the newest matters, a dropped one is no loss (ROS's sensor-data profile)."""
+
+
+def spin_node_until(node, condition: Callable[[], bool], timeout: float) -> bool:
+    """Spin ``node`` until ``condition()`` holds; False after ``timeout`` seconds."""
+    import rclpy
+
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            return False
+        rclpy.spin_once(node, timeout_sec=0.05)
+    return True
+
+
+GOAL_ANSWER_WAIT_S = 3.0
+GOAL_SEND_ATTEMPTS = 3
+
+
+def send_goal(action, goal, spin_until: Callable[[Callable[[], bool], float], bool], feedback_callback=None,
+              attempts: int = GOAL_SEND_ATTEMPTS, wait_s: float = GOAL_ANSWER_WAIT_S):
+    """Send an action goal; return its goal handle once the server answers, None after ``attempts`` tries.
+
+    A goal is sent again when no answer comes within ``wait_s``: Fast DDS drops a server's answer when
+    the server has not yet matched this client's reply reader ("failed to send response (timeout)", the
+    service discovery race of ros2/ros2#1253), which a client created just before its first goal meets.
+    A goal accepted but unanswered is superseded by the next (the planner runs one goal at a time), and
+    its feedback, if any, carries its own goal id. ``spin_until(condition, seconds)`` spins the caller's
+    node until ``condition()`` holds and says whether it did."""
+    for _ in range(attempts):
+        future = action.send_goal_async(goal, feedback_callback=feedback_callback)
+        if spin_until(future.done, wait_s):
+            return future.result()
+    return None
 
 
 def run_node(node_class: type, args: list[str] | None = None) -> None:

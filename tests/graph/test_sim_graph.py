@@ -4,7 +4,7 @@ commands over DDS and watches world and semantic state change; garbage commands 
 import math
 
 import numpy as np
-from sensor_msgs.msg import Image
+from sensor_msgs.msg import Image, JointState
 
 from conftest import GraphProbe, NodeProcesses
 from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
@@ -28,8 +28,10 @@ class Graph:
         self.probe = probe
         self.worlds: list[WorldState] = []
         self.semantic: list[SemanticState] = []
+        self.joints: list[JointState] = []
         probe.node.create_subscription(WorldState, topics.WORLD_STATE, self.worlds.append, topics.STREAM)
         probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic.append, topics.LATCHED)
+        probe.node.create_subscription(JointState, topics.JOINT_STATES, self.joints.append, topics.STREAM)
         self.commands = probe.node.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
 
     def call(self, service_type, name, request):
@@ -72,6 +74,11 @@ def test_expert_drives_sim_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) 
                 break
     final = graph.worlds[-1]
     assert final.step > start.step
+    probe.spin_until(lambda: graph.joints and graph.joints[-1].header.stamp == final.header.stamp, 5, "joint states of the last step")
+    joints = graph.joints[-1]
+    fingers = [joints.name.index("robot0:r_gripper_finger_joint"), joints.name.index("robot0:l_gripper_finger_joint")]
+    assert len(joints.position) == len(joints.velocity) == len(joints.name) and np.isfinite(joints.position).all()
+    np.testing.assert_allclose([joints.position[i] for i in fingers], final.finger_positions)
     assert "close(red,green)" in graph.true_literals()
     moved = np.linalg.norm(block_positions(final)[0][0] - block_positions(start)[0][0])
     assert moved > 0.05, "the red block moved"

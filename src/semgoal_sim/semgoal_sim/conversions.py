@@ -82,12 +82,9 @@ def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
 
 
 def joint_state(world: FetchWorld, snapshot: Snapshot) -> JointState:
-    m, d = world.model, world.data
-    names = [m.joint(i).name for i in range(m.njnt) if m.joint(i).name.startswith("robot0:")]
-    msg = JointState(name=names)
+    positions, velocities = world.robot_joint_state()
+    msg = JointState(name=world.robot_joint_names, position=positions.tolist(), velocity=velocities.tolist())
     msg.header.stamp.sec, msg.header.stamp.nanosec = int(snapshot.time), int((snapshot.time % 1) * 1e9)
-    msg.position = [float(d.qpos[m.joint(n).qposadr[0]]) for n in names]
-    msg.velocity = [float(d.qvel[m.joint(n).dofadr[0]]) for n in names]
     return msg
 
 

@@ -71,6 +71,10 @@ class FetchWorld:
         self._finger_qpos = np.array([m.joint(f).qposadr[0] for f in fingers])
         self._finger_qvel = np.array([m.joint(f).dofadr[0] for f in fingers])
         self._finger_actuators = np.array([m.actuator(f).id for f in fingers])
+        robot = [i for i in range(m.njnt) if m.joint(i).name.startswith("robot0:")]
+        self.robot_joint_names = [m.joint(i).name for i in robot]
+        """The robot's joints, in model order (what /joint_states names)."""
+        self._robot_qpos, self._robot_qvel = m.jnt_qposadr[robot], m.jnt_dofadr[robot]
         self.step_count = 0
         self._home_state = self._settle_home()
 
@@ -161,6 +165,10 @@ class FetchWorld:
             finger_positions=d.qpos[self._finger_qpos].copy(),
             finger_velocities=d.qvel[self._finger_qvel].copy(),
         )
+
+    def robot_joint_state(self) -> tuple[np.ndarray, np.ndarray]:
+        """Positions and velocities of :attr:`robot_joint_names`, now."""
+        return self.data.qpos[self._robot_qpos], self.data.qvel[self._robot_qvel]
 
     def padded_positions(self, snapshot: Snapshot) -> np.ndarray:
         """(max_blocks, 3) block centres with absent slots at zero: the scene-wide layout."""

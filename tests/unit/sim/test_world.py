@@ -85,3 +85,18 @@ def test_only_the_hand_end_of_the_arm_collides_and_the_floor_catches_blocks() ->
     assert red[2] == pytest.approx(0.025, abs=0.003), "a block off the desk rests on the floor"
     base = world.data.xpos[model.body("robot0:base_link").id]
     assert abs(base[2]) < 1e-4, "the base stays where its slide joints hold it without floor contacts"
+
+
+def test_robot_joint_state_names_every_robot_joint_and_reads_them_now() -> None:
+    world = FetchWorld("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(1)[0])
+    names = world.robot_joint_names
+    assert len(names) == len(set(names)) > 2 and all(name.startswith("robot0:") for name in names)
+    fingers = [names.index("robot0:r_gripper_finger_joint"), names.index("robot0:l_gripper_finger_joint")]
+    for _ in range(3):
+        world.step(np.array([0.0, 0.0, 0.0, -1.0]))
+        snapshot = world.snapshot()
+        positions, velocities = world.robot_joint_state()
+        assert positions.shape == velocities.shape == (len(names),)
+        np.testing.assert_array_equal(positions[fingers], snapshot.finger_positions)
+        np.testing.assert_array_equal(velocities[fingers], snapshot.finger_velocities)

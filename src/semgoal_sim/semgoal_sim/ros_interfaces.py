@@ -2,6 +2,8 @@
 
 Latched state (world snapshot, semantic state, plan, active sub-goal) is reliable + transient_local with
 depth 1, so a late joiner gets the last value at once. Streams (world state, arm commands) are keep-last.
+Also the few ROS helpers every side shares: the nodes' ``main`` (:func:`run_node`) and, for clients (the
+operator CLI, the graph client, the tests), spinning until a condition holds and sending an action goal.
 """
 
 import time

@@ -112,11 +112,11 @@ class GraphProbe:
     def send_goal(self, action, goal, feedback_callback=None):
         """The goal's handle once the server answers (sent again if no answer comes, as the product's
         clients do: :func:`semgoal_sim.ros_interfaces.send_goal`); fails the test without one."""
-        from semgoal_sim.ros_interfaces import GOAL_SEND_ATTEMPTS, send_goal
+        from semgoal_sim.ros_interfaces import SEND_ATTEMPTS, send_goal
 
         handle = send_goal(action, goal, self.poll, feedback_callback)
         if handle is None:
-            pytest.fail(f"no answer to a goal after {GOAL_SEND_ATTEMPTS} tries")
+            pytest.fail(f"no answer to a goal after {SEND_ATTEMPTS} tries")
         return handle
 
     def spin_for(self, seconds: float) -> None:

@@ -39,3 +39,9 @@ def test_operator_commands_drive_the_graph(nodes: NodeProcesses) -> None:
 def test_max_steps_needs_the_action_and_a_count() -> None:
     assert semgoal("goal", TASK, "--max-steps", "5").returncode == 2  # the goal topic carries no budget
     assert semgoal("goal", TASK, "--wait", "--max-steps", "-1").returncode == 2
+
+
+def test_a_plan_revision_must_fit_the_message() -> None:
+    for revision in ("-1", str(2**32)):
+        out = semgoal("plan", "pause", "--revision", revision)
+        assert out.returncode == 2 and "--revision must be 0 or a plan revision" in out.stderr, out.stderr

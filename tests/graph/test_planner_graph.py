@@ -39,8 +39,9 @@ class Operator:
         self.probe.spin_until(client.service_is_ready, 30, name)
         return self.probe.spin_future(client.call_async(request), 30, name)
 
-    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "") -> EditPlan.Response:
-        return self.call(EditPlan, topics.EDIT_PLAN, EditPlan.Request(op=op, index=index, to_index=to_index, action=action))
+    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "", **fields) -> EditPlan.Response:
+        return self.call(EditPlan, topics.EDIT_PLAN,
+                         EditPlan.Request(op=op, index=index, to_index=to_index, action=action, **fields))
 
     def observe(self, true: set[str], step: int, held: bool = True) -> None:
         """The world as the predicates would report it at ``step`` (and, ``held``, long enough after it to
@@ -90,6 +91,13 @@ def test_goal_plan_edits_and_subgoals(nodes: NodeProcesses, probe: GraphProbe) -
     probe.spin_until(lambda: op.subgoals[-1].action == "put_in_bin(blue)", 10, "next sub-goal")
     shown = op.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
     assert shown.success and shown.plan.current == 1 and shown.plan.steps[0].status == "done"
+
+    stale = op.edit("pause", revision=shown.plan.revision - 1)  # made before the pick was done
+    assert not stale.success and "revision" in stale.message and stale.plan.status == "executing"
+    first, again = (op.edit("pause", revision=shown.plan.revision, request_id="operator-1") for _ in range(2))
+    assert first.success and again.success and again.message == first.message  # answered again, applied once
+    assert again.plan.revision == first.plan.revision and again.plan.status == "paused"
+    assert not op.edit("pause", request_id="operator-2").success  # a new request: already paused
 
 
 def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: GraphProbe) -> None:

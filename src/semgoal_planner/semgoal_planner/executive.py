@@ -240,13 +240,19 @@ class Executive:
         return events
 
     # -- operator edits ------------------------------------------------------------------------------
-    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "") -> tuple[bool, str]:
-        """Apply one operator edit; refuse it (plan unchanged) with the reason when it is invalid."""
+    def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "", revision: int = 0) -> tuple[bool, str]:
+        """Apply one operator edit; refuse it (plan unchanged) with the reason when it is invalid.
+
+        ``revision`` (non-zero) is the plan revision the operator saw: step numbers name other steps
+        once a re-plan has rebuilt the plan, so an edit made against an older revision is refused."""
         op = op.strip().lower()
         if op not in EDIT_OPS:
             return False, f"unknown edit {op!r}; valid: {', '.join(EDIT_OPS)}"
         if self.status in ("empty", "succeeded", "failed"):
             return False, f"no plan to edit (plan is {self.status}); send a goal first"
+        if revision and revision != self.revision:
+            return False, (f"{op} refused: it was made against plan revision {revision}, and the plan is at "
+                           f"revision {self.revision} now; look at it again (plan show)")
         if op == "approve":
             if self.status != "awaiting_approval":
                 return False, f"nothing to approve: the plan is {self.status}"

@@ -5,6 +5,7 @@
     ./semgoal goal DC-3 --wait --max-steps 600             ... and let it fail after 600 control steps
     ./semgoal plan show
     ./semgoal plan insert 2 "pick(red)" | remove 2 | move 3 1 | replace 2 "put_in_bin(red)"
+    ./semgoal plan remove 2 --revision 7       ... only if the plan is still at revision 7 (as plan show printed it)
     ./semgoal plan approve | pause | resume | replan | assign 2 human
 """
 
@@ -13,6 +14,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+import uuid
 from functools import partial
 
 WAIT_S = 10.0
@@ -33,14 +35,18 @@ class OperatorClient:
         self.rclpy.try_shutdown()
 
     def call(self, service_type, name: str, request, timeout: float = WAIT_S):
+        """Call a service, sending the request again while no answer comes (the request must be safe to
+        repeat: a read, or an edit with a request id)."""
+        from semgoal_sim import ros_interfaces as topics
+
         client = self.node.create_client(service_type, name)
         if not client.wait_for_service(timeout_sec=timeout):
             raise TimeoutError(f"no {name} service: is planner_node running (same ROS_DOMAIN_ID)?")
-        future = client.call_async(request)
-        self.rclpy.spin_until_future_complete(self.node, future, timeout_sec=timeout)
-        if not future.done():
-            raise TimeoutError(f"{name} did not answer within {timeout:.0f} s")
-        return future.result()
+        response = topics.send_until_answered(lambda: client.call_async(request),
+                                              partial(topics.spin_node_until, self.node))
+        if response is None:
+            raise TimeoutError(f"{name} did not answer after {topics.SEND_ATTEMPTS} tries")
+        return response
 
 
 def format_plan(plan) -> str:
@@ -135,7 +141,12 @@ def plan_main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal plan", description=plan_main.__doc__)
     parser.add_argument("op", choices=["show", *EDITS_WITH_INDEX, "approve", "pause", "resume", "replan"])
     parser.add_argument("args", nargs="*")
+    parser.add_argument("--revision", type=int, default=0,
+                        help="refuse the edit unless the plan is still at this revision (plan show prints it); "
+                             "0: edit the plan as it is now")
     args = parser.parse_args(argv)
+    if not 0 <= args.revision < 2**32:
+        parser.error(f"--revision must be 0 or a plan revision, got {args.revision}")
     fields = EDITS_WITH_INDEX.get(args.op, ())
     if args.op != "show" and len(args.args) != len(fields):
         parser.error(f"{args.op} takes {len(fields)} argument(s): {' '.join(f.upper() for f in fields) or '(none)'}")
@@ -148,7 +159,8 @@ def plan_main(argv: list[str]) -> int:
             response = client.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
             print(format_plan(response.plan))
             return 0 if response.success else 1
-        request = EditPlan.Request(op=args.op)
+        # the request id makes a resend after a lost answer safe: the planner answers it without applying it again
+        request = EditPlan.Request(op=args.op, revision=args.revision, request_id=uuid.uuid4().hex)
         for name, value in zip(fields, args.args, strict=True):
             if name in ("index", "to_index"):
                 if not value.isdigit():

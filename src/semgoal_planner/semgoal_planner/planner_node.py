@@ -56,6 +56,7 @@ class PlannerNode(Node):
         self.action_server = ActionServer(
             self, ExecuteGoal, topics.EXECUTE_GOAL, self.execute_callback,
             goal_callback=lambda _: GoalResponse.ACCEPT, cancel_callback=self.cancel_callback)
+        self.edit_answers = topics.RecentAnswers()
         self.last_published: tuple | None = None
         self.last_state: SemanticState | None = None
         self.action_goal: tuple[ServerGoalHandle, Future] | None = None
@@ -97,11 +98,16 @@ class PlannerNode(Node):
         return response
 
     def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
+        answered = self.edit_answers.get(request.request_id)
+        if answered is not None:  # sent again because our answer was lost: it was applied once already
+            response.success, response.message, response.plan = answered
+            return response
         response.success, response.message = self.executive.edit(
-            request.op, int(request.index), int(request.to_index), request.action)
+            request.op, int(request.index), int(request.to_index), request.action, int(request.revision))
         self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
         self.publish()
         response.plan = self.plan_message()
+        self.edit_answers.remember(request.request_id, (response.success, response.message, response.plan))
         return response
 
     async def execute_callback(self, handle: ServerGoalHandle) -> ExecuteGoal.Result:

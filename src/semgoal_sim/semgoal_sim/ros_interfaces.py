@@ -3,7 +3,8 @@
 Latched state (world snapshot, semantic state, plan, active sub-goal) is reliable + transient_local with
 depth 1, so a late joiner gets the last value at once. Streams (world state, arm commands) are keep-last.
 Also the few ROS helpers every side shares: the nodes' ``main`` (:func:`run_node`) and, for clients (the
-operator CLI, the graph client, the tests), spinning until a condition holds and sending an action goal.
+operator CLI, the graph client, the tests), spinning until a condition holds and sending a request
+again while no answer comes; for servers, the memory of answers that makes such a repeat safe.
 """
 
 import time
@@ -64,25 +65,55 @@ def spin_node_until(node, condition: Callable[[], bool], timeout: float) -> bool
     return True
 
 
-GOAL_ANSWER_WAIT_S = 3.0
-GOAL_SEND_ATTEMPTS = 3
+ANSWER_WAIT_S = 3.0
+SEND_ATTEMPTS = 3
 
 
-def send_goal(action, goal, spin_until: Callable[[Callable[[], bool], float], bool], feedback_callback=None,
-              attempts: int = GOAL_SEND_ATTEMPTS, wait_s: float = GOAL_ANSWER_WAIT_S):
-    """Send an action goal; return its goal handle once the server answers, None after ``attempts`` tries.
+def send_until_answered(send: Callable[[], object], spin_until: Callable[[Callable[[], bool], float], bool],
+                        attempts: int = SEND_ATTEMPTS, wait_s: float = ANSWER_WAIT_S):
+    """Send a request (``send()`` returns its future) until it is answered; the answer, or None after
+    ``attempts`` tries.
 
-    A goal is sent again when no answer comes within ``wait_s``: Fast DDS drops a server's answer when
+    A request is sent again when no answer comes within ``wait_s``: Fast DDS drops a server's answer when
     the server has not yet matched this client's reply reader ("failed to send response (timeout)", the
-    service discovery race of ros2/ros2#1253), which a client created just before its first goal meets.
-    A goal accepted but unanswered is superseded by the next (the planner runs one goal at a time), and
-    its feedback, if any, carries its own goal id. ``spin_until(condition, seconds)`` spins the caller's
-    node until ``condition()`` holds and says whether it did."""
+    service discovery race of ros2/ros2#1253), which a client created just before its first request
+    meets. So only requests that are safe to repeat may go through here: reads, action goals (the planner
+    runs one goal at a time: a goal accepted but unanswered is superseded by the next, and its feedback
+    carries its own goal id), and edits that carry a request id (:class:`RecentAnswers`).
+    ``spin_until(condition, seconds)`` spins the caller's node until ``condition()`` holds and says
+    whether it did."""
     for _ in range(attempts):
-        future = action.send_goal_async(goal, feedback_callback=feedback_callback)
+        future = send()
         if spin_until(future.done, wait_s):
             return future.result()
     return None
+
+
+def send_goal(action, goal, spin_until: Callable[[Callable[[], bool], float], bool], feedback_callback=None,
+              attempts: int = SEND_ATTEMPTS, wait_s: float = ANSWER_WAIT_S):
+    """Send an action goal (:func:`send_until_answered`); its goal handle, or None when never answered."""
+    return send_until_answered(lambda: action.send_goal_async(goal, feedback_callback=feedback_callback),
+                               spin_until, attempts, wait_s)
+
+
+class RecentAnswers:
+    """The answers to the latest requests by request id, so a request sent again because its answer was
+    lost gets the same answer instead of being applied twice (an idempotency key). Bounded: the oldest
+    id is forgotten first."""
+
+    def __init__(self, size: int = 32) -> None:
+        self.size = size
+        self.answers: dict[str, object] = {}
+
+    def get(self, request_id: str):
+        return self.answers.get(request_id) if request_id else None
+
+    def remember(self, request_id: str, answer) -> None:
+        if not request_id:
+            return
+        self.answers[request_id] = answer
+        while len(self.answers) > self.size:
+            del self.answers[next(iter(self.answers))]
 
 
 def run_node(node_class: type, args: list[str] | None = None) -> None:

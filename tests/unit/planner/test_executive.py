@@ -154,6 +154,19 @@ def test_valid_edits_apply_and_invalid_ones_change_nothing() -> None:
     assert ex.edit("resume")[0] and ex.active is not None
 
 
+def test_an_edit_made_against_an_older_plan_revision_is_refused() -> None:
+    ex = executive()
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    seen = ex.revision
+    ex.observe(observe(["holding(green)"], 20))  # step 0 done: the plan moved on
+    assert ex.revision > seen
+    before = copy.deepcopy(ex.steps)
+    ok, message = ex.edit("assign", 3, action="human", revision=seen)
+    assert not ok and f"revision {seen}" in message and "plan show" in message and ex.steps == before
+    ok, message = ex.edit("assign", 3, action="human", revision=ex.revision)
+    assert ok, message
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.tuples(st.sampled_from([*EDIT_OPS, "bogus", ""]), st.integers(-3, 12), st.integers(-3, 12),
                           st.sampled_from(["", "pick(red)", "pick(blue)", "put_in_bin(red)", "put_on_table(green)",

@@ -110,13 +110,30 @@ def parse_tasks(text: str) -> list[str]:
     return [get_task(name).name for name in text.split(",") if name.strip()]
 
 
+POOL_FILE = "pool.json"
+"""``models/seeds/<name>/pool.json``: ``{"actors": ["seed25", ...], "with_shipped": false, "why": "..."}``
+names the training seeds a row pools, when a rule chose them (otherwise: the shipped actor, then every
+``seed*`` folder)."""
+
+
 def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Path]:
-    """Exported actors of ``agent`` for ``scene``: the shipped one first, then extra training seeds."""
+    """Exported actors of ``agent`` for ``scene`` to pool: those ``pool.json`` names, or else the shipped
+    one first, then the extra training seeds."""
     from semgoal_policy.agents import get_agent
 
     name = get_agent(agent).model_name(scene)
-    extra = sorted((models_dir / "seeds" / name).glob("seed*")) if (models_dir / "seeds" / name).is_dir() else []
-    return [d for d in [models_dir / name, *extra] if (d / "actor.json").exists()][:seeds]
+    extra_dir = models_dir / "seeds" / name
+    pool_file = extra_dir / POOL_FILE
+    if pool_file.exists():
+        pool = json.loads(pool_file.read_text())
+        dirs = [models_dir / name] * bool(pool.get("with_shipped", True)) + [extra_dir / d for d in pool["actors"]]
+        missing = [str(d) for d in dirs if not (d / "actor.json").exists()]
+        if missing:
+            raise FileNotFoundError(f"{pool_file} names actors that are not exported: {', '.join(missing)}")
+    else:
+        extra = sorted(extra_dir.glob("seed*")) if extra_dir.is_dir() else []
+        dirs = [d for d in [models_dir / name, *extra] if (d / "actor.json").exists()]
+    return dirs[:seeds]
 
 
 def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: int, models_dir: Path) -> Row:
@@ -241,7 +258,7 @@ def _per_seed_lines(row: Row, tasks: list[str]) -> list[str]:
     """The row's rates split by training seed (blank where a seed has no actor for the task's scene): the
     spread between seeds, which the pooled interval above does not show."""
     lines = ["", f"{row.agent} (ours) by training seed (`shipped`: the actors under `models/`; others: "
-             "`models/seeds/<scene>/<seed>`):", "",
+             "`models/seeds/<scene>/<seed>`; a scene's `pool.json` names them where a rule chose them):", "",
              "| training seed | training steps | " + " | ".join(tasks) + " |", "|" + "---|" * (2 + len(tasks))]
     for label in sorted(row.per_seed, key=lambda name: (name != "shipped", name)):
         results = row.per_seed[label]

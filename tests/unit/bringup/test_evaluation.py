@@ -46,6 +46,19 @@ def test_extra_training_seeds_follow_the_shipped_actor(tmp_path) -> None:
     assert len(evaluation.actor_dirs("hierarchical", "two_blocks", 1, tmp_path)) == 1
 
 
+def test_a_pool_file_names_the_pooled_training_seeds(tmp_path) -> None:
+    for folder in ("desk_cleanup", "seeds/desk_cleanup/seed21", "seeds/desk_cleanup/seed25", "seeds/desk_cleanup/seed26"):
+        (tmp_path / folder).mkdir(parents=True)
+        (tmp_path / folder / "actor.json").write_text("{}")
+    pool = tmp_path / "seeds/desk_cleanup/pool.json"
+    pool.write_text(json.dumps({"actors": ["seed25", "seed26"], "with_shipped": False}))
+    names = [d.relative_to(tmp_path).as_posix() for d in evaluation.actor_dirs("hierarchical", "desk_cleanup", 3, tmp_path)]
+    assert names == ["seeds/desk_cleanup/seed25", "seeds/desk_cleanup/seed26"]
+    pool.write_text(json.dumps({"actors": ["seed25", "seed27"], "with_shipped": False}))
+    with pytest.raises(FileNotFoundError, match="seed27"):
+        evaluation.actor_dirs("hierarchical", "desk_cleanup", 3, tmp_path)
+
+
 def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
     """Two "seeds" that are the same shipped actor: pooled and per-seed rates must all agree."""
     from semgoal_policy.actor import MODELS_DIR

@@ -148,3 +148,21 @@ def test_desk_starts_fill_the_bin_with_any_number_of_blocks_apart_from_each_othe
     assert set(counts) == {0, 1, 2, 3}  # never all four: a put_in_bin needs a block left out
     assert counts.count(3) >= 25  # a third of the 30 % of starts with binned blocks: 34 here (the old sampler: 22)
     assert per_block.min() >= 30  # any block, yellow too (it never was)
+
+
+def test_desk_sub_goals_mostly_take_a_block_outside_the_bin() -> None:
+    """As desk plans do: the last pick of DC-4 (three blocks binned) must be common in training."""
+    env = SubgoalEnv("desk_cleanup", n_blocks=4)
+    env.reset(seed=0)
+    binned_targets = last_picks = 0
+    for _ in range(300):
+        env.world.reset(env._sample_positions())
+        positions = env.world.view().positions
+        inside = env.scene.bin.contains(np.array([positions[b] for b in env.world.blocks]), TABLE_TOP)
+        subgoal = env._sample_subgoal("pick")
+        if subgoal is None or inside.sum() == 0:
+            continue
+        binned_targets += bool(inside[env.world.blocks.index(subgoal.block)])
+        last_picks += inside.sum() == 3 and not inside[env.world.blocks.index(subgoal.block)]
+    assert binned_targets <= 10  # 2 here; drawn alike (before session 20), 41
+    assert last_picks >= 20  # 29 here; drawn alike, 10

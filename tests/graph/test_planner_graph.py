@@ -13,9 +13,9 @@ from semgoal_sim.vocabulary import LAYOUTS, SUBGOAL_CONFIRM_STEPS
 BLOCKS = ("red", "green", "blue")
 
 
-def semantic_state(true: set[str], step: int) -> SemanticState:
+def semantic_state(true: set[str], step: int, fallen: tuple[str, ...] = ()) -> SemanticState:
     layout = LAYOUTS["desk_cleanup"]
-    msg = SemanticState(scene="desk_cleanup", step=step, objects=list(BLOCKS))
+    msg = SemanticState(scene="desk_cleanup", step=step, objects=list(BLOCKS), fallen=list(fallen))
     for name, args in layout.atoms:
         if all(a in BLOCKS for a in args):
             msg.predicates.append(Predicate(name=name, args=list(args), value=f"{name}({','.join(args)})" in true))
@@ -43,11 +43,11 @@ class Operator:
         return self.call(EditPlan, topics.EDIT_PLAN,
                          EditPlan.Request(op=op, index=index, to_index=to_index, action=action, **fields))
 
-    def observe(self, true: set[str], step: int, held: bool = True) -> None:
+    def observe(self, true: set[str], step: int, held: bool = True, fallen: tuple[str, ...] = ()) -> None:
         """The world as the predicates would report it at ``step`` (and, ``held``, long enough after it to
         confirm a robot step)."""
         for at in (step, step + SUBGOAL_CONFIRM_STEPS - 1)[: 2 if held else 1]:
-            self.states.publish(semantic_state(true, at))
+            self.states.publish(semantic_state(true, at, fallen))
             self.probe.spin_for(0.3)
 
     def actions(self) -> list[str]:
@@ -146,3 +146,13 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     op.observe({"holding(green)"}, 80)
     result = probe.spin_future(second_handle.get_result_async(), 20, "second result").result
     assert result.success and result.replans == 0
+
+    op.observe(set(), 85, held=False)  # green put down again
+    lost = ExecuteGoal.Goal()
+    lost.goal.literals = ["in_bin(blue)"]
+    handle = probe.send_goal(client, lost)
+    probe.spin_until(lambda: op.actions() == ["pick(blue)", "put_in_bin(blue)"], 10, "goal planned")
+    op.observe(set(), 90, held=False, fallen=("blue",))  # blue fell off the table: no re-plan can help
+    result = probe.spin_future(handle.get_result_async(), 20, "fallen-block result").result
+    assert not result.success and result.replans == 0
+    assert result.message == "blue fell off the table, out of the arm's reach: step 0 pick(blue) cannot be done"

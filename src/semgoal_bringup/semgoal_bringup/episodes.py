@@ -39,10 +39,13 @@ class Outcome:
 
 
 def observe(world: FetchWorld) -> Observation:
-    """The semantic state as the planner node receives it: present objects and every literal's value."""
-    vector = world.semantic_vector()
+    """The semantic state as the planner node receives it: present objects, every literal's value and
+    the blocks that fell off the table."""
+    snapshot = world.snapshot()
+    vector = world.semantic_vector(snapshot)
     present = [name for name, here in zip(world.layout.objects, world.present, strict=True) if here]
-    return Observation(tuple(present), world.layout.decode(vector), world.step_count)
+    return Observation(tuple(present), world.layout.decode(vector), world.step_count,
+                       tuple(world.fallen_blocks(snapshot)))
 
 
 class HierarchicalAgent:

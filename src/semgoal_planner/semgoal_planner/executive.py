@@ -39,6 +39,8 @@ class Observation:
     literals: list[Literal]
     """Every literal of the scene with its truth value now."""
     step: int
+    fallen: tuple[str, ...] = ()
+    """Blocks that fell off the table: no robot step can move them again."""
 
     def holds(self, literals: list[Literal]) -> bool:
         values = {(lit.name, lit.args): lit.value for lit in self.literals}
@@ -114,7 +116,8 @@ class Executive:
 
     # -- monitoring ----------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> None:
-        changed = self.observation is None or observation.literals != self.observation.literals
+        changed = (self.observation is None or observation.literals != self.observation.literals
+                   or observation.fallen != self.observation.fallen)
         self.observation = observation
         confirming = self.confirmation.pending
         if (changed or confirming) and self.status in UNDER_WAY:
@@ -171,6 +174,18 @@ class Executive:
             self.step_started = obs.step
             self._emit(f"step {self.current} {self.steps[self.current].subgoal} started "
                        f"({self.steps[self.current].assignee})")
+        self._check_reach()
+
+    def _check_reach(self) -> None:
+        """Fail at once when the active robot step needs a block that fell off the table: no re-plan can
+        bring it back (a person can put it back and send the goal again), so the budget is not spent on it."""
+        step, obs = self.active, self.observation
+        if step is None or obs is None or not obs.fallen:
+            return
+        lost = [block for block in step.subgoal.args if block in obs.fallen]
+        if lost:
+            self._finish("failed", f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
+                                   f"{self.current} {step.subgoal} cannot be done")
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold, for ``confirm_steps`` control steps in a row if the robot runs it

@@ -86,7 +86,7 @@ class PlannerNode(Node):
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
         self.last_state = msg
         self.executive.tick(int(msg.step))
-        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step)))
+        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen)))
         self.publish(decided=True)
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:

@@ -10,7 +10,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
 from semgoal_sim.expert import WorldView
 from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
-from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
+from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks
 from semgoal_sim.world import FetchWorld, Snapshot
 
 
@@ -71,10 +71,11 @@ def world_view(msg: WorldState) -> WorldView:
 
 def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     layout = LAYOUTS[msg.scene]
-    _, present = block_positions(msg)
+    positions, present = block_positions(msg)
     objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
     state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
-                          vector=[bool(v) for v in vector])
+                          vector=[bool(v) for v in vector],
+                          fallen=fallen_blocks(objects, positions[present], TABLE_HEIGHT))
     state.header = msg.header
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
                         for (name, args), v in zip(layout.atoms, vector, strict=True)]

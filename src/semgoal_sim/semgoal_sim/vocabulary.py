@@ -64,6 +64,8 @@ class Thresholds:
     """...and finger opening (sum of both finger joints, 0 = shut, 0.1 = open) at least this..."""
     holding_opening_max: float = 0.07
     """...and at most this: closed on a 5 cm block."""
+    fallen_depth: float = 0.10
+    """A block whose centre lies this far below the table top has fallen off the table (see :func:`fallen_blocks`)."""
 
 
 THRESHOLDS = Thresholds()
@@ -296,6 +298,15 @@ def evaluate(
             value = layout.scene.bin.contains(positions[args[:, 0]], table_height)
         vector[entries] = value & present[args].all(axis=1)
     return vector
+
+
+def fallen_blocks(names: Sequence[str], block_positions: np.ndarray, table_height: float,
+                  thresholds: Thresholds = THRESHOLDS) -> list[str]:
+    """The blocks among ``names`` (centres ``block_positions``, (N, 3)) that fell off the table: out of the
+    arm's reach for good. Not a predicate (the policy never sees it): the planner fails a step that needs
+    such a block with that reason, instead of re-planning for it until the step budget runs out."""
+    low = np.asarray(block_positions, dtype=np.float64)[:, 2] < table_height - thresholds.fallen_depth
+    return [name for name, fell in zip(names, low, strict=True) if fell]
 
 
 # Sub-goal types (paper, table of goals): each is a symbolic action with the literals it must make

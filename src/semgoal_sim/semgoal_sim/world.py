@@ -17,7 +17,7 @@ from semgoal_sim import layout
 from semgoal_sim.expert import WorldView
 from semgoal_sim.layout import CONTROL_DT
 from semgoal_sim.scene import TABLE_HEIGHT, block_body_name, build_model
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
@@ -180,6 +180,11 @@ class FetchWorld:
         snapshot = snapshot or self.snapshot()
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
                         snapshot.finger_opening, TABLE_HEIGHT, self.present)
+
+    def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:
+        """The blocks that fell off the table, out of the arm's reach."""
+        snapshot = snapshot or self.snapshot()
+        return fallen_blocks(self.blocks, snapshot.block_positions, TABLE_HEIGHT)
 
     def view(self, snapshot: Snapshot | None = None) -> WorldView:
         """The expert's view of the world: block centres by name, grip, finger opening, bin."""

@@ -12,11 +12,11 @@ from semgoal_sim.vocabulary import LAYOUTS, Literal
 BLOCKS = ("red", "green", "blue")
 
 
-def observe(true: list[str], step: int = 0, scene: str = "desk_cleanup", objects=BLOCKS) -> Observation:
+def observe(true: list[str], step: int = 0, scene: str = "desk_cleanup", objects=BLOCKS, fallen=()) -> Observation:
     layout = LAYOUTS[scene]
     literals = [Literal(name, args, f"{name}({','.join(args)})" in true) for name, args in layout.atoms
                 if all(a in objects for a in args)]
-    return Observation(objects, literals, step)
+    return Observation(objects, literals, step, tuple(fallen))
 
 
 def executive(**kwargs) -> Executive:
@@ -119,6 +119,29 @@ def test_a_confirmation_that_ends_the_plan_inside_a_tick_fails_cleanly() -> None
     ex.tick(41)
     ex.tick(42)
     assert ex.status == "failed" and "all steps are done but the goal does not hold" in ex.message
+
+
+def test_a_step_that_needs_a_fallen_block_fails_at_once_with_the_reason() -> None:
+    ex = executive(stall_steps=10)
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    ex.observe(observe([], 5, fallen=["red"]))  # red is not needed yet: the plan goes on
+    assert ex.status == "executing" and str(ex.active.subgoal) == "pick(green)"
+    ex.observe(observe(["holding(green)"], 10, fallen=["red"]))
+    ex.observe(observe(["in_bin(green)"], 20, fallen=["red"]))
+    assert ex.status == "failed" and ex.replans == 0
+    assert ex.message == "red fell off the table, out of the arm's reach: step 2 pick(red) cannot be done"
+    assert ex.steps[2].status == "failed"
+
+
+def test_a_fallen_block_does_not_fail_a_step_a_human_does() -> None:
+    ex = executive()
+    ex.set_goal("in_bin(red)")
+    ok, _ = ex.edit("assign", 0, action="human")
+    assert ok
+    ex.observe(observe([], 5, fallen=["red"]))
+    assert ex.status == "executing"
+    ex.observe(observe(["holding(red)"], 9))  # a person put it back and handed it over
+    assert str(ex.active.subgoal) == "put_in_bin(red)"
 
 
 def test_human_step_is_waited_for_without_stall() -> None:

@@ -10,6 +10,7 @@ from semgoal_sim.vocabulary import (
     SubGoal,
     VocabularyError,
     evaluate,
+    fallen_blocks,
     parse_literal,
     parse_subgoal,
 )
@@ -83,6 +84,12 @@ def test_absent_blocks_never_hold() -> None:
     positions = [[*bin_.center, TABLE + 0.036]] * 4
     result = truths("desk_cleanup", positions, present=np.array([True, True, False, False]))
     assert result == {"in_bin(red)", "in_bin(green)"}
+
+
+def test_fallen_blocks_lie_well_below_the_table_top() -> None:
+    depth = THRESHOLDS.fallen_depth
+    positions = [[1.3, 0.7, REST], [0.9, 0.3, 0.025], [1.3, 1.2, TABLE - depth + 0.001], [1.3, 1.2, TABLE - depth - 0.001]]
+    assert fallen_blocks(["red", "green", "blue", "yellow"], np.array(positions), TABLE) == ["green", "yellow"]
 
 
 @pytest.mark.parametrize("text, expected", [

@@ -83,6 +83,7 @@ def test_only_the_hand_end_of_the_arm_collides_and_the_floor_catches_blocks() ->
         world.step(np.zeros(4))
     red = world.snapshot().block_positions[0]
     assert red[2] == pytest.approx(0.025, abs=0.003), "a block off the desk rests on the floor"
+    assert world.fallen_blocks() == ["red"]
     base = world.data.xpos[model.body("robot0:base_link").id]
     assert abs(base[2]) < 1e-4, "the base stays where its slide joints hold it without floor contacts"
 

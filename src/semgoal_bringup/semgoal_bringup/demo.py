@@ -56,7 +56,8 @@ class Demo:
         self.joints: JointState | None = None
         self.frames: list = []
         self.seen_steps: dict[int, str] = {}
-        self.plan_revision = -1
+        self.replans_shown = -1
+        """Re-plans of the plan last printed (-1: none printed yet); a step done changes the plan too."""
         self.client.node.create_subscription(JointState, self.client.topics.JOINT_STATES, self._on_joints,
                                              self.client.topics.STREAM)
         self.client.world_listeners.append(self._record)
@@ -82,11 +83,10 @@ class Demo:
 
     def feedback(self, message) -> None:
         plan = message.feedback.plan
-        if plan.revision != self.plan_revision and plan.steps and plan.status in ("executing", "awaiting_approval"):
-            if self.plan_revision < 0 or plan.replans:
-                what = "plan" if self.plan_revision < 0 else f"re-plan {plan.replans}"
-                self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps))
-            self.plan_revision = plan.revision
+        if plan.replans != self.replans_shown and plan.steps and plan.status in ("executing", "awaiting_approval"):
+            what = "plan" if self.replans_shown < 0 else f"re-plan {plan.replans}"
+            self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps))
+            self.replans_shown = plan.replans
         for step in plan.steps:
             if self.seen_steps.get(step.index) != f"{step.action}:{step.status}" and step.status in ("active", "done"):
                 self.seen_steps[step.index] = f"{step.action}:{step.status}"

@@ -3,6 +3,8 @@
 on success and 1 with the reason otherwise."""
 
 import subprocess
+import time
+from collections.abc import Callable
 
 from conftest import ROOT, NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
@@ -11,23 +13,46 @@ TASK, SEED = "MC-2", 3_000_000
 
 
 def semgoal(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([str(ROOT / "semgoal"), *args], capture_output=True, text=True, timeout=120)
+    return subprocess.run(semgoal_command(*args), capture_output=True, text=True, timeout=120)
+
+
+def semgoal_command(*args: str) -> list[str]:
+    return [str(ROOT / "semgoal"), *args]
+
+
+def wait_until(condition: Callable[[], bool], timeout: float) -> bool:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.2)
+    return True
 
 
 def test_operator_commands_drive_the_graph(nodes: NodeProcesses) -> None:
     params = node_params(TASK, SEED, "lockstep")
+    params["planner_node"]["state_wait_s"] = 60.0
+    world_nodes = [node for node in NODES if node[1] in ("sim_node", "predicate_node")]
     for package, exe in NODES:
-        nodes.start(package, exe, params=params[exe])
+        if (package, exe) not in world_nodes:
+            nodes.start(package, exe, params=params[exe])
 
     shown = semgoal("plan", "show")
     assert shown.returncode == 1 and "status: empty" in shown.stdout, shown.stdout + shown.stderr
 
+    # refused from the scene's vocabulary alone, before any world state exists
     unknown = semgoal("goal", "in_bin(red)", "--wait")  # two_blocks has no bin
     assert unknown.returncode == 1 and "in_bin" in unknown.stdout, unknown.stdout + unknown.stderr
 
-    short = semgoal("goal", TASK, "--wait", "--max-steps", "3")
-    assert short.returncode == 1, short.stdout + short.stderr
-    assert "budget of 3 control steps" in short.stdout and "(3 control steps" in short.stdout, short.stdout
+    # a goal sent before the world is up waits for its first state, then runs (into a tiny budget)
+    early = subprocess.Popen(semgoal_command("goal", TASK, "--wait", "--max-steps", "3"),
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    assert wait_until(lambda: "waits up to 60 s for a first semantic state" in nodes.logs(), timeout=60), nodes.logs()
+    for package, exe in world_nodes:
+        nodes.start(package, exe, params=params[exe])
+    out, _ = early.communicate(timeout=120)
+    assert early.returncode == 1, out
+    assert "budget of 3 control steps" in out and "(3 control steps" in out, out
 
     solved = semgoal("goal", TASK, "--wait", "--max-steps", "600")
     assert solved.returncode == 0 and solved.stdout.strip().splitlines()[-1].startswith("success"), solved.stdout

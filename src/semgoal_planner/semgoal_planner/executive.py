@@ -14,7 +14,7 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field
 
-from semgoal_planner.goals import GoalError, parse_goal
+from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
 
@@ -96,10 +96,11 @@ class Executive:
     def set_goal(self, text: str, step_budget: int = 0) -> tuple[bool, str]:
         """Plan for a goal from the observed state; on failure the previous plan stays. The goal fails
         once ``step_budget`` control steps (0: no limit) are spent without it holding."""
-        if self.observation is None:
-            return False, "no semantic state observed yet: start the sim and predicates nodes first"
         obs = self.observation
         try:
+            if obs is None:
+                check_goal_text(text, self.planner.scene)
+                return False, "no semantic state observed yet: start the sim and predicates nodes first"
             goal = parse_goal(text, self.planner.scene, obs.objects, obs.true_literals)
             steps = self.planner.plan(obs.objects, obs.true_literals, goal)
         except (GoalError, PlanningError) as error:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import re
 
-from semgoal_sim.tasks import TASKS, get_task, goal_in_state
+from semgoal_sim.tasks import TASKS, Task, get_task, goal_in_state
 from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 
 _SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
@@ -49,10 +49,26 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
     return list(goal.values())
 
 
-def task_goal(name: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+def check_goal_text(text: str, scene: str) -> None:
+    """Refuse a goal that no world of ``scene`` could state (a task of another scene, an unknown predicate
+    or block, a wrong arity, a contradiction) before any state is known; the blocks present are checked
+    once one is."""
+    if is_task_name(text):
+        scene_task(text, scene)
+    else:
+        parse_goal(text, scene, LAYOUTS[scene].objects, [])
+
+
+def scene_task(name: str, scene: str) -> Task:
+    """The task ``name``, refused unless it runs in ``scene``."""
     task = get_task(name)
     if task.scene != scene:
         raise GoalError(f"task {task.name} runs in scene {task.scene}, but this world is {scene}")
+    return task
+
+
+def task_goal(name: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+    task = scene_task(name, scene)
     if tuple(objects) != task.blocks:
         raise GoalError(f"task {task.name} needs blocks {', '.join(task.blocks)}; this world has {', '.join(objects)}")
     try:

@@ -18,6 +18,7 @@ from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.goals import check_goal_text
 from semgoal_planner.operator import format_plan
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_sim import ros_interfaces as topics
@@ -47,6 +48,9 @@ class PlannerNode(Node):
             max_replans=self.declare_parameter("max_replans", 10).value,
             require_approval=self.declare_parameter("require_approval", False).value,
         )
+        self.state_wait_s = float(self.declare_parameter("state_wait_s", 5.0).value)
+        self.state_waiters: list[Future] = []
+        """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
@@ -85,6 +89,10 @@ class PlannerNode(Node):
             return
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
         self.last_state = msg
+        for waiter in self.state_waiters:
+            if not waiter.done():
+                waiter.set_result(True)
+        self.state_waiters.clear()
         self.executive.tick(int(msg.step))
         self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen)))
         self.publish(decided=True)
@@ -114,6 +122,8 @@ class PlannerNode(Node):
         """Start the goal, then wait (without a thread: the callbacks go on) until it ends; feedback
         goes out with every change of the plan (:meth:`publish`)."""
         result = ExecuteGoal.Result()
+        if self.last_state is None and self.stateable(handle.request.goal):
+            await self.first_state(self.state_wait_s)
         ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
         start_step = self.executive.goal_started
         if ok and self.executive.status not in FINAL:
@@ -129,6 +139,26 @@ class PlannerNode(Node):
         result.message = message
         (handle.succeed if result.success else handle.abort)()
         return self._fill(result, start_step)
+
+    def stateable(self, msg: GoalRequest) -> bool:
+        """Whether the goal passes every check that needs no world state (else it is refused at once)."""
+        try:
+            check_goal_text(goal_text(msg), self.executive.planner.scene)
+        except ValueError:
+            return False
+        return True
+
+    async def first_state(self, timeout_s: float) -> None:
+        """Wait up to ``timeout_s`` for a semantic state, so a goal sent right after the nodes start is
+        planned rather than refused; after that the executive says what is missing."""
+        if timeout_s <= 0:
+            return
+        self.get_logger().info(f"goal waits up to {timeout_s:g} s for a first semantic state")
+        seen = Future(executor=self.executor)
+        self.state_waiters.append(seen)
+        timer = self.create_timer(timeout_s, lambda: seen.done() or seen.set_result(False))
+        await seen
+        self.destroy_timer(timer)
 
     def cancel_callback(self, handle: ServerGoalHandle) -> CancelResponse:
         if self.action_goal is not None and self.action_goal[0] is handle:

@@ -204,3 +204,13 @@ def test_fuzzed_edit_sequences_never_raise_and_refusals_change_nothing(edits) ->
         assert message
         if not ok and op not in ("replan",):
             assert (ex.steps, ex.current, ex.status) == before
+
+
+def test_before_any_state_a_goal_is_checked_against_the_scene_then_refused_for_want_of_state() -> None:
+    ex = Executive(SemanticPlanner("two_blocks"))
+    for text, words in (("in_bin(red)", "'in_bin' is not used in scene 'two_blocks'"),
+                        ("DC-3", "runs in scene desk_cleanup"), ("holding(purple)", "unknown object 'purple'"),
+                        ("MC-2", "no semantic state observed yet"), ("holding(red)", "no semantic state observed yet")):
+        ok, message = ex.set_goal(text)
+        assert not ok and words in message, (text, message)
+    assert ex.status == "empty" and ex.steps == []

@@ -39,6 +39,15 @@ def test_demo_solves_a_task_through_the_graph() -> None:
     assert "episode GIF" in result.stdout
 
 
-def test_demo_rejects_unknown_tasks() -> None:
+def test_demo_gives_its_goal_a_step_budget() -> None:
+    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "MC-2", "--seed", "4", "--max-steps", "3", "--no-gif"],
+                            capture_output=True, text=True, timeout=240)
+    assert result.returncode == 1, result.stdout[-2000:] + result.stderr[-2000:]
+    assert "budget of 3 control steps" in result.stdout and result.stdout.strip().splitlines()[-1] == "MC-2: failure"
+
+
+def test_demo_rejects_unknown_tasks_and_budgets() -> None:
     result = subprocess.run([str(ROOT / "semgoal"), "demo", "--task", "XX-9"], capture_output=True, text=True)
     assert result.returncode == 2 and "unknown task 'XX-9'" in result.stderr
+    result = subprocess.run([str(ROOT / "semgoal"), "demo", "--max-steps", "-1"], capture_output=True, text=True)
+    assert result.returncode == 2 and "--max-steps must be 0" in result.stderr

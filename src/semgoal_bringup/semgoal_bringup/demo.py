@@ -1,4 +1,4 @@
-"""`./semgoal demo [--task T] [--seed S] [--gif FILE]`: the whole node graph solving a task.
+"""`./semgoal demo [--task T] [--seed S] [--max-steps N] [--gif FILE]`: the whole node graph solving a task.
 
 Starts sim (lockstep), predicates, planner and policy as separate processes in a fresh ROS domain,
 resets the world to the task, sends the goal through the planner's ExecuteGoal action, and prints as
@@ -14,17 +14,27 @@ import os
 import sys
 from pathlib import Path
 
+from semgoal_bringup.episodes import TASK_STEP_BUDGET
+
 DEFAULT_TASK = "DC-3"
+DEFAULT_SEED = 6
+"""A DC-3 start the shipped actors solve with one re-plan, so the default run shows one."""
+TO_DO = ("pending", "active")
+"""Plan steps a printed plan lists: a re-plan keeps the steps already done ahead of the new ones."""
 
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.splitlines()[0])
     parser.add_argument("--task", default=DEFAULT_TASK)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="the task start (default %(default)s)")
+    parser.add_argument("--max-steps", type=int, default=TASK_STEP_BUDGET,
+                        help="control steps the goal may take before it fails, as in the evaluation (0: no limit)")
     parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped ones")
     parser.add_argument("--gif", type=Path, help="where to write the episode GIF (default results/demo-TASK.gif)")
     parser.add_argument("--no-gif", action="store_true")
     args = parser.parse_args(argv)
+    if args.max_steps < 0:
+        parser.error("--max-steps must be 0 (no limit) or a number of control steps")
     from semgoal_bringup.graph import fresh_domain, start_graph, stop_graph
     from semgoal_sim.tasks import get_task
 
@@ -37,7 +47,7 @@ def main(argv: list[str]) -> int:
     gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
     processes = start_graph(task.name, args.seed, models=args.models)
     try:
-        return Demo(task.name, args.seed).run(gif)
+        return Demo(task.name, args.seed).run(gif, args.max_steps)
     finally:
         stop_graph(processes)
 
@@ -85,7 +95,7 @@ class Demo:
         plan = message.feedback.plan
         if plan.replans != self.replans_shown and plan.steps and plan.status in ("executing", "awaiting_approval"):
             what = "plan" if self.replans_shown < 0 else f"re-plan {plan.replans}"
-            self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps))
+            self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps if s.status in TO_DO))
             self.replans_shown = plan.replans
         for step in plan.steps:
             if self.seen_steps.get(step.index) != f"{step.action}:{step.status}" and step.status in ("active", "done"):
@@ -93,7 +103,7 @@ class Demo:
                 verb = "started" if step.status == "active" else "done   "
                 self.log(f"{verb} {step.index}. {step.action}")
 
-    def run(self, gif: Path | None) -> int:
+    def run(self, gif: Path | None, max_steps: int = TASK_STEP_BUDGET) -> int:
         client = self.client
         try:
             if not client.wait_ready():
@@ -105,7 +115,7 @@ class Demo:
                 return 1
             print(f"[demo] {self.task.name} ({self.task.description}), seed {self.seed}, "
                   f"ROS domain {os.environ['ROS_DOMAIN_ID']}", flush=True)
-            result = client.execute(self.task.name, self.feedback)
+            result = client.execute(self.task.name, self.feedback, max_steps=max_steps)
             self.log(f"result: {result.message} ({result.replans} re-plans)")
             print(f"[demo] {result.control_steps} control steps ({result.sim_time:.1f} s sim time) in "
                   f"{result.wall_s:.1f} s wall: {result.control_steps / max(result.wall_s, 1e-9):.0f} steps/s "

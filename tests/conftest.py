@@ -140,3 +140,19 @@ def probe(ros_domain: int) -> Iterator[GraphProbe]:
     node = GraphProbe(ros_domain)
     yield node
     node.close()
+
+
+def desk_with_a_fallen_block():
+    """A DC-3 world whose green block was dropped past the desk's edge and has come to rest below it."""
+    import numpy as np
+
+    from semgoal_sim.scene import TABLE_HEIGHT
+    from semgoal_sim.tasks import TASKS
+    from semgoal_sim.world import FetchWorld
+
+    world = FetchWorld("desk_cleanup", 3)
+    world.reset(TASKS["DC-3"].initial_state(0)[0])
+    world.set_block_pose("green", np.array([0.9, 0.3, TABLE_HEIGHT + 0.1]))
+    for _ in range(25):
+        world.step(np.zeros(4))
+    return world

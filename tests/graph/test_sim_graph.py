@@ -1,14 +1,16 @@
 """sim_node and predicate_node as processes: the test drives the arm in lockstep with the expert's
-commands over DDS and watches world and semantic state change; garbage commands do not stop the sim."""
+commands over DDS and watches world and semantic state change; garbage commands do not stop the sim;
+the predicates node names a block fallen off the table."""
 
 import math
 
 import numpy as np
 from sensor_msgs.msg import Image, JointState
 
-from conftest import GraphProbe, NodeProcesses
+from conftest import GraphProbe, NodeProcesses, desk_with_a_fallen_block
 from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
+from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.conversions import block_positions, world_view
 from semgoal_sim.expert import expert_action
@@ -122,3 +124,16 @@ def test_rendering_publishes_camera_frames(nodes: NodeProcesses, probe: GraphPro
     assert (frame.width, frame.height, frame.encoding) == (160, 120, "rgb8")
     pixels = np.frombuffer(bytes(frame.data), np.uint8).reshape(120, 160, 3)
     assert pixels.std() > 10, "the frame shows a scene, not a flat colour"
+
+
+def test_predicates_name_and_log_a_block_fallen_off_the_table(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    nodes.start("semgoal_sim", "predicate_node")
+    world = desk_with_a_fallen_block()
+    semantic: list[SemanticState] = []
+    probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, semantic.append, topics.LATCHED)
+    publisher = probe.node.create_publisher(WorldState, topics.WORLD_STATE, topics.STREAM)
+    probe.spin_until(lambda: publisher.get_subscription_count() >= 1, 30, "predicate_node listening")
+    publisher.publish(conversions.world_state(world, world.snapshot(), "DC-3", episode=1))
+    probe.spin_until(lambda: semantic, 20, "semantic state")
+    assert list(semantic[-1].fallen) == ["green"]
+    probe.spin_until(lambda: "green fell off the table" in nodes.logs(), 10, "the fall logged")

@@ -2,7 +2,7 @@
 
 Every world state gets its semantic state, changed or not: the planner takes its control-step clock
 from this stream, and in lockstep the policy waits for the planner's decision on each step. A change
-is logged in the scene's readable form.
+is logged in the scene's readable form, and a block that falls off the table as a warning.
 """
 
 from rclpy.node import Node
@@ -29,11 +29,16 @@ class PredicateNode(Node):
         except (ValueError, IndexError) as error:
             self.get_logger().warn(f"ignored a malformed world state: {error}", throttle_duration_sec=5.0)
             return
-        self.publisher.publish(conversions.semantic_state(msg, vector))
-        key = (msg.scene, msg.episode, tuple(vector))
+        state = conversions.semantic_state(msg, vector)
+        self.publisher.publish(state)
+        key = (msg.scene, msg.episode, tuple(vector), tuple(state.fallen))
         if key != self.last_key:
+            fell = [b for b in state.fallen if self.last_key is None or self.last_key[:2] != key[:2]
+                    or b not in self.last_key[3]]
             self.last_key = key
             self.get_logger().info(f"{LAYOUTS[msg.scene].readable(vector)}  (step {msg.step})")
+            if fell:
+                self.get_logger().warn(f"{', '.join(fell)} fell off the table, out of the arm's reach (step {msg.step})")
 
 
 def main(args: list[str] | None = None) -> None:

@@ -8,10 +8,10 @@ stream, as the Table 1 evaluation through the graph runs."""
 import pytest
 
 from conftest import NodeProcesses
-from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
+from semgoal_bringup.episodes import make_agent
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
-from semgoal_sim.tasks import get_task
+from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
 
 CASES = [("Swap-2", 2), ("DC-2", 2), ("DC-3", 3_000_026)]
 """Starts where the shipped actors re-plan in process (Swap-2: once, DC-2: twice; DC-3: until the budget ends)."""

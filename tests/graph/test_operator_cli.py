@@ -3,10 +3,8 @@
 on success and 1 with the reason otherwise."""
 
 import subprocess
-import time
-from collections.abc import Callable
 
-from conftest import ROOT, NodeProcesses
+from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
 
 TASK, SEED = "MC-2", 3_000_000
@@ -20,16 +18,7 @@ def semgoal_command(*args: str) -> list[str]:
     return [str(ROOT / "semgoal"), *args]
 
 
-def wait_until(condition: Callable[[], bool], timeout: float) -> bool:
-    deadline = time.monotonic() + timeout
-    while not condition():
-        if time.monotonic() > deadline:
-            return False
-        time.sleep(0.2)
-    return True
-
-
-def test_operator_commands_drive_the_graph(nodes: NodeProcesses) -> None:
+def test_operator_commands_drive_the_graph(nodes: NodeProcesses, probe: GraphProbe) -> None:
     params = node_params(TASK, SEED, "lockstep")
     params["planner_node"]["state_wait_s"] = 60.0
     world_nodes = [node for node in NODES if node[1] in ("sim_node", "predicate_node")]
@@ -47,7 +36,7 @@ def test_operator_commands_drive_the_graph(nodes: NodeProcesses) -> None:
     # a goal sent before the world is up waits for its first state, then runs (into a tiny budget)
     early = subprocess.Popen(semgoal_command("goal", TASK, "--wait", "--max-steps", "3"),
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    assert wait_until(lambda: "waits up to 60 s for a first semantic state" in nodes.logs(), timeout=60), nodes.logs()
+    assert probe.poll(lambda: "waits up to 60 s for a first semantic state" in nodes.logs(), timeout=60), nodes.logs()
     for package, exe in world_nodes:
         nodes.start(package, exe, params=params[exe])
     out, _ = early.communicate(timeout=120)

@@ -4,10 +4,10 @@ planner's GetPlan confirms it (the world goes on stepping meanwhile, the arm hol
 is solved within its step budget."""
 
 from conftest import NodeProcesses
-from semgoal_bringup.episodes import TASK_STEP_BUDGET
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
 from semgoal_sim.layout import CONTROL_DT
+from semgoal_sim.tasks import TASK_STEP_BUDGET
 
 TASK, SEED = "MC-2", 3_000_000
 

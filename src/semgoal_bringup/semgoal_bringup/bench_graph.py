@@ -14,8 +14,8 @@ import json
 import statistics
 import time
 
-from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
-from semgoal_sim.tasks import get_task
+from semgoal_bringup.episodes import make_agent
+from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
 
 REALTIME_HZ = 25.0
 

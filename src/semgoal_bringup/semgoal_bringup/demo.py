@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-from semgoal_bringup.episodes import TASK_STEP_BUDGET
+from semgoal_sim.tasks import TASK_STEP_BUDGET
 
 DEFAULT_TASK = "DC-3"
 DEFAULT_SEED = 6

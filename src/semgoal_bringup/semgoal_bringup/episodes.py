@@ -22,11 +22,8 @@ from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import SubgoalController
-from semgoal_sim.tasks import Task, get_task
+from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
-
-TASK_STEP_BUDGET = 600
-"""Control steps per task episode for every agent (24 s of sim time; the expert needs 27 to 165)."""
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from semgoal_sim.tasks import TASKS, get_task
+from semgoal_sim.tasks import TASK_STEP_BUDGET, TASKS, get_task
 
 PAPER_TABLE1 = {
     "flat-semantic": {"MC-2": 10, "MA-2": 80, "Swap-2": 0, "MC-3": 5, "MA-3": 10, "DC-2": 30, "DC-3": 0, "DC-4": 0},
@@ -229,7 +229,7 @@ def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, p
         "# Table 1: task completion (%)",
         "",
         f"Ours: task seeds from {seed} (episode i of every agent starts from the same state), at most "
-        f"{_budget()} control steps each; brackets hold the 95 % (Wilson) interval. "
+        f"{TASK_STEP_BUDGET} control steps each; brackets hold the 95 % (Wilson) interval. "
         "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
         f"Regenerate: `{command}`",
         "",
@@ -265,12 +265,6 @@ def _per_seed_lines(row: Row, tasks: list[str]) -> list[str]:
         cells = [f"{100 * results[t].wins / results[t].episodes:.0f}" if t in results else "" for t in tasks]
         lines.append(f"| {label} | {_steps_text(row.seed_steps[label])} | " + " | ".join(cells) + " |")
     return lines
-
-
-def _budget() -> int:
-    from semgoal_bringup.episodes import TASK_STEP_BUDGET
-
-    return TASK_STEP_BUDGET
 
 
 def write_csv(rows: list[Row], tasks: list[str], path: Path) -> None:

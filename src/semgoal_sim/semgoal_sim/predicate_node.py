@@ -19,6 +19,8 @@ class PredicateNode(Node):
         self.publisher = self.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.LATCHED)
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.last_key: tuple | None = None
+        self.fall_episode: tuple | None = None
+        self.falls_reported: set[str] = set()
 
     def world_callback(self, msg: WorldState) -> None:
         if msg.scene not in LAYOUTS:
@@ -31,14 +33,20 @@ class PredicateNode(Node):
             return
         state = conversions.semantic_state(msg, vector)
         self.publisher.publish(state)
-        key = (msg.scene, msg.episode, tuple(vector), tuple(state.fallen))
+        key = (msg.scene, msg.episode, tuple(vector))
         if key != self.last_key:
-            fell = [b for b in state.fallen if self.last_key is None or self.last_key[:2] != key[:2]
-                    or b not in self.last_key[3]]
             self.last_key = key
             self.get_logger().info(f"{LAYOUTS[msg.scene].readable(vector)}  (step {msg.step})")
-            if fell:
-                self.get_logger().warn(f"{', '.join(fell)} fell off the table, out of the arm's reach (step {msg.step})")
+        self.report_falls(msg, state.fallen)
+
+    def report_falls(self, msg: WorldState, fallen: list[str]) -> None:
+        """Warn once per block and episode when a block lies below the table."""
+        if (msg.scene, msg.episode) != self.fall_episode:
+            self.fall_episode, self.falls_reported = (msg.scene, msg.episode), set()
+        fell = [block for block in fallen if block not in self.falls_reported]
+        if fell:
+            self.falls_reported.update(fell)
+            self.get_logger().warn(f"{', '.join(fell)} fell off the table, out of the arm's reach (step {msg.step})")
 
 
 def main(args: list[str] | None = None) -> None:

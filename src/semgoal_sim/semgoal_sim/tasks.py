@@ -125,6 +125,9 @@ def _desk_cleanup(rng, blocks):
     return scatter(rng, len(blocks)), [Literal("in_bin", (block,)) for block in blocks]
 
 
+TASK_STEP_BUDGET = 600
+"""Control steps per task episode for every agent (24 s of sim time; the expert needs 27 to 165)."""
+
 TASKS: dict[str, Task] = {
     task.name: task
     for task in (

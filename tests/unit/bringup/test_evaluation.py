@@ -6,7 +6,8 @@ import json
 import pytest
 
 from semgoal_bringup import evaluation
-from semgoal_bringup.episodes import TASK_STEP_BUDGET, make_agent
+from semgoal_bringup.episodes import make_agent
+from semgoal_sim.tasks import TASK_STEP_BUDGET
 
 
 def test_hierarchical_episode_is_reproducible_and_bounded() -> None:

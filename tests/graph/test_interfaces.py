@@ -1,5 +1,11 @@
-"""Every semgoal interface crosses a process boundary over real DDS and comes back intact."""
+"""Every semgoal interface crosses a process boundary over real DDS and comes back intact, and the
+README's native ros2cli commands name them correctly."""
 
+import importlib
+import re
+from pathlib import Path
+
+import yaml
 from geometry_msgs.msg import Point, Pose, Twist, Vector3
 from rclpy.action import ActionClient
 
@@ -78,3 +84,32 @@ def test_action_gives_feedback_and_result(nodes: NodeProcesses, probe: GraphProb
     feedback = [f for f in feedback if f.goal_id == handle.goal_id]  # a goal sent again leaves its first's
     assert [f.feedback.plan.current for f in feedback] == [0, 1, 2]
     assert all(f.feedback.plan.goal == "Swap-2" for f in feedback)
+
+
+README_CALL = re.compile(r'^ros2 (?:topic pub --once|service call|action send_goal --feedback) (\S+) (\S+)(?: "(.*)")?$')
+
+
+def _filled(interface: type, fields: dict):
+    """An ``interface`` message with ``fields`` set (nested dicts for nested messages), its types checked."""
+    message = interface(check_fields=True)
+    for name, value in fields.items():
+        assert name in message.get_fields_and_field_types(), f"{interface.__name__} has no field {name!r}"
+        setattr(message, name, _filled(type(getattr(message, name)), value) if isinstance(value, dict) else value)
+    return message
+
+
+def test_the_readme_native_commands_name_real_interfaces_and_fields() -> None:
+    """The README's `ros2 topic pub` / `service call` / `action send_goal` lines, which ros2cli would run
+    on a native install, use our names, types and fields (ros2cli itself is not on PyPI)."""
+    from semgoal_sim import ros_interfaces
+
+    names = {v for k, v in vars(ros_interfaces).items() if k.isupper() and isinstance(v, str) and v.startswith("/")}
+    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    calls = [m.groups() for line in readme.splitlines() if (m := README_CALL.match(line.strip()))]
+    assert len(calls) >= 4
+    for name, type_path, payload in calls:
+        assert name in names, f"{name} is not one of our topics, services or actions"
+        package, kind, type_name = type_path.split("/")
+        interface = getattr(importlib.import_module(f"{package}.{kind}"), type_name)
+        request = {"msg": interface, "srv": getattr(interface, "Request", None), "action": getattr(interface, "Goal", None)}
+        _filled(request[kind], yaml.safe_load(payload) if payload else {})

@@ -71,24 +71,45 @@ def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
     from semgoal_policy.actor import MODELS_DIR, load
     from semgoal_policy.agents import get_agent
+    from semgoal_policy.controller import ACTION_MODES
     from semgoal_policy.evaluate import success_by_kind
+    from semgoal_sim.env import EPISODE_STEPS
 
     parser = argparse.ArgumentParser(prog="semgoal eval-subgoals", description=eval_subgoals_main.__doc__)
     parser.add_argument("--scene", required=True, choices=list(SCENES))
     parser.add_argument("--episodes", type=int, default=200, help="episodes per sub-goal type")
     parser.add_argument("--seed", type=int, default=2_000_000, help="first episode seed (training uses seeds < 1e6)")
+    parser.add_argument("--horizon", type=int, default=EPISODE_STEPS,
+                        help=f"control steps per episode (default {EPISODE_STEPS}, the training horizon; the planner "
+                             "grants a step stall_steps, 150, before it re-plans)")
+    parser.add_argument("--action-mode", choices=ACTION_MODES, default="mean",
+                        help="mean: the deterministic actor (default); sample: its Gaussian, seeded by --seed, "
+                             "as policy_node runs it (action_mode: sample)")
     parser.add_argument("--model-dir", type=Path, help=f"exported actor (default {MODELS_DIR}/SCENE)")
     parser.add_argument("--envs", type=int, default=10)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
+    for name in ("episodes", "horizon", "envs"):
+        if getattr(args, name) < 1:
+            parser.error(f"--{name} must be at least 1, got {getattr(args, name)}")
+    import numpy as np
     import torch
 
     torch.set_num_threads(1)
     actor, _ = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
     spec = get_agent("hierarchical")
     envs = [spec.make_env(args.scene) for _ in range(args.envs)]
-    rates = success_by_kind(envs, actor.act, spec.kinds(args.scene), args.episodes, args.seed)
-    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "per_subgoal": rates,
+    for env in envs:
+        env.max_steps = args.horizon
+    noise = np.random.default_rng(args.seed)
+
+    def act(obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
+        """The actor's mean, or a sample of its Gaussian as the policy node draws it."""
+        return actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
+
+    rates = success_by_kind(envs, act, spec.kinds(args.scene), args.episodes, args.seed)
+    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon,
+              "action_mode": args.action_mode, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)}
     if not args.json:
         for kind, rate in rates.items():

@@ -1,0 +1,40 @@
+"""`./semgoal eval-subgoals`: its JSON contract, the horizon and action mode it is given, refused arguments."""
+
+import json
+
+import pytest
+
+from semgoal_policy.cli import eval_subgoals_main
+
+
+def _run(capsys, *extra: str) -> dict:
+    assert eval_subgoals_main(["--scene", "two_blocks", "--episodes", "2", "--envs", "2", "--json", *extra]) == 0
+    return json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+
+
+def test_prints_one_json_object_with_a_rate_per_subgoal_type(capsys) -> None:
+    result = _run(capsys, "--seed", "2000000")
+    assert result["scene"] == "two_blocks" and result["episodes"] == 2 and result["horizon"] == 50
+    assert result["action_mode"] == "mean"
+    rates = result["per_subgoal"]
+    assert list(rates) == ["pick", "put_near", "put_away", "put_on"]
+    assert all(rate in (0.0, 0.5, 1.0) for rate in rates.values())
+    assert result["overall"] == pytest.approx(sum(rates.values()) / 4)
+
+
+def test_a_one_step_horizon_leaves_no_time_to_confirm_a_subgoal(capsys) -> None:
+    """A sub-goal counts once its literals held for several steps in a row, so one step never does."""
+    result = _run(capsys, "--horizon", "1")
+    assert result["horizon"] == 1 and result["overall"] == 0.0
+
+
+def test_the_sampled_actor_is_seeded_so_a_run_repeats(capsys) -> None:
+    first, again = (_run(capsys, "--action-mode", "sample", "--horizon", "20") for _ in range(2))
+    assert first["action_mode"] == "sample" and first == again
+
+
+@pytest.mark.parametrize("flag", ["--episodes", "--horizon", "--envs"])
+def test_counts_below_one_are_refused(flag, capsys) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        eval_subgoals_main(["--scene", "two_blocks", flag, "0"])
+    assert exit_info.value.code == 2 and f"{flag} must be at least 1" in capsys.readouterr().err

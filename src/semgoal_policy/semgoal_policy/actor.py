@@ -18,7 +18,8 @@ from torch import nn
 from semgoal_sim import layout
 
 HIDDEN = (256, 256)
-LOG_STD_RANGE = (-5.0, 2.0)
+LOG_STD_MIN, LOG_STD_MAX = -5.0, 2.0
+"""Clamp of the Gaussian's log std before tanh; 2 is SB3's and CleanRL's upper bound (see ``SacConfig.log_std_max``)."""
 OBS_CLIP = 5.0
 """Normalised observations are clipped to +-5 standard deviations (as in the HER baselines)."""
 MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
@@ -63,9 +64,10 @@ class Normaliser(nn.Module):
 class Actor(nn.Module):
     """Squashed Gaussian policy over (normalised observation, goal); goals are 0/1 and used as is."""
 
-    def __init__(self, obs_size: int, goal_size: int, hidden: tuple[int, ...] = HIDDEN) -> None:
+    def __init__(self, obs_size: int, goal_size: int, hidden: tuple[int, ...] = HIDDEN,
+                 log_std_max: float = LOG_STD_MAX) -> None:
         super().__init__()
-        self.obs_size, self.goal_size = obs_size, goal_size
+        self.obs_size, self.goal_size, self.log_std_max = obs_size, goal_size, log_std_max
         self.normaliser = Normaliser(obs_size)
         self.net = mlp(obs_size + goal_size, 8, hidden)
 
@@ -75,7 +77,7 @@ class Actor(nn.Module):
     def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """(mean, log_std) of the pre-tanh Gaussian."""
         mean, log_std = self.net(self.features(obs, goal)).chunk(2, dim=-1)
-        return mean, torch.clamp(log_std, *LOG_STD_RANGE)
+        return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
 
     def sample(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         """(action, log_prob, deterministic action): reparameterised tanh-Gaussian (SAC, appendix C)."""
@@ -100,7 +102,7 @@ def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "s
     """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``."""
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
-    meta = {"layout": layout.describe(scene, goal), "hidden": list(HIDDEN), **info}
+    meta = {"layout": layout.describe(scene, goal), "hidden": list(HIDDEN), "log_std_max": actor.log_std_max, **info}
     (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
@@ -119,7 +121,8 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
         diff = sorted(k for k in current if stored.get(k) != current[k])
         raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "
                                   f"scene {scene!r} (differs in: {', '.join(diff)}); retrain or use a matching actor")
-    actor = Actor(current["observation_size"], current["goal_size"], tuple(meta["hidden"]))
+    actor = Actor(current["observation_size"], current["goal_size"], tuple(meta["hidden"]),
+                  meta.get("log_std_max", LOG_STD_MAX))  # actors exported before session 24 used the default
     actor.load_state_dict(torch.load(weights_path, weights_only=True))
     actor.eval()
     return actor, meta

@@ -36,6 +36,8 @@ def train_main(argv: list[str]) -> int:
                         "not only where the critic rates it above the actor's action")
     parser.add_argument("--target-entropy", type=float, default=SacConfig.target_entropy,
                         help="entropy the SAC temperature is tuned toward")
+    parser.add_argument("--log-std-max", type=float, default=SacConfig.log_std_max,
+                        help="upper clamp of the actor's log std (2: SB3's)")
     parser.add_argument("--actor-average-rate", type=float, default=SacConfig.actor_average_rate,
                         help="Polyak rate of the averaged actor that is evaluated and exported (0: the live actor)")
     parser.add_argument("--no-curriculum", action="store_true")
@@ -53,7 +55,7 @@ def train_main(argv: list[str]) -> int:
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
         snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
         sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy,
-                      actor_average_rate=args.actor_average_rate),
+                      actor_average_rate=args.actor_average_rate, log_std_max=args.log_std_max),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
     trainer = Trainer(config)

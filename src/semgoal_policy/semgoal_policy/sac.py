@@ -16,7 +16,7 @@ import numpy as np
 import torch
 from torch import nn
 
-from semgoal_policy.actor import Actor, mlp
+from semgoal_policy.actor import LOG_STD_MAX, Actor, mlp
 from semgoal_policy.replay import Batch
 
 
@@ -40,6 +40,10 @@ class SacConfig:
     """Entropy the temperature is tuned toward; -4 (minus the action size) is SB3's default. With three
     precise displacement dims the fourth, the fingers, takes up what is left: at -4 the shipped actors'
     finger std sits at its clamp (e^2) in 6-17 % of steps, mostly while a block is held."""
+    log_std_max: float = LOG_STD_MAX
+    """Upper clamp of the actor's log std. At e^2 the finger's tanh-Gaussian is a coin flip whose mean
+    barely moves the samples, so the mean (the deterministic actor) learns little where a block is held:
+    it freezes there while the sampled actor lets go by chance (session 24, ``docs/training-log.md``)."""
 
 
 class TwinCritic(nn.Module):
@@ -57,7 +61,7 @@ class SacAgent:
 
     def __init__(self, obs_size: int, goal_size: int, config: SacConfig) -> None:
         self.config = config
-        self.actor = Actor(obs_size, goal_size)
+        self.actor = Actor(obs_size, goal_size, log_std_max=config.log_std_max)
         self.actor_average = None
         if config.actor_average_rate:
             self.actor_average = copy.deepcopy(self.actor).requires_grad_(False)

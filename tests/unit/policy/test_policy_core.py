@@ -73,6 +73,21 @@ def test_export_and_load_round_trip(tmp_path) -> None:
     assert meta["env_steps"] == 7
 
 
+def test_the_log_std_clamp_is_applied_and_travels_with_the_export(tmp_path) -> None:
+    actor = Actor(layout.observation_size(SCENE), layout.goal_size(SCENE), log_std_max=-1.0)
+    with torch.no_grad():
+        actor.net[-1].bias[4:] = 10.0  # log std far above the clamp
+    obs = torch.zeros(2, layout.observation_size(SCENE))
+    goal = torch.zeros(2, layout.goal_size(SCENE))
+    assert torch.all(actor(obs, goal)[1] == -1.0)
+    export(actor, tmp_path, SCENE, {})
+    loaded, meta = load(tmp_path, SCENE)
+    assert meta["log_std_max"] == -1.0 and torch.all(loaded(obs, goal)[1] == -1.0)
+    del meta["log_std_max"]  # an actor exported before the clamp was a setting: the old default
+    (tmp_path / "actor.json").write_text(json.dumps(meta))
+    assert load(tmp_path, SCENE)[0].log_std_max == 2.0
+
+
 def test_load_refuses_another_layout(tmp_path) -> None:
     export(_actor(), tmp_path, SCENE, {})
     meta = json.loads((tmp_path / "actor.json").read_text())

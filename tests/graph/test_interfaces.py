@@ -43,9 +43,11 @@ def test_every_message_round_trips(nodes: NodeProcesses, probe: GraphProbe) -> N
     for sent in sample_messages():
         topic_in, topic_out = echo_topics(type(sent))
         received = []
-        probe.node.create_subscription(type(sent), topic_out, received.append, 10)
+        subscription = probe.node.create_subscription(type(sent), topic_out, received.append, 10)
         publisher = probe.node.create_publisher(type(sent), topic_in, 10)
-        probe.spin_until(lambda p=publisher: p.get_subscription_count() > 0, 20, f"echo of {topic_in}")
+        # both directions matched: the echo is volatile, so an echo sent before our subscription matched is lost
+        probe.spin_until(lambda p=publisher, s=subscription: p.get_subscription_count() > 0 and s.get_publisher_count() > 0,
+                         20, f"echo of {topic_in} and {topic_out}")
         publisher.publish(sent)
         probe.spin_until(lambda r=received: r, 10, f"message on {topic_out}")
         assert received[0] == sent

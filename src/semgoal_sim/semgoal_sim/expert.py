@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from semgoal_sim.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry, SubGoal
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry, SubGoal, held_alone
 
 GAIN = 15.0
 """Action per metre of position error (saturates at 1, i.e. 0.05 m per step, beyond 6.7 cm)."""
@@ -54,10 +54,9 @@ class WorldView:
     bin: BinGeometry | None = None
 
     def holds(self, block: str) -> bool:
-        rel = self.positions[block] - self.grip
-        t = THRESHOLDS
-        return (t.holding_opening_min <= self.opening <= t.holding_opening_max
-                and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
+        """``holding(block)``: the closed fingers hold it, alone."""
+        names = list(self.positions)
+        return bool(held_alone(np.array(list(self.positions.values())), self.grip, self.opening)[names.index(block)])
 
     def others(self, block: str) -> dict[str, np.ndarray]:
         return {name: pos for name, pos in self.positions.items() if name != block}
@@ -160,8 +159,8 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
         if grip[2] < safe_z - 0.02 and xy_error > 0.03:  # rise before travelling, never sweep blocks
             return move_to(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
         return move_to(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
-    if grip[2] - target[2] > ALIGN_Z:
-        if world.opening < GRASP_OPENING - 0.006:
+    if abs(grip[2] - target[2]) > ALIGN_Z:  # above the block: descend; low on it: rise (a grasp there
+        if world.opening < GRASP_OPENING - 0.006:  # pinches the block below too), opening first either way
             return move_to(grip, np.array([target[0], target[1], grip[2]]), _open(world))
         return move_to(grip, target, _open(world))
     return move_to(grip, target, CLOSE)

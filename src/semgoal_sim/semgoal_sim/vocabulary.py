@@ -15,8 +15,10 @@ same predicates on the same Fetch blocks (5 cm cubes), except for close:
 - ``above(a, b)``: ``a`` rests on ``b``: xy distance < 0.05 m and 0.03 m < z_a - z_b < 0.07 m.
 - ``holding(a)``: ``a`` sits between the fingers (xy within 0.03 m of the grip site, z within 0.04 m:
   a block grasped near its top edge hangs 3.4 cm below the grip site and is lifted all the same)
-  and the fingers are closed on it (opening between 0.03 and 0.07 m: a 5 cm block, with give). A
-  grasped block still touching the table is held.
+  and the fingers are closed on it (opening between 0.03 and 0.07 m: a 5 cm block, with give), and
+  no other block sits between them: the hand holds one block, as the planner's domain has it. A grasp
+  low on a stacked block pinches the top of the one below too and lifts both (session 25: every Swap-2
+  failure of one actor); that is no pick of either. A grasped block still touching the table is held.
 - ``in_bin(a)``: the centre lies inside the bin walls (xy) and below the rim: a block lying on the rim
   is not in the bin.
 """
@@ -262,6 +264,18 @@ def rests_on(top: np.ndarray, bottom: np.ndarray, thresholds: Thresholds = THRES
             & (delta[..., 2] > thresholds.above_dz_min) & (delta[..., 2] < thresholds.above_dz_max))
 
 
+def held_alone(block_positions: np.ndarray, grip_position: np.ndarray, finger_opening: float,
+               present: np.ndarray | None = None, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
+    """(N,) bool: which block the closed fingers hold, alone (the geometry of ``holding``, module doc)."""
+    rel = np.asarray(block_positions, dtype=np.float64) - np.asarray(grip_position)
+    closed_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
+    between = (closed_on_block & (np.linalg.norm(rel[:, :2], axis=1) < thresholds.holding_xy)
+               & (np.abs(rel[:, 2]) < thresholds.holding_z))
+    if present is not None:
+        between &= np.asarray(present, dtype=bool)
+    return between & (between.sum() == 1)
+
+
 def evaluate(
     layout: SemanticLayout,
     block_positions: np.ndarray,
@@ -290,10 +304,7 @@ def evaluate(
         elif name == "above":
             value = rests_on(positions[args[:, 0]], positions[args[:, 1]], thresholds)
         elif name == "holding":
-            rel = positions[args[:, 0]] - np.asarray(grip_position)
-            fingers_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
-            value = (fingers_on_block & (np.linalg.norm(rel[:, :2], axis=1) < thresholds.holding_xy)
-                     & (np.abs(rel[:, 2]) < thresholds.holding_z))
+            value = held_alone(positions, grip_position, finger_opening, present, thresholds)[args[:, 0]]
         else:  # in_bin
             value = layout.scene.bin.contains(positions[args[:, 0]], table_height)
         vector[entries] = value & present[args].all(axis=1)

@@ -61,6 +61,16 @@ def test_holding_needs_the_block_between_closed_fingers() -> None:
     assert "holding(red)" not in truths("two_blocks", [block, [1.1, 0.5, REST]], grip + np.array([0.05, 0, 0]), 0.049)
 
 
+def test_two_blocks_between_the_fingers_are_no_holding_of_either() -> None:
+    """A grasp low on a stack pinches the lower block's top edge too: the hand holds one block at most."""
+    grip = np.array([1.3, 0.7, REST + 0.037])
+    double = truths("two_blocks", [[1.3, 0.7, REST], [1.3, 0.7, REST + 0.05]], grip, opening=0.049)
+    assert not any(t.startswith("holding") for t in double)
+    absent = truths("three_blocks", [[1.3, 0.7, REST], [1.3, 0.7, REST + 0.05], [1.1, 0.5, REST]], grip, 0.049,
+                    present=[True, False, True])
+    assert "holding(red)" in absent  # a block slot the scene was built without does not count
+
+
 def test_a_grasped_block_still_touching_the_table_is_held() -> None:
     block = [1.3, 0.7, REST]
     assert "holding(red)" in truths("two_blocks", [block, [1.1, 0.5, REST]], np.array(block) + np.array([0, 0, 0.005]), 0.048)

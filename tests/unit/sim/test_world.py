@@ -4,9 +4,12 @@ import mujoco
 import numpy as np
 import pytest
 
+from semgoal_sim.expert import move_to
+from semgoal_sim.rollout import run_subgoal
 from semgoal_sim.scene import TABLE_HEIGHT, build_model
 from semgoal_sim.sim_core import SimCore, check_command
 from semgoal_sim.tasks import TASKS
+from semgoal_sim.vocabulary import SubGoal
 from semgoal_sim.world import FetchWorld
 
 
@@ -101,3 +104,18 @@ def test_robot_joint_state_names_every_robot_joint_and_reads_them_now() -> None:
         assert positions.shape == velocities.shape == (len(names),)
         np.testing.assert_array_equal(positions[fingers], snapshot.finger_positions)
         np.testing.assert_array_equal(velocities[fingers], snapshot.finger_velocities)
+
+
+def test_a_grasp_low_on_a_stack_lifts_both_blocks_and_the_expert_picks_the_top_one_alone() -> None:
+    world = FetchWorld("two_blocks")
+    world.reset(np.array([[1.3, 0.7, TABLE_HEIGHT + 0.025], [1.3, 0.7, TABLE_HEIGHT + 0.075]]))
+    top = world.view().positions["green"]
+    for target, fingers, steps in ((top + [0, 0, 0.08], 1.0, 15), (top - [0, 0, 0.013], 1.0, 15),
+                                   (top - [0, 0, 0.013], -1.0, 8), (top + [0, 0, 0.05], -1.0, 10)):
+        for _ in range(steps):
+            world.step(move_to(world.view().grip, target, fingers))
+    lifted = world.view().positions
+    assert lifted["red"][2] > TABLE_HEIGHT + 0.04, "the low grasp should lift the bottom block too"
+    assert not any(lit.name == "holding" for lit in world.layout.true_literals(world.semantic_vector()))
+    picked, _ = run_subgoal(world, SubGoal("pick", ("green",)), max_steps=80, confirm_steps=3)
+    assert picked and world.view().positions["red"][2] < TABLE_HEIGHT + 0.03  # red back on the table

@@ -69,8 +69,9 @@ class SacAgent:
         self.critic = TwinCritic(obs_size + goal_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
-        self.actor_optimizer = torch.optim.Adam(self.actor.net.parameters(), lr=config.lr)
-        self.critic_optimizer = torch.optim.Adam(self.critic.parameters(), lr=config.lr)
+        # fused: one kernel per step instead of one per tensor, 5 % off a whole update on this CPU (session 25)
+        self.actor_optimizer = torch.optim.Adam(self.actor.net.parameters(), lr=config.lr, fused=True)
+        self.critic_optimizer = torch.optim.Adam(self.critic.parameters(), lr=config.lr, fused=True)
         self.alpha_optimizer = torch.optim.Adam([self.log_alpha], lr=config.lr)
         # values are sums of 0/1 rewards: clip targets to what a discounted sum can reach
         self.q_max = 1.0 / (1.0 - config.gamma)
@@ -165,8 +166,9 @@ class SacAgent:
         self.critic_optimizer.load_state_dict(state["critic_optimizer"])
         self.alpha_optimizer.load_state_dict(state["alpha_optimizer"])
         for optimiser in (self.actor_optimizer, self.critic_optimizer, self.alpha_optimizer):
+            fused = optimiser.defaults["fused"]  # a checkpoint from before fused Adam keeps the speed-up
             for group in optimiser.param_groups:  # the configured rate wins: a resumed run may fine-tune slower
-                group["lr"] = self.config.lr
+                group["lr"], group["fused"] = self.config.lr, fused
 
     def explore(self, obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """Stochastic actions for a batch of envs."""

@@ -109,13 +109,11 @@ def test_robot_joint_state_names_every_robot_joint_and_reads_them_now() -> None:
 def test_a_grasp_low_on_a_stack_lifts_both_blocks_and_the_expert_picks_the_top_one_alone() -> None:
     world = FetchWorld("two_blocks")
     world.reset(np.array([[1.3, 0.7, TABLE_HEIGHT + 0.025], [1.3, 0.7, TABLE_HEIGHT + 0.075]]))
-    top = world.view().positions["green"]
-    for target, fingers, steps in ((top + [0, 0, 0.08], 1.0, 15), (top - [0, 0, 0.013], 1.0, 15),
-                                   (top - [0, 0, 0.013], -1.0, 8), (top + [0, 0, 0.05], -1.0, 10)):
+    above, low, lifted = (world.view().positions["green"] + np.array([0, 0, dz]) for dz in (0.08, -0.013, 0.05))
+    for target, fingers, steps in ((above, 1.0, 15), (low, 1.0, 15), (low, -1.0, 8), (lifted, -1.0, 10)):
         for _ in range(steps):
             world.step(move_to(world.view().grip, target, fingers))
-    lifted = world.view().positions
-    assert lifted["red"][2] > TABLE_HEIGHT + 0.04, "the low grasp should lift the bottom block too"
+    assert world.view().positions["red"][2] > TABLE_HEIGHT + 0.04, "the low grasp should lift the bottom block too"
     assert not any(lit.name == "holding" for lit in world.layout.true_literals(world.semantic_vector()))
     picked, _ = run_subgoal(world, SubGoal("pick", ("green",)), max_steps=80, confirm_steps=3)
     assert picked and world.view().positions["red"][2] < TABLE_HEIGHT + 0.03  # red back on the table

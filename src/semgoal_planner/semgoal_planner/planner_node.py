@@ -125,20 +125,22 @@ class PlannerNode(Node):
         if self.last_state is None and self.stateable(handle.request.goal):
             await self.first_state(self.state_wait_s)
         ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
-        start_step = self.executive.goal_started
+        steps = (self.executive.goal_started, self.observed_step())
         if ok and self.executive.status not in FINAL:
             ended = Future(executor=self.executor)
             self.action_goal = (handle, ended)
             self.publish_feedback()
-            message = await ended
+            # the step is the one the goal ended on: states that come before this coroutine resumes are later
+            message, end_step = await ended
+            steps = (steps[0], end_step)
         if handle.is_cancel_requested:
             handle.canceled()
             result.message = "cancelled"
-            return self._fill(result, start_step)
+            return self._fill(result, *steps)
         result.success = ok and self.executive.status == "succeeded"
         result.message = message
         (handle.succeed if result.success else handle.abort)()
-        return self._fill(result, start_step)
+        return self._fill(result, *steps)
 
     def stateable(self, msg: GoalRequest) -> bool:
         """Whether the goal passes every check that needs no world state (else it is refused at once)."""
@@ -170,7 +172,7 @@ class PlannerNode(Node):
         if self.action_goal is not None:
             _, ended = self.action_goal
             self.action_goal = None
-            ended.set_result(reason)
+            ended.set_result((reason, self.observed_step()))
 
     def publish_feedback(self) -> None:
         handle, _ = self.action_goal
@@ -179,10 +181,13 @@ class PlannerNode(Node):
             feedback.state = self.last_state
         handle.publish_feedback(feedback)
 
-    def _fill(self, result: ExecuteGoal.Result, start_step: int) -> ExecuteGoal.Result:
+    def observed_step(self) -> int:
         obs = self.executive.observation
+        return obs.step if obs else 0
+
+    def _fill(self, result: ExecuteGoal.Result, start_step: int, end_step: int) -> ExecuteGoal.Result:
         result.replans = self.executive.replans
-        result.control_steps = max(0, (obs.step if obs else 0) - start_step)
+        result.control_steps = max(0, end_step - start_step)
         result.sim_time = result.control_steps * CONTROL_DT
         return result
 

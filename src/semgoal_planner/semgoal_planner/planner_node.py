@@ -125,22 +125,21 @@ class PlannerNode(Node):
         if self.last_state is None and self.stateable(handle.request.goal):
             await self.first_state(self.state_wait_s)
         ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
-        steps = (self.executive.goal_started, self.observed_step())
+        start_step, end_step = self.executive.goal_started, self.observed_step()
         if ok and self.executive.status not in FINAL:
             ended = Future(executor=self.executor)
             self.action_goal = (handle, ended)
             self.publish_feedback()
-            # the step is the one the goal ended on: states that come before this coroutine resumes are later
+            # ``ended`` carries the step the goal ended on: states that arrive before this resumes come later
             message, end_step = await ended
-            steps = (steps[0], end_step)
         if handle.is_cancel_requested:
             handle.canceled()
             result.message = "cancelled"
-            return self._fill(result, *steps)
+            return self._fill(result, start_step, end_step)
         result.success = ok and self.executive.status == "succeeded"
         result.message = message
         (handle.succeed if result.success else handle.abort)()
-        return self._fill(result, *steps)
+        return self._fill(result, start_step, end_step)
 
     def stateable(self, msg: GoalRequest) -> bool:
         """Whether the goal passes every check that needs no world state (else it is refused at once)."""

@@ -80,13 +80,13 @@ class Actor(nn.Module):
         return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
 
     def sample(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
-        """(action, log_prob, deterministic action): reparameterised tanh-Gaussian (SAC, appendix C)."""
+        """(action, log_prob, pre-tanh mean): reparameterised tanh-Gaussian (SAC, appendix C)."""
         mean, log_std = self(obs, goal)
         pre_tanh = mean + log_std.exp() * torch.randn_like(mean)
         action = torch.tanh(pre_tanh)
         log_prob = torch.distributions.Normal(mean, log_std.exp()).log_prob(pre_tanh)
         log_prob = (log_prob - torch.log1p(-action.pow(2) + 1e-6)).sum(-1)
-        return action, log_prob, torch.tanh(mean)
+        return action, log_prob, mean
 
     @torch.inference_mode()
     def act(self, obs: np.ndarray, goal: np.ndarray, noise: np.ndarray | None = None) -> np.ndarray:

@@ -38,6 +38,8 @@ def train_main(argv: list[str]) -> int:
                         help="entropy the SAC temperature is tuned toward")
     parser.add_argument("--log-std-max", type=float, default=SacConfig.log_std_max,
                         help="upper clamp of the actor's log std (2: SB3's)")
+    parser.add_argument("--mean-reg", type=float, default=SacConfig.mean_reg,
+                        help="weight of an L2 penalty on the actor's pre-tanh mean (0: off)")
     parser.add_argument("--actor-average-rate", type=float, default=SacConfig.actor_average_rate,
                         help="Polyak rate of the averaged actor that is evaluated and exported (0: the live actor)")
     parser.add_argument("--no-curriculum", action="store_true")
@@ -55,7 +57,8 @@ def train_main(argv: list[str]) -> int:
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
         snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
         sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy,
-                      actor_average_rate=args.actor_average_rate, log_std_max=args.log_std_max),
+                      actor_average_rate=args.actor_average_rate, log_std_max=args.log_std_max,
+                      mean_reg=args.mean_reg),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
     trainer = Trainer(config)

@@ -44,6 +44,11 @@ class SacConfig:
     """Upper clamp of the actor's log std. At e^2 the finger's tanh-Gaussian is a coin flip whose mean
     barely moves the samples, so the mean (the deterministic actor) learns little where a block is held:
     it freezes there while the sampled actor lets go by chance (session 24, ``docs/training-log.md``)."""
+    mean_reg: float = 0.0
+    """Weight of an L2 penalty on the actor's pre-tanh mean (rlkit's ``policy_mean_reg_weight``). The finger
+    labels are exactly -1 or 1, so cloning them drives the mean towards infinity, where tanh's gradient
+    vanishes: with a block held, a third of the finger means sit beyond 2.5, and the critic's preference
+    for letting go no longer moves them (session 27)."""
 
 
 class TwinCritic(nn.Module):
@@ -95,14 +100,14 @@ class SacAgent:
         critic_loss.backward()
         self.critic_optimizer.step()
 
-        action, log_pi, _ = self.actor.sample(t["obs"], t["goal"])
+        action, log_pi, pre_tanh_mean = self.actor.sample(t["obs"], t["goal"])
         self.critic.requires_grad_(False)
         min_qf_pi = torch.min(*self.critic(features, action))
         # scale-free SAC term (as TD3+BC does), so the BC weight means the same at every Q magnitude
         q_scale = min_qf_pi.abs().mean().detach().clamp(min=1e-3)
         sac_loss = ((alpha * log_pi - min_qf_pi) / q_scale).mean()
         bc_loss, bc_fraction = self._bc_loss(bc_batch)
-        actor_loss = sac_loss + cfg.bc_weight * bc_loss
+        actor_loss = sac_loss + cfg.bc_weight * bc_loss + cfg.mean_reg * pre_tanh_mean.pow(2).sum(-1).mean()
         self.critic.requires_grad_(True)
         self.actor_optimizer.zero_grad()
         actor_loss.backward()

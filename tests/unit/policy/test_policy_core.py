@@ -170,3 +170,27 @@ def test_the_temperature_moves_toward_the_configured_target_entropy(target: floa
     agent = SacAgent(obs_size, goal_size, SacConfig(target_entropy=target))
     agent.update(batch)
     assert np.sign(agent.log_alpha.item()) == direction
+
+
+def test_the_mean_penalty_keeps_cloned_finger_means_out_of_tanh_saturation() -> None:
+    """Cloning a finger label of exactly -1 pushes the pre-tanh mean without bound; the penalty holds it."""
+    import torch
+
+    from semgoal_policy.replay import Batch
+    from semgoal_policy.sac import SacAgent, SacConfig
+
+    rng = np.random.default_rng(0)
+    n, obs_size, goal_size = 64, 6, 4
+    closed = np.tile(np.array([0.0, 0.0, 0.0, -1.0], np.float32), (n, 1))
+    batch = Batch(*(rng.standard_normal((n, k)).astype(np.float32) for k in (obs_size, goal_size, 4)),
+                  np.zeros(n, np.float32), rng.standard_normal((n, obs_size)).astype(np.float32),
+                  closed, np.ones(n, np.float32))
+    finger_means = {}
+    for weight in (0.0, 1.0):
+        torch.manual_seed(0)
+        agent = SacAgent(obs_size, goal_size, SacConfig(mean_reg=weight, q_filter=False))
+        for _ in range(200):
+            agent.update(batch, batch)
+        with torch.no_grad():
+            finger_means[weight] = agent.actor(torch.as_tensor(batch.obs), torch.as_tensor(batch.goal))[0][:, 3].mean().item()
+    assert finger_means[0.0] < -0.8 < -0.6 < finger_means[1.0] < 0.0  # held back, still closing

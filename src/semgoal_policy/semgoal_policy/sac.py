@@ -45,10 +45,11 @@ class SacConfig:
     barely moves the samples, so the mean (the deterministic actor) learns little where a block is held:
     it freezes there while the sampled actor lets go by chance (session 24, ``docs/training-log.md``)."""
     mean_reg: float = 0.0
-    """Weight of an L2 penalty on the actor's pre-tanh mean (rlkit's ``policy_mean_reg_weight``). The finger
-    labels are exactly -1 or 1, so cloning them drives the mean towards infinity, where tanh's gradient
-    vanishes: with a block held, a third of the finger means sit beyond 2.5, and the critic's preference
-    for letting go no longer moves them (session 27)."""
+    """Weight of an L2 penalty on the actor's pre-tanh mean (rlkit's ``policy_mean_reg_weight``; 0: off). The
+    finger labels are exactly -1 or 1, so cloning them drives the mean towards infinity, where tanh's
+    gradient vanishes: a quarter to a third of the finger means sit beyond 2.5. The penalty removes that,
+    but it did not free three_blocks' put near (session 27: 56.5 and 50.5 % at 1e-3 and 1e-2, against 72
+    and 65.5 % without), so it stays off: the expert's closed-finger labels hold the hand shut there."""
 
 
 class TwinCritic(nn.Module):

@@ -34,9 +34,6 @@ AWAY_DISTANCE = 0.16
 """Minimum distance put_away keeps from its references (m)."""
 COMPACT_SLACK = 0.005
 """put_near picks among the spots whose summed distance to the references is within this of the least."""
-RELEASE_SLACK = 0.02
-"""A carried block already over a put_near spot this close to the most compact one is put down where it
-is, not carried on to the exact spot: a put that would already hold is finished, not started over."""
 MIN_CENTRE_DISTANCE = 0.058
 FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
 FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
@@ -113,14 +110,12 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
         spot = _nearest(slots, _free(slots, list(others.values())), here)
         return None if spot is None else np.array([*spot, floor])
     ok, spread = _table_spots(CANDIDATES, subgoal, world)
-    if subgoal.kind == "put_near":  # the most compact admissible spot: leaves room for a third block
+    if subgoal.kind == "put_near":
+        if _table_spots(here[None, :2], subgoal, world)[0][0]:  # letting go here already achieves it
+            return np.array([*here[:2], rest_z])
         if not ok.any():
             return None
-        best = spread[ok].min()
-        ok &= spread <= best + COMPACT_SLACK
-        here_ok, here_spread = _table_spots(here[None, :2], subgoal, world)
-        if here_ok[0] and here_spread[0] <= best + RELEASE_SLACK:
-            return np.array([*here[:2], rest_z])
+        ok &= spread <= spread[ok].min() + COMPACT_SLACK  # the most compact spot: room for a third block
     spot = _nearest(CANDIDATES, ok, here)
     return None if spot is None else np.array([*spot, rest_z])
 

@@ -26,6 +26,15 @@ def test_put_near_lets_go_where_the_block_already_is_near_enough() -> None:
     np.testing.assert_allclose(spot, [here[0], here[1], REST_Z])
 
 
+def test_put_near_lets_go_even_where_a_more_compact_spot_exists() -> None:
+    """Until session 28 the expert carried a block on to within 2 cm of the most compact spot, while the
+    sub-goal (and so the reward and the critic) was met by letting go: cloning held the fingers shut."""
+    green = np.array([1.30, 0.75, REST_Z])
+    here = green + np.array([0.09, 0.0, 0.03])  # near (<= 9.3 cm), 3.5 cm of spread beyond the best spot
+    spot = destination(SubGoal("put_near", ("red", "green")), carried(here, {"green": green}))
+    np.testing.assert_allclose(spot, [here[0], here[1], REST_Z])
+
+
 def test_put_near_carries_on_when_the_fingers_would_hit_the_reference() -> None:
     green = np.array([1.30, 0.75, REST_Z])
     here = green + np.array([0.0, 0.07, 0.03])  # 7 cm away along y: opening fingers would push green

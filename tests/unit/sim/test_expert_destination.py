@@ -1,10 +1,11 @@
-"""Where the scripted expert puts a carried block. A put_near that would hold where the block is now is
-finished there (the labels teach the actor to let go, not to carry on to the one exact spot); a put_in_bin
-always goes to a free slot (dropped anywhere over the floor, blocks crowd the bin for the next ones)."""
+"""Where the scripted expert puts a carried block. It lets go where it is when the put will hold once the
+block has fallen (the labels teach the actor to let go, as the reward does, not to carry on to one exact
+spot); otherwise a put_near heads for the most compact spot, a put_in_bin for a free slot (dropped
+anywhere over the floor, blocks crowd the bin for the next ones)."""
 
 import numpy as np
 
-from semgoal_sim.expert import WorldView, destination
+from semgoal_sim.expert import WorldView, destination, expert_action
 from semgoal_sim.tasks import TABLE_TOP
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
 
@@ -19,20 +20,29 @@ def carried(block: np.ndarray, others: dict[str, np.ndarray], with_bin: bool = F
                      bin=BIN if with_bin else None)
 
 
-def test_put_near_lets_go_where_the_block_already_is_near_enough() -> None:
+def test_put_near_lets_go_wherever_every_reference_is_within_reach() -> None:
+    """Beside green or over it, low or at carry height: the block falls close to green, so the label opens
+    the fingers where it is. Until session 28 the expert carried it on to its exact spot with the fingers
+    shut, while the reward (and so the critic) said let go: cloning froze the actor there."""
     green = np.array([1.30, 0.75, REST_Z])
-    here = green + np.array([0.065, 0.0, 0.03])  # 6.5 cm beside green in x, the fingers (along y) miss it
-    spot = destination(SubGoal("put_near", ("red", "green")), carried(here, {"green": green}))
-    np.testing.assert_allclose(spot, [here[0], here[1], REST_Z])
+    for offset in ([0.08, 0.0, 0.03], [0.0, 0.07, 0.10], [0.03, 0.0, 0.12], [0.06, 0.05, 0.06]):
+        action = expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green}))
+        np.testing.assert_allclose(action[:3], 0.0)
+        assert action[3] > 0, offset
 
 
-def test_put_near_lets_go_even_where_a_more_compact_spot_exists() -> None:
-    """Until session 28 the expert carried a block on to within 2 cm of the most compact spot, while the
-    sub-goal (and so the reward and the critic) was met by letting go: cloning held the fingers shut."""
-    green = np.array([1.30, 0.75, REST_Z])
-    here = green + np.array([0.09, 0.0, 0.03])  # near (<= 9.3 cm), 3.5 cm of spread beyond the best spot
-    spot = destination(SubGoal("put_near", ("red", "green")), carried(here, {"green": green}))
-    np.testing.assert_allclose(spot, [here[0], here[1], REST_Z])
+def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> None:
+    green, blue = np.array([1.30, 0.75, REST_Z]), np.array([1.45, 0.75, REST_Z])
+    subgoal = SubGoal("put_near", ("red", "green", "blue"))
+    action = expert_action(subgoal, carried(green + np.array([-0.06, 0.0, 0.10]), {"green": green, "blue": blue}))
+    assert action[3] < 0 and action[0] > 0  # shut, towards blue
+
+
+def test_put_in_bin_lets_go_over_the_bin_near_a_free_slot_only() -> None:
+    slot = BIN.slots()[2]
+    over = lambda dx, dz: carried(np.array([slot[0] + dx, slot[1], RIM_Z + dz]), {}, with_bin=True)  # noqa: E731
+    assert expert_action(SubGoal("put_in_bin", ("red",)), over(0.015, 0.0))[3] > 0
+    assert expert_action(SubGoal("put_in_bin", ("red",)), over(0.04, 0.03))[3] < 0  # would crowd the next slot
 
 
 def test_put_near_carries_on_when_the_fingers_would_hit_the_reference() -> None:

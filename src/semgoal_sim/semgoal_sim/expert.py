@@ -182,22 +182,17 @@ def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
     return move_to(grip, release, _open(world))
 
 
-def _drop_achieves(subgoal: SubGoal, world: WorldView) -> bool:
-    """Letting go now achieves the put once the block has fallen and come to rest.
+def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
+    """put_near: every reference is within :data:`DROP_REACH`, so letting go here achieves it."""
+    x, others = world.positions[subgoal.block], world.others(subgoal.block)
+    return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
 
-    Then the label is to open, as the sparse reward (and so the critic) has it, not to carry on to the
-    expert's exact spot: until session 28 the labels held the fingers shut there, and cloning froze the
-    actor holding a block beside its reference, or just inside the bin, while the critic rated letting go
-    higher (three_blocks put near, desk put in bin; ``docs/training-log.md``)."""
-    x = world.positions[subgoal.block]
-    if subgoal.kind == "put_near":
-        others = world.others(subgoal.block)
-        return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
-    if subgoal.kind == "put_in_bin":
-        spot = destination(subgoal, world)
-        inside = np.abs(x[:2] - np.asarray(world.bin.center)) <= np.asarray(world.bin.inner_half_size) - BLOCK_HALF_SIZE
-        return spot is not None and bool(np.linalg.norm(spot[:2] - x[:2]) <= SLOT_TOLERANCE and inside.all())
-    return False
+
+def _over_slot(block: np.ndarray, slot: np.ndarray, bin_geometry: BinGeometry) -> bool:
+    """put_in_bin: the block is inside the walls and within :data:`SLOT_TOLERANCE` of its free ``slot``."""
+    inner = np.asarray(bin_geometry.inner_half_size) - BLOCK_HALF_SIZE
+    inside = np.all(np.abs(block[:2] - np.asarray(bin_geometry.center)) <= inner)
+    return bool(inside and np.linalg.norm(slot[:2] - block[:2]) <= SLOT_TOLERANCE)
 
 
 def _back_off(block: str, world: WorldView) -> np.ndarray:
@@ -220,9 +215,16 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
         return _back_off(x, world)
     if not world.holds(x):
         return _pick(x, world)
-    if _drop_achieves(subgoal, world):
-        return move_to(world.grip, world.grip, _open(world))
+    # Let go as soon as the put will hold once the block has fallen, as the sparse reward (and so the
+    # critic) has it, not after carrying it on to the exact spot: until session 28 the labels held the
+    # fingers shut there, and cloning froze the actor holding a block beside its reference or just inside
+    # the bin while the critic rated letting go higher (``docs/training-log.md``).
+    let_go = move_to(world.grip, world.grip, _open(world))
+    if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
+        return let_go
     spot = destination(subgoal, world)
     if spot is None:  # nowhere to put it: hold still and wait for the world to change
         return np.array([0.0, 0.0, 0.0, CLOSE])
+    if subgoal.kind == "put_in_bin" and _over_slot(world.positions[x], spot, world.bin):
+        return let_go
     return _place(subgoal, spot, world)

@@ -19,7 +19,7 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_sim import layout, tasks
-from semgoal_sim.expert import expert_action, move_to
+from semgoal_sim.expert import clear_of, expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
 from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.world import FetchWorld
@@ -42,6 +42,16 @@ knocked the top block off the table (most Swap-2 failures, session 11; the share
 BIN_SLOT_JITTER = np.array([0.012, 0.008])
 """Largest offset (m, x and y) of a block started in the bin from its slot: slots are 8 cm apart, so binned
 blocks stay at least 5.6 cm apart, and a block in an end slot keeps 3 mm from the end wall."""
+BINNED_START_SHARE = 0.5
+"""With a bin: the share of starts with some blocks already in it (0.3 until session 29)."""
+FULL_BIN_SHARE = 0.5
+"""Share of binned starts with every block but one in the bin, the rest drawing 1 to count-1 binned blocks
+alike. Session 29: with three blocks binned (DC-4's last put) the shipped desk actor put the fourth in 31
+of 96 times, hovering over the middle instead of heading for the free end (one-off ``lastput.py``)."""
+UNTIDY_BIN_SHARE = 0.5
+"""Share of binned starts whose blocks lie anywhere on the bin floor, not in slots. Session 28 traced DC-4's
+failures to the last put: actors let go wherever in_bin holds, three blocks 5 to 6 cm apart around the
+middle left only a narrow gap, and training had only ever started from tidy slots."""
 BINNED_TARGET_SHARE = 0.1
 """With a bin: the share of sub-goals whose block is drawn from every block, a binned one included; the
 others take a block outside the bin, as desk plans do (they never take a block out again). Until session
@@ -126,22 +136,36 @@ class SubgoalEnv(gym.Env):
         if kind > 1.0 - STACKED_START_SHARE.get(self.scene.name, 0.0):
             return tasks.stack_among(rng, count)
         positions = tasks.scatter(rng, count)
-        if self.scene.bin is not None and kind > 0.7:
+        if self.scene.bin is not None and kind > 1.0 - BINNED_START_SHARE:
             self._bin_some(positions)
         return positions
 
     def _bin_some(self, positions: np.ndarray) -> None:
-        """Move 1 to count-1 random blocks (as many of each) into random bin slots, a little off-centre, as a
-        plan's earlier puts leave them. Until session 18 block i < count-1 sat exactly in slot i with probability
-        1/2, so a put_in_bin into a bin three other blocks fill (DC-4's last put) began 0.3 % of the
-        put_in_bin episodes (now 0.8 %: a third of the 4-block worlds' binned starts, one block in four left out)."""
+        """Move 1 to count-1 random blocks (see :data:`FULL_BIN_SHARE`) into the bin as a plan's earlier puts leave them:
+        in random slots, a little off-centre, as the expert puts them, or (:data:`UNTIDY_BIN_SHARE`) each on
+        a random free spot of the floor, as an actor lets go anywhere in_bin holds."""
         rng, count, bin_ = self.np_random, len(positions), self.scene.bin
-        binned = rng.choice(count, size=int(rng.integers(1, count)), replace=False)
-        slots = bin_.slots()
-        slots = slots[rng.choice(len(slots), size=len(binned), replace=False)]
-        jitter = rng.uniform(-1, 1, size=(len(binned), 2)) * BIN_SLOT_JITTER
+        size = count - 1 if rng.uniform() < FULL_BIN_SHARE else int(rng.integers(1, count))
+        binned = rng.choice(count, size=size, replace=False)
+        if rng.uniform() < UNTIDY_BIN_SHARE:
+            spots = self._untidy_spots(len(binned))
+            binned = binned[:len(spots)]
+        else:
+            spots = bin_.slots()[rng.choice(len(bin_.slots()), size=len(binned), replace=False)]
+            spots = spots + rng.uniform(-1, 1, size=(len(binned), 2)) * BIN_SLOT_JITTER
         resting = tasks.TABLE_TOP + bin_.floor_thickness + 0.0251
-        positions[binned] = np.column_stack([slots + jitter, np.full(len(binned), resting)])
+        positions[binned] = np.column_stack([spots, np.full(len(binned), resting)])
+
+    def _untidy_spots(self, count: int) -> np.ndarray:
+        """Up to ``count`` (M, 2) floor spots in the bin, each drawn among those still free, stopping early
+        when none is."""
+        floor, spots = self.scene.bin.interior(), []
+        for _ in range(count):
+            free = floor[clear_of(floor, spots)]
+            if not len(free):
+                break
+            spots.append(free[self.np_random.integers(len(free))])
+        return np.array(spots).reshape(-1, 2)
 
     def _start_for(self, subgoal: SubGoal) -> bool:
         """Bring the arm to where a plan would hand ``subgoal`` over; False when that failed (resample)."""

@@ -40,6 +40,8 @@ wherever it falls, beside a reference or onto it, the centres end up close (<= 0
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
+DROP_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
+"""put_in_bin lets go only where every other block's centre is this far (xy): the block falls clear of it."""
 MIN_CENTRE_DISTANCE = 0.058
 FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
 FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
@@ -84,7 +86,7 @@ def _placement_candidates(step: float = 0.005) -> np.ndarray:
 CANDIDATES = _placement_candidates()
 
 
-def _free(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
+def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
     """Spots where a block fits and the fingers, opening there, touch no obstacle."""
     if not obstacles:
         return np.ones(len(candidates), dtype=bool)
@@ -112,8 +114,7 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
     if subgoal.kind == "put_in_bin":
         assert world.bin is not None, "put_in_bin needs a bin"
         floor = TABLE_TOP + world.bin.floor_thickness + BLOCK_HALF_SIZE
-        slots = world.bin.slots()
-        spot = _nearest(slots, _free(slots, list(others.values())), here)
+        spot = bin_spot(world.bin, list(others.values()), here)
         return None if spot is None else np.array([*spot, floor])
     ok, spread = _table_spots(CANDIDATES, subgoal, world)
     if subgoal.kind == "put_near":
@@ -124,11 +125,21 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
     return None if spot is None else np.array([*spot, rest_z])
 
 
+def bin_spot(bin_geometry: BinGeometry, obstacles: list[np.ndarray], near: np.ndarray) -> np.ndarray | None:
+    """Where a block goes in the bin: the free slot nearest ``near``; when untidy puts left no slot free,
+    the free floor spot nearest it (a gap may still be wide enough). None when the bin is full."""
+    for candidates in (bin_geometry.slots(), bin_geometry.interior()):
+        spot = _nearest(candidates, clear_of(candidates, obstacles), near)
+        if spot is not None:
+            return spot
+    return None
+
+
 def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tuple[np.ndarray, np.ndarray]:
     """Which table ``points`` (M, 2) fit ``subgoal`` (put_near, put_away, put_on_table) and, for put_near,
     their summed distance to the references (how compact the group they make is)."""
     others = world.others(subgoal.block)
-    ok = _free(points, list(others.values()))
+    ok = clear_of(points, list(others.values()))
     if world.bin is not None:  # never on or in the bin when a table spot is asked for
         ok &= np.any(np.abs(points - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + 0.06, axis=1)
     spread = np.zeros(len(points))
@@ -141,7 +152,7 @@ def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tupl
         for ref in subgoal.references:
             ok &= np.linalg.norm(points - others[ref][:2], axis=1) >= AWAY_DISTANCE
         # far from every other block too, so moving x makes nothing else close by accident
-        ok &= _free(points, list(others.values()), THRESHOLDS.close_distance + 0.03)
+        ok &= clear_of(points, list(others.values()), THRESHOLDS.close_distance + 0.03)
     return ok, spread
 
 
@@ -188,11 +199,14 @@ def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
     return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
 
 
-def _over_slot(block: np.ndarray, slot: np.ndarray, bin_geometry: BinGeometry) -> bool:
-    """put_in_bin: the block is inside the walls and within :data:`SLOT_TOLERANCE` of its free ``slot``."""
+def _over_slot(subgoal: SubGoal, slot: np.ndarray, world: WorldView) -> bool:
+    """put_in_bin: the block is inside the walls, within :data:`SLOT_TOLERANCE` of its free ``slot`` and
+    :data:`DROP_CLEARANCE` from every other block, so it falls onto the floor, not onto a neighbour."""
+    block, bin_geometry = world.positions[subgoal.block], world.bin
     inner = np.asarray(bin_geometry.inner_half_size) - BLOCK_HALF_SIZE
     inside = np.all(np.abs(block[:2] - np.asarray(bin_geometry.center)) <= inner)
-    return bool(inside and np.linalg.norm(slot[:2] - block[:2]) <= SLOT_TOLERANCE)
+    clear = all(np.linalg.norm(block[:2] - other[:2]) >= DROP_CLEARANCE for other in world.others(subgoal.block).values())
+    return bool(inside and clear and np.linalg.norm(slot[:2] - block[:2]) <= SLOT_TOLERANCE)
 
 
 def _back_off(block: str, world: WorldView) -> np.ndarray:
@@ -225,6 +239,6 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     spot = destination(subgoal, world)
     if spot is None:  # nowhere to put it: hold still and wait for the world to change
         return np.array([0.0, 0.0, 0.0, CLOSE])
-    if subgoal.kind == "put_in_bin" and _over_slot(world.positions[x], spot, world.bin):
+    if subgoal.kind == "put_in_bin" and _over_slot(subgoal, spot, world):
         return let_go
     return _place(subgoal, spot, world)

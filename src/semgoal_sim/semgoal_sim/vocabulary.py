@@ -94,6 +94,12 @@ class BinGeometry:
         xs = self.center[0] - self.inner_half_size[0] + spacing * (np.arange(count) + 0.5)
         return np.column_stack([xs, np.full(count, self.center[1])])
 
+    def interior(self, step: float = 0.005, margin: float = 0.003) -> np.ndarray:
+        """(M, 2) grid of block centres at which a block lies on the floor, ``margin`` clear of the walls."""
+        reach = np.asarray(self.inner_half_size) - BLOCK_HALF_SIZE - margin
+        xs, ys = (np.arange(-r, r + 1e-9, step) + c for r, c in zip(reach, self.center, strict=True))
+        return np.array(np.meshgrid(xs, ys, indexing="ij")).reshape(2, -1).T
+
     def contains(self, positions: np.ndarray, table_height: float) -> np.ndarray:
         """in_bin for block centres ``positions`` (N, 3): inside the walls and below the rim."""
         offset = np.abs(positions[:, :2] - np.asarray(self.center))

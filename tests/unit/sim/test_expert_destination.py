@@ -64,3 +64,24 @@ def test_put_in_bin_does_not_let_go_onto_a_binned_block() -> None:
     here = binned + np.array([0.0, 0.0, 0.06])
     spot = destination(SubGoal("put_in_bin", ("red",)), carried(here, {"blue": binned}, with_bin=True))
     assert np.linalg.norm(spot[:2] - binned[:2]) >= 0.058
+
+
+def test_put_in_bin_finds_the_gap_an_untidy_bin_leaves() -> None:
+    """Three blocks let go around the middle leave no slot free, but a gap at the end still fits one."""
+    floor_z = TABLE_TOP + BIN.floor_thickness + BLOCK_HALF_SIZE
+    binned = {name: np.array([BIN.center[0] + dx, BIN.center[1], floor_z])
+              for name, dx in (("green", -0.075), ("blue", -0.01), ("yellow", 0.055))}
+    here = np.array([BIN.center[0], BIN.center[1] - 0.15, RIM_Z + 0.05])
+    spot = destination(SubGoal("put_in_bin", ("red",)), carried(here, binned, with_bin=True))
+    assert spot is not None
+    assert spot[0] - BIN.center[0] > 0.055 + 0.058
+    assert BIN.contains(spot[None], TABLE_TOP)[0]
+
+
+def test_put_in_bin_keeps_hold_over_a_neighbour_even_near_its_slot() -> None:
+    """Within the slot tolerance but too near a binned block to fall clear of it: carry on, fingers shut."""
+    slot = BIN.slots()[2]
+    floor_z = TABLE_TOP + BIN.floor_thickness + BLOCK_HALF_SIZE
+    neighbour = {"blue": np.array([slot[0] - 0.065, slot[1], floor_z])}
+    over = carried(np.array([slot[0] - 0.015, slot[1], RIM_Z]), neighbour, with_bin=True)
+    assert expert_action(SubGoal("put_in_bin", ("red",)), over)[3] < 0

@@ -85,6 +85,11 @@ class BinGeometry:
     bin missed); in y the open fingers (outer faces 5.5 cm from the block's centre) clear the walls."""
     wall_height: float = 0.04
     """Height of the walls above the floor's top (m): low, so blocks are dropped in from above."""
+    back_wall_height: float = 0.10
+    """Height of the far wall (+y, away from the robot) above the floor's top (m): a backboard. The bin
+    stands 3.5 cm from the desk's far edge, and a block let go moving, or pushed, over a low far wall fell
+    off the desk, out of reach: most DC-4 failures until session 29. The rim (``contains``) stays at
+    :attr:`wall_height`."""
     wall_thickness: float = 0.01
     floor_thickness: float = 0.01
 

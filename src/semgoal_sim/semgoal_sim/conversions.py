@@ -100,15 +100,18 @@ def _cube(marker_id: int, ns: str, position, size, rgba) -> Marker:
 
 
 def markers(msg: WorldState) -> MarkerArray:
-    """Table, bin and blocks as RViz cubes."""
+    """Table, bin (with its backboard) and blocks as RViz cubes."""
     table = _cube(0, "table", (*TABLE_CENTER, TABLE_HEIGHT / 2), (2 * TABLE_HALF_SIZE[0], 2 * TABLE_HALF_SIZE[1],
                                                                   TABLE_HEIGHT), (0.9, 0.9, 0.9, 1.0))
     items = [table]
     scene = SCENES[msg.scene]
     if scene.bin is not None:
-        b = scene.bin
+        b, colour = scene.bin, (0.45, 0.33, 0.22, 0.6)
         items.append(_cube(0, "bin", (*b.center, TABLE_HEIGHT + b.wall_height / 2),
-                           (2 * b.inner_half_size[0], 2 * b.inner_half_size[1], b.wall_height), (0.45, 0.33, 0.22, 0.6)))
+                           (2 * b.inner_half_size[0], 2 * b.inner_half_size[1], b.wall_height), colour))
+        back_y = b.center[1] + b.inner_half_size[1] + b.wall_thickness / 2
+        items.append(_cube(1, "bin", (b.center[0], back_y, TABLE_HEIGHT + b.back_wall_height / 2),
+                           (2 * b.inner_half_size[0], b.wall_thickness, b.back_wall_height), colour))
     for i, block in enumerate(msg.blocks):
         p = block.pose.position
         items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))

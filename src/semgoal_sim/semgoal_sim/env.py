@@ -151,7 +151,8 @@ class SubgoalEnv(gym.Env):
             spots = self._untidy_spots(len(binned))
             binned = binned[:len(spots)]
         else:
-            spots = bin_.slots()[rng.choice(len(bin_.slots()), size=len(binned), replace=False)]
+            slots = bin_.slots()
+            spots = slots[rng.choice(len(slots), size=len(binned), replace=False)]
             spots = spots + rng.uniform(-1, 1, size=(len(binned), 2)) * BIN_SLOT_JITTER
         resting = tasks.TABLE_TOP + bin_.floor_thickness + 0.0251
         positions[binned] = np.column_stack([spots, np.full(len(binned), resting)])

@@ -64,17 +64,17 @@ def _add_block(spec: mujoco.MjSpec, name: str) -> None:
 def _add_bin(spec: mujoco.MjSpec, geometry: BinGeometry) -> None:
     cx, cy = geometry.center
     hx, hy = geometry.inner_half_size
-    t, h = geometry.wall_thickness, geometry.wall_height
+    t, h, back = geometry.wall_thickness, geometry.wall_height, geometry.back_wall_height
     body = spec.worldbody.add_body(name="bin", pos=[cx, cy, TABLE_HEIGHT])
     colour = [0.45, 0.33, 0.22, 1.0]
     body.add_geom(name="bin_floor", type=mujoco.mjtGeom.mjGEOM_BOX, rgba=colour,
                   size=[hx + t, hy + t, geometry.floor_thickness / 2], pos=[0, 0, geometry.floor_thickness / 2])
-    z, back = geometry.floor_thickness + h / 2, geometry.back_wall_height
+    z, back_z = geometry.floor_thickness + h / 2, geometry.floor_thickness + back / 2
     for name, pos, size in (
         ("bin_wall_x_neg", [-(hx + t / 2), 0, z], [t / 2, hy + t, h / 2]),
         ("bin_wall_x_pos", [hx + t / 2, 0, z], [t / 2, hy + t, h / 2]),
         ("bin_wall_y_neg", [0, -(hy + t / 2), z], [hx + t, t / 2, h / 2]),
-        ("bin_wall_y_pos", [0, hy + t / 2, geometry.floor_thickness + back / 2], [hx + t, t / 2, back / 2]),
+        ("bin_wall_y_pos", [0, hy + t / 2, back_z], [hx + t, t / 2, back / 2]),
     ):
         body.add_geom(name=name, type=mujoco.mjtGeom.mjGEOM_BOX, pos=pos, size=size, rgba=colour)
 

@@ -2,8 +2,9 @@
 
 An exported actor is a directory with ``actor.pt`` (a plain ``state_dict`` plus the observation
 normaliser; no SB3, no pickled classes) and ``actor.json`` (the observation/goal layout it was trained
-on, training steps, wall time, command, evaluation). Loading compares the stored layout with
-:func:`semgoal_sim.layout.describe` for the current code and refuses a mismatch.
+on, with any derived features appended to the observation, training steps, wall time, command,
+evaluation). Loading compares the stored layout with :func:`semgoal_sim.layout.describe` for the current
+code and refuses a mismatch.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 import torch
 from torch import nn
 
-from semgoal_sim import layout
+from semgoal_sim import features, layout
 
 HIDDEN = (256, 256)
 LOG_STD_MIN, LOG_STD_MAX = -5.0, 2.0
@@ -98,11 +99,14 @@ class Actor(nn.Module):
         return torch.tanh(mean).numpy()
 
 
-def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "semantic") -> None:
-    """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``."""
+def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "semantic",
+           derived: tuple[str, ...] = ()) -> None:
+    """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``; ``derived``: the
+    features (``semgoal_sim.features``) appended to the observation it was trained on."""
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
-    meta = {"layout": layout.describe(scene, goal), "hidden": list(HIDDEN), "log_std_max": actor.log_std_max, **info}
+    meta = {"layout": layout.describe(scene, goal, features.widths(derived)), "hidden": list(HIDDEN),
+            "log_std_max": actor.log_std_max, **info}
     (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
@@ -116,13 +120,23 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
     meta = json.loads(meta_path.read_text())
     stored = meta["layout"]
     scene = scene or stored["scene"]
-    current = layout.describe(scene, stored.get("goal", "semantic"))
+    names = derived_features(meta)
+    try:
+        current = layout.describe(scene, stored.get("goal", "semantic"), features.widths(features.check(scene, names)))
+    except ValueError as error:
+        raise LayoutMismatchError(f"actor in {directory}: {error}") from error
     if stored != current:
         diff = sorted(k for k in current if stored.get(k) != current[k])
         raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "
                                   f"scene {scene!r} (differs in: {', '.join(diff)}); retrain or use a matching actor")
-    actor = Actor(current["observation_size"], current["goal_size"], tuple(meta["hidden"]),
+    actor = Actor(current["observation_size"] + features.width(names), current["goal_size"],
+                  tuple(meta["hidden"]),
                   meta.get("log_std_max", LOG_STD_MAX))  # actors exported before session 24 used the default
     actor.load_state_dict(torch.load(weights_path, weights_only=True))
     actor.eval()
     return actor, meta
+
+
+def derived_features(meta: dict) -> tuple[str, ...]:
+    """The derived features an exported actor (its ``actor.json``) expects appended to the observation."""
+    return tuple(name for name, _ in meta["layout"].get("derived_features", []))

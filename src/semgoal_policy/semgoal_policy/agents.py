@@ -21,8 +21,8 @@ from semgoal_sim.vocabulary import SCENES
 
 @dataclass(frozen=True)
 class AgentSpec:
-    make_env: Callable[[str], object]
-    """scene -> a goal-conditioned env with ``max_steps``, ``kind``, ``expert_action()`` and an
+    make_env: Callable[..., object]
+    """(scene, derived=()) -> a goal-conditioned env with ``max_steps``, ``kind``, ``expert_action()`` and an
     ``is_success`` info entry; ``reset(options={"kind": k})`` fixes the kind."""
     kinds: Callable[[str], tuple[str, ...]]
     """scene -> the goal kinds the curriculum draws and evaluation reports (sub-goal types or tasks)."""
@@ -37,20 +37,28 @@ class AgentSpec:
         return scene + self.suffix
 
 
+def _task_env(goal: str) -> Callable[..., TaskEnv]:
+    def make(scene: str, derived: tuple[str, ...] = ()) -> TaskEnv:
+        if derived:
+            raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
+        return TaskEnv(scene, goal)
+    return make
+
+
 AGENTS: dict[str, AgentSpec] = {
     "hierarchical": AgentSpec(
-        make_env=SubgoalEnv,
+        make_env=lambda scene, derived=(): SubgoalEnv(scene, derived=derived),
         kinds=lambda scene: SCENES[scene].subgoal_types,
         reward_fn=layout.goal_reward,
     ),
     "flat-semantic": AgentSpec(
-        make_env=lambda scene: TaskEnv(scene, "semantic"),
+        make_env=_task_env("semantic"),
         kinds=scene_tasks,
         reward_fn=layout.goal_reward,
         suffix="-flat-semantic",
     ),
     "flat-continuous": AgentSpec(
-        make_env=lambda scene: TaskEnv(scene, "positions"),
+        make_env=_task_env("positions"),
         kinds=scene_tasks,
         reward_fn=layout.position_reward,
         goal="positions",

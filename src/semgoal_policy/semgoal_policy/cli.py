@@ -16,6 +16,7 @@ def train_main(argv: list[str]) -> int:
     from semgoal_policy.agents import AGENTS
     from semgoal_policy.sac import SacConfig
     from semgoal_policy.trainer import TrainConfig, Trainer
+    from semgoal_sim.features import DERIVED_FEATURES
 
     defaults = TrainConfig(scene="two_blocks")
     parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)
@@ -42,6 +43,8 @@ def train_main(argv: list[str]) -> int:
                         help="weight of an L2 penalty on the actor's pre-tanh mean (0: off)")
     parser.add_argument("--actor-average-rate", type=float, default=SacConfig.actor_average_rate,
                         help="Polyak rate of the averaged actor that is evaluated and exported (0: the live actor)")
+    parser.add_argument("--derive", action="append", default=[], choices=list(DERIVED_FEATURES),
+                        help="append this derived feature to the observation (repeatable; hierarchical only)")
     parser.add_argument("--no-curriculum", action="store_true")
     parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
     parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
@@ -54,6 +57,7 @@ def train_main(argv: list[str]) -> int:
     config = TrainConfig(
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs, refill_steps=args.refill_steps,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
+        derived_features=tuple(args.derive),
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
         snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
         sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy,
@@ -61,10 +65,10 @@ def train_main(argv: list[str]) -> int:
                       mean_reg=args.mean_reg),
         run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
     )
-    trainer = Trainer(config)
     try:
+        trainer = Trainer(config)
         final = trainer.run(resume=args.resume)
-    except FileExistsError as error:
+    except (FileExistsError, ValueError) as error:
         print(f"semgoal train: {error}", file=sys.stderr)
         return 2
     print(json.dumps({"scene": args.scene, "agent": args.agent, "env_steps": trainer.env_steps,
@@ -74,7 +78,7 @@ def train_main(argv: list[str]) -> int:
 
 def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
-    from semgoal_policy.actor import MODELS_DIR, load
+    from semgoal_policy.actor import MODELS_DIR, derived_features, load
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES
     from semgoal_policy.evaluate import success_by_kind
@@ -101,9 +105,9 @@ def eval_subgoals_main(argv: list[str]) -> int:
     import torch
 
     torch.set_num_threads(1)
-    actor, _ = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
+    actor, meta = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
     spec = get_agent("hierarchical")
-    envs = [spec.make_env(args.scene) for _ in range(args.envs)]
+    envs = [spec.make_env(args.scene, derived_features(meta)) for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
     noise = np.random.default_rng(args.seed)

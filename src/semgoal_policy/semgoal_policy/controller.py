@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_policy import actor as actor_io
-from semgoal_sim import layout
+from semgoal_sim import features, layout
 from semgoal_sim.vocabulary import LAYOUTS, Confirmation, Literal, VocabularyError
 
 HOLD = np.zeros(4, dtype=np.float32)
@@ -30,6 +30,7 @@ class SubgoalController:
         self.scene, self.mode = scene, mode
         self.layout = LAYOUTS[scene]
         self.actor, self.meta = actor_io.load(model_dir or actor_io.MODELS_DIR / scene, scene)
+        self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None
         self.confirmation = Confirmation()
         self.obs_size = layout.observation_size(scene)
@@ -62,7 +63,7 @@ class SubgoalController:
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
         noise = np.random.default_rng(noise_key).standard_normal(4) if self.mode == "sample" else None
-        action = self.actor.act(observation, self.goal, noise)
+        action = self.actor.act(features.augment(self.scene, observation, self.derived), self.goal, noise)
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 

@@ -54,6 +54,8 @@ class TrainConfig:
     demo_fraction: float = 0.25
     """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
     demo_noise: float = 0.2
+    derived_features: tuple[str, ...] = ()
+    """Features appended to the observation (``semgoal_sim.features``; hierarchical agent only)."""
     curriculum: bool = True
     """Sample sub-goal types more often the lower their recent success (else uniformly)."""
     eval_every: int = 10_000
@@ -101,7 +103,7 @@ class Trainer:
         self.spec: AgentSpec = AGENTS[cfg.agent]
         self.rng = np.random.default_rng(cfg.seed)
         # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
-        self.envs = [self.spec.make_env(cfg.scene) for _ in range(cfg.n_envs)]
+        self.envs = [self.spec.make_env(cfg.scene, tuple(cfg.derived_features)) for _ in range(cfg.n_envs)]
         for i, env in enumerate(self.envs):
             env.reset(seed=cfg.seed * 1000 + i)
             env.action_space.seed(cfg.seed * 1000 + i)
@@ -241,10 +243,12 @@ class Trainer:
         """Export the evaluated actor to ``snapshots/<env steps>``; with averaging on, the live actor also goes
         to ``snapshots/<env steps>-live``, so one run compares the two on the same training."""
         snapshots, info = self.run_dir / "snapshots", {"env_steps": self.env_steps, "eval": rates}
-        actor_io.export(self.agent.policy, snapshots / str(self.env_steps), self.config.scene, info, self.spec.goal)
+        self._export_actor(self.agent.policy, snapshots / str(self.env_steps), info)
         if self.agent.policy is not self.agent.actor:
-            actor_io.export(self.agent.actor, snapshots / f"{self.env_steps}-live", self.config.scene,
-                            {"env_steps": self.env_steps}, self.spec.goal)
+            self._export_actor(self.agent.actor, snapshots / f"{self.env_steps}-live", {"env_steps": self.env_steps})
+
+    def _export_actor(self, actor: actor_io.Actor, directory: Path, info: dict) -> None:
+        actor_io.export(actor, directory, self.config.scene, info, self.spec.goal, tuple(self.config.derived_features))
 
     def _log(self, csv_path: Path, rates: dict[str, float]) -> None:
         row = {"env_steps": self.env_steps, "wall_s": round(self.wall_s, 1),
@@ -271,5 +275,5 @@ class Trainer:
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
                 "first_reached_95": curve, "config": json.loads(json.dumps(asdict(cfg), default=str))}
-        actor_io.export(self.agent.policy, self.export_dir, cfg.scene, info, self.spec.goal)
+        self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())

@@ -18,7 +18,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from semgoal_sim import layout, tasks
+from semgoal_sim import features, layout, tasks
 from semgoal_sim.expert import clear_of, expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
 from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
@@ -68,8 +68,10 @@ class SubgoalEnv(gym.Env):
     """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
-                 max_steps: int = EPISODE_STEPS) -> None:
+                 max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = ()) -> None:
+        """:param derived: features (``semgoal_sim.features``) appended to the observation."""
         self.scene = SCENES[scene]
+        self.derived = features.check(scene, derived)
         counts = self.scene.block_counts or (self.scene.max_blocks,)
         self.block_counts = (n_blocks,) if n_blocks else counts
         self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}
@@ -77,7 +79,8 @@ class SubgoalEnv(gym.Env):
         self.layout = self.world.layout
         self.subgoal_types = subgoal_types or self.scene.subgoal_types
         self.max_steps = max_steps
-        obs_size, goal_size = layout.observation_size(scene), layout.goal_size(scene)
+        obs_size = layout.observation_size(scene) + features.width(self.derived)
+        goal_size = layout.goal_size(scene)
         self.observation_space = gym.spaces.Dict({
             "observation": gym.spaces.Box(-np.inf, np.inf, (obs_size,), np.float32),
             "achieved_goal": gym.spaces.Box(0.0, 1.0, (goal_size,), np.float32),
@@ -265,7 +268,7 @@ class SubgoalEnv(gym.Env):
     def _obs(self) -> dict[str, np.ndarray]:
         snapshot = self.world.snapshot()
         return {
-            "observation": self.world.observation(snapshot),
+            "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived),
             "achieved_goal": layout.achieved_goal(self.world.semantic_vector(snapshot), self._mask),
             "desired_goal": np.concatenate([self._target, self._mask]),
         }

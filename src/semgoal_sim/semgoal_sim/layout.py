@@ -41,9 +41,11 @@ def goal_size(scene: str, goal: str = "semantic") -> int:
     return 2 * LAYOUTS[scene].size if goal == "semantic" else 3 * SCENES[scene].max_blocks
 
 
-def describe(scene: str, goal: str = "semantic") -> dict:
-    """The layout as data: stored next to exported actors and checked when they are loaded."""
-    return {
+def describe(scene: str, goal: str = "semantic", derived: dict[str, int] | None = None) -> dict:
+    """The layout as data: stored next to exported actors and checked when they are loaded. ``derived``:
+    name -> width of the features an actor gets appended to the observation (``semgoal_sim.features``);
+    recorded only when there are some, as actors from before session 30 have none."""
+    described = {
         "scene": scene,
         "observation_size": observation_size(scene),
         "arm_features": [list(f) for f in ARM_FEATURES],
@@ -53,6 +55,9 @@ def describe(scene: str, goal: str = "semantic") -> dict:
         "goal": goal,
         "goal_size": goal_size(scene, goal),
     }
+    if derived:
+        described["derived_features"] = [[name, width] for name, width in derived.items()]
+    return described
 
 
 def observation(

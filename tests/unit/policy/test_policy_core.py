@@ -6,10 +6,11 @@ import numpy as np
 import pytest
 import torch
 
-from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, export, load
+from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
+from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import HOLD, SubgoalController
 from semgoal_policy.replay import EpisodeReplay
-from semgoal_sim import layout
+from semgoal_sim import features, layout
 from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
 
 SCENE = "two_blocks"
@@ -194,3 +195,26 @@ def test_the_mean_penalty_keeps_cloned_finger_means_out_of_tanh_saturation() -> 
         with torch.no_grad():
             finger_means[weight] = agent.actor(torch.as_tensor(batch.obs), torch.as_tensor(batch.goal))[0][:, 3].mean().item()
     assert finger_means[0.0] < -0.8 < -0.6 < finger_means[1.0] < 0.0  # held back, still closing
+
+
+def test_derived_features_travel_with_the_export_and_the_controller_appends_them(tmp_path) -> None:
+    scene, derived = "desk_cleanup", ("bin_target",)
+    size = layout.observation_size(scene)
+    actor = Actor(size + features.width(derived), layout.goal_size(scene))
+    export(actor, tmp_path, scene, {}, derived=derived)
+    loaded, meta = load(tmp_path, scene)
+    assert derived_features(meta) == derived and loaded.obs_size == size + 2
+    controller = SubgoalController(scene, tmp_path, mode="mean")
+    controller.set_subgoal([Literal("in_bin", ("red",))])
+    obs = np.random.default_rng(1).uniform(0.3, 1.2, size).astype(np.float32)
+    goal = controller.goal
+    assert np.allclose(controller.act(obs), loaded.act(features.augment(scene, obs, derived), goal))
+    meta["layout"]["derived_features"] = [["colour", 3]]
+    (tmp_path / "actor.json").write_text(json.dumps(meta))
+    with pytest.raises(LayoutMismatchError, match="unknown derived feature 'colour'"):
+        load(tmp_path, scene)
+
+
+def test_flat_agents_refuse_derived_features() -> None:
+    with pytest.raises(ValueError, match="hierarchical agent only"):
+        get_agent("flat-semantic").make_env("desk_cleanup", ("bin_target",))

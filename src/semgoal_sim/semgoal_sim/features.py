@@ -1,0 +1,66 @@
+"""Actor inputs derived from the observation alone, appended to it for actors trained on them. No MuJoCo.
+
+An exported actor names the derived features it was trained on (``layout.describe``); the training env
+and the policy's controller compute them with :func:`augment` from the same observation vector, so the
+sim's observation, the flat baselines and older actors stay as they are.
+
+``bin_target`` (desk cleanup): where the block between the fingers goes in the bin, relative to the grip
+(x, y; zeros when no spot is free): the free slot nearest the grip, else the nearest free floor spot, as
+the scripted expert chooses it (:func:`semgoal_sim.expert.bin_spot`). Session 29 found every desk actor
+weak at DC-4's last put, three blocks binned: it hovered over the middle of the bin instead of the free
+end, though the free spot is a function of the block positions it sees.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from semgoal_sim.expert import bin_spot
+from semgoal_sim.layout import ARM_SIZE, BLOCK_SIZE, observation_size
+from semgoal_sim.vocabulary import SCENES, THRESHOLDS
+
+
+def bin_target(scene: str, observation: np.ndarray) -> np.ndarray:
+    """(2,) float32: the bin spot for the block between the fingers minus the grip position (x, y)."""
+    grip = observation[0:3]
+    blocks = observation[ARM_SIZE:observation_size(scene)].reshape(-1, BLOCK_SIZE)
+    blocks = blocks[blocks[:, 0] > 0.5]
+    relative = blocks[:, 4:7]
+    between_fingers = ((np.linalg.norm(relative[:, :2], axis=1) < THRESHOLDS.holding_xy)
+                       & (np.abs(relative[:, 2]) < THRESHOLDS.holding_z))
+    spot = bin_spot(SCENES[scene].bin, list(blocks[~between_fingers, 1:4]), grip[:2])
+    return np.zeros(2, dtype=np.float32) if spot is None else (spot - grip[:2]).astype(np.float32)
+
+
+DERIVED_FEATURES: dict[str, tuple[int, Callable[[str, np.ndarray], np.ndarray]]] = {"bin_target": (2, bin_target)}
+"""Name -> (width, function of scene and observation)."""
+
+
+def widths(names: Sequence[str]) -> dict[str, int]:
+    """Name -> width for ``names``, as :func:`semgoal_sim.layout.describe` records them."""
+    return {name: DERIVED_FEATURES[name][0] for name in names}
+
+
+def width(names: Sequence[str]) -> int:
+    """How many entries ``names`` append to the observation."""
+    return sum(DERIVED_FEATURES[name][0] for name in names)
+
+
+def augment(scene: str, observation: np.ndarray, names: Sequence[str]) -> np.ndarray:
+    """The observation with the derived features ``names`` appended (itself when there are none)."""
+    if not names:
+        return observation
+    extra = [DERIVED_FEATURES[name][1](scene, observation) for name in names]
+    return np.concatenate([observation, *extra]).astype(np.float32)
+
+
+def check(scene: str, names: Sequence[str]) -> tuple[str, ...]:
+    """``names`` as a tuple; ValueError for an unknown feature or one the scene cannot have."""
+    for name in names:
+        if name not in DERIVED_FEATURES:
+            raise ValueError(f"unknown derived feature {name!r}; valid: {', '.join(DERIVED_FEATURES)}")
+        if name == "bin_target" and SCENES[scene].bin is None:
+            raise ValueError(f"derived feature 'bin_target' needs a bin; scene {scene!r} has none")
+    return tuple(names)

@@ -1,0 +1,64 @@
+"""Derived actor inputs: the bin target points where the expert would put the block between the fingers."""
+
+import numpy as np
+import pytest
+
+from semgoal_sim import features, layout
+from semgoal_sim.env import SubgoalEnv
+from semgoal_sim.tasks import TABLE_TOP
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES
+
+SCENE = "desk_cleanup"
+BIN = SCENES[SCENE].bin
+FLOOR_Z = TABLE_TOP + BIN.floor_thickness + BLOCK_HALF_SIZE
+GRIP = np.array([1.05, 0.70, 0.55])
+
+
+def observe(blocks: list[np.ndarray], grip: np.ndarray = GRIP) -> np.ndarray:
+    positions = np.array(blocks, dtype=np.float64)
+    return layout.observation(SCENE, grip, np.zeros(3), np.full(2, 0.02), np.zeros(2), positions, np.zeros_like(positions))
+
+
+def binned(slot: int) -> np.ndarray:
+    return np.array([*BIN.slots()[slot], FLOOR_Z])
+
+
+def test_the_bin_target_is_the_free_end_slot_when_three_are_taken() -> None:
+    held = GRIP - np.array([0.0, 0.0, 0.01])
+    obs = observe([binned(0), binned(1), binned(2), held])
+    assert np.allclose(features.bin_target(SCENE, obs), BIN.slots()[3] - GRIP[:2], atol=1e-6)
+
+
+def test_the_block_between_the_fingers_is_no_obstacle_even_over_its_own_slot() -> None:
+    grip = np.array([*BIN.slots()[3], FLOOR_Z + 0.06]) - np.array([0.01, 0.0, 0.0])
+    obs = observe([binned(0), binned(1), binned(2), grip - np.array([0.0, 0.0, 0.01])], grip)
+    assert np.allclose(features.bin_target(SCENE, obs), [0.01, 0.0], atol=1e-6)
+
+
+def test_an_untidy_bin_leaves_the_widest_gap_as_target_and_a_full_one_none() -> None:
+    untidy = [np.array([x, BIN.center[1], FLOOR_Z]) for x in (1.19, 1.25, 1.32)]  # no slot free, a gap at +x
+    target = features.bin_target(SCENE, observe([*untidy, GRIP]))
+    spot = target + GRIP[:2]
+    assert spot[0] > 1.36 and abs(spot[1] - BIN.center[1]) < BIN.inner_half_size[1]
+    full = [binned(slot) for slot in range(4)]
+    assert np.array_equal(features.bin_target(SCENE, observe(full)), np.zeros(2))
+
+
+def test_augment_appends_the_named_features_and_check_refuses_bad_names() -> None:
+    obs = observe([binned(0), GRIP])
+    assert features.augment(SCENE, obs, ()) is obs
+    augmented = features.augment(SCENE, obs, ("bin_target",))
+    assert augmented.dtype == np.float32 and augmented.shape == (obs.size + features.width(("bin_target",)),)
+    assert np.array_equal(augmented[obs.size:], features.bin_target(SCENE, obs))
+    with pytest.raises(ValueError, match="unknown derived feature 'colour'"):
+        features.check(SCENE, ("colour",))
+    with pytest.raises(ValueError, match="needs a bin"):
+        features.check("two_blocks", ("bin_target",))
+
+
+def test_the_env_appends_derived_features_to_its_observations() -> None:
+    env = SubgoalEnv(SCENE, derived=("bin_target",))
+    obs, _ = env.reset(seed=3, options={"kind": "put_in_bin"})
+    base = env.world.observation()
+    assert env.observation_space["observation"].shape == (base.size + 2,)
+    assert np.array_equal(obs["observation"], features.augment(SCENE, base, ("bin_target",)))

@@ -45,7 +45,7 @@ def widths(names: Sequence[str]) -> dict[str, int]:
 
 def width(names: Sequence[str]) -> int:
     """How many entries ``names`` append to the observation."""
-    return sum(DERIVED_FEATURES[name][0] for name in names)
+    return sum(widths(names).values())
 
 
 def augment(scene: str, observation: np.ndarray, names: Sequence[str]) -> np.ndarray:

@@ -11,8 +11,9 @@ mujoco >= 3.12), one after the other, ``--repeats`` times; the medians and the r
 are printed.
 
 Inference: latency of one action for one observation (what the policy node does per control step):
-``Actor.act``, ``SubgoalController.act`` (sampled noise, clipping) and SB3's ``policy.predict`` for a
-network of the same size; p50 and p99 over ``--calls`` calls.
+``Actor.act`` on two_blocks, ``SubgoalController.act`` (sampled noise, clipping, derived features) with
+each scene's shipped actor, and SB3's ``policy.predict`` for a network of the same size as two_blocks';
+p50 and p99 over ``--calls`` calls.
 """
 
 from __future__ import annotations
@@ -100,18 +101,21 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
 
     from semgoal_policy.controller import SubgoalController
     from semgoal_sim.env import SubgoalEnv
-    from semgoal_sim.vocabulary import parse_literal
+    from semgoal_sim.vocabulary import SCENES, parse_literal
 
     torch.set_num_threads(1)
-    env = SubgoalEnv("two_blocks")
-    obs, _ = env.reset(seed=0, options={"subgoal": "pick(red)"})
-    controller = SubgoalController("two_blocks")
-    controller.set_subgoal([parse_literal("holding(red)")])
-    actor = controller.actor
-    sb3 = _sb3_model(env)
+    observations, controllers = {}, {}
+    for scene in SCENES:  # every shipped actor, as the policy node runs it (derived features included)
+        observations[scene] = SubgoalEnv(scene).reset(seed=0, options={"subgoal": "pick(red)"})[0]
+        controllers[scene] = SubgoalController(scene)
+        controllers[scene].set_subgoal([parse_literal("holding(red)")])
+    obs, actor = observations["two_blocks"], controllers["two_blocks"].actor
+    sb3 = _sb3_model(SubgoalEnv("two_blocks"))
     return {
         "ours:Actor.act": _percentiles(lambda: actor.act(obs["observation"], obs["desired_goal"]), calls),
-        "ours:SubgoalController.act": _percentiles(lambda: controller.act(obs["observation"], (0, 1)), calls),
+        **{f"ours:SubgoalController.act[{scene}]":
+           _percentiles(lambda c=controller, o=observations[scene]: c.act(o["observation"], (0, 1)), calls)
+           for scene, controller in controllers.items()},
         "sb3:policy.predict": _percentiles(lambda: sb3.predict(obs, deterministic=True), calls),
     }
 

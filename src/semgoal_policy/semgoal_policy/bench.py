@@ -101,16 +101,17 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
 
     from semgoal_policy.controller import SubgoalController
     from semgoal_sim.env import SubgoalEnv
-    from semgoal_sim.vocabulary import SCENES, parse_literal
+    from semgoal_sim.vocabulary import SCENES
 
     torch.set_num_threads(1)
-    observations, controllers = {}, {}
+    envs, observations, controllers = {}, {}, {}
     for scene in SCENES:  # every shipped actor, as the policy node runs it (derived features included)
-        observations[scene] = SubgoalEnv(scene).reset(seed=0, options={"subgoal": "pick(red)"})[0]
+        envs[scene] = SubgoalEnv(scene)
+        observations[scene] = envs[scene].reset(seed=0, options={"subgoal": "pick(red)"})[0]
         controllers[scene] = SubgoalController(scene)
-        controllers[scene].set_subgoal([parse_literal("holding(red)")])
+        controllers[scene].set_subgoal(envs[scene].subgoal.literals())
     obs, actor = observations["two_blocks"], controllers["two_blocks"].actor
-    sb3 = _sb3_model(SubgoalEnv("two_blocks"))
+    sb3 = _sb3_model(envs["two_blocks"])
     return {
         "ours:Actor.act": _percentiles(lambda: actor.act(obs["observation"], obs["desired_goal"]), calls),
         **{f"ours:SubgoalController.act[{scene}]":

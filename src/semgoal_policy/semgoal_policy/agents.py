@@ -22,7 +22,7 @@ from semgoal_sim.vocabulary import SCENES
 @dataclass(frozen=True)
 class AgentSpec:
     make_env: Callable[..., object]
-    """(scene, derived=()) -> a goal-conditioned env with ``max_steps``, ``kind``, ``expert_action()`` and an
+    """(scene, derived=(), spawn_margin=0.0) -> a goal-conditioned env with ``max_steps``, ``kind``, ``expert_action()`` and an
     ``is_success`` info entry; ``reset(options={"kind": k})`` fixes the kind."""
     kinds: Callable[[str], tuple[str, ...]]
     """scene -> the goal kinds the curriculum draws and evaluation reports (sub-goal types or tasks)."""
@@ -38,16 +38,18 @@ class AgentSpec:
 
 
 def _task_env(goal: str) -> Callable[..., TaskEnv]:
-    def make(scene: str, derived: tuple[str, ...] = ()) -> TaskEnv:
+    def make(scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0) -> TaskEnv:
         if derived:
             raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
+        if spawn_margin:
+            raise ValueError("a spawn margin is for the hierarchical agent only (task starts are the paper's)")
         return TaskEnv(scene, goal)
     return make
 
 
 AGENTS: dict[str, AgentSpec] = {
     "hierarchical": AgentSpec(
-        make_env=lambda scene, derived=(): SubgoalEnv(scene, derived=derived),
+        make_env=lambda scene, derived=(), spawn_margin=0.0: SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin),
         kinds=lambda scene: SCENES[scene].subgoal_types,
         reward_fn=layout.goal_reward,
     ),

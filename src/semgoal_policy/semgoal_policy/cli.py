@@ -45,6 +45,8 @@ def train_main(argv: list[str]) -> int:
                         help="Polyak rate of the averaged actor that is evaluated and exported (0: the live actor)")
     parser.add_argument("--derive", action="append", default=[], choices=list(DERIVED_FEATURES),
                         help="append this derived feature to the observation (repeatable; hierarchical only)")
+    parser.add_argument("--spawn-margin", type=float, default=defaults.spawn_margin,
+                        help="m: training blocks start up to this far beyond the tasks' area in x (hierarchical only)")
     parser.add_argument("--no-curriculum", action="store_true")
     parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
     parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
@@ -57,7 +59,7 @@ def train_main(argv: list[str]) -> int:
     config = TrainConfig(
         scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs, refill_steps=args.refill_steps,
         updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
-        derived_features=tuple(args.derive),
+        derived_features=tuple(args.derive), spawn_margin=args.spawn_margin,
         eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
         snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
         sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy,

@@ -56,6 +56,9 @@ class TrainConfig:
     demo_noise: float = 0.2
     derived_features: tuple[str, ...] = ()
     """Features appended to the observation (``semgoal_sim.features``; hierarchical agent only)."""
+    spawn_margin: float = 0.0
+    """How far (m, in x) training blocks may start beyond the tasks' spawn area (``SubgoalEnv``; hierarchical
+    agent only). Evaluation during training keeps to the tasks' area."""
     curriculum: bool = True
     """Sample sub-goal types more often the lower their recent success (else uniformly)."""
     eval_every: int = 10_000
@@ -103,7 +106,8 @@ class Trainer:
         self.spec: AgentSpec = AGENTS[cfg.agent]
         self.rng = np.random.default_rng(cfg.seed)
         # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
-        self.envs = [self.spec.make_env(cfg.scene, tuple(cfg.derived_features)) for _ in range(cfg.n_envs)]
+        self.envs = [self.spec.make_env(cfg.scene, tuple(cfg.derived_features), cfg.spawn_margin)
+                     for _ in range(cfg.n_envs)]
         for i, env in enumerate(self.envs):
             env.reset(seed=cfg.seed * 1000 + i)
             env.action_space.seed(cfg.seed * 1000 + i)
@@ -200,13 +204,20 @@ class Trainer:
         # evaluation reseeds the envs: without this, every window of training after an evaluation would
         # replay the same random starts (until session 17 it did)
         training_rngs = [env.np_random.bit_generator.state for env in self.envs]
+        self._set_spawn_margin(0.0)
         policy = self.agent.policy
         policy.eval()
         rates = success_by_kind(self.envs, policy.act, self.kinds, episodes, EVAL_SEED_BASE)
         policy.train()
+        self._set_spawn_margin(self.config.spawn_margin)
         for env, state in zip(self.envs, training_rngs, strict=True):
             env.np_random.bit_generator.state = state
         return rates
+
+    def _set_spawn_margin(self, margin: float) -> None:
+        if self.config.spawn_margin:
+            for env in self.envs:
+                env.spawn_margin = margin
 
     def run(self, resume: bool = False) -> dict[str, float]:
         cfg = self.config

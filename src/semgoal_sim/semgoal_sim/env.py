@@ -59,6 +59,8 @@ others take a block outside the bin, as desk plans do (they never take a block o
 bin, and DC-4's last pick (three blocks binned, the arm back from the bin) was rare in training. It was
 where desk actors lost DC-4: seed 26 picked the last block in 39 of 60 such starts, 58 of 60 with the
 other blocks on the table (session 20)."""
+MAX_SPAWN_MARGIN = 0.1
+"""Largest ``spawn_margin`` (m): 1.05..1.55 in x, still inside the workspace and within the expert's reach."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
 """Where pick episodes start. ``after_put`` is where a plan hands the next pick over: the open fingers
 just above a block that was just put (in the bin, say), which no training pick had started from before."""
@@ -68,8 +70,15 @@ class SubgoalEnv(gym.Env):
     """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
-                 max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = ()) -> None:
-        """:param derived: features (``semgoal_sim.features``) appended to the observation."""
+                 max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0) -> None:
+        """:param derived: features (``semgoal_sim.features``) appended to the observation.
+        :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
+            edge alike, so that the area's edge is not the edge of the training data (session 31: desk actors
+            stalled over blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.
+        """
+        if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
+            raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
+        self.spawn_margin = spawn_margin
         self.scene = SCENES[scene]
         self.derived = features.check(scene, derived)
         counts = self.scene.block_counts or (self.scene.max_blocks,)
@@ -128,20 +137,26 @@ class SubgoalEnv(gym.Env):
     def _sample_positions(self) -> np.ndarray:
         """Scattered, clustered or (with a bin) partly binned starts, so every sub-goal meets variety."""
         rng, count = self.np_random, len(self.world.blocks)
+        area = self.spawn_area()
         kind = rng.uniform()
         if kind < 0.3 and count >= 2:
-            positions = tasks.scatter(rng, count)
-            positions[:2] = tasks.cluster(rng, 2)
+            positions = tasks.scatter(rng, count, **area)
+            positions[:2] = tasks.cluster(rng, 2, **area)
             if count > 2 and min(np.linalg.norm(positions[i, :2] - positions[j, :2])
                                  for i, j in itertools.combinations(range(count), 2)) < tasks.MIN_SEPARATION:
-                positions = tasks.scatter(rng, count)
+                positions = tasks.scatter(rng, count, **area)
             return positions[rng.permutation(count)] if kind < 0.15 else positions
         if kind > 1.0 - STACKED_START_SHARE.get(self.scene.name, 0.0):
-            return tasks.stack_among(rng, count)
-        positions = tasks.scatter(rng, count)
+            return tasks.stack_among(rng, count, **area)
+        positions = tasks.scatter(rng, count, **area)
         if self.scene.bin is not None and kind > 1.0 - BINNED_START_SHARE:
             self._bin_some(positions)
         return positions
+
+    def spawn_area(self) -> dict[str, np.ndarray]:
+        """``low`` and ``high`` (x, y) corners of the area blocks start in: the tasks' widened by the margin."""
+        widen = np.array([self.spawn_margin, 0.0])
+        return {"low": tasks.SPAWN_LOW - widen, "high": tasks.SPAWN_HIGH + widen}
 
     def _bin_some(self, positions: np.ndarray) -> None:
         """Move 1 to count-1 random blocks (see :data:`FULL_BIN_SHARE`) into the bin as a plan's earlier puts leave them:

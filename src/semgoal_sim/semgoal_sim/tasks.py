@@ -69,18 +69,18 @@ def scatter(rng: np.random.Generator, count: int, min_distance: float = MIN_SEPA
     raise RuntimeError(f"cannot place {count} blocks {min_distance} m apart in the spawn area")
 
 
-def cluster(rng: np.random.Generator, count: int) -> np.ndarray:
+def cluster(rng: np.random.Generator, count: int,
+            low: np.ndarray = SPAWN_LOW, high: np.ndarray = SPAWN_HIGH) -> np.ndarray:
     """``count`` resting blocks, every pair at a centre distance within :data:`CLOSE_RANGE`."""
-    low, high = CLOSE_RANGE
-    margin = high
+    near, far = CLOSE_RANGE
     for _ in range(10_000):
-        xy = [rng.uniform(SPAWN_LOW + margin, SPAWN_HIGH - margin)]
+        xy = [rng.uniform(low + far, high - far)]
         while len(xy) < count:
             anchor = xy[rng.integers(len(xy))]
-            angle, radius = rng.uniform(0, 2 * np.pi), rng.uniform(low, high)
+            angle, radius = rng.uniform(0, 2 * np.pi), rng.uniform(near, far)
             xy.append(anchor + radius * np.array([np.cos(angle), np.sin(angle)]))
         pairs = [np.linalg.norm(a - b) for a, b in itertools.combinations(xy, 2)]
-        if all(low <= d <= high for d in pairs):
+        if all(near <= d <= far for d in pairs):
             return _resting(np.array(xy))
     raise RuntimeError(f"cannot sample a cluster of {count} blocks")
 
@@ -94,9 +94,10 @@ def stack(rng: np.random.Generator, order: tuple[int, int]) -> np.ndarray:
     return positions
 
 
-def stack_among(rng: np.random.Generator, count: int) -> np.ndarray:
+def stack_among(rng: np.random.Generator, count: int,
+                low: np.ndarray = SPAWN_LOW, high: np.ndarray = SPAWN_HIGH) -> np.ndarray:
     """``count`` blocks in random order: one resting on another, the others scattered around them."""
-    positions = scatter(rng, count - 1)
+    positions = scatter(rng, count - 1, low=low, high=high)
     return np.vstack([positions, _on_top(rng, positions[0, :2])])[rng.permutation(count)]
 
 

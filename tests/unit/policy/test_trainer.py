@@ -4,6 +4,7 @@ import csv
 from dataclasses import replace
 
 import numpy as np
+import pytest
 import torch
 
 from semgoal_policy.actor import load
@@ -120,3 +121,26 @@ def test_averaging_resumes_from_its_checkpoint_or_starts_at_the_actor() -> None:
     started = SacAgent(10, 6, SacConfig(actor_average_rate=0.25))
     started.load_state_dict(plain.state_dict())  # one written without averaging starts the average at the actor
     assert all(torch.equal(a, b) for a, b in zip(started.actor_average.parameters(), started.actor.parameters(), strict=True))
+
+
+def test_a_spawn_margin_widens_training_starts_but_not_evaluation(tmp_path) -> None:
+    trainer = Trainer(replace(config(tmp_path, 400), spawn_margin=0.05))
+    seen = []
+    original = type(trainer.envs[0])._sample_positions
+
+    def spy(env):
+        seen.append(env.spawn_margin)
+        return original(env)
+
+    for env in trainer.envs:
+        env._sample_positions = spy.__get__(env)
+    trainer.evaluate(1)
+    assert seen and set(seen) == {0.0}
+    seen.clear()
+    trainer.collect()
+    assert seen and set(seen) == {0.05}
+
+
+def test_flat_baselines_refuse_a_spawn_margin(tmp_path) -> None:
+    with pytest.raises(ValueError, match="hierarchical agent only"):
+        Trainer(replace(config(tmp_path, 400), agent="flat-semantic", spawn_margin=0.05))

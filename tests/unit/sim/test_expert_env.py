@@ -11,7 +11,7 @@ from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.expert import expert_action
 from semgoal_sim.layout import goal_reward, observation_size
 from semgoal_sim.rollout import run_task
-from semgoal_sim.tasks import TABLE_TOP, TASKS
+from semgoal_sim.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP, TASKS
 
 
 @pytest.mark.parametrize("task", list(TASKS))
@@ -169,3 +169,27 @@ def test_desk_sub_goals_mostly_take_a_block_outside_the_bin() -> None:
         last_picks += inside.sum() == 3 and not inside[env.world.blocks.index(subgoal.block)]
     assert binned_targets <= 10  # 2 here; drawn alike (before session 20), 41
     assert last_picks >= 20  # 29 here; drawn alike, 10
+
+
+def test_a_spawn_margin_starts_table_blocks_beyond_the_task_area_in_x_only() -> None:
+    """Session 31: desk actors stalled over blocks at the far edge of the task area, the edge of their data."""
+    def table_xy(env: SubgoalEnv) -> np.ndarray:
+        positions = env._sample_positions()
+        on_table = ~env.scene.bin.contains(positions, TABLE_TOP)
+        return positions[on_table, :2]
+
+    plain, wide = SubgoalEnv("desk_cleanup", n_blocks=4), SubgoalEnv("desk_cleanup", n_blocks=4, spawn_margin=0.05)
+    plain.reset(seed=0)
+    wide.reset(seed=0)
+    plain_xy = np.vstack([table_xy(plain) for _ in range(200)])
+    wide_xy = np.vstack([table_xy(wide) for _ in range(200)])
+    assert plain_xy[:, 0].min() >= SPAWN_LOW[0] and plain_xy[:, 0].max() <= SPAWN_HIGH[0]
+    assert (wide_xy[:, 0] > SPAWN_HIGH[0] + 0.02).sum() >= 20 and (wide_xy[:, 0] < SPAWN_LOW[0] - 0.02).sum() >= 20
+    assert wide_xy[:, 0].max() <= SPAWN_HIGH[0] + 0.05 and wide_xy[:, 0].min() >= SPAWN_LOW[0] - 0.05
+    assert wide_xy[:, 1].min() >= SPAWN_LOW[1] and wide_xy[:, 1].max() <= SPAWN_HIGH[1]
+
+
+@pytest.mark.parametrize("margin", [-0.01, 0.2, float("nan")])
+def test_a_spawn_margin_out_of_range_is_refused(margin: float) -> None:
+    with pytest.raises(ValueError, match="spawn_margin"):
+        SubgoalEnv("two_blocks", spawn_margin=margin)

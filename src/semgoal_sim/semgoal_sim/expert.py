@@ -37,6 +37,10 @@ COMPACT_SLACK = 0.005
 DROP_REACH = 0.085
 """put_near lets go of the held block as soon as every reference is within this of it in the table plane:
 wherever it falls, beside a reference or onto it, the centres end up close (<= 0.10 m)."""
+AWAY_DROP_HEIGHT = 0.12
+"""put_away lets go of the held block over a spot that fits (far from its references, clear of every block)
+once its bottom is at most this high above the table (m): carried at ``CARRY_CLEARANCE`` above the others,
+it lands within a few cm, and a fitting spot keeps 13 cm from every other block."""
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
@@ -199,6 +203,14 @@ def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
     return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
 
 
+def _over_away_spot(subgoal: SubGoal, world: WorldView) -> bool:
+    """put_away: the block is low enough (:data:`AWAY_DROP_HEIGHT`) over a table spot that fits, so letting
+    go here achieves it."""
+    block = world.positions[subgoal.block]
+    low_enough = block[2] - BLOCK_HALF_SIZE - TABLE_TOP <= AWAY_DROP_HEIGHT
+    return bool(low_enough and _table_spots(block[None, :2], subgoal, world)[0][0])
+
+
 def _over_slot(subgoal: SubGoal, slot: np.ndarray, world: WorldView) -> bool:
     """put_in_bin: the block is inside the walls, within :data:`SLOT_TOLERANCE` of its free ``slot`` and
     :data:`DROP_CLEARANCE` from every other block, so it falls onto the floor, not onto a neighbour."""
@@ -232,9 +244,12 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     # Let go as soon as the put will hold once the block has fallen, as the sparse reward (and so the
     # critic) has it, not after carrying it on to the exact spot: until session 28 the labels held the
     # fingers shut there, and cloning froze the actor holding a block beside its reference or just inside
-    # the bin while the critic rated letting go higher (``docs/training-log.md``).
+    # the bin while the critic rated letting go higher (``docs/training-log.md``); until session 32 put_away
+    # still lowered the block first, and three_blocks actors hovered, holding it, over a spot that fit.
     let_go = move_to(world.grip, world.grip, _open(world))
     if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
+        return let_go
+    if subgoal.kind == "put_away" and _over_away_spot(subgoal, world):
         return let_go
     spot = destination(subgoal, world)
     if spot is None:  # nowhere to put it: hold still and wait for the world to change

@@ -1,7 +1,7 @@
 """Where the scripted expert puts a carried block. It lets go where it is when the put will hold once the
-block has fallen (the labels teach the actor to let go, as the reward does, not to carry on to one exact
-spot); otherwise a put_near heads for the most compact spot, a put_in_bin for a free slot (dropped
-anywhere over the floor, blocks crowd the bin for the next ones)."""
+block has fallen (put_near, put_away, put_in_bin: the labels teach the actor to let go, as the reward
+does, not to carry on to one exact spot); otherwise a put_near heads for the most compact spot, a
+put_in_bin for a free slot (dropped anywhere over the floor, blocks crowd the bin for the next ones)."""
 
 import numpy as np
 
@@ -36,6 +36,22 @@ def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> No
     subgoal = SubGoal("put_near", ("red", "green", "blue"))
     action = expert_action(subgoal, carried(green + np.array([-0.06, 0.0, 0.10]), {"green": green, "blue": blue}))
     assert action[3] < 0 and action[0] > 0  # shut, towards blue
+
+
+def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None:
+    """Session 32: three_blocks actors hovered, holding the block over a spot that fit, the expert's label
+    still lowering it with the fingers shut while the critic rated letting go higher."""
+    green, blue = np.array([1.20, 0.60, REST_Z]), np.array([1.40, 0.80, REST_Z])
+    subgoal, others = SubGoal("put_away", ("red", "green")), {"green": green, "blue": blue}
+    far_from_both = np.array([1.40, 0.55])
+    for height in (0.02, 0.06, 0.11):
+        action = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + height]), others))
+        assert action[3] > 0, height
+        np.testing.assert_allclose(action[:3], 0.0)
+    too_high = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + 0.15]), others))
+    near_green = expert_action(subgoal, carried(np.array([1.28, 0.60, REST_Z + 0.06]), others))
+    near_blue = expert_action(subgoal, carried(np.array([1.40, 0.70, REST_Z + 0.06]), others))  # close to blue
+    assert too_high[3] < 0 and near_green[3] < 0 and near_blue[3] < 0
 
 
 def test_put_in_bin_lets_go_over_the_bin_near_a_free_slot_only() -> None:

@@ -38,9 +38,13 @@ DROP_REACH = 0.085
 """put_near lets go of the held block as soon as every reference is within this of it in the table plane:
 wherever it falls, beside a reference or onto it, the centres end up close (<= 0.10 m)."""
 AWAY_DROP_HEIGHT = 0.12
-"""put_away lets go of the held block over a spot that fits (far from its references, clear of every block)
-once its bottom is at most this high above the table (m): carried at ``CARRY_CLEARANCE`` above the others,
-it lands within a few cm, and a fitting spot keeps 13 cm from every other block."""
+"""put_away lets go of the held block once its bottom is at most this high above the table (m; carried at
+``CARRY_CLEARANCE`` above the others, it lands within a few cm) and every other block is at least
+:data:`AWAY_DROP_DISTANCE` away in the table plane."""
+AWAY_DROP_DISTANCE = THRESHOLDS.close_distance + 0.02
+"""Centre distance (m) from every other block at which put_away lets go: 2 cm beyond ``close``, as the reward
+has it, not :data:`AWAY_DISTANCE` (the spot it heads for): with the latter, actors hovered between the two,
+holding the block (session 32)."""
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
@@ -204,11 +208,12 @@ def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
 
 
 def _over_away_spot(subgoal: SubGoal, world: WorldView) -> bool:
-    """put_away: the block is low enough (:data:`AWAY_DROP_HEIGHT`) over a table spot that fits, so letting
-    go here achieves it."""
+    """put_away: the block is low enough and far enough from every other block that letting go here
+    achieves it (:data:`AWAY_DROP_HEIGHT`, :data:`AWAY_DROP_DISTANCE`) and lands on the table, not on a block."""
     block = world.positions[subgoal.block]
     low_enough = block[2] - BLOCK_HALF_SIZE - TABLE_TOP <= AWAY_DROP_HEIGHT
-    return bool(low_enough and _table_spots(block[None, :2], subgoal, world)[0][0])
+    far_enough = all(np.linalg.norm(block[:2] - other[:2]) >= AWAY_DROP_DISTANCE for other in world.others(subgoal.block).values())
+    return bool(low_enough and far_enough)
 
 
 def _over_slot(subgoal: SubGoal, slot: np.ndarray, world: WorldView) -> bool:
@@ -245,7 +250,8 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     # critic) has it, not after carrying it on to the exact spot: until session 28 the labels held the
     # fingers shut there, and cloning froze the actor holding a block beside its reference or just inside
     # the bin while the critic rated letting go higher (``docs/training-log.md``); until session 32 put_away
-    # still lowered the block first, and three_blocks actors hovered, holding it, over a spot that fit.
+    # still carried the block on to a spot 16 cm from the others and lowered it, and three_blocks actors hovered,
+    # holding it, where letting go would have done.
     let_go = move_to(world.grip, world.grip, _open(world))
     if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
         return let_go

@@ -3,6 +3,8 @@ block has fallen (put_near, put_away, put_in_bin: the labels teach the actor to 
 does, not to carry on to one exact spot); otherwise a put_near heads for the most compact spot, a
 put_in_bin for a free slot (dropped anywhere over the floor, blocks crowd the bin for the next ones)."""
 
+import itertools
+
 import numpy as np
 
 from semgoal_sim.expert import WorldView, destination, expert_action
@@ -39,15 +41,15 @@ def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> No
 
 
 def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None:
-    """Session 32: three_blocks actors hovered, holding the block over a spot that fit, the expert's label
-    still lowering it with the fingers shut while the critic rated letting go higher."""
+    """Session 32: three_blocks actors hovered, holding the block where letting go would have done (more
+    than 10 cm from the others), the expert's label carrying it on with the fingers shut."""
     green, blue = np.array([1.20, 0.60, REST_Z]), np.array([1.40, 0.80, REST_Z])
     subgoal, others = SubGoal("put_away", ("red", "green")), {"green": green, "blue": blue}
-    far_from_both = np.array([1.40, 0.55])
-    for height in (0.02, 0.06, 0.11):
-        action = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + height]), others))
-        assert action[3] > 0, height
+    for xy, height in itertools.product(([1.40, 0.55], [1.33, 0.60]), (0.02, 0.06, 0.11)):  # 13 cm from green
+        action = expert_action(subgoal, carried(np.array([*xy, REST_Z + height]), others))
+        assert action[3] > 0, (xy, height)
         np.testing.assert_allclose(action[:3], 0.0)
+    far_from_both = np.array([1.40, 0.55])
     too_high = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + 0.15]), others))
     near_green = expert_action(subgoal, carried(np.array([1.28, 0.60, REST_Z + 0.06]), others))
     near_blue = expert_action(subgoal, carried(np.array([1.40, 0.70, REST_Z + 0.06]), others))  # close to blue

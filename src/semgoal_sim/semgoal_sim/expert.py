@@ -207,13 +207,12 @@ def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
     return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
 
 
-def _over_away_spot(subgoal: SubGoal, world: WorldView) -> bool:
+def _away_drop_holds(subgoal: SubGoal, world: WorldView) -> bool:
     """put_away: the block is low enough and far enough from every other block that letting go here
     achieves it (:data:`AWAY_DROP_HEIGHT`, :data:`AWAY_DROP_DISTANCE`) and lands on the table, not on a block."""
     block = world.positions[subgoal.block]
     low_enough = block[2] - BLOCK_HALF_SIZE - TABLE_TOP <= AWAY_DROP_HEIGHT
-    far_enough = all(np.linalg.norm(block[:2] - other[:2]) >= AWAY_DROP_DISTANCE for other in world.others(subgoal.block).values())
-    return bool(low_enough and far_enough)
+    return bool(low_enough and clear_of(block[None, :2], list(world.others(subgoal.block).values()), AWAY_DROP_DISTANCE)[0])
 
 
 def _over_slot(subgoal: SubGoal, slot: np.ndarray, world: WorldView) -> bool:
@@ -255,7 +254,7 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     let_go = move_to(world.grip, world.grip, _open(world))
     if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
         return let_go
-    if subgoal.kind == "put_away" and _over_away_spot(subgoal, world):
+    if subgoal.kind == "put_away" and _away_drop_holds(subgoal, world):
         return let_go
     spot = destination(subgoal, world)
     if spot is None:  # nowhere to put it: hold still and wait for the world to change

@@ -25,6 +25,11 @@ CARRY_CLEARANCE = 0.07
 ALIGN_XY = 0.008
 ALIGN_Z = 0.008
 CLOSE = -1.0
+RELEASE = 1.0
+"""Finger command when letting go of a carried block: open fully, at once. Finger commands are metres added
+to each finger's target, so anything above about +0.005 drops a held block: the +0.015 that opening to
+:data:`GRASP_OPENING` takes was cloned as 0 by three_blocks actors, which hovered holding the block over
+the spot while the critic rated opening higher (session 33)."""
 GRASP_OPENING = 0.08
 """Finger opening (m) used to straddle a 5 cm block when grasping and releasing. Opening no wider
 keeps the fingers (they open along y) off neighbouring blocks."""
@@ -251,7 +256,7 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     # the bin while the critic rated letting go higher (``docs/training-log.md``); until session 32 put_away
     # still carried the block on to a spot 16 cm from the others and lowered it, and three_blocks actors hovered,
     # holding it, where letting go would have done.
-    let_go = move_to(world.grip, world.grip, _open(world))
+    let_go = move_to(world.grip, world.grip, RELEASE)
     if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
         return let_go
     if subgoal.kind == "put_away" and _away_drop_holds(subgoal, world):

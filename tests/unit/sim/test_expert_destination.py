@@ -7,7 +7,7 @@ import itertools
 
 import numpy as np
 
-from semgoal_sim.expert import WorldView, destination, expert_action
+from semgoal_sim.expert import RELEASE, WorldView, destination, expert_action
 from semgoal_sim.tasks import TABLE_TOP
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
 
@@ -22,15 +22,20 @@ def carried(block: np.ndarray, others: dict[str, np.ndarray], with_bin: bool = F
                      bin=BIN if with_bin else None)
 
 
+def assert_lets_go(action: np.ndarray, where: object = None) -> None:
+    """The arm stays put and the fingers open fully (session 33: a label of +0.015, just past the few mm
+    that drop a held block, was cloned as 0 and actors hovered holding the block)."""
+    np.testing.assert_allclose(action[:3], 0.0, err_msg=str(where))
+    assert action[3] == RELEASE, where
+
+
 def test_put_near_lets_go_wherever_every_reference_is_within_reach() -> None:
     """Beside green or over it, low or at carry height: the block falls close to green, so the label opens
     the fingers where it is. Until session 28 the expert carried it on to its exact spot with the fingers
     shut, while the reward (and so the critic) said let go: cloning froze the actor there."""
     green = np.array([1.30, 0.75, REST_Z])
     for offset in ([0.08, 0.0, 0.03], [0.0, 0.07, 0.10], [0.03, 0.0, 0.12], [0.06, 0.05, 0.06]):
-        action = expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green}))
-        np.testing.assert_allclose(action[:3], 0.0)
-        assert action[3] > 0, offset
+        assert_lets_go(expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green})), offset)
 
 
 def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> None:
@@ -46,9 +51,7 @@ def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None
     green, blue = np.array([1.20, 0.60, REST_Z]), np.array([1.40, 0.80, REST_Z])
     subgoal, others = SubGoal("put_away", ("red", "green")), {"green": green, "blue": blue}
     for xy, height in itertools.product(([1.40, 0.55], [1.33, 0.60]), (0.02, 0.06, 0.11)):  # 13 cm from green
-        action = expert_action(subgoal, carried(np.array([*xy, REST_Z + height]), others))
-        assert action[3] > 0, (xy, height)
-        np.testing.assert_allclose(action[:3], 0.0)
+        assert_lets_go(expert_action(subgoal, carried(np.array([*xy, REST_Z + height]), others)), (xy, height))
     far_from_both = np.array([1.40, 0.55])
     too_high = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + 0.15]), others))
     near_green = expert_action(subgoal, carried(np.array([1.28, 0.60, REST_Z + 0.06]), others))
@@ -59,7 +62,7 @@ def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None
 def test_put_in_bin_lets_go_over_the_bin_near_a_free_slot_only() -> None:
     slot = BIN.slots()[2]
     over = lambda dx, dz: carried(np.array([slot[0] + dx, slot[1], RIM_Z + dz]), {}, with_bin=True)  # noqa: E731
-    assert expert_action(SubGoal("put_in_bin", ("red",)), over(0.015, 0.0))[3] > 0
+    assert_lets_go(expert_action(SubGoal("put_in_bin", ("red",)), over(0.015, 0.0)))
     assert expert_action(SubGoal("put_in_bin", ("red",)), over(0.04, 0.03))[3] < 0  # would crowd the next slot
 
 

@@ -90,7 +90,8 @@ def test_pick_episodes_sometimes_start_with_the_arm_elsewhere() -> None:
 @pytest.mark.parametrize("scene", ["three_blocks", "desk_cleanup"])
 def test_picks_sometimes_start_where_a_put_of_another_block_left_the_arm(scene: str) -> None:
     """The hand-over a plan makes: the open fingers above the block just put, nothing held (a put lets go
-    from up to carry height, session 28, and backs away upward)."""
+    from up to carry height, session 28, and backs away upward; opened fully at once, session 33, the
+    fingers can leave the block landing a few cm off to the side)."""
     env = SubgoalEnv(scene)
     after_put = 0
     for seed in range(30):
@@ -98,7 +99,7 @@ def test_picks_sometimes_start_where_a_put_of_another_block_left_the_arm(scene: 
         view, target = env.world.view(), env.subgoal.block
         assert not any(view.holds(block) for block in view.positions)
         put_down = [b for b, p in view.others(target).items()
-                    if np.linalg.norm(p[:2] - view.grip[:2]) < 0.03 and p[2] < view.grip[2] < p[2] + 0.16]
+                    if np.linalg.norm(p[:2] - view.grip[:2]) < 0.06 and p[2] < view.grip[2] < p[2] + 0.2]
         after_put += bool(put_down)
     assert 6 <= after_put <= 20  # about 40 % of the starts
 

@@ -29,10 +29,11 @@ RELEASE = 1.0
 """Finger command when letting go of a carried block: open fully, at once. Finger commands are metres added
 to each finger's target, so anything above about +0.005 drops a held block: the +0.015 that opening to
 :data:`GRASP_OPENING` takes was cloned as 0 by three_blocks actors, which hovered holding the block over
-the spot while the critic rated opening higher (session 33)."""
+the spot while the critic rated opening higher (session 33). Wider than :data:`GRASP_OPENING`, but the
+block is gone before the fingers reach a neighbour; the expert alone succeeds as often as before."""
 GRASP_OPENING = 0.08
-"""Finger opening (m) used to straddle a 5 cm block when grasping and releasing. Opening no wider
-keeps the fingers (they open along y) off neighbouring blocks."""
+"""Finger opening (m) used to straddle a 5 cm block when grasping it and releasing it onto another.
+Opening no wider keeps the fingers (they open along y) off neighbouring blocks."""
 NEAR_RANGE = (0.055, 0.093)
 """Centre distances at which put_near places a block next to its references (close: <= 0.10 m)."""
 AWAY_DISTANCE = 0.16

@@ -24,6 +24,12 @@ CARRY_CLEARANCE = 0.07
 """Carried block's bottom stays this far above every other block's top (m)."""
 ALIGN_XY = 0.008
 ALIGN_Z = 0.008
+FUNNEL_XY = 0.03
+"""Within this xy distance of a block it is picking, the gripper's height follows a funnel: the block's
+centre at :data:`ALIGN_XY`, :data:`HOVER` above it here, linear between. Until session 34 it rose back to
+the hover height whenever it was more than :data:`ALIGN_XY` off, so labels 1 cm apart said rise and
+descend, and actors stalled between them, 5 to 10 cm over blocks 1 to 1.5 cm off in xy (task picks at
+the spawn area's edge)."""
 CLOSE = -1.0
 RELEASE = 1.0
 """Finger command when letting go of a carried block: open fully, at once. Finger commands are metres added
@@ -170,6 +176,12 @@ def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tupl
     return ok, spread
 
 
+def _funnel_height(block_z: float, xy_error: float) -> float:
+    """Height to approach a block at ``xy_error`` from it (:data:`FUNNEL_XY`)."""
+    share = np.clip((xy_error - ALIGN_XY) / (FUNNEL_XY - ALIGN_XY), 0.0, 1.0)
+    return float(block_z + HOVER * share)
+
+
 def _pick(block: str, world: WorldView) -> np.ndarray:
     target = world.positions[block]
     grip = world.grip
@@ -180,9 +192,11 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
     hover = target + np.array([0.0, 0.0, HOVER])
     if xy_error > ALIGN_XY:
         safe_z = max(p[2] for p in world.positions.values()) + HOVER
-        if grip[2] < safe_z - 0.02 and xy_error > 0.03:  # rise before travelling, never sweep blocks
+        if grip[2] < safe_z - 0.02 and xy_error > FUNNEL_XY:  # rise before travelling, never sweep blocks
             return move_to(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
-        return move_to(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
+        if xy_error > FUNNEL_XY:
+            return move_to(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
+        return move_to(grip, np.array([target[0], target[1], _funnel_height(target[2], xy_error)]), _open(world))
     if abs(grip[2] - target[2]) > ALIGN_Z:  # above the block: descend; low on it: rise (a grasp there
         if world.opening < GRASP_OPENING - 0.006:  # pinches the block below too), opening first either way
             return move_to(grip, np.array([target[0], target[1], grip[2]]), _open(world))

@@ -189,13 +189,12 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
         carry_z = max(p[2] for p in world.positions.values()) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE
         return move_to(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
     xy_error = np.linalg.norm(target[:2] - grip[:2])
-    hover = target + np.array([0.0, 0.0, HOVER])
-    if xy_error > ALIGN_XY:
+    if xy_error > FUNNEL_XY:  # travel over the blocks at no less than the hover height
         safe_z = max(p[2] for p in world.positions.values()) + HOVER
-        if grip[2] < safe_z - 0.02 and xy_error > FUNNEL_XY:  # rise before travelling, never sweep blocks
+        if grip[2] < safe_z - 0.02:  # rise before travelling, never sweep blocks
             return move_to(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
-        if xy_error > FUNNEL_XY:
-            return move_to(grip, np.array([target[0], target[1], max(hover[2], min(grip[2], safe_z))]), _open(world))
+        return move_to(grip, np.array([target[0], target[1], max(target[2] + HOVER, min(grip[2], safe_z))]), _open(world))
+    if xy_error > ALIGN_XY:
         return move_to(grip, np.array([target[0], target[1], _funnel_height(target[2], xy_error)]), _open(world))
     if abs(grip[2] - target[2]) > ALIGN_Z:  # above the block: descend; low on it: rise (a grasp there
         if world.opening < GRASP_OPENING - 0.006:  # pinches the block below too), opening first either way

@@ -31,17 +31,15 @@ the hover height whenever it was more than :data:`ALIGN_XY` off, so labels 1 cm 
 descend, and actors stalled between them, 5 to 10 cm over blocks 1 to 1.5 cm off in xy (task picks at
 the spawn area's edge)."""
 CLOSE = -1.0
-OPEN = 1.0
-"""Finger command whenever the fingers should be open and nothing is held: letting go of a carried block,
-approaching one to pick it, backing away from a put. Open fully, at once. Finger commands are metres added
-to each finger's target, so a command of a few hundredths flips the fingers between shut and open, and
-small labels are knife edges for a cloned actor: the +0.015 that opening to :data:`GRASP_OPENING` takes
-when letting go was cloned as 0 by three_blocks actors, which hovered holding the block over the spot
-(session 33); the label near 0 that held the fingers at that opening on the way to a block left desk
-actors flapping them shut and open over it (session 35)."""
+RELEASE = 1.0
+"""Finger command when letting go of a carried block: open fully, at once. Finger commands are metres added
+to each finger's target, so anything above about +0.005 drops a held block: the +0.015 that opening to
+:data:`GRASP_OPENING` takes was cloned as 0 by three_blocks actors, which hovered holding the block over
+the spot while the critic rated opening higher (session 33). Wider than :data:`GRASP_OPENING`, but the
+block is gone before the fingers reach a neighbour; the expert alone succeeds as often as before."""
 GRASP_OPENING = 0.08
-"""Finger opening (m) used to straddle a 5 cm block when releasing it onto another, and when grasping it
-where opening fully (:data:`OPEN`) would land the fingers (they open along y) on a neighbour or a bin wall."""
+"""Finger opening (m) used to straddle a 5 cm block when grasping it and releasing it onto another.
+Opening no wider keeps the fingers (they open along y) off neighbouring blocks."""
 NEAR_RANGE = (0.055, 0.093)
 """Centre distances at which put_near places a block next to its references (close: <= 0.10 m)."""
 AWAY_DISTANCE = 0.16
@@ -65,17 +63,8 @@ that far off its own slot still leaves the next slot free (slots are 8 cm apart,
 DROP_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
 """put_in_bin lets go only where every other block's centre is this far (xy): the block falls clear of it."""
 MIN_CENTRE_DISTANCE = 0.058
-FULL_OPENING = 0.10
-"""Finger opening (m) that :data:`OPEN` reaches: both finger joints at their 0.05 m limit."""
-
-
-def finger_reach_y(opening: float) -> float:
-    """Centre distance in y (m) beyond which fingers open by ``opening`` over one block miss another."""
-    return 0.0149 + opening / 2 + BLOCK_HALF_SIZE + 0.004
-
-
 FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
-FINGER_REACH_Y = finger_reach_y(GRASP_OPENING)
+FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
 """A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
 finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
 
@@ -117,13 +106,12 @@ def _placement_candidates(step: float = 0.005) -> np.ndarray:
 CANDIDATES = _placement_candidates()
 
 
-def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE,
-             reach_y: float = FINGER_REACH_Y) -> np.ndarray:
-    """Spots where a block fits and the fingers, opening there (to ``reach_y``), touch no obstacle."""
+def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
+    """Spots where a block fits and the fingers, opening there, touch no obstacle."""
     if not obstacles:
         return np.ones(len(candidates), dtype=bool)
     delta = np.abs(candidates[:, None, :] - np.array(obstacles)[None, :, :2])
-    fingers_miss = (delta[..., 0] >= FINGER_REACH_X) | (delta[..., 1] >= reach_y)
+    fingers_miss = (delta[..., 0] >= FINGER_REACH_X) | (delta[..., 1] >= FINGER_REACH_Y)
     return np.all(fingers_miss & (np.linalg.norm(delta, axis=2) >= clearance), axis=1)
 
 
@@ -194,20 +182,6 @@ def _funnel_height(block_z: float, xy_error: float) -> float:
     return float(block_z + HOVER * share)
 
 
-def _approach_fingers(block: str, world: WorldView) -> float:
-    """Finger label on the way to a block to pick, or away from one put down: :data:`OPEN` where fully open fingers, descending on
-    it, touch nothing; opening to :data:`GRASP_OPENING` where they would land on a neighbour or a bin wall.
-    The choice depends on where the blocks stand, not on the arm, so it holds for a whole approach."""
-    target = world.positions[block]
-    if world.bin is not None:
-        walls = np.asarray(world.bin.inner_half_size) + world.bin.wall_thickness
-        reach = np.array([FINGER_REACH_X, finger_reach_y(FULL_OPENING)]) - BLOCK_HALF_SIZE
-        if np.all(np.abs(target[:2] - np.asarray(world.bin.center)) < walls + reach):
-            return _open(world)
-    wide_clear = clear_of(target[None, :2], list(world.others(block).values()), 0.0, finger_reach_y(FULL_OPENING))
-    return OPEN if wide_clear[0] else _open(world)
-
-
 def _pick(block: str, world: WorldView) -> np.ndarray:
     target = world.positions[block]
     grip = world.grip
@@ -215,18 +189,17 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
         carry_z = max(p[2] for p in world.positions.values()) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE
         return move_to(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
     xy_error = np.linalg.norm(target[:2] - grip[:2])
-    fingers = _approach_fingers(block, world)
     if xy_error > FUNNEL_XY:  # travel over the blocks at no less than the hover height
         safe_z = max(p[2] for p in world.positions.values()) + HOVER
         if grip[2] < safe_z - 0.02:  # rise before travelling, never sweep blocks
-            return move_to(grip, np.array([grip[0], grip[1], safe_z]), fingers)
-        return move_to(grip, np.array([target[0], target[1], max(target[2] + HOVER, min(grip[2], safe_z))]), fingers)
+            return move_to(grip, np.array([grip[0], grip[1], safe_z]), _open(world))
+        return move_to(grip, np.array([target[0], target[1], max(target[2] + HOVER, min(grip[2], safe_z))]), _open(world))
     if xy_error > ALIGN_XY:
-        return move_to(grip, np.array([target[0], target[1], _funnel_height(target[2], xy_error)]), fingers)
+        return move_to(grip, np.array([target[0], target[1], _funnel_height(target[2], xy_error)]), _open(world))
     if abs(grip[2] - target[2]) > ALIGN_Z:  # above the block: descend; low on it: rise (a grasp there
         if world.opening < GRASP_OPENING - 0.006:  # pinches the block below too), opening first either way
-            return move_to(grip, np.array([target[0], target[1], grip[2]]), fingers)
-        return move_to(grip, target, fingers)
+            return move_to(grip, np.array([target[0], target[1], grip[2]]), _open(world))
+        return move_to(grip, target, _open(world))
     return move_to(grip, target, CLOSE)
 
 
@@ -274,8 +247,7 @@ def _over_slot(subgoal: SubGoal, slot: np.ndarray, world: WorldView) -> bool:
 def _back_off(block: str, world: WorldView) -> np.ndarray:
     """Once a put holds: raise the open fingers clear above the block, so the put stays achieved."""
     clear_z = world.positions[block][2] + HOVER
-    fingers = _approach_fingers(block, world)
-    return move_to(world.grip, np.array([world.grip[0], world.grip[1], max(world.grip[2], clear_z)]), fingers)
+    return move_to(world.grip, np.array([world.grip[0], world.grip[1], max(world.grip[2], clear_z)]), _open(world))
 
 
 def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) -> np.ndarray:
@@ -298,7 +270,7 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     # the bin while the critic rated letting go higher (``docs/training-log.md``); until session 32 put_away
     # still carried the block on to a spot 16 cm from the others and lowered it, and three_blocks actors hovered,
     # holding it, where letting go would have done.
-    let_go = move_to(world.grip, world.grip, OPEN)
+    let_go = move_to(world.grip, world.grip, RELEASE)
     if subgoal.kind == "put_near" and _within_drop_reach(subgoal, world):
         return let_go
     if subgoal.kind == "put_away" and _away_drop_holds(subgoal, world):

@@ -7,7 +7,7 @@ import itertools
 
 import numpy as np
 
-from semgoal_sim.expert import OPEN, WorldView, destination, expert_action
+from semgoal_sim.expert import RELEASE, WorldView, destination, expert_action
 from semgoal_sim.tasks import TABLE_TOP
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
 
@@ -26,7 +26,7 @@ def assert_lets_go(action: np.ndarray, where: object = None) -> None:
     """The arm stays put and the fingers open fully (session 33: a label of +0.015, just past the few mm
     that drop a held block, was cloned as 0 and actors hovered holding the block)."""
     np.testing.assert_allclose(action[:3], 0.0, err_msg=str(where))
-    assert action[3] == OPEN, where
+    assert action[3] == RELEASE, where
 
 
 def test_put_near_lets_go_wherever_every_reference_is_within_reach() -> None:

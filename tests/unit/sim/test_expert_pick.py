@@ -1,14 +1,13 @@
 """How the scripted expert approaches a block it picks: nearby states get nearby labels, so that an actor
 cloning them cannot settle between two that disagree (session 34: labels 1 mm apart said rise and
-descend, and actors stalled over blocks 1 to 1.5 cm off in xy), and the fingers get a decisive label
-wherever opening them fully is safe (session 35: desk actors flapped them shut and open over a block)."""
+descend, and actors stalled over blocks 1 to 1.5 cm off in xy)."""
 
 import numpy as np
 import pytest
 
-from semgoal_sim.expert import ALIGN_XY, CLOSE, FUNNEL_XY, GRASP_OPENING, HOVER, OPEN, WorldView, expert_action
+from semgoal_sim.expert import ALIGN_XY, CLOSE, FUNNEL_XY, GRASP_OPENING, HOVER, WorldView, expert_action
 from semgoal_sim.tasks import TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SubGoal
 
 BLOCK = np.array([1.40, 0.83, TABLE_TOP + BLOCK_HALF_SIZE])
 PICK = SubGoal("pick", ("red",))
@@ -44,24 +43,3 @@ def test_pick_grasps_only_once_aligned() -> None:
     aligns first."""
     assert label_at(ALIGN_XY / 2, 0.0)[3] == CLOSE
     assert label_at(0.01, 0.0)[3] != CLOSE
-
-
-def finger_label(red: np.ndarray, green: np.ndarray, desk: bool = False) -> float:
-    """The pick's finger label with the open grip 5 cm over ``red``, ``green`` its neighbour."""
-    world = WorldView({"red": red, "green": green}, red + np.array([0.0, 0.0, 0.05]), GRASP_OPENING,
-                      SCENES["desk_cleanup"].bin if desk else None)
-    return float(expert_action(PICK, world)[3])
-
-
-def test_pick_opens_fully_where_nothing_is_in_the_fingers_way() -> None:
-    """A lone block, or a neighbour 10 cm off in y (fully open, the fingers reach 9 cm): open fully."""
-    assert finger_label(BLOCK, np.array([1.2, 0.6, BLOCK[2]])) == OPEN
-    assert finger_label(BLOCK, BLOCK + np.array([0.0, 0.10, 0.0])) == OPEN
-
-
-def test_pick_keeps_the_grasp_opening_beside_a_neighbour_or_in_the_bin() -> None:
-    """A neighbour 8.5 cm off in y (the grasp opening misses it, full opening lands on it), or a block in
-    the bin (full opening lands on its walls): hold the fingers at the grasp opening (label 0 there)."""
-    assert finger_label(BLOCK, BLOCK + np.array([0.0, 0.085, 0.0])) == pytest.approx(0.0)
-    in_bin = np.array([*SCENES["desk_cleanup"].bin.center, BLOCK[2] + 0.01])
-    assert finger_label(in_bin, np.array([1.2, 0.6, BLOCK[2]]), desk=True) == pytest.approx(0.0)

@@ -63,7 +63,7 @@ class SubgoalController:
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
         noise = np.random.default_rng(noise_key).standard_normal(4) if self.mode == "sample" else None
-        action = self.actor.act(features.augment(self.scene, observation, self.derived), self.goal, noise)
+        action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 

@@ -282,10 +282,11 @@ class SubgoalEnv(gym.Env):
 
     def _obs(self) -> dict[str, np.ndarray]:
         snapshot = self.world.snapshot()
+        goal = np.concatenate([self._target, self._mask])
         return {
-            "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived),
+            "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal),
             "achieved_goal": layout.achieved_goal(self.world.semantic_vector(snapshot), self._mask),
-            "desired_goal": np.concatenate([self._target, self._mask]),
+            "desired_goal": goal,
         }
 
     def _info(self, success: bool | None = None) -> dict[str, Any]:

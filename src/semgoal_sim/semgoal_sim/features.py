@@ -9,6 +9,11 @@ sim's observation, the flat baselines and older actors stay as they are.
 the scripted expert chooses it (:func:`semgoal_sim.expert.bin_spot`). Session 29 found every desk actor
 weak at DC-4's last put, three blocks binned: it hovered over the middle of the bin instead of the free
 end, though the free spot is a function of the block positions it sees.
+
+``subject_offset`` (any scene): where the block(s) the sub-goal names are, relative to the grip (x, y, z;
+the mean over the blocks named by the goal's mask, zeros when it names none). The observation holds every
+block's offset, and the actor has to pick out the one the goal's one-hot mask points at; this hands it
+over. HER keeps it valid: a relabelled goal carries the episode's mask, so it names the same blocks.
 """
 
 from __future__ import annotations
@@ -19,13 +24,18 @@ import numpy as np
 
 from semgoal_sim.expert import bin_spot
 from semgoal_sim.layout import ARM_SIZE, BLOCK_SIZE, observation_size
-from semgoal_sim.vocabulary import SCENES, THRESHOLDS
+from semgoal_sim.vocabulary import LAYOUTS, SCENES, THRESHOLDS
 
 
-def bin_target(scene: str, observation: np.ndarray) -> np.ndarray:
+def _blocks(scene: str, observation: np.ndarray) -> np.ndarray:
+    """(max blocks, BLOCK_SIZE): the observation's block slots."""
+    return observation[ARM_SIZE:observation_size(scene)].reshape(-1, BLOCK_SIZE)
+
+
+def bin_target(scene: str, observation: np.ndarray, goal: np.ndarray | None = None) -> np.ndarray:
     """(2,) float32: the bin spot for the block between the fingers minus the grip position (x, y)."""
     grip = observation[0:3]
-    blocks = observation[ARM_SIZE:observation_size(scene)].reshape(-1, BLOCK_SIZE)
+    blocks = _blocks(scene, observation)
     blocks = blocks[blocks[:, 0] > 0.5]
     relative = blocks[:, 4:7]
     between_fingers = ((np.linalg.norm(relative[:, :2], axis=1) < THRESHOLDS.holding_xy)
@@ -34,8 +44,35 @@ def bin_target(scene: str, observation: np.ndarray) -> np.ndarray:
     return np.zeros(2, dtype=np.float32) if spot is None else (spot - grip[:2]).astype(np.float32)
 
 
-DERIVED_FEATURES: dict[str, tuple[int, Callable[[str, np.ndarray], np.ndarray]]] = {"bin_target": (2, bin_target)}
-"""Name -> (width, function of scene and observation)."""
+def _naming(scene: str) -> np.ndarray:
+    """(semantic atoms, blocks): 1 where an atom names the block (close(red,green) names both)."""
+    objects = SCENES[scene].objects
+    naming = np.zeros((LAYOUTS[scene].size, len(objects)), np.float32)
+    for row, (_, args) in enumerate(LAYOUTS[scene].atoms):
+        for arg in args:
+            naming[row, objects.index(arg)] = 1.0
+    return naming
+
+
+_NAMING = {scene: _naming(scene) for scene in SCENES}
+
+
+def subject_offset(scene: str, observation: np.ndarray, goal: np.ndarray | None) -> np.ndarray:
+    """(3,) float32: the grip-relative position of the blocks the goal's mask names (weighted by how many
+    masked atoms name each, absent blocks left out); zeros without a goal or a named block present."""
+    if goal is None:
+        return np.zeros(3, np.float32)
+    naming = _NAMING[scene]
+    blocks = _blocks(scene, observation)
+    weights = (goal[naming.shape[0]:] @ naming) * (blocks[:, 0] > 0.5)
+    total = weights.sum()
+    return np.zeros(3, np.float32) if total == 0 else (weights @ blocks[:, 4:7] / total).astype(np.float32)
+
+
+DerivedFeature = Callable[[str, np.ndarray, "np.ndarray | None"], np.ndarray]
+DERIVED_FEATURES: dict[str, tuple[int, DerivedFeature]] = {"bin_target": (2, bin_target),
+                                                           "subject_offset": (3, subject_offset)}
+"""Name -> (width, function of scene, observation and semantic goal)."""
 
 
 def widths(names: Sequence[str]) -> dict[str, int]:
@@ -48,11 +85,12 @@ def width(names: Sequence[str]) -> int:
     return sum(widths(names).values())
 
 
-def augment(scene: str, observation: np.ndarray, names: Sequence[str]) -> np.ndarray:
-    """The observation with the derived features ``names`` appended (itself when there are none)."""
+def augment(scene: str, observation: np.ndarray, names: Sequence[str], goal: np.ndarray | None = None) -> np.ndarray:
+    """The observation with the derived features ``names`` appended (itself when there are none);
+    ``goal``: the semantic goal the actor is conditioned on (target, mask)."""
     if not names:
         return observation
-    extra = [DERIVED_FEATURES[name][1](scene, observation) for name in names]
+    extra = [DERIVED_FEATURES[name][1](scene, observation, goal) for name in names]
     return np.concatenate([observation, *extra]).astype(np.float32)
 
 

@@ -198,17 +198,17 @@ def test_the_mean_penalty_keeps_cloned_finger_means_out_of_tanh_saturation() -> 
 
 
 def test_derived_features_travel_with_the_export_and_the_controller_appends_them(tmp_path) -> None:
-    scene, derived = "desk_cleanup", ("bin_target",)
+    scene, derived = "desk_cleanup", ("bin_target", "subject_offset")
     size = layout.observation_size(scene)
     actor = Actor(size + features.width(derived), layout.goal_size(scene))
     export(actor, tmp_path, scene, {}, derived=derived)
     loaded, meta = load(tmp_path, scene)
-    assert derived_features(meta) == derived and loaded.obs_size == size + 2
+    assert derived_features(meta) == derived and loaded.obs_size == size + 5
     controller = SubgoalController(scene, tmp_path, mode="mean")
     controller.set_subgoal([Literal("in_bin", ("red",))])
     obs = np.random.default_rng(1).uniform(0.3, 1.2, size).astype(np.float32)
     goal = controller.goal
-    assert np.allclose(controller.act(obs), loaded.act(features.augment(scene, obs, derived), goal))
+    assert np.allclose(controller.act(obs), loaded.act(features.augment(scene, obs, derived, goal), goal))
     meta["layout"]["derived_features"] = [["colour", 3]]
     (tmp_path / "actor.json").write_text(json.dumps(meta))
     with pytest.raises(LayoutMismatchError, match="unknown derived feature 'colour'"):

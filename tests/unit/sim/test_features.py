@@ -1,4 +1,5 @@
-"""Derived actor inputs: the bin target points where the expert would put the block between the fingers."""
+"""Derived actor inputs: the bin target points where the expert would put the block between the fingers,
+the subject offset at the block(s) the sub-goal names."""
 
 import numpy as np
 import pytest
@@ -6,7 +7,7 @@ import pytest
 from semgoal_sim import features, layout
 from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.tasks import TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 
 SCENE = "desk_cleanup"
 BIN = SCENES[SCENE].bin
@@ -62,3 +63,38 @@ def test_the_env_appends_derived_features_to_its_observations() -> None:
     base = env.world.observation()
     assert env.observation_space["observation"].shape == (base.size + 2,)
     assert np.array_equal(obs["observation"], features.augment(SCENE, base, ("bin_target",)))
+
+
+def goal_of(scene: str, *literals: Literal) -> np.ndarray:
+    return np.concatenate(LAYOUTS[scene].encode(list(literals)))
+
+
+def test_the_subject_offset_points_at_the_block_the_subgoal_names() -> None:
+    blocks = [np.array([1.2, 0.6, 0.43]), np.array([1.3, 0.7, 0.43]), np.array([1.4, 0.8, 0.43]), binned(0)]
+    obs = observe(blocks)
+    for colour, block in zip(SCENES[SCENE].objects, blocks, strict=True):
+        for literal in (Literal("holding", (colour,)), Literal("in_bin", (colour,))):
+            offset = features.subject_offset(SCENE, obs, goal_of(SCENE, literal))
+            assert np.allclose(offset, block - GRIP, atol=1e-6), literal
+    assert np.array_equal(features.subject_offset(SCENE, obs, None), np.zeros(3))
+    assert np.array_equal(features.subject_offset(SCENE, obs, np.zeros(2 * LAYOUTS[SCENE].size)), np.zeros(3))
+
+
+def test_a_relation_names_both_its_blocks_and_absent_blocks_count_for_nothing() -> None:
+    scene = "three_blocks"
+    positions = np.array([[1.2, 0.6, 0.43], [1.3, 0.7, 0.43], [1.4, 0.8, 0.43]])
+    obs = layout.observation(scene, GRIP, np.zeros(3), np.full(2, 0.02), np.zeros(2), positions, np.zeros_like(positions))
+    red, green = SCENES[scene].objects[:2]
+    offset = features.subject_offset(scene, obs, goal_of(scene, Literal("close", (red, green))))
+    assert np.allclose(offset, positions[:2].mean(0) - GRIP, atol=1e-6)
+    desk_two = observe([np.array([1.2, 0.6, 0.43]), np.array([1.3, 0.7, 0.43])])  # blue and yellow absent
+    assert np.array_equal(features.subject_offset(SCENE, desk_two, goal_of(SCENE, Literal("in_bin", ("blue",)))),
+                          np.zeros(3))
+
+
+def test_the_env_computes_the_subject_offset_for_its_episode_goal() -> None:
+    env = SubgoalEnv(SCENE, derived=("bin_target", "subject_offset"))
+    obs, _ = env.reset(seed=4, options={"subgoal": "pick(green)"})
+    green = env.world.observation()[10 + 10 * 1:10 + 10 * 2]
+    assert env.observation_space["observation"].shape == (obs["observation"].size,)
+    assert np.allclose(obs["observation"][-3:], green[4:7])

@@ -8,7 +8,7 @@ SHELL := /bin/bash
 setup:
 	@bash tools/setup.sh
 
-# The issue's default goal, DC-3, from seed 6, which the shipped actors solve with one re-plan
+# The issue's default goal, DC-3, from seed 6, which the shipped actors solve without a re-plan
 # (others: make demo DEMO_ARGS="--task MC-3 --seed S").
 DEMO_ARGS ?=
 demo: setup

@@ -13,10 +13,11 @@ from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
 from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
 
-CASES = [("Swap-2", 2), ("DC-2", 16), ("DC-4", 3_000_006)]
-"""Starts where the shipped actors re-plan in process (Swap-2 and DC-2: once; DC-4: three times, until the
-budget ends). Re-check them when an actor is shipped: the desk actor of session 30 solves the earlier
-DC-2 seed 2 and DC-4 seed 3000015 without a re-plan."""
+CASES = [("Swap-2", 2), ("DC-2", 21), ("DC-4", 3_000_001)]
+"""Starts where the shipped actors re-plan in process (Swap-2: once; DC-2: twice and DC-4: once, both
+solved). Re-check them when an actor is shipped: the first DC-2 seed from 16 and DC-4 seed from 3000000
+where the desk actor of session 37 re-plans (its predecessor re-planned at DC-2 seed 16 and DC-4 seed
+3000006)."""
 
 
 @pytest.mark.parametrize(("task", "seed"), CASES)

@@ -69,7 +69,7 @@ def subject_offset(scene: str, observation: np.ndarray, goal: np.ndarray | None)
     return np.zeros(3, np.float32) if total == 0 else (weights @ blocks[:, 4:7] / total).astype(np.float32)
 
 
-DerivedFeature = Callable[[str, np.ndarray, "np.ndarray | None"], np.ndarray]
+DerivedFeature = Callable[[str, np.ndarray, np.ndarray | None], np.ndarray]
 DERIVED_FEATURES: dict[str, tuple[int, DerivedFeature]] = {"bin_target": (2, bin_target),
                                                            "subject_offset": (3, subject_offset)}
 """Name -> (width, function of scene, observation and semantic goal)."""

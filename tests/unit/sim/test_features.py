@@ -95,6 +95,6 @@ def test_a_relation_names_both_its_blocks_and_absent_blocks_count_for_nothing() 
 def test_the_env_computes_the_subject_offset_for_its_episode_goal() -> None:
     env = SubgoalEnv(SCENE, derived=("bin_target", "subject_offset"))
     obs, _ = env.reset(seed=4, options={"subgoal": "pick(green)"})
-    green = env.world.observation()[10 + 10 * 1:10 + 10 * 2]
+    green = env.world.observation()[layout.ARM_SIZE:].reshape(-1, layout.BLOCK_SIZE)[SCENES[SCENE].objects.index("green")]
     assert env.observation_space["observation"].shape == (obs["observation"].size,)
-    assert np.allclose(obs["observation"][-3:], green[4:7])
+    assert np.allclose(obs["observation"][-3:], green[4:7])  # the slot's relative position

@@ -214,8 +214,9 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
 
 # -- reports ---------------------------------------------------------------------------------------------
 def _steps_text(env_steps: set[int]) -> str:
-    low, high = min(env_steps), max(env_steps)
-    return f"{low // 1000}k" if low == high else f"{low // 1000}k-{high // 1000}k"
+    """A run stops at the first whole batch of episodes past its budget (300480 for 300k): round to k first."""
+    low, high = min(env_steps) // 1000, max(env_steps) // 1000
+    return f"{low}k" if low == high else f"{low}k-{high}k"
 
 
 def _seeds_text(row: Row, tasks: list[str]) -> str:

@@ -91,3 +91,9 @@ def test_wilson_interval_stays_wide_at_the_extremes() -> None:
     assert evaluation.wilson_interval(0, 50)[1] > 0.05
     low, high = evaluation.wilson_interval(25, 50)
     assert low < 0.5 < high and high - low == pytest.approx(0.27, abs=0.01)
+
+
+def test_training_steps_read_in_thousands() -> None:
+    """A run stops at the first whole batch of episodes past its budget: 300480 steps is a 300k run."""
+    assert evaluation._steps_text({300_000, 300_480}) == "300k"
+    assert evaluation._steps_text({300_000, 600_000}) == "300k-600k"

@@ -23,8 +23,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from semgoal_sim.expert import bin_spot
-from semgoal_sim.layout import ARM_SIZE, BLOCK_SIZE, observation_size
+from semgoal_sim.layout import ARM_SIZE, BLOCK_SIZE, BLOCK_SLICE, observation_size
 from semgoal_sim.vocabulary import LAYOUTS, SCENES, THRESHOLDS
+
+PRESENT, POSITION, RELATIVE = (BLOCK_SLICE["present"].start, BLOCK_SLICE["position"],
+                              BLOCK_SLICE["relative_position"])
 
 
 def _blocks(scene: str, observation: np.ndarray) -> np.ndarray:
@@ -36,11 +39,11 @@ def bin_target(scene: str, observation: np.ndarray, goal: np.ndarray | None = No
     """(2,) float32: the bin spot for the block between the fingers minus the grip position (x, y)."""
     grip = observation[0:3]
     blocks = _blocks(scene, observation)
-    blocks = blocks[blocks[:, 0] > 0.5]
-    relative = blocks[:, 4:7]
+    blocks = blocks[blocks[:, PRESENT] > 0.5]
+    relative = blocks[:, RELATIVE]
     between_fingers = ((np.linalg.norm(relative[:, :2], axis=1) < THRESHOLDS.holding_xy)
                        & (np.abs(relative[:, 2]) < THRESHOLDS.holding_z))
-    spot = bin_spot(SCENES[scene].bin, list(blocks[~between_fingers, 1:4]), grip[:2])
+    spot = bin_spot(SCENES[scene].bin, list(blocks[~between_fingers, POSITION]), grip[:2])
     return np.zeros(2, dtype=np.float32) if spot is None else (spot - grip[:2]).astype(np.float32)
 
 
@@ -64,9 +67,9 @@ def subject_offset(scene: str, observation: np.ndarray, goal: np.ndarray | None)
         return np.zeros(3, np.float32)
     naming = _NAMING[scene]
     blocks = _blocks(scene, observation)
-    weights = (goal[naming.shape[0]:] @ naming) * (blocks[:, 0] > 0.5)
+    weights = (goal[naming.shape[0]:] @ naming) * (blocks[:, PRESENT] > 0.5)
     total = weights.sum()
-    return np.zeros(3, np.float32) if total == 0 else (weights @ blocks[:, 4:7] / total).astype(np.float32)
+    return np.zeros(3, np.float32) if total == 0 else (weights @ blocks[:, RELATIVE] / total).astype(np.float32)
 
 
 DerivedFeature = Callable[[str, np.ndarray, np.ndarray | None], np.ndarray]

@@ -26,6 +26,15 @@ ARM_SIZE = sum(size for _, size in ARM_FEATURES)
 BLOCK_SIZE = sum(size for _, size in BLOCK_FEATURES)
 
 
+def _slices(features: tuple[tuple[str, int], ...]) -> dict[str, slice]:
+    starts = np.cumsum([0, *(size for _, size in features)])
+    return {name: slice(int(start), int(start) + size) for (name, size), start in zip(features, starts, strict=False)}
+
+
+BLOCK_SLICE = _slices(BLOCK_FEATURES)
+"""Feature name -> its columns in a block slot, e.g. ``blocks[:, BLOCK_SLICE["relative_position"]]``."""
+
+
 def observation_size(scene: str) -> int:
     return ARM_SIZE + BLOCK_SIZE * SCENES[scene].max_blocks
 
@@ -79,10 +88,10 @@ def observation(
     obs[8:10] = np.asarray(finger_velocities) * CONTROL_DT
     blocks = obs[ARM_SIZE:].reshape(slots, BLOCK_SIZE)
     count = len(block_positions)
-    blocks[:count, 0] = 1.0
-    blocks[:count, 1:4] = block_positions
-    blocks[:count, 4:7] = np.asarray(block_positions) - np.asarray(grip_position)
-    blocks[:count, 7:10] = np.asarray(block_velocities)[:, :3] * CONTROL_DT
+    blocks[:count, BLOCK_SLICE["present"]] = 1.0
+    blocks[:count, BLOCK_SLICE["position"]] = block_positions
+    blocks[:count, BLOCK_SLICE["relative_position"]] = np.asarray(block_positions) - np.asarray(grip_position)
+    blocks[:count, BLOCK_SLICE["velocity"]] = np.asarray(block_velocities)[:, :3] * CONTROL_DT
     return obs
 
 

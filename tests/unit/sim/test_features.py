@@ -97,4 +97,4 @@ def test_the_env_computes_the_subject_offset_for_its_episode_goal() -> None:
     obs, _ = env.reset(seed=4, options={"subgoal": "pick(green)"})
     green = env.world.observation()[layout.ARM_SIZE:].reshape(-1, layout.BLOCK_SIZE)[SCENES[SCENE].objects.index("green")]
     assert env.observation_space["observation"].shape == (obs["observation"].size,)
-    assert np.allclose(obs["observation"][-3:], green[4:7])  # the slot's relative position
+    assert np.allclose(obs["observation"][-3:], green[layout.BLOCK_SLICE["relative_position"]])

@@ -1,9 +1,9 @@
-"""Lockstep through the four node processes is the in-process episode: the policy answers a world state
-only once the planner has decided on its step, so the graph takes exactly the steps and re-plans that
-:class:`HierarchicalAgent` takes with the same cores, seeds and actor. Each case re-plans in process, so
-the re-plan timing (the planner's stall and contradiction clocks) is compared too, and one runs out of
-its step budget (the planner ends it at the step the in-process loop stops). The client watches no
-stream, as the Table 1 evaluation through the graph runs."""
+"""Lockstep through the four node processes is the in-process episode: the policy follows the planner's
+decision on the step before (or, where that names no sub-goal, on the current step, once it has come),
+so the graph takes exactly the steps and re-plans that :class:`HierarchicalAgent` takes with the same
+cores, seeds and actor. Each case re-plans in process, so the re-plan timing (the planner's stall and
+contradiction clocks) is compared too. The client watches no stream, as the Table 1 evaluation through
+the graph runs."""
 
 import pytest
 
@@ -13,11 +13,10 @@ from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
 from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
 
-CASES = [("Swap-2", 2), ("DC-2", 21), ("DC-4", 3_000_001)]
-"""Starts where the shipped actors re-plan in process (Swap-2: once; DC-2: twice and DC-4: once, both
-solved). Re-check them when an actor is shipped: the first DC-2 seed from 16 and DC-4 seed from 3000000
-where the desk actor of session 37 re-plans (its predecessor re-planned at DC-2 seed 16 and DC-4 seed
-3000006)."""
+CASES = [("Swap-2", 2), ("MC-3", 22), ("DC-4", 3_000_004)]
+"""One start per scene where the shipped actors re-plan in process (Swap-2: once; MC-3: three times; DC-4:
+once; all solved). Re-check them when an actor is shipped: the first DC-4 seed from 3000000 that
+re-plans; session 40's one-step decision latency left DC-2 seed 21 and DC-4 seed 3000001 without one."""
 
 
 @pytest.mark.parametrize(("task", "seed"), CASES)

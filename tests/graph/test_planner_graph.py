@@ -31,7 +31,7 @@ class Operator:
         node = probe.node
         node.create_subscription(Plan, topics.PLAN, self.plans.append, topics.LATCHED)
         node.create_subscription(SubGoal, topics.SUBGOAL, self.subgoals.append, topics.LATCHED)
-        self.states = node.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.LATCHED)
+        self.states = node.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.PER_STEP)
         self.goals = node.create_publisher(GoalRequest, topics.GOAL, 10)
 
     def call(self, service_type, name, request):

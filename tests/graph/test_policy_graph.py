@@ -1,7 +1,7 @@
 """sim_node, predicate_node and policy_node as processes: the test plays the planner (it answers every
 semantic state with the sub-goal, stamped with the state's episode and step) and sets pick(red); the shipped actor
 achieves it in lockstep within the step budget. Without an active sub-goal, or without the planner's
-answer for the current step, the lockstep world waits (the arm holds still)."""
+answer for the current step or the one before, the lockstep world waits (the arm holds still)."""
 
 import numpy as np
 
@@ -19,7 +19,7 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     nodes.start("semgoal_policy", "policy_node", params={"scene": "two_blocks"})
     worlds: list[WorldState] = []
     semantic: list[SemanticState] = []
-    subgoals = probe.node.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
+    subgoals = probe.node.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
     planner = {"answers": True, "subgoal": SubGoal(status="empty")}  # nothing active: the arm holds still
 
     def answer(state: SemanticState) -> None:
@@ -43,7 +43,7 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     assert max(np.linalg.norm(g - grip[0]) for g in grip) < 0.005
 
     start, episode = worlds[-1].step, worlds[-1].episode
-    pick_red = SubGoal(index=0, action="pick(red)", status="active", assignee="robot", step=start + 1, episode=episode,
+    pick_red = SubGoal(index=0, action="pick(red)", status="active", assignee="robot", step=start + 5, episode=episode,
                        goal=[Predicate(name="holding", args=["red"], value=True)])
     planner["answers"] = False
     subgoals.publish(pick_red)  # decided for a step the world has not reached: the policy waits
@@ -54,6 +54,10 @@ def test_policy_picks_red_in_lockstep(nodes: NodeProcesses, probe: GraphProbe) -
     probe.spin_for(1.5)
     assert worlds[-1].step == start
     pick_red.episode = episode
+    subgoals.publish(pick_red)  # decided for this step: the policy acts on it, and on the next step too
+    probe.spin_for(1.5)  # (one step of decision latency), then waits for a decision on that next step
+    assert worlds[-1].step == start + 2
+    pick_red.step = start + 2
     planner.update(answers=True, subgoal=pick_red)
     subgoals.publish(pick_red)
 

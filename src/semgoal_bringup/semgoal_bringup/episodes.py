@@ -2,8 +2,9 @@
 
 The hierarchical episode composes the same cores the nodes wrap (no ROS): the planner node's
 :class:`Executive`, the policy node's :class:`SubgoalController` and the sim node's :class:`FetchWorld`,
-stepped as the graph steps them in lockstep: the policy acts only while the active sub-goal does not yet
-hold, the executive sees every new semantic state and every control step. So an in-process episode and
+stepped as the graph steps them in lockstep: the executive sees every new semantic state and every
+control step, and the policy follows the sub-goal decided on the step before (one step of decision
+latency, :func:`~semgoal_policy.controller.lockstep_subgoal`). So an in-process episode and
 one through the graph (``./semgoal eval --via-ros``) follow the same rules.
 
 Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
@@ -21,7 +22,7 @@ from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
-from semgoal_policy.controller import SubgoalController
+from semgoal_policy.controller import SubgoalController, lockstep_subgoal
 from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
 
@@ -62,14 +63,15 @@ class HierarchicalAgent:
         executive = Executive(SemanticPlanner(task.scene))
         executive.observe(observe(world))
         planned, _ = executive.set_goal(task.name, step_budget=budget)
-        steps = 0
+        steps, decided_before = 0, None
         while planned and executive.status == "executing":
-            active = executive.active
-            if active is None:  # a human step: nobody acts in an evaluation
+            decided_now = executive.active.subgoal.literals() if executive.active else None
+            literals = lockstep_subgoal(decided_before, decided_now)
+            if literals is None:  # a human step: nobody acts in an evaluation
                 break
-            self.controller.set_subgoal(active.subgoal.literals())
+            self.controller.set_subgoal(literals)
             world.step(self.controller.act(world.observation(), (seed, steps)))
-            steps += 1
+            steps, decided_before = steps + 1, decided_now
             executive.tick(steps)
             executive.observe(observe(world))
         return Outcome(task.name, seed, executive.status == "succeeded", steps, executive.replans)

@@ -52,9 +52,9 @@ class PlannerNode(Node):
         self.state_waiters: list[Future] = []
         """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
-        self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.LATCHED)
+        self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
-        self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.LATCHED)
+        self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
         self.create_service(EditPlan, topics.EDIT_PLAN, self.edit_plan_callback)
         self.action_server = ActionServer(

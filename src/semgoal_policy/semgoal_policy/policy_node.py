@@ -1,11 +1,15 @@
 """policy_node: world state and the active sub-goal in, arm commands out.
 
-Lockstep: one ArmCommand per world state, sent once the planner has decided on that state's episode and
-step (the sub-goal message carries both), so the node graph takes exactly the steps of the in-process episode;
-without an active sub-goal no command goes out and the world waits. Realtime: a command at ``rate_hz``
-with the latest sub-goal; once that holds (its literals held for ``SUBGOAL_CONFIRM_STEPS`` steps, the
-planner's rule) the arm holds still until the planner names the next. It never publishes NaN or values
-outside [-1, 1].
+Lockstep: one ArmCommand per world state. The planner's decision on step k (the sub-goal message carries
+the episode and step it decided on) is what the policy follows at step k + 1: one control step of
+decision latency, as the nodes have in realtime, and the in-process episode keeps the same rule, so
+the graph takes exactly its steps. The actor then runs as soon as a world state comes, while the
+predicates and the planner work on the same state, instead of after them. At an episode's first step,
+or when the decision on the step before names no sub-goal, the policy waits for the decision on the
+current step; without an active sub-goal no command goes out and the world waits. Realtime: a command
+at ``rate_hz`` with the latest sub-goal; once that holds (its literals held for
+``SUBGOAL_CONFIRM_STEPS`` steps, the planner's rule) the arm holds still until the planner names the
+next. It never publishes NaN or values outside [-1, 1].
 """
 
 from __future__ import annotations
@@ -16,10 +20,14 @@ import numpy as np
 from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
-from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
+from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError, lockstep_subgoal
 from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.vocabulary import SCENES, Literal
+
+DECISIONS_KEPT = 8
+"""Decisions remembered: the step before the world's and its own are the ones used, a few more cover a
+reordering between the two topics."""
 
 
 class PolicyNode(Node):
@@ -37,29 +45,32 @@ class PolicyNode(Node):
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
-        self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.LATCHED)
+        self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.PER_STEP)
         self.latest: WorldState | None = None
-        self.decided: tuple[int, int] | None = None
-        """(episode, control step) of the semantic state behind the latest sub-goal message."""
+        self.decisions: dict[tuple[int, int], SubGoal] = {}
+        """The planner's latest answer per (episode, control step), the last ``DECISIONS_KEPT``."""
         self.answered: tuple[int, int] | None = None
         self.answered_at = 0.0
         # realtime: act at rate_hz. lockstep: the world waits for each command, so the timer only resends
         # one that may have been lost
         self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
         self.subgoal_key: tuple | None = None
-        self.prepared: tuple[tuple, np.ndarray] | None = None
-        """(episode, step, sub-goal key) and the command the actor gives for them."""
 
     def subgoal_callback(self, msg: SubGoal) -> None:
-        self.decided = (msg.episode, msg.step)
-        key = (msg.status, msg.action, tuple((p.name, tuple(p.args), p.value) for p in msg.goal))
-        if key != self.subgoal_key:  # the planner answers every step; most answers repeat the last sub-goal
-            self.subgoal_key = key
-            self.set_subgoal(msg)
-        if self.mode == "lockstep":
-            self.answer_lockstep()
+        if self.mode == "realtime":
+            self.follow(msg)
+            return
+        self.decisions[(msg.episode, msg.step)] = msg
+        if len(self.decisions) > DECISIONS_KEPT:
+            del self.decisions[next(iter(self.decisions))]
+        self.answer_lockstep()
 
-    def set_subgoal(self, msg: SubGoal) -> None:
+    def follow(self, msg: SubGoal) -> None:
+        """Condition the actor on a sub-goal message's goal (most messages repeat the last one)."""
+        key = (msg.status, msg.action, tuple((p.name, tuple(p.args), p.value) for p in msg.goal))
+        if key == self.subgoal_key:
+            return
+        self.subgoal_key = key
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == "active" else []
         try:
             self.controller.set_subgoal(literals)
@@ -73,10 +84,6 @@ class PolicyNode(Node):
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg
         if self.mode == "lockstep":
-            if self.controller.goal is not None:
-                # the planner's answer for this step is on its way and mostly repeats the sub-goal: the
-                # actor runs now, while the predicates and the planner work, instead of after them
-                self.command_for(msg)
             self.answer_lockstep()
 
     def timer_callback(self) -> None:
@@ -95,21 +102,23 @@ class PolicyNode(Node):
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
     def answer_lockstep(self) -> None:
-        """Act once on the latest world state when the planner has decided on its step and names a sub-goal."""
+        """Act once on the latest world state, on the sub-goal :func:`lockstep_subgoal` picks from the
+        planner's decisions on that step and the one before; wait while it picks none."""
         msg = self.latest
-        if msg is None or self.controller.goal is None:
+        if msg is None or (msg.episode, msg.step) == self.answered:
             return
-        world = (msg.episode, msg.step)
-        if world != self.decided or world == self.answered:
+        decision = lockstep_subgoal(self.active_decision(msg.episode, msg.step - 1),
+                                    self.active_decision(msg.episode, msg.step))
+        if decision is None:
             return
-        self.publish_command(msg, self.command_for(msg))
+        self.follow(decision)
+        if self.controller.goal is not None:
+            self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
 
-    def command_for(self, msg: WorldState) -> np.ndarray:
-        """The actor's command for a world state under the current sub-goal, computed once."""
-        key = (msg.episode, msg.step, self.subgoal_key)
-        if self.prepared is None or self.prepared[0] != key:
-            self.prepared = (key, self.controller.act(msg.observation, (msg.seed, msg.step)))
-        return self.prepared[1]
+    def active_decision(self, episode: int, step: int) -> SubGoal | None:
+        """The planner's decision on a step of an episode if it names a sub-goal for the robot."""
+        decision = self.decisions.get((episode, step))
+        return decision if decision is not None and decision.status == "active" else None
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))

@@ -16,7 +16,7 @@ from semgoal_sim.vocabulary import LAYOUTS
 class PredicateNode(Node):
     def __init__(self) -> None:
         super().__init__("predicates")
-        self.publisher = self.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.LATCHED)
+        self.publisher = self.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.PER_STEP)
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.last_key: tuple | None = None
         self.fall_episode: tuple | None = None

@@ -1,10 +1,11 @@
 """Topic names and QoS profiles shared by every semgoal node: the one place these choices live.
 
-Latched state (world snapshot, semantic state, plan, active sub-goal) is reliable + transient_local with
-depth 1, so a late joiner gets the last value at once. Streams (world state, arm commands) are keep-last.
-Also the few ROS helpers every side shares: the nodes' ``main`` (:func:`run_node`) and, for clients (the
-operator CLI, the graph client, the tests), spinning until a condition holds and sending a request
-again while no answer comes; for servers, the memory of answers that makes such a repeat safe.
+Latched state (plan, markers) is reliable + transient_local with depth 1, so a late joiner gets the last
+value at once; the semantic state and the active sub-goal are latched too, with room for a few.
+Streams (world state, arm commands) are keep-last. Also the few ROS helpers every side shares: the
+nodes' ``main`` (:func:`run_node`) and, for clients (the operator CLI, the graph client, the tests),
+spinning until a condition holds and sending a request again while no answer comes; for servers, the
+memory of answers that makes such a repeat safe.
 """
 
 import time
@@ -34,7 +35,18 @@ LATCHED = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE,
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
 )
-"""Last value kept for late joiners: semantic state, plan, sub-goal, markers."""
+"""Last value kept for late joiners: plan, markers."""
+
+PER_STEP = QoSProfile(
+    depth=10,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+)
+"""The semantic state and the active sub-goal: latched (a late joiner gets the last at once), but with
+room for a few, since every one counts: in lockstep the policy follows the planner's decision on the
+step before the world's, so the world runs up to two steps ahead of the planner, and a state or a
+decision replaced before it was read would change the episode."""
 
 STREAM = QoSProfile(
     depth=10,

@@ -8,7 +8,7 @@ import torch
 
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
 from semgoal_policy.agents import get_agent
-from semgoal_policy.controller import HOLD, SubgoalController
+from semgoal_policy.controller import HOLD, SubgoalController, lockstep_subgoal
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_sim import features, layout
 from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
@@ -218,3 +218,9 @@ def test_derived_features_travel_with_the_export_and_the_controller_appends_them
 def test_flat_agents_refuse_derived_features() -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
         get_agent("flat-semantic").make_env("desk_cleanup", ("bin_target",))
+
+
+def test_lockstep_follows_the_decision_on_the_step_before_when_it_names_a_subgoal() -> None:
+    assert lockstep_subgoal("pick(red)", "put_near(red,green)") == "pick(red)"
+    assert lockstep_subgoal(None, "pick(red)") == "pick(red)"  # first step, or the step before named none
+    assert lockstep_subgoal(None, None) is None  # the world waits

@@ -4,7 +4,7 @@ Wires the pure :class:`~semgoal_planner.executive.Executive` to ROS: the goal to
 EditPlan services, the ExecuteGoal action. The semantic state (one per world state, stamped with its
 control step) is also the clock: each one is a tick and an observation, in that order, as in the
 in-process episode, and each one gets an answer on the sub-goal topic stamped with its step, so the
-policy in lockstep acts on a world state only once the planner has decided on it.
+policy in lockstep follows the decision on each step at the next (one step of decision latency).
 """
 
 from __future__ import annotations

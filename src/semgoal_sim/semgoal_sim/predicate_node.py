@@ -1,7 +1,7 @@
 """predicate_node: world state in, semantic state out (latched), one per world state.
 
 Every world state gets its semantic state, changed or not: the planner takes its control-step clock
-from this stream, and in lockstep the policy waits for the planner's decision on each step. A change
+from this stream, and in lockstep the policy follows its decision on each step, one step later. A change
 is logged in the scene's readable form, and a block that falls off the table as a warning.
 """
 

@@ -1,5 +1,6 @@
 """The operator CLI: `./semgoal run` starts real nodes, `./semgoal doctor` reports the environment."""
 
+import re
 import subprocess
 
 from conftest import ROOT, GraphProbe, NodeProcesses
@@ -36,7 +37,9 @@ def test_demo_solves_a_task_through_the_graph() -> None:
     assert result.returncode == 0, result.stdout[-2000:] + result.stderr[-2000:]
     assert result.stdout.strip().splitlines()[-1] == "MC-2: success"
     assert "plan: 0. pick(" in result.stdout and "started 0. pick(" in result.stdout
-    assert "episode GIF" in result.stdout
+    steps = int(re.search(r"\[demo\] (\d+) control steps", result.stdout).group(1))
+    frames = int(re.search(r"episode GIF: \S+ \((\d+) frames\)", result.stdout).group(1))
+    assert frames >= steps // 2, "the GIF should show every second step of the episode"
 
 
 def test_demo_gives_its_goal_a_step_budget() -> None:

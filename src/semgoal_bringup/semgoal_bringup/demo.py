@@ -21,6 +21,8 @@ DEFAULT_SEED = 6
 """A DC-3 start the shipped actors solve through the graph (107 control steps, no re-plan, session 40)."""
 TO_DO = ("pending", "active")
 """Plan steps a printed plan lists: a re-plan keeps the steps already done ahead of the new ones."""
+RECORD_DEPTH = 1000
+"""Messages the GIF's readers hold per topic until this process takes them."""
 
 
 def main(argv: list[str]) -> int:
@@ -56,36 +58,67 @@ class Demo:
     """One episode through the graph, narrated: plan, steps started and done, re-plans, result, GIF."""
 
     def __init__(self, task_name: str, seed: int) -> None:
+        from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
         from sensor_msgs.msg import JointState
 
         from semgoal_bringup.graph_client import GraphClient
+        from semgoal_msgs.msg import SubGoal, WorldState
         from semgoal_sim.tasks import get_task
 
         self.task, self.seed = get_task(task_name), seed
         self.client = GraphClient("semgoal_demo")
-        self.joints: JointState | None = None
-        self.frames: list = []
+        self.worlds: list = []
+        """World states of even steps, the GIF's frames."""
+        self.joints: dict[tuple[int, int], dict[str, float]] = {}
+        """Arm joint positions by stamp (the sim stamps a step's joint and world states alike)."""
+        self.decisions: dict[tuple[int, int], SubGoal] = {}
+        """The planner's decisions by (episode, step): the caption is the sub-goal the policy followed."""
         self.seen_steps: dict[int, str] = {}
         self.replans_shown = -1
         """Re-plans of the plan last printed (-1: none printed yet); a step done changes the plan too."""
-        self.client.node.create_subscription(JointState, self.client.topics.JOINT_STATES, self._on_joints,
-                                             self.client.topics.STREAM)
-        self.client.world_listeners.append(self._record)
+        # the GIF's own readers, deep enough that no step is replaced before this process reads it: with
+        # four busy nodes on two cores it can fall behind, and a depth-10 reader then kept only the last ten
+        record = QoSProfile(depth=RECORD_DEPTH, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
+                            durability=DurabilityPolicy.VOLATILE)
+        node, topics = self.client.node, self.client.topics
+        node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, record)
+        node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, record)
+        node.create_subscription(SubGoal, topics.SUBGOAL, self._on_decision, record)
+
+    def _on_world(self, msg) -> None:
+        if msg.step % 2 == 0:
+            self.worlds.append(msg)
 
     def _on_joints(self, msg) -> None:
-        self.joints = msg
+        self.joints[(msg.header.stamp.sec, msg.header.stamp.nanosec)] = dict(zip(msg.name, msg.position, strict=True))
 
-    def _record(self, msg) -> None:
-        if msg.step % 2 or self.joints is None:
-            return
+    def _on_decision(self, msg) -> None:
+        self.decisions[(msg.episode, msg.step)] = msg
+
+    def frames(self) -> list:
+        """The last episode's frames: each even step's world state, the arm's joints at that step and the
+        sub-goal the policy followed there (:func:`lockstep_subgoal`), or the planner's status."""
         from semgoal_bringup.episode_gif import Frame
+        from semgoal_policy.lockstep import lockstep_subgoal
 
-        subgoal = self.client.subgoal
-        caption = "" if subgoal is None else subgoal.action if subgoal.status == "active" else f"({subgoal.status})"
-        poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
-                          b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
-        self.frames.append(Frame(int(msg.step), dict(zip(self.joints.name, self.joints.position, strict=True)),
-                                 poses, caption))
+        def active(episode: int, step: int):
+            decision = self.decisions.get((episode, step))
+            return decision if decision is not None and decision.status == "active" else None
+
+        episode = self.worlds[-1].episode if self.worlds else None
+        frames, seen = [], set()
+        for msg in self.worlds:
+            joints = self.joints.get((msg.header.stamp.sec, msg.header.stamp.nanosec))
+            if msg.episode != episode or joints is None or msg.step in seen:  # a heartbeat repeats a step
+                continue
+            seen.add(msg.step)
+            followed = lockstep_subgoal(active(episode, msg.step - 1), active(episode, msg.step))
+            decision = self.decisions.get((episode, msg.step))
+            caption = followed.action if followed else f"({decision.status})" if decision else ""
+            poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
+                              b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
+            frames.append(Frame(int(msg.step), joints, poses, caption))
+        return frames
 
     def log(self, text: str) -> None:
         step = self.client.world.step if self.client.world else 0
@@ -120,11 +153,12 @@ class Demo:
             print(f"[demo] {result.control_steps} control steps ({result.sim_time:.1f} s sim time) in "
                   f"{result.wall_s:.1f} s wall: {result.control_steps / max(result.wall_s, 1e-9):.0f} steps/s "
                   "through the graph", flush=True)
-            if gif is not None and self.frames:
+            frames = self.frames() if gif is not None else []
+            if frames:
                 from semgoal_bringup.episode_gif import write_gif
 
-                write_gif(self.task.scene, self.task.n_blocks, self.frames, gif)
-                print(f"[demo] episode GIF: {gif} ({len(self.frames)} frames)", flush=True)
+                write_gif(self.task.scene, self.task.n_blocks, frames, gif)
+                print(f"[demo] episode GIF: {gif} ({len(frames)} frames)", flush=True)
             print(f"{self.task.name}: {'success' if result.success else 'failure'}")
             return 0 if result.success else 1
         finally:

@@ -4,7 +4,7 @@ The hierarchical episode composes the same cores the nodes wrap (no ROS): the pl
 :class:`Executive`, the policy node's :class:`SubgoalController` and the sim node's :class:`FetchWorld`,
 stepped as the graph steps them in lockstep: the executive sees every new semantic state and every
 control step, and the policy follows the sub-goal decided on the step before (one step of decision
-latency, :func:`~semgoal_policy.controller.lockstep_subgoal`). So an in-process episode and
+latency, :func:`~semgoal_policy.lockstep.lockstep_subgoal`). So an in-process episode and
 one through the graph (``./semgoal eval --via-ros``) follow the same rules.
 
 Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
@@ -22,7 +22,8 @@ from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
-from semgoal_policy.controller import SubgoalController, lockstep_subgoal
+from semgoal_policy.controller import SubgoalController
+from semgoal_policy.lockstep import lockstep_subgoal
 from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TypeVar
 
 import numpy as np
 
@@ -20,22 +19,6 @@ ACTION_MODES = ("sample", "mean")
 step, so runs are reproducible and the graph and in-process evaluation act alike), ``mean`` takes its
 mean. Sampling is the default: the deterministic mean can hover in place for good (MC-2, task seeds
 3000000+: 10 of 12 solved with the mean, 12 of 12 sampled)."""
-
-
-Decision = TypeVar("Decision")
-
-
-def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | None) -> Decision | None:
-    """The planner's decision the policy follows at a lockstep control step, given the active sub-goals
-    decided on the step before and on this one (None where a decision names none or has not come).
-
-    The decision on the step before, when it names a sub-goal: one control step of decision latency, as
-    in realtime, lets the actor run while the predicates and the planner work on the same world state,
-    instead of after them. At an episode's first step, or when the step before named none (no plan yet, a
-    human's turn), the decision on this step; None: the world waits. The policy node and the in-process
-    episode both follow this rule, so they take the same steps.
-    """
-    return decided_before if decided_before is not None else decided_now
 
 
 class SubgoalController:
@@ -84,4 +67,4 @@ class SubgoalController:
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 
-__all__ = ["ACTION_MODES", "HOLD", "SubgoalController", "VocabularyError", "lockstep_subgoal"]
+__all__ = ["ACTION_MODES", "HOLD", "SubgoalController", "VocabularyError"]

@@ -20,7 +20,8 @@ import numpy as np
 from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
-from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError, lockstep_subgoal
+from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
+from semgoal_policy.lockstep import lockstep_subgoal
 from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.vocabulary import SCENES, Literal

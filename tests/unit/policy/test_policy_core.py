@@ -8,7 +8,8 @@ import torch
 
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
 from semgoal_policy.agents import get_agent
-from semgoal_policy.controller import HOLD, SubgoalController, lockstep_subgoal
+from semgoal_policy.controller import HOLD, SubgoalController
+from semgoal_policy.lockstep import lockstep_subgoal
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_sim import features, layout
 from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError

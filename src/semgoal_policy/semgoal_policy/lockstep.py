@@ -1,0 +1,21 @@
+"""Which of the planner's decisions the policy follows at a lockstep control step (no ROS, no torch):
+the policy node, the in-process episode and the demo's captions share this one rule."""
+
+from __future__ import annotations
+
+from typing import TypeVar
+
+Decision = TypeVar("Decision")
+
+
+def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | None) -> Decision | None:
+    """The planner's decision the policy follows at a lockstep control step, given the active sub-goals
+    decided on the step before and on this one (None where a decision names none or has not come).
+
+    The decision on the step before, when it names a sub-goal: one control step of decision latency, as
+    in realtime, lets the actor run while the predicates and the planner work on the same world state,
+    instead of after them. At an episode's first step, or when the step before named none (no plan yet, a
+    human's turn), the decision on this step; None: the world waits. The policy node and the in-process
+    episode both follow this rule, so they take the same steps.
+    """
+    return decided_before if decided_before is not None else decided_now

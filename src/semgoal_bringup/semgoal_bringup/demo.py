@@ -21,8 +21,6 @@ DEFAULT_SEED = 6
 """A DC-3 start the shipped actors solve through the graph (107 control steps, no re-plan, session 40)."""
 TO_DO = ("pending", "active")
 """Plan steps a printed plan lists: a re-plan keeps the steps already done ahead of the new ones."""
-RECORD_DEPTH = 1000
-"""Messages the GIF's readers hold per topic until this process takes them."""
 
 
 def main(argv: list[str]) -> int:
@@ -58,7 +56,6 @@ class Demo:
     """One episode through the graph, narrated: plan, steps started and done, re-plans, result, GIF."""
 
     def __init__(self, task_name: str, seed: int) -> None:
-        from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
         from sensor_msgs.msg import JointState
 
         from semgoal_bringup.graph_client import GraphClient
@@ -76,14 +73,10 @@ class Demo:
         self.seen_steps: dict[int, str] = {}
         self.replans_shown = -1
         """Re-plans of the plan last printed (-1: none printed yet); a step done changes the plan too."""
-        # the GIF's own readers, deep enough that no step is replaced before this process reads it: with
-        # four busy nodes on two cores it can fall behind, and a depth-10 reader then kept only the last ten
-        record = QoSProfile(depth=RECORD_DEPTH, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
-                            durability=DurabilityPolicy.VOLATILE)
-        node, topics = self.client.node, self.client.topics
-        node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, record)
-        node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, record)
-        node.create_subscription(SubGoal, topics.SUBGOAL, self._on_decision, record)
+        node, topics = self.client.node, self.client.topics  # the GIF's own readers
+        node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.RECORDING)
+        node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.RECORDING)
+        node.create_subscription(SubGoal, topics.SUBGOAL, self._on_decision, topics.RECORDING)
 
     def _on_world(self, msg) -> None:
         if msg.step % 2 == 0:
@@ -97,13 +90,9 @@ class Demo:
 
     def frames(self) -> list:
         """The last episode's frames: each even step's world state, the arm's joints at that step and the
-        sub-goal the policy followed there (:func:`lockstep_subgoal`), or the planner's status."""
+        sub-goal the policy followed there (:func:`followed_decision`), or the planner's status."""
         from semgoal_bringup.episode_gif import Frame
-        from semgoal_policy.lockstep import lockstep_subgoal
-
-        def active(episode: int, step: int):
-            decision = self.decisions.get((episode, step))
-            return decision if decision is not None and decision.status == "active" else None
+        from semgoal_policy.lockstep import followed_decision
 
         episode = self.worlds[-1].episode if self.worlds else None
         frames, seen = [], set()
@@ -112,7 +101,7 @@ class Demo:
             if msg.episode != episode or joints is None or msg.step in seen:  # a heartbeat repeats a step
                 continue
             seen.add(msg.step)
-            followed = lockstep_subgoal(active(episode, msg.step - 1), active(episode, msg.step))
+            followed = followed_decision(self.decisions, episode, msg.step)
             decision = self.decisions.get((episode, msg.step))
             caption = followed.action if followed else f"({decision.status})" if decision else ""
             poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,

@@ -3,7 +3,8 @@ the policy node, the in-process episode and the demo's captions share this one r
 
 from __future__ import annotations
 
-from typing import TypeVar
+from collections.abc import Mapping
+from typing import Protocol, TypeVar
 
 Decision = TypeVar("Decision")
 
@@ -19,3 +20,21 @@ def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | No
     episode both follow this rule, so they take the same steps.
     """
     return decided_before if decided_before is not None else decided_now
+
+
+class PlannerDecision(Protocol):
+    status: str
+
+
+Message = TypeVar("Message", bound=PlannerDecision)
+
+
+def followed_decision(decisions: Mapping[tuple[int, int], Message], episode: int, step: int) -> Message | None:
+    """:func:`lockstep_subgoal` over the planner's sub-goal messages keyed by (episode, step): the one the
+    policy follows at that step of that episode, or None (the world waits)."""
+
+    def active(decided_step: int) -> Message | None:
+        decision = decisions.get((episode, decided_step))
+        return decision if decision is not None and decision.status == "active" else None
+
+    return lockstep_subgoal(active(step - 1), active(step))

@@ -21,7 +21,7 @@ from rclpy.node import Node
 
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
-from semgoal_policy.lockstep import lockstep_subgoal
+from semgoal_policy.lockstep import followed_decision
 from semgoal_sim import conversions
 from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.vocabulary import SCENES, Literal
@@ -103,23 +103,17 @@ class PolicyNode(Node):
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
     def answer_lockstep(self) -> None:
-        """Act once on the latest world state, on the sub-goal :func:`lockstep_subgoal` picks from the
+        """Act once on the latest world state, on the sub-goal :func:`followed_decision` picks from the
         planner's decisions on that step and the one before; wait while it picks none."""
         msg = self.latest
         if msg is None or (msg.episode, msg.step) == self.answered:
             return
-        decision = lockstep_subgoal(self.active_decision(msg.episode, msg.step - 1),
-                                    self.active_decision(msg.episode, msg.step))
+        decision = followed_decision(self.decisions, msg.episode, msg.step)
         if decision is None:
             return
         self.follow(decision)
         if self.controller.goal is not None:
             self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
-
-    def active_decision(self, episode: int, step: int) -> SubGoal | None:
-        """The planner's decision on a step of an episode if it names a sub-goal for the robot."""
-        decision = self.decisions.get((episode, step))
-        return decision if decision is not None and decision.status == "active" else None
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))

@@ -56,6 +56,15 @@ STREAM = QoSProfile(
 )
 """Per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step)."""
 
+RECORDING = QoSProfile(
+    depth=1000,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.VOLATILE,
+)
+"""A reader that must see every step of an episode (the demo's GIF): a client that falls behind while four
+busy nodes share two cores would keep only the last ten steps of a depth-10 stream reader."""
+
 CAMERA = QoSProfile(
     depth=1,
     history=HistoryPolicy.KEEP_LAST,

@@ -9,7 +9,7 @@ import torch
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import HOLD, SubgoalController
-from semgoal_policy.lockstep import lockstep_subgoal
+from semgoal_policy.lockstep import followed_decision, lockstep_subgoal
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_sim import features, layout
 from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
@@ -225,3 +225,13 @@ def test_lockstep_follows_the_decision_on_the_step_before_when_it_names_a_subgoa
     assert lockstep_subgoal("pick(red)", "put_near(red,green)") == "pick(red)"
     assert lockstep_subgoal(None, "pick(red)") == "pick(red)"  # first step, or the step before named none
     assert lockstep_subgoal(None, None) is None  # the world waits
+
+
+def test_followed_decision_reads_the_active_decisions_of_the_worlds_episode() -> None:
+    from types import SimpleNamespace
+
+    pick, empty = SimpleNamespace(status="active"), SimpleNamespace(status="empty")
+    decisions = {(3, 4): pick, (3, 5): empty, (2, 5): pick}
+    assert followed_decision(decisions, 3, 5) is pick  # the step before
+    assert followed_decision(decisions, 3, 6) is None  # the step before named none, this one has not come
+    assert followed_decision(decisions, 4, 0) is None  # another episode's decisions do not count

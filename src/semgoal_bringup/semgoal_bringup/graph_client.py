@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import time
+import uuid
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -43,7 +44,7 @@ class GraphClient:
 
         from semgoal_msgs.action import ExecuteGoal
         from semgoal_msgs.msg import SemanticState, SubGoal, WorldState
-        from semgoal_msgs.srv import GetPlan, MoveBlock, ResetWorld
+        from semgoal_msgs.srv import EditPlan, GetPlan, MoveBlock, ResetWorld
         from semgoal_sim import ros_interfaces as topics
 
         if not rclpy.ok():
@@ -62,8 +63,10 @@ class GraphClient:
         self.reset_client = node.create_client(ResetWorld, topics.RESET_WORLD)
         self.move_client = node.create_client(MoveBlock, topics.MOVE_BLOCK)
         self.plan_client = node.create_client(GetPlan, topics.GET_PLAN)
+        self.edit_client = node.create_client(EditPlan, topics.EDIT_PLAN)
         self.action = ActionClient(node, ExecuteGoal, topics.EXECUTE_GOAL)
         self.ExecuteGoal, self.ResetWorld, self.MoveBlock, self.GetPlan = ExecuteGoal, ResetWorld, MoveBlock, GetPlan
+        self.EditPlan = EditPlan
 
     # -- streams -------------------------------------------------------------------------------------
     def _on_world(self, msg) -> None:
@@ -141,6 +144,13 @@ class GraphClient:
         request.position.x, request.position.y, request.position.z = float(x), float(y), float(z)
         reply = self.call(self.move_client, request)
         return (reply.success, reply.message) if reply else (False, "move_block did not answer")
+
+    def edit(self, op: str, index: int = 0, action: str = "") -> tuple[bool, str]:
+        """An operator's plan edit; (applied, the planner's message). Sent again while unanswered: the
+        request id makes a repeat safe (the planner answers it without applying it twice)."""
+        request = self.EditPlan.Request(op=op, index=index, action=action, request_id=uuid.uuid4().hex)
+        reply = self.topics.send_until_answered(lambda: self.edit_client.call_async(request), self.spin_until)
+        return (reply.success, reply.message) if reply else (False, "edit_plan did not answer")
 
     def execute(self, goal_text: str, feedback: Callable | None = None, timeout: float = EPISODE_TIMEOUT_S,
                 max_steps: int = 0, while_running: Callable[[], None] | None = None) -> GoalResult:

@@ -10,7 +10,7 @@ cd "$ROOT"
 step() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
 
 venv_stamp="$(cat requirements/*.txt | sha256sum | cut -c1-16)-$("$PYTHON" -c 'import sys; print(sys.version.split()[0])')"
-ws_stamp="$(cd src && find . -type f ! -name '*.pyc' ! -path '*/__pycache__/*' \
+ws_stamp="$(cd src && find . -type f ! -name '*.pyc' ! -name '*.so' ! -path '*/__pycache__/*' \
   \( ! -name '*.py' -o -name setup.py \) -print0 | sort -z | xargs -0 sha256sum | sha256sum | cut -c1-16)"
 ws_stamp="$ws_stamp-$(find src -name '*.py' ! -path '*/__pycache__/*' | sort | sha256sum | cut -c1-16)"
 venv_current() { [ "$(cat "$VENV/.semgoal-stamp" 2>/dev/null)" = "$venv_stamp" ]; }

@@ -1,4 +1,4 @@
-from setuptools import find_packages, setup
+from setuptools import Extension, find_packages, setup
 
 PACKAGE = "semgoal_planner"
 
@@ -11,6 +11,8 @@ setup(
         (f"share/{PACKAGE}", ["package.xml"]),
     ],
     package_data={PACKAGE: ["domains/*.pddl"]},
+    # the searches and heuristics in C (parsing and grounding stay in Python)
+    ext_modules=[Extension(f"{PACKAGE}._core", [f"{PACKAGE}/_core.c"], extra_compile_args=["-O2", "-std=c11"])],
     install_requires=["setuptools"],
     zip_safe=False,
     maintainer="semgoal developers",

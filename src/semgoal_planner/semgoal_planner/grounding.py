@@ -1,21 +1,27 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
-Two passes, each linear in what it produces. First every action's parameters are bound one at a time
-over objects of their types, and each static precondition (a predicate no action changes, or equality)
-is checked as soon as its last variable is bound, so bindings that can never apply are cut early. Then a
-relaxed exploration (delete effects and negative preconditions ignored) keeps the candidates whose
-fluent preconditions become reachable: each candidate waits on a counter of unreached preconditions and
-fires when it hits zero. Static atoms leave the state, which keeps only reachable fluent facts, one bit
-each.
+Three passes, each linear in what it produces, and each mostly C-level ``map`` over whole columns
+(one atom of one action across all its bindings) rather than a Python loop per operator.
+1. Every action's parameters are bound one at a time over objects of their types, and each static
+   precondition (a predicate no action changes, or equality) is checked as soon as its last variable is
+   bound, so bindings that can never apply are cut early.
+2. The candidates' atoms get provisional ids and bit masks, and a relaxed exploration (delete effects
+   and negative preconditions ignored) fires candidates whose preconditions are reached until nothing
+   grows: the candidates it never fires are dropped.
+3. Static atoms leave the state, which keeps only reachable fluent facts, one bit each in sorted order,
+   and the masks are rebuilt over those bits.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
+from itertools import chain
 from operator import itemgetter
 from typing import NamedTuple
 
+from semgoal_planner import _core
 from semgoal_planner.pddl import Action, Atom, Domain, Problem
 
 GroundAtom = tuple[str, ...]
@@ -59,41 +65,36 @@ class Task:
     def atoms(self, state: int) -> list[Atom]:
         return [fact for i, fact in enumerate(self.facts) if state >> i & 1]
 
+    @cached_property
+    def compiled(self) -> _core.Task:
+        """This task for the C searches and heuristics (built on first use)."""
+        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg)
 
-Template = Callable[[list[str]], GroundAtom]
+
+Template = Callable[[tuple[str, ...]], GroundAtom]
 
 
 def _template(atom: Atom, slot_of: dict[str, int]) -> Template:
     """A function from a binding to this atom instantiated, e.g. values -> ("on", "b1", "b2").
 
-    The binding list also holds the predicate names, so one C-level itemgetter builds the whole tuple."""
+    The binding tuple also holds the predicate names, so one C-level itemgetter builds the whole tuple."""
     if not atom.args:
         ground_atom = (atom.predicate,)
         return lambda values: ground_atom
     return itemgetter(slot_of[atom.predicate], *(slot_of[a] for a in atom.args))
 
 
-class _Candidate(NamedTuple):
-    """A binding of an action whose static preconditions hold, its other atoms instantiated."""
-
-    name: str
-    args: tuple[str, ...]
-    pre: set[GroundAtom]
-    pre_neg: list[GroundAtom]
-    add: list[GroundAtom]
-    delete: list[GroundAtom]
-
-
 class _Schema:
-    """An action compiled for grounding: typed parameters, static checks by binding depth, templates."""
+    """An action compiled for grounding: static checks by binding depth, templates of its other atoms."""
 
-    def __init__(self, action: Action, names: list[str], fluent: set[str]) -> None:
+    def __init__(self, action: Action, names: tuple[str, ...], fluent: set[str]) -> None:
         """``names``: the constants, then the predicates, which follow the parameters in a binding."""
         self.action = action
         params = [v for v, _ in action.parameters]
-        slot_of = {name: i for i, name in enumerate(params + names)}
+        slot_of = {name: i for i, name in enumerate(params + list(names))}
         self.static_checks: list[list[tuple[Template, bool]]] = [[] for _ in range(len(params) + 1)]
-        self.pre, self.pre_neg = [], []
+        self.pre: list[Template] = []
+        self.pre_neg: list[Template] = []
         for cond in action.precondition:
             template = _template(cond.atom, slot_of)
             if cond.atom.predicate == "=" or cond.atom.predicate not in fluent:
@@ -105,12 +106,37 @@ class _Schema:
         self.delete = [_template(a, slot_of) for a in action.delete]
 
 
+class _Candidates:
+    """One action's bindings, with its atoms as columns (one list per atom, one entry per binding)."""
+
+    def __init__(self, schema: _Schema, bindings: list[tuple[str, ...]], names: tuple[str, ...]) -> None:
+        self.name = schema.action.name
+        self.args = bindings
+        full = [b + names for b in bindings]
+        self.columns = [[list(map(t, full)) for t in templates]
+                        for templates in (schema.pre, schema.pre_neg, schema.add, schema.delete)]
+
+    def number(self, id_of: dict[GroundAtom, int]) -> None:
+        """Replace each atom by its id."""
+        self.columns = [[list(map(id_of.__getitem__, column)) for column in columns] for columns in self.columns]
+
+    def masks(self, bit_of: list[int]) -> list[list[int]]:
+        """Per kind (pre, pre_neg, add, delete), every binding's mask, given each atom id's bit (1 << bit)."""
+        out = []
+        for columns in self.columns:
+            masks = [0] * len(self.args)
+            for column in columns:
+                masks = list(map(int.__or__, masks, map(bit_of.__getitem__, column)))
+            out.append(masks)
+        return out
+
+
 class _Grounder:
     def __init__(self, domain: Domain, problem: Problem) -> None:
         self.domain, self.problem = domain, problem
         self.fluent = {a.predicate for action in domain.actions for a in (*action.add, *action.delete)}
         self.static = {(a.predicate, *a.args) for a in problem.init if a.predicate not in self.fluent}
-        self.names = [*sorted(domain.constants), "=", *domain.predicates]
+        self.names = (*sorted(domain.constants), "=", *domain.predicates)
         self.by_type = {kind: sorted(o for o, t in problem.objects.items() if domain.is_subtype(t, kind))
                         for kind in domain.types}
 
@@ -118,78 +144,72 @@ class _Grounder:
         truth = atom[1] == atom[2] if atom[0] == "=" else atom in self.static
         return truth == positive
 
-    def bindings(self, schema: _Schema):
-        """Every binding (parameter values, then constants and predicate names) whose static
-        preconditions hold. The list is reused between bindings: copy what you keep."""
+    def bindings(self, schema: _Schema) -> list[tuple[str, ...]]:
+        """Every binding of the parameters whose static preconditions hold, bound one parameter at a time."""
         params = schema.action.parameters
-        values = [""] * len(params) + self.names
-        checks = schema.static_checks
-        domains = [self.by_type.get(kind, []) for _, kind in params]
-
-        def extend(depth: int):
-            if not all(self._static_holds(t(values), positive) for t, positive in checks[depth]):
-                return
-            if depth == len(params):
-                yield values
-                return
-            for obj in domains[depth]:
-                values[depth] = obj
-                yield from extend(depth + 1)
-
-        yield from extend(0)
+        partial: list[tuple[str, ...]] = [()]
+        for depth in range(len(params) + 1):
+            checks = schema.static_checks[depth]
+            if checks:
+                pad = ("",) * (len(params) - depth) + self.names
+                partial = [b for b in partial
+                           if all(self._static_holds(t(b + pad), positive) for t, positive in checks)]
+            if depth < len(params):
+                objects = [(o,) for o in self.by_type.get(params[depth][1], [])]
+                partial = [b + o for b in partial for o in objects]
+        return partial
 
     def ground(self) -> Task:
-        candidates = [candidate for action in self.domain.actions for candidate in self._candidates(action)]
-        reached = self._relaxed_reachable(candidates)
-        fluents = sorted(a for a in reached if a[0] in self.fluent)
-        index = {atom: 1 << i for i, atom in enumerate(fluents)}
-
-        def mask(atoms) -> int:
-            bits = 0
-            for atom in atoms:
-                bits |= index.get(atom, 0)
-            return bits
-
+        groups = []
+        for action in self.domain.actions:
+            schema = _Schema(action, self.names, self.fluent)
+            groups.append(_Candidates(schema, self.bindings(schema), self.names))
+        init = [(a.predicate, *a.args) for a in self.problem.init if a.predicate in self.fluent]
+        atoms = list(dict.fromkeys(chain(init, *(c for g in groups for cols in g.columns for c in cols))))
+        id_of = dict(zip(atoms, range(len(atoms)), strict=True))
+        for group in groups:
+            group.number(id_of)
+        provisional = [1 << i for i in range(len(atoms))]
+        init_ids = {id_of[a] for a in init}
+        reached, dropped = self._relaxed_reachable(groups, provisional, sum(provisional[i] for i in init_ids))
+        fluents = sorted((atoms[i], i) for i in _bits(reached))
+        bit_of = [0] * len(atoms)
+        for bit, (_, i) in enumerate(fluents):
+            bit_of[i] = 1 << bit
         operators = []
-        for c in candidates:
-            if c.pre <= reached:
-                add = mask(c.add)
-                operators.append(Operator(c.name, c.args, mask(c.pre), mask(c.pre_neg), add, mask(c.delete) & ~add))
-        goal, goal_neg, reason = self._goal(index)
-        return Task(tuple(Atom(a[0], a[1:]) for a in fluents), mask((a.predicate, *a.args) for a in self.problem.init),
-                    goal, goal_neg, tuple(operators), reason)
+        for group in groups:
+            pre, pre_neg, add, delete = group.masks(bit_of)
+            delete = [d & ~a for d, a in zip(delete, add, strict=True)]
+            fields = zip(group.args, pre, pre_neg, add, delete, strict=True)
+            if dropped:
+                kept = [m & reached == m for m in group.masks(provisional)[0]]
+                fields = (f for f, keep in zip(fields, kept, strict=True) if keep)
+            operators += [Operator(group.name, *f) for f in fields]
+        facts = tuple(Atom(a[0], a[1:]) for a, _ in fluents)
+        goal, goal_neg, reason = self._goal({a: bit_of[i] for a, i in fluents})
+        return Task(facts, sum(bit_of[i] for i in init_ids), goal, goal_neg, tuple(operators), reason)
 
-    def _candidates(self, action: Action) -> list[_Candidate]:
-        schema = _Schema(action, self.names, self.fluent)
-        n = len(action.parameters)
-        return [_Candidate(action.name, tuple(values[:n]), {t(values) for t in schema.pre},
-                           [t(values) for t in schema.pre_neg], [t(values) for t in schema.add],
-                           [t(values) for t in schema.delete]) for values in self.bindings(schema)]
+    @staticmethod
+    def _relaxed_reachable(groups: list[_Candidates], provisional: list[int], reached: int) -> tuple[int, bool]:
+        """The atoms (a mask over atom ids) reachable when delete effects and negative preconditions are
+        ignored: fire every candidate whose preconditions are reached, until none adds. Also whether some
+        candidate never fired."""
+        pending = []
+        for group in groups:
+            pre, _, add, _ = group.masks(provisional)
+            pending += zip(pre, add, strict=True)
+        while True:
+            grown, waiting = reached, []
+            for pre, add in pending:
+                if pre & grown == pre:
+                    grown |= add
+                else:
+                    waiting.append((pre, add))
+            if grown == reached:
+                return reached, bool(waiting)
+            reached, pending = grown, waiting
 
-    def _relaxed_reachable(self, candidates: list) -> set[GroundAtom]:
-        """Atoms reachable when delete effects and negative preconditions are ignored."""
-        reached = {(a.predicate, *a.args) for a in self.problem.init if a.predicate in self.fluent}
-        waiting: dict[GroundAtom, list[int]] = {}
-        missing = []
-        ready = []
-        for i, candidate in enumerate(candidates):
-            unmet = [a for a in candidate.pre if a not in reached]
-            missing.append(len(unmet))
-            for atom in unmet:
-                waiting.setdefault(atom, []).append(i)
-            if not unmet:
-                ready.append(i)
-        while ready:
-            for atom in candidates[ready.pop()].add:
-                if atom not in reached:
-                    reached.add(atom)
-                    for j in waiting.pop(atom, ()):
-                        missing[j] -= 1
-                        if not missing[j]:
-                            ready.append(j)
-        return reached
-
-    def _goal(self, index: dict[GroundAtom, int]) -> tuple[int, int, str]:
+    def _goal(self, bit_of: dict[GroundAtom, int]) -> tuple[int, int, str]:
         """Goal and negated-goal masks, and why the goal can never hold ("" when it may)."""
         reason, goal, goal_neg = "", 0, 0
         for cond in self.problem.goal:
@@ -197,13 +217,23 @@ class _Grounder:
             if atom[0] == "=" or atom[0] not in self.fluent:
                 if not self._static_holds(atom, cond.positive):
                     reason = f"goal {'' if cond.positive else 'not '}{cond.atom} can never hold (static)"
-            elif cond.positive and atom not in index:
+            elif cond.positive and not bit_of.get(atom):
                 reason = f"goal {cond.atom} is not reachable from the initial state"
             elif cond.positive:
-                goal |= index[atom]
+                goal |= bit_of[atom]
             else:
-                goal_neg |= index.get(atom, 0)
+                goal_neg |= bit_of.get(atom, 0)
         return goal, goal_neg, reason
+
+
+def _bits(mask: int) -> list[int]:
+    """Indices of the set bits of ``mask``, lowest first."""
+    out = []
+    while mask:
+        low = mask & -mask
+        out.append(low.bit_length() - 1)
+        mask ^= low
+    return out
 
 
 def ground(domain: Domain, problem: Problem) -> Task:

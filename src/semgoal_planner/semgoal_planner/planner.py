@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 from semgoal_planner.grounding import Operator, Task, ground
 from semgoal_planner.heuristics import HEURISTICS
 from semgoal_planner.pddl import parse_domain, parse_problem
-from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats
+from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
 
 
 @dataclass
@@ -30,13 +30,13 @@ def check_choice(search: str, heuristic: str | None) -> str:
     return heuristic
 
 
-def solve_task(task: Task, search: str = "bfs", heuristic: str | None = None) -> PlanResult:
-    heuristic = check_choice(search, heuristic)
+def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = None) -> PlanResult:
+    heuristic = check_choice(search_name, heuristic)
     start = time.perf_counter()
     if task.unsolvable_reason:
         return PlanResult(None, task.unsolvable_reason, seconds=time.perf_counter() - start)
     stats = SearchStats()
-    plan = SEARCHES[search](task, HEURISTICS[heuristic](task), stats)
+    plan = search(task, search_name, heuristic, stats)
     reason = "" if plan is not None else "no state reachable from the initial state satisfies the goal"
     return PlanResult(plan, reason, stats, time.perf_counter() - start)
 

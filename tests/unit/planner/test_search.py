@@ -4,12 +4,12 @@ from pathlib import Path
 
 import pytest
 
+from semgoal_planner import heuristics
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 from semgoal_planner.grounding import ground
-from semgoal_planner.heuristics import HEURISTICS
 from semgoal_planner.pddl import parse_domain, parse_problem
 from semgoal_planner.planner import solve_pddl, solve_task
-from semgoal_planner.search import Successors
+from semgoal_planner.search import successors
 
 FIXTURES = Path(__file__).parent / "fixtures"
 COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff")]
@@ -56,8 +56,8 @@ def test_admissible_heuristics_never_exceed_the_optimal_cost(seed: int) -> None:
     task = ground(domain, parse_problem(text, domain))
     optimal = len(solve_task(task, "bfs").plan)
     for name in ("hmax", "lmcut"):
-        assert HEURISTICS[name](task)(task.init) <= optimal
-    assert HEURISTICS["lmcut"](task)(task.init) >= HEURISTICS["hmax"](task)(task.init)
+        assert heuristics.heuristic(task, name)(task.init) <= optimal
+    assert heuristics.heuristic(task, "lmcut")(task.init) >= heuristics.heuristic(task, "hmax")(task.init)
     assert len(solve_task(task, "astar", "lmcut").plan) == optimal
 
 
@@ -77,12 +77,11 @@ def test_successor_generator_yields_exactly_the_applicable_operators(domain_name
     domain_text = DOMAIN_PATH.read_text() if domain_name == "blocksworld" else fixture(domain_name)
     domain = parse_domain(domain_text)
     task = ground(domain, parse_problem(problem_text, domain))
-    successors = Successors(task)
     frontier, seen = [task.init], {task.init}
     while frontier and len(seen) < 500:  # a slice of the reachable states
         state = frontier.pop()
         expected = sorted((op.apply(state), str(op)) for op in task.operators if op.applicable(state))
-        assert sorted((child, str(op)) for child, op in successors(state)) == expected
+        assert sorted((child, str(op)) for child, op in successors(task, state)) == expected
         for child, _ in expected:
             if child not in seen:
                 seen.add(child)

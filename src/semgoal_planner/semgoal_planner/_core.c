@@ -1,0 +1,904 @@
+/* The planner's hot loop in C: forward searches (breadth-first, A*, greedy best-first) and the
+ * delete-relaxation heuristics (blind, hmax, hFF, LM-cut) over a grounded STRIPS task.
+ *
+ * Parsing and grounding stay in Python (semgoal_planner.pddl, .grounding); this module gets the ground
+ * operators as bit masks and returns plans as operator indices. It holds the GIL throughout and checks
+ * for signals now and then, so Ctrl-C still stops a long search.
+ *
+ * States are bitsets of `nwords` 64-bit words. The searches keep every state they meet in one arena
+ * (parent link, g and h per state) with an open-addressing hash table on top. Successors are generated
+ * in the same order as the pure-Python planner that preceded this module (operators filed under their
+ * rarest precondition, visited by the state's set bits, lowest first), so breadth-first search returns
+ * the very plans it returned.
+ *
+ * The relaxed heuristics share one structure: the facts plus two artificial ones, "goal" (added by a
+ * zero-cost operator that needs the goal facts) and "true" (in every state, and the precondition of
+ * operators that have none), and a Dijkstra over facts (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
+ * Helmert & Domshlak 2009).
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <limits.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef uint64_t word;
+#define COST_INF INT_MAX
+#define SIGNAL_CHECK_MASK 0x3FFF /* check for Ctrl-C every 16384 expansions */
+
+enum { H_BLIND, H_HMAX, H_HFF, H_LMCUT, H_COUNT };
+static const char *const HEURISTIC_NAMES[H_COUNT] = {"blind", "hmax", "hff", "lmcut"};
+
+/* -- small containers ------------------------------------------------------------------------------ */
+
+/* Rows of ints: row i is items[start[i] .. start[i + 1]). */
+typedef struct {
+    int *start;
+    int *items;
+} Rows;
+
+static void rows_free(Rows *rows) {
+    free(rows->start);
+    free(rows->items);
+}
+
+/* Rows from (row, item) pairs, items kept in pair order within a row. */
+static int rows_build(Rows *rows, int nrows, const int *row_of, const int *item_of, int npairs) {
+    rows->start = calloc((size_t)nrows + 1, sizeof(int));
+    rows->items = malloc(sizeof(int) * (size_t)(npairs ? npairs : 1));
+    int *fill = malloc(sizeof(int) * (size_t)(nrows + 1));
+    if (!rows->start || !rows->items || !fill) {
+        free(fill);
+        return -1;
+    }
+    for (int k = 0; k < npairs; k++) rows->start[row_of[k] + 1]++;
+    for (int i = 0; i < nrows; i++) rows->start[i + 1] += rows->start[i];
+    memcpy(fill, rows->start, sizeof(int) * (size_t)(nrows + 1));
+    for (int k = 0; k < npairs; k++) rows->items[fill[row_of[k]]++] = item_of[k];
+    free(fill);
+    return 0;
+}
+
+/* A binary min-heap of (key, item, tie) ordered lexicographically: Python's heapq on tuples. */
+typedef struct {
+    int key, item;
+    int64_t tie;
+} Entry;
+
+typedef struct {
+    Entry *a;
+    size_t n, cap;
+} Heap;
+
+static int entry_less(const Entry *x, const Entry *y) {
+    if (x->key != y->key) return x->key < y->key;
+    if (x->tie != y->tie) return x->tie < y->tie;
+    return x->item < y->item;
+}
+
+static int heap_push(Heap *heap, int key, int64_t tie, int item) {
+    if (heap->n == heap->cap) {
+        size_t cap = heap->cap ? heap->cap * 2 : 256;
+        Entry *a = realloc(heap->a, cap * sizeof(Entry));
+        if (!a) return -1;
+        heap->a = a;
+        heap->cap = cap;
+    }
+    size_t i = heap->n++;
+    Entry e = {key, item, tie};
+    while (i > 0) {
+        size_t up = (i - 1) / 2;
+        if (!entry_less(&e, &heap->a[up])) break;
+        heap->a[i] = heap->a[up];
+        i = up;
+    }
+    heap->a[i] = e;
+    return 0;
+}
+
+static Entry heap_pop(Heap *heap) {
+    Entry top = heap->a[0], last = heap->a[--heap->n];
+    size_t i = 0, n = heap->n;
+    for (;;) {
+        size_t child = 2 * i + 1;
+        if (child >= n) break;
+        if (child + 1 < n && entry_less(&heap->a[child + 1], &heap->a[child])) child++;
+        if (!entry_less(&heap->a[child], &last)) break;
+        heap->a[i] = heap->a[child];
+        i = child;
+    }
+    if (n) heap->a[i] = last;
+    return top;
+}
+
+/* -- the task ---------------------------------------------------------------------------------------- */
+
+typedef struct {
+    PyObject_HEAD
+    int nfacts, nwords, nops;
+    word *pre, *neg, *add, *keep; /* nops x nwords each; keep = ~delete */
+    word *init, *goal, *goal_neg;
+    Rows filed;                   /* per fact: operators filed under it (their rarest precondition) */
+    int *free_ops, nfree;         /* operators with no positive precondition */
+    /* the relaxed task: facts 0..nfacts-1, GOAL = nfacts, TRUE = nfacts + 1; operators 0..nops-1 and
+       the goal operator nops */
+    Rows rpre, radd, consumers, achievers;
+    /* heuristic workspace, reused between evaluations */
+    int *fact_cost, *achiever, *missing, *supporter, *op_max;
+    int *base_cost, *cost; /* 1 per operator, 0 for the goal operator; LM-cut's costs, lowered by its cuts */
+    int *mark, *in_zone, *op_mark, *stack, *cut; /* marks hold the epoch of their last use */
+    int epoch;
+    Heap heap;
+} TaskObject;
+
+#define W(t, arr, o) ((arr) + (size_t)(o) * (size_t)(t)->nwords)
+
+static int has_bit(const word *s, int f) { return (int)((s[f >> 6] >> (f & 63)) & 1u); }
+
+static int applicable(const TaskObject *t, const word *s, int o) {
+    const word *pre = W(t, t->pre, o), *neg = W(t, t->neg, o);
+    for (int i = 0; i < t->nwords; i++)
+        if ((s[i] & pre[i]) != pre[i] || (s[i] & neg[i])) return 0;
+    return 1;
+}
+
+static void apply_op(const TaskObject *t, const word *s, int o, word *child) {
+    const word *keep = W(t, t->keep, o), *add = W(t, t->add, o);
+    for (int i = 0; i < t->nwords; i++) child[i] = (s[i] & keep[i]) | add[i];
+}
+
+static int goal_reached(const TaskObject *t, const word *s) {
+    for (int i = 0; i < t->nwords; i++)
+        if ((s[i] & t->goal[i]) != t->goal[i] || (s[i] & t->goal_neg[i])) return 0;
+    return 1;
+}
+
+/* Applicable operators of `s` into `out` (room for nops), in generation order; returns the count. */
+static int applicable_ops(const TaskObject *t, const word *s, int *out) {
+    int n = 0;
+    for (int k = 0; k < t->nfree; k++)
+        if (applicable(t, s, t->free_ops[k])) out[n++] = t->free_ops[k];
+    for (int i = 0; i < t->nwords; i++) {
+        word rest = s[i];
+        while (rest) {
+            int f = i * 64 + __builtin_ctzll(rest);
+            rest &= rest - 1;
+            for (int k = t->filed.start[f]; k < t->filed.start[f + 1]; k++) {
+                int o = t->filed.items[k];
+                if (applicable(t, s, o)) out[n++] = o;
+            }
+        }
+    }
+    return n;
+}
+
+/* -- heuristics -------------------------------------------------------------------------------------- */
+
+static int next_epoch(TaskObject *t) {
+    if (t->epoch == INT_MAX) {
+        memset(t->mark, 0, sizeof(int) * (size_t)(t->nfacts + 2));
+        memset(t->in_zone, 0, sizeof(int) * (size_t)(t->nfacts + 2));
+        memset(t->op_mark, 0, sizeof(int) * (size_t)(t->nops + 1));
+        t->epoch = 0;
+    }
+    return ++t->epoch;
+}
+
+/* Lower the cost of every fact that operator o adds to `value`, where that is cheaper. */
+static int offer(TaskObject *t, int o, int value) {
+    for (int k = t->radd.start[o]; k < t->radd.start[o + 1]; k++) {
+        int g = t->radd.items[k];
+        if (value < t->fact_cost[g]) {
+            t->fact_cost[g] = value;
+            t->achiever[g] = o;
+            if (heap_push(&t->heap, value, g, g)) return -1;
+        }
+    }
+    return 0;
+}
+
+/* hmax costs of all facts from state `s` under operator costs `cost`: Dijkstra over facts. Facts pop in
+   order of cost, so an operator's last precondition to pop is a costliest one: its supporter. With
+   `stop_at_goal`, stops once the goal fact pops (enough for hmax and hFF). */
+static int relaxed_costs(TaskObject *t, const word *s, const int *cost, int stop_at_goal) {
+    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1;
+    for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
+    for (int o = 0; o < nr; o++) {
+        t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
+        t->supporter[o] = -1;
+        t->op_max[o] = 0;
+    }
+    t->heap.n = 0;
+    for (int f = 0; f < t->nfacts; f++)
+        if (has_bit(s, f)) {
+            t->fact_cost[f] = 0;
+            if (heap_push(&t->heap, 0, f, f)) return -1;
+        }
+    t->fact_cost[truth] = 0;
+    if (heap_push(&t->heap, 0, truth, truth)) return -1;
+    while (t->heap.n) {
+        Entry e = heap_pop(&t->heap);
+        if (e.key > t->fact_cost[e.item]) continue;
+        if (stop_at_goal && e.item == goal) break;
+        for (int k = t->consumers.start[e.item]; k < t->consumers.start[e.item + 1]; k++) {
+            int o = t->consumers.items[k];
+            if (--t->missing[o] == 0) {
+                t->supporter[o] = e.item;
+                t->op_max[o] = e.key;
+                if (offer(t, o, e.key + cost[o])) return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+static int h_hmax(TaskObject *t, const word *s) {
+    if (relaxed_costs(t, s, t->base_cost, 1)) return -1;
+    return t->fact_cost[t->nfacts];
+}
+
+/* hFF: the size of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
+   goal fact. */
+static int h_hff(TaskObject *t, const word *s) {
+    if (relaxed_costs(t, s, t->base_cost, 1)) return -1;
+    int goal = t->nfacts, truth = t->nfacts + 1;
+    if (t->fact_cost[goal] == COST_INF) return COST_INF;
+    int epoch = next_epoch(t), size = 0, top = 0;
+    t->stack[top++] = goal;
+    t->mark[goal] = epoch;
+    while (top) {
+        int f = t->stack[--top];
+        if (f == truth || t->fact_cost[f] == 0) continue; /* true in the state */
+        int o = t->achiever[f];
+        if (t->op_mark[o] == epoch) continue;
+        t->op_mark[o] = epoch;
+        size += o < t->nops;
+        for (int k = t->rpre.start[o]; k < t->rpre.start[o + 1]; k++) {
+            int p = t->rpre.items[k];
+            if (t->mark[p] != epoch) {
+                t->mark[p] = epoch;
+                t->stack[top++] = p;
+            }
+        }
+    }
+    return size;
+}
+
+/* After the operators in t->cut[0..ncut) got cheaper, update the hmax costs: costs only ever fall, so
+   only what those operators reach can change (the incremental hmax of LM-cut). */
+static int lower_costs(TaskObject *t, int ncut) {
+    t->heap.n = 0;
+    for (int k = 0; k < ncut; k++)
+        if (offer(t, t->cut[k], t->op_max[t->cut[k]] + t->cost[t->cut[k]])) return -1;
+    while (t->heap.n) {
+        Entry e = heap_pop(&t->heap);
+        if (e.key > t->fact_cost[e.item]) continue;
+        for (int k = t->consumers.start[e.item]; k < t->consumers.start[e.item + 1]; k++) {
+            int o = t->consumers.items[k];
+            if (t->supporter[o] != e.item) continue;
+            /* the costliest precondition fell: find the new one (the first of the costliest) */
+            int best = -1;
+            for (int j = t->rpre.start[o]; j < t->rpre.start[o + 1]; j++) {
+                int p = t->rpre.items[j];
+                if (best < 0 || t->fact_cost[p] > t->fact_cost[best]) best = p;
+            }
+            t->supporter[o] = best;
+            if (t->fact_cost[best] < t->op_max[o]) {
+                t->op_max[o] = t->fact_cost[best];
+                if (offer(t, o, t->op_max[o] + t->cost[o])) return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts. */
+static int h_lmcut(TaskObject *t, const word *s) {
+    int nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1;
+    memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)nr);
+    if (relaxed_costs(t, s, t->cost, 0)) return -1;
+    if (t->fact_cost[goal] == COST_INF) return COST_INF;
+    int total = 0;
+    while (t->fact_cost[goal] > 0) {
+        /* the goal zone: facts that reach the goal through zero-cost operators, via their supporters */
+        int zone = next_epoch(t), top = 0;
+        t->in_zone[goal] = zone;
+        t->stack[top++] = goal;
+        while (top) {
+            int f = t->stack[--top];
+            for (int k = t->achievers.start[f]; k < t->achievers.start[f + 1]; k++) {
+                int o = t->achievers.items[k], p = t->supporter[o];
+                if (t->cost[o] == 0 && p >= 0 && t->in_zone[p] != zone) {
+                    t->in_zone[p] = zone;
+                    t->stack[top++] = p;
+                }
+            }
+        }
+        /* forward from the state through operators whose supporter is reached, stopping at the zone */
+        int reached = zone, ncut = 0;
+        for (int f = 0; f < t->nfacts; f++)
+            if (has_bit(s, f)) {
+                t->mark[f] = reached;
+                t->stack[top++] = f;
+            }
+        t->mark[truth] = reached;
+        t->stack[top++] = truth;
+        while (top) {
+            int f = t->stack[--top];
+            for (int k = t->consumers.start[f]; k < t->consumers.start[f + 1]; k++) {
+                int o = t->consumers.items[k];
+                if (t->supporter[o] != f) continue;
+                int into_zone = 0;
+                for (int j = t->radd.start[o]; j < t->radd.start[o + 1]; j++)
+                    into_zone |= t->in_zone[t->radd.items[j]] == zone;
+                if (into_zone) {
+                    if (t->op_mark[o] != reached) {
+                        t->op_mark[o] = reached;
+                        t->cut[ncut++] = o;
+                    }
+                    continue;
+                }
+                for (int j = t->radd.start[o]; j < t->radd.start[o + 1]; j++) {
+                    int g = t->radd.items[j];
+                    if (t->mark[g] != reached) {
+                        t->mark[g] = reached;
+                        t->stack[top++] = g;
+                    }
+                }
+            }
+        }
+        int step = COST_INF;
+        for (int k = 0; k < ncut; k++)
+            if (t->cost[t->cut[k]] < step) step = t->cost[t->cut[k]];
+        if (ncut == 0 || step == 0) break; /* a degenerate cut: the sum so far is still a lower bound */
+        total += step;
+        for (int k = 0; k < ncut; k++) t->cost[t->cut[k]] -= step;
+        if (lower_costs(t, ncut)) return -1;
+    }
+    return total;
+}
+
+/* h(s) >= 0, COST_INF for a dead end, -1 (MemoryError set) when out of memory. */
+static int evaluate(TaskObject *t, int heuristic, const word *s) {
+    int h;
+    switch (heuristic) {
+    case H_HMAX: h = h_hmax(t, s); break;
+    case H_HFF: h = h_hff(t, s); break;
+    case H_LMCUT: h = h_lmcut(t, s); break;
+    default: return goal_reached(t, s) ? 0 : 1;
+    }
+    if (h < 0) PyErr_NoMemory();
+    return h;
+}
+
+/* -- the state store --------------------------------------------------------------------------------- */
+
+typedef struct {
+    int nwords;
+    word *states;
+    int *parent, *op, *g, *h;
+    size_t n, cap;
+    int32_t *slots; /* open addressing: state index + 1, 0 for empty */
+    size_t nslots;
+} Store;
+
+static uint64_t hash_state(const word *s, int nwords) {
+    uint64_t h = 0x9E3779B97F4A7C15ull;
+    for (int i = 0; i < nwords; i++) {
+        h ^= s[i];
+        h *= 0xFF51AFD7ED558CCDull;
+        h ^= h >> 32;
+    }
+    return h;
+}
+
+static void store_free(Store *st) {
+    free(st->states);
+    free(st->parent);
+    free(st->op);
+    free(st->g);
+    free(st->h);
+    free(st->slots);
+}
+
+static int store_rehash(Store *st, size_t nslots) {
+    int32_t *slots = calloc(nslots, sizeof(int32_t));
+    if (!slots) return -1;
+    for (size_t k = 0; k < st->n; k++) {
+        size_t i = hash_state(st->states + k * (size_t)st->nwords, st->nwords) & (nslots - 1);
+        while (slots[i]) i = (i + 1) & (nslots - 1);
+        slots[i] = (int32_t)(k + 1);
+    }
+    free(st->slots);
+    st->slots = slots;
+    st->nslots = nslots;
+    return 0;
+}
+
+static int grow(void **p, size_t size) {
+    void *q = realloc(*p, size);
+    if (!q) return -1;
+    *p = q;
+    return 0;
+}
+
+/* The index of state `s`, added (with *added = 1) if new; -1 when out of memory. */
+static long store_find_or_add(Store *st, const word *s, int *added) {
+    size_t nw = (size_t)st->nwords, i = hash_state(s, st->nwords) & (st->nslots - 1);
+    for (; st->slots[i]; i = (i + 1) & (st->nslots - 1)) {
+        size_t k = (size_t)st->slots[i] - 1;
+        if (!memcmp(st->states + k * nw, s, nw * sizeof(word))) {
+            *added = 0;
+            return (long)k;
+        }
+    }
+    if (st->n >= INT32_MAX - 1) return -1;
+    if (st->n == st->cap) {
+        size_t cap = st->cap ? st->cap * 2 : 1024;
+        if (grow((void **)&st->states, cap * nw * sizeof(word)) || grow((void **)&st->parent, cap * sizeof(int)) ||
+            grow((void **)&st->op, cap * sizeof(int)) || grow((void **)&st->g, cap * sizeof(int)) ||
+            grow((void **)&st->h, cap * sizeof(int)))
+            return -1;
+        st->cap = cap;
+    }
+    size_t k = st->n++;
+    memcpy(st->states + k * nw, s, nw * sizeof(word));
+    st->slots[i] = (int32_t)(k + 1);
+    if (2 * st->n > st->nslots && store_rehash(st, st->nslots * 2)) return -1;
+    *added = 1;
+    return (long)k;
+}
+
+static int store_init(Store *st, int nwords) {
+    memset(st, 0, sizeof(*st));
+    st->nwords = nwords;
+    return store_rehash(st, 2048);
+}
+
+/* -- searches ---------------------------------------------------------------------------------------- */
+
+typedef struct {
+    long goal_state; /* -1: none reachable */
+    long expanded, generated;
+} Outcome;
+
+typedef enum { S_BFS, S_ASTAR, S_GBFS } SearchKind;
+
+/* Adds state `s` reached from `parent` by `op` at depth g; returns its index, or -1 with an error set.
+   *added says whether it is new. */
+static long meet(Store *st, const word *s, long parent, int op, int g, int *added) {
+    long k = store_find_or_add(st, s, added);
+    if (k < 0) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    if (*added) {
+        st->parent[k] = (int)parent;
+        st->op[k] = op;
+        st->g[k] = g;
+        st->h[k] = -1;
+    }
+    return k;
+}
+
+/* Breadth-first: the store's insertion order is the queue; goal test on generation. */
+static int run_bfs(TaskObject *t, Store *st, word *child, int *ops, Outcome *out) {
+    int added;
+    for (size_t next = 0; next < st->n; next++) {
+        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) return -1;
+        int nops = applicable_ops(t, st->states + next * (size_t)st->nwords, ops);
+        for (int k = 0; k < nops; k++) {
+            apply_op(t, st->states + next * (size_t)st->nwords, ops[k], child);
+            long c = meet(st, child, (long)next, ops[k], st->g[next] + 1, &added);
+            if (c < 0) return -1;
+            if (!added) continue;
+            out->generated++;
+            if (goal_reached(t, child)) {
+                out->goal_state = c;
+                return 0;
+            }
+        }
+    }
+    return 0;
+}
+
+/* A* (f = g + h, ties to the larger g, then first in) and greedy best-first (h, then first in). A* reopens
+   a state reached with a smaller g; greedy best-first never revisits one. Goal test on expansion. */
+static int run_best_first(TaskObject *t, Store *st, SearchKind kind, int heuristic, word *child, int *ops,
+                          Outcome *out) {
+    Heap open = {0};
+    int added, status = -1;
+    int64_t counter = 0;
+    int h0 = evaluate(t, heuristic, st->states);
+    if (h0 < 0) goto done;
+    st->h[0] = h0;
+    if (h0 == COST_INF) {
+        status = 0;
+        goto done;
+    }
+    /* A* entries: key f, tie -g * 2^32 + counter; greedy: key h, tie counter */
+    if (heap_push(&open, h0, 0, 0)) goto oom;
+    while (open.n) {
+        Entry e = heap_pop(&open);
+        long s = e.item;
+        if (kind == S_ASTAR && e.key - st->h[s] > st->g[s]) continue; /* reached more cheaply since */
+        const word *state = st->states + (size_t)s * (size_t)st->nwords;
+        if (goal_reached(t, state)) {
+            out->goal_state = s;
+            status = 0;
+            goto done;
+        }
+        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) goto done;
+        int g = st->g[s], nops = applicable_ops(t, state, ops);
+        for (int k = 0; k < nops; k++) {
+            apply_op(t, st->states + (size_t)s * (size_t)st->nwords, ops[k], child);
+            long c = meet(st, child, s, ops[k], g + 1, &added);
+            if (c < 0) goto done;
+            if (!added) {
+                if (kind == S_GBFS || g + 1 >= st->g[c]) continue;
+                st->parent[c] = (int)s;
+                st->op[c] = ops[k];
+                st->g[c] = g + 1;
+            }
+            if (st->h[c] < 0) {
+                int h = evaluate(t, heuristic, child);
+                if (h < 0) goto done;
+                st->h[c] = h;
+            }
+            out->generated++;
+            if (st->h[c] == COST_INF) continue;
+            counter++;
+            int key = kind == S_ASTAR ? g + 1 + st->h[c] : st->h[c];
+            int64_t tie = kind == S_ASTAR ? -(int64_t)(g + 1) * ((int64_t)1 << 40) + counter : counter;
+            if (heap_push(&open, key, tie, (int)c)) goto oom;
+        }
+    }
+    status = 0;
+    goto done;
+oom:
+    PyErr_NoMemory();
+done:
+    free(open.a);
+    return status;
+}
+
+/* -- Python glue ------------------------------------------------------------------------------------- */
+
+static PyObject *WORD_BITS, *ZERO; /* the ints 64 and 0 */
+
+/* A non-negative int as `nwords` little-endian words; bits beyond them are an error. */
+static int int_to_words(PyObject *value, word *out, int nwords, const char *what) {
+    if (!PyLong_Check(value)) {
+        PyErr_Format(PyExc_TypeError, "%s must be an int bitset, not %.100s", what, Py_TYPE(value)->tp_name);
+        return -1;
+    }
+    int negative = PyObject_RichCompareBool(value, ZERO, Py_LT);
+    if (negative) {
+        if (negative > 0) PyErr_Format(PyExc_ValueError, "%s must not be negative", what);
+        return -1;
+    }
+    Py_INCREF(value);
+    for (int i = 0; i < nwords; i++) {
+        out[i] = PyLong_AsUnsignedLongLongMask(value);
+        PyObject *rest = PyNumber_Rshift(value, WORD_BITS);
+        Py_DECREF(value);
+        if (!rest) return -1;
+        value = rest;
+    }
+    int beyond = PyObject_IsTrue(value);
+    Py_DECREF(value);
+    if (beyond) {
+        if (beyond > 0) PyErr_Format(PyExc_ValueError, "%s has bits beyond the task's facts", what);
+        return -1;
+    }
+    return 0;
+}
+
+static PyObject *words_to_int(const word *w, int nwords) {
+    PyObject *value = PyLong_FromUnsignedLongLong(w[nwords - 1]);
+    for (int i = nwords - 2; value && i >= 0; i--) {
+        PyObject *shifted = PyNumber_Lshift(value, WORD_BITS), *low = PyLong_FromUnsignedLongLong(w[i]);
+        Py_DECREF(value);
+        value = shifted && low ? PyNumber_Or(shifted, low) : NULL;
+        Py_XDECREF(shifted);
+        Py_XDECREF(low);
+    }
+    return value;
+}
+
+static int heuristic_id(const char *name) {
+    for (int i = 0; i < H_COUNT; i++)
+        if (!strcmp(name, HEURISTIC_NAMES[i])) return i;
+    PyErr_Format(PyExc_ValueError, "unknown heuristic '%s'", name);
+    return -1;
+}
+
+static PyObject *Task_search(TaskObject *t, PyObject *args) {
+    const char *search, *heuristic_name;
+    if (!PyArg_ParseTuple(args, "ss", &search, &heuristic_name)) return NULL;
+    int heuristic = heuristic_id(heuristic_name);
+    if (heuristic < 0) return NULL;
+    SearchKind kind;
+    if (!strcmp(search, "bfs")) kind = S_BFS;
+    else if (!strcmp(search, "astar")) kind = S_ASTAR;
+    else if (!strcmp(search, "gbfs")) kind = S_GBFS;
+    else return PyErr_Format(PyExc_ValueError, "unknown search %R", PyTuple_GET_ITEM(args, 0));
+
+    Store st;
+    Outcome out = {-1, 0, 0};
+    word *child = malloc(sizeof(word) * (size_t)t->nwords);
+    int *ops = malloc(sizeof(int) * (size_t)(t->nops ? t->nops : 1)), added, status = -1;
+    PyObject *result = NULL;
+    if (store_init(&st, t->nwords) || !child || !ops) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    if (meet(&st, t->init, -1, -1, 0, &added) < 0) goto done;
+    if (kind == S_BFS && goal_reached(t, t->init)) {
+        out.goal_state = 0;
+        status = 0;
+    } else if (kind == S_BFS) {
+        status = run_bfs(t, &st, child, ops, &out);
+    } else {
+        status = run_best_first(t, &st, kind, heuristic, child, ops, &out);
+    }
+    if (status) goto done;
+    PyObject *plan = Py_None;
+    Py_INCREF(plan);
+    if (out.goal_state >= 0) {
+        Py_ssize_t length = st.g[out.goal_state];
+        Py_DECREF(plan);
+        if (!(plan = PyList_New(length))) goto done;
+        for (long s = out.goal_state; st.parent[s] >= 0; s = st.parent[s])
+            PyList_SET_ITEM(plan, --length, PyLong_FromLong(st.op[s]));
+    }
+    result = Py_BuildValue("(Nll)", plan, out.expanded, out.generated);
+done:
+    store_free(&st);
+    free(child);
+    free(ops);
+    return result;
+}
+
+static PyObject *Task_heuristic(TaskObject *t, PyObject *args) {
+    const char *name;
+    PyObject *state;
+    if (!PyArg_ParseTuple(args, "sO", &name, &state)) return NULL;
+    int heuristic = heuristic_id(name);
+    if (heuristic < 0) return NULL;
+    word *s = malloc(sizeof(word) * (size_t)t->nwords);
+    PyObject *result = NULL;
+    if (!s) PyErr_NoMemory();
+    else if (!int_to_words(state, s, t->nwords, "state")) {
+        int h = evaluate(t, heuristic, s);
+        if (h >= 0) result = PyFloat_FromDouble(h == COST_INF ? Py_HUGE_VAL : (double)h);
+    }
+    free(s);
+    return result;
+}
+
+static PyObject *Task_successors(TaskObject *t, PyObject *state) {
+    PyObject *result = NULL;
+    word *s = malloc(sizeof(word) * (size_t)t->nwords), *child = malloc(sizeof(word) * (size_t)t->nwords);
+    int *ops = malloc(sizeof(int) * (size_t)(t->nops ? t->nops : 1));
+    if (!s || !child || !ops) PyErr_NoMemory();
+    else if (!int_to_words(state, s, t->nwords, "state")) {
+        int n = applicable_ops(t, s, ops);
+        result = PyList_New(n);
+        for (int k = 0; result && k < n; k++) {
+            apply_op(t, s, ops[k], child);
+            PyObject *pair = Py_BuildValue("(Ni)", words_to_int(child, t->nwords), ops[k]);
+            if (!pair) Py_CLEAR(result);
+            else PyList_SET_ITEM(result, k, pair);
+        }
+    }
+    free(s);
+    free(child);
+    free(ops);
+    return result;
+}
+
+static void Task_dealloc(TaskObject *t) {
+    free(t->pre);
+    free(t->neg);
+    free(t->add);
+    free(t->keep);
+    free(t->init);
+    free(t->goal);
+    free(t->goal_neg);
+    free(t->free_ops);
+    rows_free(&t->filed);
+    rows_free(&t->rpre);
+    rows_free(&t->radd);
+    rows_free(&t->consumers);
+    rows_free(&t->achievers);
+    free(t->fact_cost);
+    free(t->achiever);
+    free(t->missing);
+    free(t->supporter);
+    free(t->op_max);
+    free(t->base_cost);
+    free(t->cost);
+    free(t->mark);
+    free(t->in_zone);
+    free(t->op_mark);
+    free(t->stack);
+    free(t->cut);
+    free(t->heap.a);
+    Py_TYPE(t)->tp_free((PyObject *)t);
+}
+
+/* The operator index structures: the successor filing and the relaxed task. */
+static int build_indexes(TaskObject *t) {
+    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, status = -1;
+    size_t npre = 0, nadd = 0;
+    for (int o = 0; o < t->nops; o++)
+        for (int f = 0; f < t->nfacts; f++) {
+            npre += has_bit(W(t, t->pre, o), f);
+            nadd += has_bit(W(t, t->add, o), f);
+        }
+    size_t room = npre + (size_t)t->nfacts + (size_t)nr + 1;
+    int *row = malloc(sizeof(int) * room), *item = malloc(sizeof(int) * room);
+    int *uses = calloc((size_t)nf, sizeof(int));
+    t->free_ops = malloc(sizeof(int) * (size_t)(t->nops + 1));
+    if (!row || !item || !uses || !t->free_ops) goto done;
+
+    /* successor filing: each operator under its precondition that the fewest operators need */
+    for (int o = 0; o < t->nops; o++)
+        for (int f = 0; f < t->nfacts; f++) uses[f] += has_bit(W(t, t->pre, o), f);
+    int nfiled = 0;
+    t->nfree = 0;
+    for (int o = 0; o < t->nops; o++) {
+        int best = -1;
+        for (int f = 0; f < t->nfacts; f++)
+            if (has_bit(W(t, t->pre, o), f) && (best < 0 || uses[f] < uses[best])) best = f;
+        if (best < 0) t->free_ops[t->nfree++] = o;
+        else row[nfiled] = best, item[nfiled++] = o;
+    }
+    if (rows_build(&t->filed, t->nfacts, row, item, nfiled)) goto done;
+
+    /* relaxed preconditions (TRUE for none; the goal operator needs the goal facts) and their inverse */
+    int n = 0;
+    for (int o = 0; o < nr; o++) {
+        const word *pre = o < t->nops ? W(t, t->pre, o) : t->goal;
+        int first = n;
+        for (int f = 0; f < t->nfacts; f++)
+            if (has_bit(pre, f)) row[n] = o, item[n++] = f;
+        if (n == first) row[n] = o, item[n++] = truth;
+    }
+    if (rows_build(&t->rpre, nr, row, item, n) || rows_build(&t->consumers, nf, item, row, n)) goto done;
+    free(row);
+    free(item);
+    row = malloc(sizeof(int) * (nadd + 1));
+    item = malloc(sizeof(int) * (nadd + 1));
+    if (!row || !item) goto done;
+    n = 0;
+    for (int o = 0; o < t->nops; o++)
+        for (int f = 0; f < t->nfacts; f++)
+            if (has_bit(W(t, t->add, o), f)) row[n] = o, item[n++] = f;
+    row[n] = t->nops, item[n++] = goal;
+    if (rows_build(&t->radd, nr, row, item, n) || rows_build(&t->achievers, nf, item, row, n)) goto done;
+
+    size_t stack_room = (size_t)nf + (size_t)nr;
+    t->fact_cost = malloc(sizeof(int) * (size_t)nf);
+    t->achiever = malloc(sizeof(int) * (size_t)nf);
+    t->missing = malloc(sizeof(int) * (size_t)nr);
+    t->supporter = malloc(sizeof(int) * (size_t)nr);
+    t->op_max = malloc(sizeof(int) * (size_t)nr);
+    t->base_cost = malloc(sizeof(int) * (size_t)nr);
+    t->cost = malloc(sizeof(int) * (size_t)nr);
+    t->mark = calloc((size_t)nf, sizeof(int));
+    t->in_zone = calloc((size_t)nf, sizeof(int));
+    t->op_mark = calloc((size_t)nr, sizeof(int));
+    t->stack = malloc(sizeof(int) * stack_room);
+    t->cut = malloc(sizeof(int) * (size_t)nr);
+    if (!t->fact_cost || !t->achiever || !t->missing || !t->supporter || !t->op_max || !t->base_cost || !t->cost || !t->mark ||
+        !t->in_zone || !t->op_mark || !t->stack || !t->cut)
+        goto done;
+    for (int o = 0; o < nr; o++) t->base_cost[o] = o < t->nops;
+    status = 0;
+done:
+    free(row);
+    free(item);
+    free(uses);
+    return status;
+}
+
+static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
+    static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", NULL};
+    static const char *const MASKS[4] = {"pre", "pre_neg", "add", "delete"};
+    int nfacts;
+    PyObject *operators, *init, *goal, *goal_neg;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO", keywords, &nfacts, &operators, &init, &goal, &goal_neg))
+        return NULL;
+    if (nfacts < 0) return PyErr_Format(PyExc_ValueError, "nfacts must not be negative");
+    PyObject *seq = PySequence_Fast(operators, "operators must be a sequence");
+    if (!seq) return NULL;
+    TaskObject *t = (TaskObject *)type->tp_alloc(type, 0);
+    if (!t) goto fail;
+    t->nfacts = nfacts;
+    t->nwords = nfacts > 0 ? (nfacts + 63) / 64 : 1;
+    if (PySequence_Fast_GET_SIZE(seq) >= INT_MAX / 2) {
+        PyErr_SetString(PyExc_ValueError, "too many operators");
+        goto fail;
+    }
+    t->nops = (int)PySequence_Fast_GET_SIZE(seq);
+    size_t nw = (size_t)t->nwords, total = (size_t)t->nops * nw + 1;
+    t->pre = malloc(sizeof(word) * total);
+    t->neg = malloc(sizeof(word) * total);
+    t->add = malloc(sizeof(word) * total);
+    t->keep = malloc(sizeof(word) * total);
+    t->init = malloc(sizeof(word) * nw);
+    t->goal = malloc(sizeof(word) * nw);
+    t->goal_neg = malloc(sizeof(word) * nw);
+    if (!t->pre || !t->neg || !t->add || !t->keep || !t->init || !t->goal || !t->goal_neg) {
+        PyErr_NoMemory();
+        goto fail;
+    }
+    if (int_to_words(init, t->init, t->nwords, "init") || int_to_words(goal, t->goal, t->nwords, "goal") ||
+        int_to_words(goal_neg, t->goal_neg, t->nwords, "goal_neg"))
+        goto fail;
+    for (int o = 0; o < t->nops; o++) {
+        word *into[4] = {W(t, t->pre, o), W(t, t->neg, o), W(t, t->add, o), W(t, t->keep, o)};
+        for (int m = 0; m < 4; m++) {
+            PyObject *mask = PyObject_GetAttrString(PySequence_Fast_GET_ITEM(seq, o), MASKS[m]);
+            int failed = !mask || int_to_words(mask, into[m], t->nwords, MASKS[m]);
+            Py_XDECREF(mask);
+            if (failed) goto fail;
+        }
+        for (size_t i = 0; i < nw; i++) into[3][i] = ~into[3][i];
+    }
+    if (build_indexes(t)) {
+        PyErr_NoMemory();
+        goto fail;
+    }
+    Py_DECREF(seq);
+    return (PyObject *)t;
+fail:
+    Py_DECREF(seq);
+    Py_XDECREF(t);
+    return NULL;
+}
+
+static PyMethodDef Task_methods[] = {
+    {"search", (PyCFunction)Task_search, METH_VARARGS,
+     "search(search, heuristic) -> (plan as operator indices or None, expanded, generated)"},
+    {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS, "heuristic(name, state) -> h (inf for a dead end)"},
+    {"successors", (PyCFunction)Task_successors, METH_O,
+     "successors(state) -> [(child state, operator index)] in generation order"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyTypeObject TaskType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "semgoal_planner._core.Task",
+    .tp_doc = "Task(nfacts, operators, init, goal, goal_neg): a grounded task. States and masks are int "
+              "bitsets over the facts; each operator has the masks pre, pre_neg, add and delete.",
+    .tp_basicsize = sizeof(TaskObject),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_new = Task_new,
+    .tp_dealloc = (destructor)Task_dealloc,
+    .tp_methods = Task_methods,
+};
+
+static struct PyModuleDef core_module = {
+    PyModuleDef_HEAD_INIT,
+    .m_name = "_core",
+    .m_doc = "Searches and relaxation heuristics over grounded STRIPS tasks.",
+    .m_size = -1,
+};
+
+PyMODINIT_FUNC PyInit__core(void) {
+    if (PyType_Ready(&TaskType) < 0 || !(WORD_BITS = PyLong_FromLong(64)) || !(ZERO = PyLong_FromLong(0))) return NULL;
+    PyObject *module = PyModule_Create(&core_module);
+    if (!module) return NULL;
+    Py_INCREF(&TaskType);
+    if (PyModule_AddObject(module, "Task", (PyObject *)&TaskType) < 0) {
+        Py_DECREF(&TaskType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}

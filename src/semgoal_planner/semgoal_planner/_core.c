@@ -135,8 +135,6 @@ typedef struct {
 
 #define W(t, arr, o) ((arr) + (size_t)(o) * (size_t)(t)->nwords)
 
-static int has_bit(const word *s, int f) { return (int)((s[f >> 6] >> (f & 63)) & 1u); }
-
 static int applicable(const TaskObject *t, const word *s, int o) {
     const word *pre = W(t, t->pre, o), *neg = W(t, t->neg, o);
     for (int i = 0; i < t->nwords; i++)
@@ -199,11 +197,11 @@ static int offer(TaskObject *t, int o, int value) {
     return 0;
 }
 
-/* hmax costs of all facts from state `s` under operator costs `cost`: Dijkstra over facts. Facts pop in
-   order of cost, so an operator's last precondition to pop is a costliest one: its supporter. With
-   `stop_at_goal`, stops once the goal fact pops (enough for hmax and hFF). */
-static int relaxed_costs(TaskObject *t, const word *s, const int *cost, int stop_at_goal) {
-    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1;
+/* hmax costs of all facts from state `s` under LM-cut's operator costs t->cost: Dijkstra over facts.
+   Facts pop in order of cost (ties: lower fact first), so an operator's last precondition to pop is a
+   costliest one: its supporter. */
+static int relaxed_costs(TaskObject *t, const word *s) {
+    int nf = t->nfacts + 2, nr = t->nops + 1, truth = t->nfacts + 1;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) {
         t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
@@ -211,8 +209,9 @@ static int relaxed_costs(TaskObject *t, const word *s, const int *cost, int stop
         t->op_max[o] = 0;
     }
     t->heap.n = 0;
-    for (int f = 0; f < t->nfacts; f++)
-        if (has_bit(s, f)) {
+    for (int i = 0; i < t->nwords; i++)
+        for (word rest = s[i]; rest; rest &= rest - 1) {
+            int f = i * 64 + __builtin_ctzll(rest);
             t->fact_cost[f] = 0;
             if (heap_push(&t->heap, 0, f, f)) return -1;
         }
@@ -221,28 +220,61 @@ static int relaxed_costs(TaskObject *t, const word *s, const int *cost, int stop
     while (t->heap.n) {
         Entry e = heap_pop(&t->heap);
         if (e.key > t->fact_cost[e.item]) continue;
-        if (stop_at_goal && e.item == goal) break;
         for (int k = t->consumers.start[e.item]; k < t->consumers.start[e.item + 1]; k++) {
             int o = t->consumers.items[k];
             if (--t->missing[o] == 0) {
                 t->supporter[o] = e.item;
                 t->op_max[o] = e.key;
-                if (offer(t, o, e.key + cost[o])) return -1;
+                if (offer(t, o, e.key + t->cost[o])) return -1;
             }
         }
     }
     return 0;
 }
 
+/* hmax costs from state `s` with every operator costing 1: a breadth-first sweep over facts, which meets
+   them in order of cost, so each fact's first achiever is a cheapest one (t->achiever). Only the goal
+   operator costs 0, and nothing needs its fact. With `stop_at_goal`, stops once the goal fact is set
+   (its cost and every achiever a relaxed plan can need are final by then). */
+static void unit_costs(TaskObject *t, const word *s, int stop_at_goal) {
+    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, head = 0, tail = 0;
+    int *queue = t->stack;
+    for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
+    for (int o = 0; o < nr; o++) t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
+    for (int i = 0; i < t->nwords; i++)
+        for (word rest = s[i]; rest; rest &= rest - 1) {
+            int f = i * 64 + __builtin_ctzll(rest);
+            t->fact_cost[f] = 0;
+            queue[tail++] = f;
+        }
+    t->fact_cost[truth] = 0;
+    queue[tail++] = truth;
+    while (head < tail) {
+        int f = queue[head++], value = t->fact_cost[f];
+        for (int k = t->consumers.start[f]; k < t->consumers.start[f + 1]; k++) {
+            int o = t->consumers.items[k];
+            if (--t->missing[o]) continue;
+            for (int j = t->radd.start[o]; j < t->radd.start[o + 1]; j++) {
+                int g = t->radd.items[j];
+                if (t->fact_cost[g] != COST_INF) continue;
+                t->fact_cost[g] = value + t->base_cost[o];
+                t->achiever[g] = o;
+                if (g == goal && stop_at_goal) return;
+                queue[tail++] = g;
+            }
+        }
+    }
+}
+
 static int h_hmax(TaskObject *t, const word *s) {
-    if (relaxed_costs(t, s, t->base_cost, 1)) return -1;
+    unit_costs(t, s, 1);
     return t->fact_cost[t->nfacts];
 }
 
 /* hFF: the size of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
    goal fact. */
 static int h_hff(TaskObject *t, const word *s) {
-    if (relaxed_costs(t, s, t->base_cost, 1)) return -1;
+    unit_costs(t, s, 1);
     int goal = t->nfacts, truth = t->nfacts + 1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int epoch = next_epoch(t), size = 0, top = 0;
@@ -298,7 +330,7 @@ static int lower_costs(TaskObject *t, int ncut) {
 static int h_lmcut(TaskObject *t, const word *s) {
     int nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1;
     memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)nr);
-    if (relaxed_costs(t, s, t->cost, 0)) return -1;
+    if (relaxed_costs(t, s)) return -1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int total = 0;
     while (t->fact_cost[goal] > 0) {
@@ -318,8 +350,9 @@ static int h_lmcut(TaskObject *t, const word *s) {
         }
         /* forward from the state through operators whose supporter is reached, stopping at the zone */
         int reached = zone, ncut = 0;
-        for (int f = 0; f < t->nfacts; f++)
-            if (has_bit(s, f)) {
+        for (int i = 0; i < t->nwords; i++)
+            for (word rest = s[i]; rest; rest &= rest - 1) {
+                int f = i * 64 + __builtin_ctzll(rest);
                 t->mark[f] = reached;
                 t->stack[top++] = f;
             }
@@ -566,46 +599,39 @@ done:
 
 /* -- Python glue ------------------------------------------------------------------------------------- */
 
-static PyObject *WORD_BITS, *ZERO; /* the ints 64 and 0 */
+#if !PY_LITTLE_ENDIAN
+#error "states are read from Python ints as little-endian words"
+#endif
 
-/* A non-negative int as `nwords` little-endian words; bits beyond them are an error. */
+/* A non-negative int as `nwords` little-endian words; an OverflowError for a negative int or one with
+   bits beyond them. */
 static int int_to_words(PyObject *value, word *out, int nwords, const char *what) {
     if (!PyLong_Check(value)) {
         PyErr_Format(PyExc_TypeError, "%s must be an int bitset, not %.100s", what, Py_TYPE(value)->tp_name);
         return -1;
     }
-    int negative = PyObject_RichCompareBool(value, ZERO, Py_LT);
-    if (negative) {
-        if (negative > 0) PyErr_Format(PyExc_ValueError, "%s must not be negative", what);
-        return -1;
-    }
-    Py_INCREF(value);
-    for (int i = 0; i < nwords; i++) {
-        out[i] = PyLong_AsUnsignedLongLongMask(value);
-        PyObject *rest = PyNumber_Rshift(value, WORD_BITS);
-        Py_DECREF(value);
-        if (!rest) return -1;
-        value = rest;
-    }
-    int beyond = PyObject_IsTrue(value);
-    Py_DECREF(value);
-    if (beyond) {
-        if (beyond > 0) PyErr_Format(PyExc_ValueError, "%s has bits beyond the task's facts", what);
+    size_t nbytes = sizeof(word) * (size_t)nwords;
+#if PY_VERSION_HEX >= 0x030D0000
+    Py_ssize_t needed = PyLong_AsNativeBytes(value, out, (Py_ssize_t)nbytes,
+                                             Py_ASNATIVEBYTES_LITTLE_ENDIAN | Py_ASNATIVEBYTES_UNSIGNED_BUFFER |
+                                                 Py_ASNATIVEBYTES_REJECT_NEGATIVE);
+    if (needed < 0) return -1;
+    if ((size_t)needed > nbytes) {
+        PyErr_Format(PyExc_OverflowError, "%s has bits beyond the task's facts", what);
         return -1;
     }
     return 0;
+#else
+    return _PyLong_AsByteArray((PyLongObject *)value, (unsigned char *)out, nbytes, 1, 0);
+#endif
 }
 
 static PyObject *words_to_int(const word *w, int nwords) {
-    PyObject *value = PyLong_FromUnsignedLongLong(w[nwords - 1]);
-    for (int i = nwords - 2; value && i >= 0; i--) {
-        PyObject *shifted = PyNumber_Lshift(value, WORD_BITS), *low = PyLong_FromUnsignedLongLong(w[i]);
-        Py_DECREF(value);
-        value = shifted && low ? PyNumber_Or(shifted, low) : NULL;
-        Py_XDECREF(shifted);
-        Py_XDECREF(low);
-    }
-    return value;
+#if PY_VERSION_HEX >= 0x030D0000
+    return PyLong_FromUnsignedNativeBytes(w, sizeof(word) * (size_t)nwords, Py_ASNATIVEBYTES_LITTLE_ENDIAN);
+#else
+    return _PyLong_FromByteArray((const unsigned char *)w, sizeof(word) * (size_t)nwords, 1, 0);
+#endif
 }
 
 static int heuristic_id(const char *name) {
@@ -700,6 +726,29 @@ static PyObject *Task_successors(TaskObject *t, PyObject *state) {
     return result;
 }
 
+static PyObject *Task_reachable(TaskObject *t, PyObject *Py_UNUSED(ignored)) {
+    unit_costs(t, t->init, 0);
+    word *mask = calloc((size_t)t->nwords, sizeof(word));
+    PyObject *ops = PyList_New(0), *facts = NULL;
+    if (!mask) PyErr_NoMemory();
+    for (int o = 0; mask && ops && o < t->nops; o++) {
+        PyObject *index = t->missing[o] ? NULL : PyLong_FromLong(o);
+        if (index && PyList_Append(ops, index)) Py_CLEAR(ops);
+        Py_XDECREF(index);
+    }
+    if (mask && ops) {
+        for (int f = 0; f < t->nfacts; f++)
+            if (t->fact_cost[f] != COST_INF) mask[f >> 6] |= (word)1 << (f & 63);
+        facts = words_to_int(mask, t->nwords);
+    }
+    free(mask);
+    if (!facts) {
+        Py_XDECREF(ops);
+        return NULL;
+    }
+    return Py_BuildValue("(NN)", facts, ops);
+}
+
 static void Task_dealloc(TaskObject *t) {
     free(t->pre);
     free(t->neg);
@@ -730,30 +779,40 @@ static void Task_dealloc(TaskObject *t) {
     Py_TYPE(t)->tp_free((PyObject *)t);
 }
 
+/* The indices of the set bits of mask `m`, lowest first, into `out`; returns how many. */
+static int set_bits(const TaskObject *t, const word *m, int *out) {
+    int n = 0;
+    for (int i = 0; i < t->nwords; i++)
+        for (word rest = m[i]; rest; rest &= rest - 1) out[n++] = i * 64 + __builtin_ctzll(rest);
+    return n;
+}
+
+static size_t count_bits(const TaskObject *t, const word *masks) {
+    size_t n = 0;
+    for (size_t i = 0; i < (size_t)t->nops * (size_t)t->nwords; i++) n += (size_t)__builtin_popcountll(masks[i]);
+    return n;
+}
+
 /* The operator index structures: the successor filing and the relaxed task. */
 static int build_indexes(TaskObject *t) {
     int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, status = -1;
-    size_t npre = 0, nadd = 0;
-    for (int o = 0; o < t->nops; o++)
-        for (int f = 0; f < t->nfacts; f++) {
-            npre += has_bit(W(t, t->pre, o), f);
-            nadd += has_bit(W(t, t->add, o), f);
-        }
-    size_t room = npre + (size_t)t->nfacts + (size_t)nr + 1;
+    size_t npre = count_bits(t, t->pre), nadd = count_bits(t, t->add);
+    size_t room = (npre > nadd ? npre : nadd) + (size_t)t->nfacts + (size_t)nr + 1;
     int *row = malloc(sizeof(int) * room), *item = malloc(sizeof(int) * room);
-    int *uses = calloc((size_t)nf, sizeof(int));
+    int *uses = calloc((size_t)nf, sizeof(int)), *facts = malloc(sizeof(int) * (size_t)nf);
     t->free_ops = malloc(sizeof(int) * (size_t)(t->nops + 1));
-    if (!row || !item || !uses || !t->free_ops) goto done;
+    if (!row || !item || !uses || !facts || !t->free_ops) goto done;
 
-    /* successor filing: each operator under its precondition that the fewest operators need */
+    /* successor filing: each operator under its precondition that the fewest operators need (the first
+       such) */
     for (int o = 0; o < t->nops; o++)
-        for (int f = 0; f < t->nfacts; f++) uses[f] += has_bit(W(t, t->pre, o), f);
+        for (int k = 0, n = set_bits(t, W(t, t->pre, o), facts); k < n; k++) uses[facts[k]]++;
     int nfiled = 0;
     t->nfree = 0;
     for (int o = 0; o < t->nops; o++) {
         int best = -1;
-        for (int f = 0; f < t->nfacts; f++)
-            if (has_bit(W(t, t->pre, o), f) && (best < 0 || uses[f] < uses[best])) best = f;
+        for (int k = 0, n = set_bits(t, W(t, t->pre, o), facts); k < n; k++)
+            if (best < 0 || uses[facts[k]] < uses[best]) best = facts[k];
         if (best < 0) t->free_ops[t->nfree++] = o;
         else row[nfiled] = best, item[nfiled++] = o;
     }
@@ -762,22 +821,14 @@ static int build_indexes(TaskObject *t) {
     /* relaxed preconditions (TRUE for none; the goal operator needs the goal facts) and their inverse */
     int n = 0;
     for (int o = 0; o < nr; o++) {
-        const word *pre = o < t->nops ? W(t, t->pre, o) : t->goal;
-        int first = n;
-        for (int f = 0; f < t->nfacts; f++)
-            if (has_bit(pre, f)) row[n] = o, item[n++] = f;
-        if (n == first) row[n] = o, item[n++] = truth;
+        int count = set_bits(t, o < t->nops ? W(t, t->pre, o) : t->goal, facts);
+        for (int k = 0; k < count; k++) row[n] = o, item[n++] = facts[k];
+        if (!count) row[n] = o, item[n++] = truth;
     }
     if (rows_build(&t->rpre, nr, row, item, n) || rows_build(&t->consumers, nf, item, row, n)) goto done;
-    free(row);
-    free(item);
-    row = malloc(sizeof(int) * (nadd + 1));
-    item = malloc(sizeof(int) * (nadd + 1));
-    if (!row || !item) goto done;
     n = 0;
     for (int o = 0; o < t->nops; o++)
-        for (int f = 0; f < t->nfacts; f++)
-            if (has_bit(W(t, t->add, o), f)) row[n] = o, item[n++] = f;
+        for (int k = 0, count = set_bits(t, W(t, t->add, o), facts); k < count; k++) row[n] = o, item[n++] = facts[k];
     row[n] = t->nops, item[n++] = goal;
     if (rows_build(&t->radd, nr, row, item, n) || rows_build(&t->achievers, nf, item, row, n)) goto done;
 
@@ -803,6 +854,7 @@ done:
     free(row);
     free(item);
     free(uses);
+    free(facts);
     return status;
 }
 
@@ -866,6 +918,9 @@ static PyMethodDef Task_methods[] = {
     {"search", (PyCFunction)Task_search, METH_VARARGS,
      "search(search, heuristic) -> (plan as operator indices or None, expanded, generated)"},
     {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS, "heuristic(name, state) -> h (inf for a dead end)"},
+    {"reachable", (PyCFunction)Task_reachable, METH_NOARGS,
+     "reachable() -> (mask of the facts, list of the operators) reachable from init when delete effects and "
+     "negative preconditions are ignored"},
     {"successors", (PyCFunction)Task_successors, METH_O,
      "successors(state) -> [(child state, operator index)] in generation order"},
     {NULL, NULL, 0, NULL},
@@ -891,7 +946,7 @@ static struct PyModuleDef core_module = {
 };
 
 PyMODINIT_FUNC PyInit__core(void) {
-    if (PyType_Ready(&TaskType) < 0 || !(WORD_BITS = PyLong_FromLong(64)) || !(ZERO = PyLong_FromLong(0))) return NULL;
+    if (PyType_Ready(&TaskType) < 0) return NULL;
     PyObject *module = PyModule_Create(&core_module);
     if (!module) return NULL;
     Py_INCREF(&TaskType);

@@ -1,15 +1,15 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
-Three passes, each linear in what it produces, and each mostly C-level ``map`` over whole columns
-(one atom of one action across all its bindings) rather than a Python loop per operator.
+Each pass is linear in what it produces and mostly C-level ``map`` over whole columns (one atom of
+one action across all its bindings) rather than a Python loop per operator.
 1. Every action's parameters are bound one at a time over objects of their types, and each static
    precondition (a predicate no action changes, or equality) is checked as soon as its last variable is
-   bound, so bindings that can never apply are cut early.
-2. The candidates' atoms get provisional ids and bit masks, and a relaxed exploration (delete effects
-   and negative preconditions ignored) fires candidates whose preconditions are reached until nothing
-   grows: the candidates it never fires are dropped.
-3. Static atoms leave the state, which keeps only reachable fluent facts, one bit each in sorted order,
-   and the masks are rebuilt over those bits.
+   bound, so bindings that can never apply are cut early. Static atoms never enter the state.
+2. The fluent atoms the candidates mention get one bit each, in sorted order, and the candidates become
+   operators over those bits.
+3. A relaxed exploration in C (delete effects and negative preconditions ignored) finds the atoms and
+   candidates reachable from the initial state. Usually that is all of them and the task is done;
+   otherwise the unreachable ones are dropped and the bits renumbered.
 """
 
 from __future__ import annotations
@@ -165,49 +165,35 @@ class _Grounder:
             schema = _Schema(action, self.names, self.fluent)
             groups.append(_Candidates(schema, self.bindings(schema), self.names))
         init = [(a.predicate, *a.args) for a in self.problem.init if a.predicate in self.fluent]
-        atoms = list(dict.fromkeys(chain(init, *(c for g in groups for cols in g.columns for c in cols))))
+        atoms = sorted(dict.fromkeys(chain(init, *(c for g in groups for cols in g.columns for c in cols))))
         id_of = dict(zip(atoms, range(len(atoms)), strict=True))
         for group in groups:
             group.number(id_of)
-        provisional = [1 << i for i in range(len(atoms))]
         init_ids = {id_of[a] for a in init}
-        reached, dropped = self._relaxed_reachable(groups, provisional, sum(provisional[i] for i in init_ids))
-        fluents = sorted((atoms[i], i) for i in _bits(reached))
+        task = self._task(groups, atoms, list(range(len(atoms))), init_ids)
+        reached, fired = task.compiled.reachable()
+        if reached == (1 << len(atoms)) - 1 and len(fired) == len(task.operators):
+            return task
+        return self._task(groups, atoms, _bits(reached), init_ids, set(fired))
+
+    def _task(self, groups: list[_Candidates], atoms: list[GroundAtom], kept: list[int], init_ids: set[int],
+              fired: set[int] | None = None) -> Task:
+        """The task over the atoms numbered ``kept`` (one bit each, in that order) with the candidates
+        numbered ``fired`` (all when None)."""
         bit_of = [0] * len(atoms)
-        for bit, (_, i) in enumerate(fluents):
+        for bit, i in enumerate(kept):
             bit_of[i] = 1 << bit
         operators = []
         for group in groups:
             pre, pre_neg, add, delete = group.masks(bit_of)
             delete = [d & ~a for d, a in zip(delete, add, strict=True)]
-            fields = zip(group.args, pre, pre_neg, add, delete, strict=True)
-            if dropped:
-                kept = [m & reached == m for m in group.masks(provisional)[0]]
-                fields = (f for f, keep in zip(fields, kept, strict=True) if keep)
-            operators += [Operator(group.name, *f) for f in fields]
-        facts = tuple(Atom(a[0], a[1:]) for a, _ in fluents)
-        goal, goal_neg, reason = self._goal({a: bit_of[i] for a, i in fluents})
-        return Task(facts, sum(bit_of[i] for i in init_ids), goal, goal_neg, tuple(operators), reason)
-
-    @staticmethod
-    def _relaxed_reachable(groups: list[_Candidates], provisional: list[int], reached: int) -> tuple[int, bool]:
-        """The atoms (a mask over atom ids) reachable when delete effects and negative preconditions are
-        ignored: fire every candidate whose preconditions are reached, until none adds. Also whether some
-        candidate never fired."""
-        pending = []
-        for group in groups:
-            pre, _, add, _ = group.masks(provisional)
-            pending += zip(pre, add, strict=True)
-        while True:
-            grown, waiting = reached, []
-            for pre, add in pending:
-                if pre & grown == pre:
-                    grown |= add
-                else:
-                    waiting.append((pre, add))
-            if grown == reached:
-                return reached, bool(waiting)
-            reached, pending = grown, waiting
+            operators += map(Operator, [group.name] * len(add), group.args, pre, pre_neg, add, delete)
+        if fired is not None:
+            operators = [op for i, op in enumerate(operators) if i in fired]
+        facts = [atoms[i] for i in kept]
+        goal, goal_neg, reason = self._goal({atom: 1 << bit for bit, atom in enumerate(facts)})
+        return Task(tuple(Atom(a[0], a[1:]) for a in facts), sum(bit_of[i] for i in init_ids), goal, goal_neg,
+                    tuple(operators), reason)
 
     def _goal(self, bit_of: dict[GroundAtom, int]) -> tuple[int, int, str]:
         """Goal and negated-goal masks, and why the goal can never hold ("" when it may)."""

@@ -1,14 +1,20 @@
 """A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, objects and constants.
 
-Text -> s-expressions (every token keeps its line and column) -> :class:`Domain` / :class:`Problem`.
-Anything outside that fragment (``or``, ``forall``, ``when``, numeric fluents) is refused with a
-:class:`PddlError` that names the line and column, so a user knows what to rewrite.
+Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (``or``,
+``forall``, ``when``, numeric fluents) is refused with a :class:`PddlError` that names the line and
+column, so a user knows what to rewrite.
+
+Valid input is read fast: tokens are plain strings and lists plain lists. Only when that first pass
+finds an error is the text read again with every token and list knowing its line and column, and the
+same check, now located, raises the :class:`PddlError`.
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
 ROOT_TYPE = "object"
@@ -18,70 +24,91 @@ class PddlError(ValueError):
     """Malformed or unsupported PDDL; the message starts with ``line:column``."""
 
 
-Token = re.Match
-"""A name or a parenthesis as matched in the (lower-cased) source: ``token[0]`` is its text, and its
-offset gives line and column only when an error needs them."""
+class _UnlocatedError(Exception):
+    """An error found on the fast pass, which does not know where tokens are: read again, located."""
 
 
-def _where(token: Token) -> str:
-    source, offset = token.string, token.start()
-    return f"{source.count(chr(10), 0, offset) + 1}:{offset - source.rfind(chr(10), 0, offset)}"
+class Located(str):
+    """A token of the located pass: its text, and ``where`` it starts as ``line:column``."""
+
+    where: str
 
 
 class SExpr(list):
-    """A parenthesised list of tokens and sub-lists, remembering where it opened."""
+    """A parenthesised list of the located pass, remembering ``where`` it opened."""
 
-    def __init__(self, items: list, start: Token) -> None:
-        super().__init__(items)
-        self.start = start
+    where: str
 
 
-def _error(at: Token | SExpr, message: str) -> PddlError:
-    token = at.start if isinstance(at, SExpr) else at
-    return PddlError(f"{_where(token)}: {message}")
+def _error(at: str | list, message: str) -> Exception:
+    where = getattr(at, "where", None)
+    return _UnlocatedError(message) if where is None else PddlError(f"{where}: {message}")
 
 
 _TOKEN = re.compile(r"[()]|[^\s();]+")
 _COMMENT = re.compile(r";[^\n]*")
 
 
-def tokenize(text: str) -> list[Token]:
+def parse_sexpr(text: str, located: bool = False) -> list:
+    """The single top-level s-expression of ``text``, in lower case; with ``located``, its tokens are
+    :class:`Located` and its lists :class:`SExpr`."""
     text = text.lower()
     if ";" in text:  # blank comments out, keeping every offset
         text = _COMMENT.sub(lambda comment: " " * len(comment[0]), text)
-    return list(_TOKEN.finditer(text))
-
-
-def parse_sexpr(text: str) -> SExpr:
-    """The single top-level s-expression of ``text``."""
-    tokens = tokenize(text)
+    tokens: list[str] = [_located(m) for m in _TOKEN.finditer(text)] if located else _TOKEN.findall(text)
     if not tokens:
-        raise PddlError("1:1: empty input: expected (define ...)")
-    stack: list[tuple[Token, list]] = []
-    result: SExpr | None = None
+        raise _error(_at("1:1"), "empty input: expected (define ...)")
+    stack: list[tuple[str, list]] = []
+    result: list | None = None
     for token in tokens:
-        word = token[0]
         if result is not None:
-            raise _error(token, f"unexpected {word!r} after the end of the definition")
-        if word == "(":
-            stack.append((token, []))
-        elif word == ")":
+            raise _error(token, f"unexpected {token!r} after the end of the definition")
+        if token == "(":
+            stack.append((token, SExpr() if located else []))
+        elif token == ")":
             if not stack:
                 raise _error(token, "unbalanced ')'")
             start, items = stack.pop()
-            expr = SExpr(items, start)
+            if located:
+                items.where = start.where
             if stack:
-                stack[-1][1].append(expr)
+                stack[-1][1].append(items)
             else:
-                result = expr
+                result = items
         elif not stack:
-            raise _error(token, f"expected '(' but found {word!r}")
+            raise _error(token, f"expected '(' but found {token!r}")
         else:
             stack[-1][1].append(token)
     if stack:
         raise _error(stack[-1][0], "'(' is never closed")
     assert result is not None
     return result
+
+
+def _located(match: re.Match) -> Located:
+    source, offset = match.string, match.start()
+    return _at(f"{source.count(chr(10), 0, offset) + 1}:{offset - source.rfind(chr(10), 0, offset)}",
+                      match[0])
+
+
+def _at(where: str, text: str = "") -> Located:
+    token = Located(text)
+    token.where = where
+    return token
+
+
+Parsed = TypeVar("Parsed")
+
+
+def _read(text: str, reader: Callable[[list], Parsed]) -> Parsed:
+    """``reader`` on the fast pass; on an error, on the located pass, which raises it located."""
+    try:
+        return reader(parse_sexpr(text))
+    except _UnlocatedError:
+        try:
+            return reader(parse_sexpr(text, located=True))
+        except _UnlocatedError as error:  # an error site without a token: report it unlocated
+            raise PddlError(f"?:?: {error}") from None
 
 
 # -- the model -------------------------------------------------------------------------------------------
@@ -141,13 +168,13 @@ class Problem:
 
 
 # -- readers ---------------------------------------------------------------------------------------------
-def _name(item, what: str) -> str:
-    if isinstance(item, SExpr):
+def _name(item: str | list, what: str) -> str:
+    if isinstance(item, list):
         raise _error(item, f"expected {what}, found a parenthesised list")
-    return item[0]
+    return item
 
 
-def _typed_list(items: list, where: SExpr, variables: bool) -> list[tuple[str, str, Token]]:
+def _typed_list(items: list, where: list, variables: bool) -> list[tuple[str, str, str]]:
     """``a b - t c`` -> [(a, t), (b, t), (c, object)], each with its token."""
     result, pending, i = [], [], 0
     while i < len(items):
@@ -156,9 +183,9 @@ def _typed_list(items: list, where: SExpr, variables: bool) -> list[tuple[str, s
         if text == "-":
             if i + 1 >= len(items) or not pending:
                 raise _error(token, "'-' must sit between names and their type")
-            kind = _name(items[i + 1], "a type name")
-            if kind == "(" or kind.startswith("("):
+            if isinstance(items[i + 1], list):
                 raise _error(items[i + 1], "'either' types are not supported")
+            kind = items[i + 1]
             result += [(name, kind, tok) for name, tok in pending]
             pending, i = [], i + 2
             continue
@@ -169,16 +196,16 @@ def _typed_list(items: list, where: SExpr, variables: bool) -> list[tuple[str, s
     return result + [(name, ROOT_TYPE, tok) for name, tok in pending]
 
 
-def _check_type(domain: Domain, kind: str, token: Token) -> None:
+def _check_type(domain: Domain, kind: str, token: str) -> None:
     if kind not in domain.types:
         raise _error(token, f"unknown type {kind!r}")
 
 
-def _atom(expr: SExpr, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str]) -> Atom:
+def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str]) -> Atom:
     if not expr:
         raise _error(expr, "empty atom ()")
     predicate = _name(expr[0], "a predicate name")
-    args = tuple(_name(arg, "an argument") for arg in expr[1:])
+    args = tuple(expr[1:])
     if predicate == "=":
         if ":equality" not in domain.requirements and variables is not None:
             raise _error(expr, "(= ...) needs :equality in the domain's :requirements")
@@ -191,17 +218,17 @@ def _atom(expr: SExpr, domain: Domain, variables: dict[str, str] | None, objects
         expected = domain.predicates[predicate]
         if len(args) != len(expected):
             raise _error(expr, f"{predicate} takes {len(expected)} argument(s), got {len(args)}")
-    for arg, kind, token in zip(args, expected, expr[1:], strict=True):
-        scope = variables if arg.startswith("?") else objects
+    for arg, kind in zip(args, expected, strict=True):
+        scope = variables if _name(arg, "an argument")[0] == "?" else objects
         if scope is None or arg not in scope:
-            what = "variable" if arg.startswith("?") else "object or constant"
-            raise _error(token, f"unknown {what} {arg!r}")
+            what = "variable" if arg[0] == "?" else "object or constant"
+            raise _error(arg, f"unknown {what} {arg!r}")
         if kind != ROOT_TYPE and not domain.is_subtype(scope[arg], kind):
-            raise _error(token, f"{arg!r} is a {scope[arg]}, but {predicate} expects a {kind}")
+            raise _error(arg, f"{arg!r} is a {scope[arg]}, but {predicate} expects a {kind}")
     return Atom(predicate, args)
 
 
-def _literals(expr: SExpr, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
+def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
               what: str) -> list[Condition]:
     """A conjunction of (possibly negated) atoms; ``()`` is the empty conjunction."""
     if not expr:
@@ -224,13 +251,13 @@ def _literals(expr: SExpr, domain: Domain, variables: dict[str, str] | None, obj
     return [Condition(_atom(expr, domain, variables, objects))]
 
 
-def _sub(item, what: str) -> SExpr:
-    if not isinstance(item, SExpr):
-        raise _error(item, f"expected a parenthesised {what} element, found {item[0]!r}")
+def _sub(item: str | list, what: str) -> list:
+    if not isinstance(item, list):
+        raise _error(item, f"expected a parenthesised {what} element, found {item!r}")
     return item
 
 
-def _sections(root: SExpr, kind: str) -> tuple[str, list[SExpr]]:
+def _sections(root: list, kind: str) -> tuple[str, list[list]]:
     if len(root) < 2 or _name(root[0], "define") != "define":
         raise _error(root, "expected (define ...)")
     header = _sub(root[1], f"({kind} NAME)")
@@ -240,7 +267,11 @@ def _sections(root: SExpr, kind: str) -> tuple[str, list[SExpr]]:
 
 
 def parse_domain(text: str) -> Domain:
-    name, sections = _sections(parse_sexpr(text), "domain")
+    return _read(text, _domain)
+
+
+def _domain(root: list) -> Domain:
+    name, sections = _sections(root, "domain")
     domain = Domain(name)
     for section in sections:
         key = _name(section[0], "a section keyword") if section else ""
@@ -275,11 +306,11 @@ def parse_domain(text: str) -> Domain:
     return domain
 
 
-def _action(section: SExpr, domain: Domain) -> Action:
+def _action(section: list, domain: Domain) -> Action:
     if len(section) < 2:
         raise _error(section, "(:action NAME ...) needs a name")
     name = _name(section[1], "an action name")
-    fields: dict[str, SExpr] = {}
+    fields: dict[str, list] = {}
     items = section[2:]
     for key, value in zip(items[::2], items[1::2], strict=False):
         fields[_name(key, ":parameters, :precondition or :effect")] = _sub(value, "action field")
@@ -292,9 +323,9 @@ def _action(section: SExpr, domain: Domain) -> Action:
     for _, kind, token in params:
         _check_type(domain, kind, token)
     variables = {var: kind for var, kind, _ in params}
-    pre = _literals(fields.get(":precondition", SExpr([], section.start)), domain, variables, domain.constants,
+    pre = _literals(fields.get(":precondition", []), domain, variables, domain.constants,
                     "precondition")
-    effect = _literals(fields.get(":effect", SExpr([], section.start)), domain, variables, domain.constants, "effect")
+    effect = _literals(fields.get(":effect", []), domain, variables, domain.constants, "effect")
     if any(c.atom.predicate == "=" for c in effect):
         raise _error(section, f"action {name}: equality cannot be an effect")
     return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre),
@@ -302,7 +333,10 @@ def _action(section: SExpr, domain: Domain) -> Action:
 
 
 def parse_problem(text: str, domain: Domain) -> Problem:
-    root = parse_sexpr(text)
+    return _read(text, lambda root: _problem(root, domain))
+
+
+def _problem(root: list, domain: Domain) -> Problem:
     name, sections = _sections(root, "problem")
     problem = Problem(name, "", dict(domain.constants), set(), ())
     goal_section = None

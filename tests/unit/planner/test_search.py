@@ -1,5 +1,7 @@
 """Grounding, heuristics and searches on standard STRIPS domains: optimal lengths, unsolvable tasks."""
 
+import random
+import signal
 from pathlib import Path
 
 import pytest
@@ -72,7 +74,7 @@ def test_astar_with_hmax_and_blind_finds_optimal_plans(seed: int) -> None:
 
 
 @pytest.mark.parametrize(("domain_name", "problem_text"), [
-    ("gripper-domain", fixture("gripper-4balls")), ("blocksworld", problem(6, 3))])
+    ("gripper-domain", fixture("gripper-4balls")), ("blocksworld", problem(6, 3)), ("blocksworld", problem(8, 1))])
 def test_successor_generator_yields_exactly_the_applicable_operators(domain_name: str, problem_text: str) -> None:
     domain_text = DOMAIN_PATH.read_text() if domain_name == "blocksworld" else fixture(domain_name)
     domain = parse_domain(domain_text)
@@ -107,3 +109,84 @@ def test_negative_preconditions_and_equality_are_honoured() -> None:
     result = solve_pddl(domain_text, problem_text, "bfs")
     assert [str(op) for op in result.plan] == ["(switch-on b a)"]
     assert solve_pddl(domain_text, problem_text.replace("(on b)", "(on a)"), "bfs").plan is None
+
+
+def _bfs_length(task, state: int) -> float:
+    """The optimal plan length from ``state`` (inf when none), by breadth-first search on the successors."""
+    frontier, seen, depth = [state], {state}, 0
+    while frontier:
+        if any(task.goal_reached(s) for s in frontier):
+            return depth
+        frontier = [c for s in frontier for c, _ in successors(task, s) if c not in seen and not seen.add(c)]
+        depth += 1
+    return float("inf")
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_heuristics_bound_the_optimal_cost_from_states_along_a_walk(seed: int) -> None:
+    """hmax <= LM-cut <= h* and hmax <= hFF, on states with more than 64 facts (two words)."""
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(7, seed), domain))
+    assert len(task.facts) > 64
+    h = {name: heuristics.heuristic(task, name) for name in heuristics.HEURISTICS}
+    rng, state = random.Random(seed), task.init
+    for _ in range(6):
+        optimal = _bfs_length(task, state)
+        assert h["hmax"](state) <= h["lmcut"](state) <= optimal
+        assert h["hmax"](state) <= h["hff"](state)
+        assert h["blind"](state) == (0 if task.goal_reached(state) else 1)
+        state = rng.choice(successors(task, state))[0]
+
+
+def test_dead_ends_are_infinite_for_every_relaxed_heuristic() -> None:
+    domain_text = """(define (domain roads) (:requirements :strips)
+      (:predicates (at ?x) (road ?x ?y))
+      (:action walk :parameters (?x ?y) :precondition (and (at ?x) (road ?x ?y)) :effect (and (at ?y) (not (at ?x)))))"""
+    problem_text = """(define (problem p) (:domain roads) (:objects a b c)
+      (:init (at a) (road a b) (road a c)) (:goal (at b)))"""  # one-way roads: c is a dead end
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    dead_end = next(child for child, op in successors(task, task.init) if op.args == ("a", "c"))
+    for name in ("hmax", "hff", "lmcut"):
+        assert heuristics.heuristic(task, name)(task.init) == 1
+        assert heuristics.heuristic(task, name)(dead_end) == float("inf")
+
+
+def test_grounding_drops_facts_and_operators_unreachable_even_relaxed() -> None:
+    domain_text = """(define (domain locks) (:requirements :strips)
+      (:predicates (at ?x) (key) (open))
+      (:action walk :parameters (?x ?y) :precondition (at ?x) :effect (and (at ?y) (not (at ?x))))
+      (:action unlock :parameters () :precondition (key) :effect (open)))"""
+    problem_text = "(define (problem p) (:domain locks) (:objects a b) (:init (at a)) (:goal (at b)))"
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    assert [str(f) for f in task.facts] == ["(at a)", "(at b)"]  # no key, so never open
+    assert {op.name for op in task.operators} == {"walk"}
+    assert [str(op) for op in solve_task(task, "bfs").plan] == ["(walk a b)"]
+
+
+def test_a_long_search_stops_on_a_signal() -> None:
+    """The C search checks for signals, so Ctrl-C (here an alarm) ends it."""
+    def alarm(*_) -> None:
+        raise TimeoutError
+
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(14, 0), domain))  # far beyond breadth-first search
+    previous = signal.signal(signal.SIGALRM, alarm)
+    signal.setitimer(signal.ITIMER_REAL, 0.2)
+    try:
+        with pytest.raises(TimeoutError):
+            solve_task(task, "bfs")
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+@pytest.mark.parametrize("state", [-1, 1 << 4096, "s"])
+def test_bad_states_are_refused_with_a_message(state) -> None:
+    domain = parse_domain(fixture("blocksworld-domain"))
+    task = ground(domain, parse_problem(fixture("blocksworld-sussman"), domain))
+    with pytest.raises((TypeError, OverflowError), match=r"int|convert"):
+        heuristics.heuristic(task, "hmax")(state)
+    with pytest.raises(ValueError, match="valid: blind"):
+        heuristics.heuristic(task, "hadd")

@@ -14,10 +14,10 @@ one action across all its bindings) rather than a Python loop per operator.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from functools import cached_property
-from itertools import chain
+from itertools import count, repeat
 from operator import itemgetter
 from typing import NamedTuple
 
@@ -116,9 +116,10 @@ class _Candidates:
         self.columns = [[list(map(t, full)) for t in templates]
                         for templates in (schema.pre, schema.pre_neg, schema.add, schema.delete)]
 
-    def number(self, id_of: dict[GroundAtom, int]) -> None:
-        """Replace each atom by its id."""
-        self.columns = [[list(map(id_of.__getitem__, column)) for column in columns] for columns in self.columns]
+    def number(self, first_seen: dict[GroundAtom, int], mentions: Iterator[int]) -> None:
+        """Replace each atom by its id: the number of its first mention, counted by ``mentions``."""
+        self.columns = [[list(map(first_seen.setdefault, column, mentions)) for column in columns]
+                        for columns in self.columns]
 
     def masks(self, bit_of: list[int]) -> list[list[int]]:
         """Per kind (pre, pre_neg, add, delete), every binding's mask, given each atom id's bit (1 << bit)."""
@@ -164,33 +165,35 @@ class _Grounder:
         for action in self.domain.actions:
             schema = _Schema(action, self.names, self.fluent)
             groups.append(_Candidates(schema, self.bindings(schema), self.names))
+        first_seen: dict[GroundAtom, int] = {}
+        mentions = count()
         init = [(a.predicate, *a.args) for a in self.problem.init if a.predicate in self.fluent]
-        atoms = sorted(dict.fromkeys(chain(init, *(c for g in groups for cols in g.columns for c in cols))))
-        id_of = dict(zip(atoms, range(len(atoms)), strict=True))
+        init_ids = set(map(first_seen.setdefault, init, mentions))
         for group in groups:
-            group.number(id_of)
-        init_ids = {id_of[a] for a in init}
-        task = self._task(groups, atoms, list(range(len(atoms))), init_ids)
+            group.number(first_seen, mentions)
+        atoms = sorted(first_seen)
+        task = self._task(groups, atoms, first_seen, next(mentions), init_ids)
         reached, fired = task.compiled.reachable()
         if reached == (1 << len(atoms)) - 1 and len(fired) == len(task.operators):
             return task
-        return self._task(groups, atoms, _bits(reached), init_ids, set(fired))
+        kept = [atoms[i] for i in _bits(reached)]
+        return self._task(groups, kept, first_seen, next(mentions), init_ids, set(fired))
 
-    def _task(self, groups: list[_Candidates], atoms: list[GroundAtom], kept: list[int], init_ids: set[int],
-              fired: set[int] | None = None) -> Task:
-        """The task over the atoms numbered ``kept`` (one bit each, in that order) with the candidates
-        numbered ``fired`` (all when None)."""
-        bit_of = [0] * len(atoms)
-        for bit, i in enumerate(kept):
-            bit_of[i] = 1 << bit
+    def _task(self, groups: list[_Candidates], facts: list[GroundAtom], first_seen: dict[GroundAtom, int],
+              ids: int, init_ids: set[int], fired: set[int] | None = None) -> Task:
+        """The task over ``facts`` (one bit each, in that order; other atoms are dropped) with the candidates
+        numbered ``fired`` (all when None). ``ids``: the number of atom ids handed out."""
+        bit_of = [0] * ids
+        for bit, atom in enumerate(facts):
+            bit_of[first_seen[atom]] = 1 << bit
         operators = []
         for group in groups:
             pre, pre_neg, add, delete = group.masks(bit_of)
             delete = [d & ~a for d, a in zip(delete, add, strict=True)]
-            operators += map(Operator, [group.name] * len(add), group.args, pre, pre_neg, add, delete)
+            fields = zip(repeat(group.name), group.args, pre, pre_neg, add, delete)
+            operators += map(tuple.__new__, repeat(Operator), fields)  # Operator(*f), at C speed
         if fired is not None:
             operators = [op for i, op in enumerate(operators) if i in fired]
-        facts = [atoms[i] for i in kept]
         goal, goal_neg, reason = self._goal({atom: 1 << bit for bit, atom in enumerate(facts)})
         return Task(tuple(Atom(a[0], a[1:]) for a in facts), sum(bit_of[i] for i in init_ids), goal, goal_neg,
                     tuple(operators), reason)

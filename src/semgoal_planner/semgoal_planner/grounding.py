@@ -75,9 +75,9 @@ Template = Callable[[tuple[str, ...]], GroundAtom]
 
 
 def _template(atom: Atom, slot_of: dict[str, int]) -> Template:
-    """A function from a binding to this atom instantiated, e.g. values -> ("on", "b1", "b2").
-
-    The binding tuple also holds the predicate names, so one C-level itemgetter builds the whole tuple."""
+    """A function from a binding to this atom instantiated, e.g. values -> ("on", "b1", "b2"), for the
+    static checks. The binding tuple also holds the predicate names, so one C-level itemgetter builds the
+    whole tuple."""
     if not atom.args:
         ground_atom = (atom.predicate,)
         return lambda values: ground_atom
@@ -85,7 +85,7 @@ def _template(atom: Atom, slot_of: dict[str, int]) -> Template:
 
 
 class _Schema:
-    """An action compiled for grounding: static checks by binding depth, templates of its other atoms."""
+    """An action compiled for grounding: static checks by binding depth, and its other atoms."""
 
     def __init__(self, action: Action, names: tuple[str, ...], fluent: set[str]) -> None:
         """``names``: the constants, then the predicates, which follow the parameters in a binding."""
@@ -93,28 +93,31 @@ class _Schema:
         params = [v for v, _ in action.parameters]
         slot_of = {name: i for i, name in enumerate(params + list(names))}
         self.static_checks: list[list[tuple[Template, bool]]] = [[] for _ in range(len(params) + 1)]
-        self.pre: list[Template] = []
-        self.pre_neg: list[Template] = []
+        self.pre: list[Atom] = []
+        self.pre_neg: list[Atom] = []
         for cond in action.precondition:
-            template = _template(cond.atom, slot_of)
             if cond.atom.predicate == "=" or cond.atom.predicate not in fluent:
                 depth = max((params.index(a) + 1 for a in cond.atom.args if a in params), default=0)
-                self.static_checks[depth].append((template, cond.positive))
+                self.static_checks[depth].append((_template(cond.atom, slot_of), cond.positive))
             else:
-                (self.pre if cond.positive else self.pre_neg).append(template)
-        self.add = [_template(a, slot_of) for a in action.add]
-        self.delete = [_template(a, slot_of) for a in action.delete]
+                (self.pre if cond.positive else self.pre_neg).append(cond.atom)
 
 
 class _Candidates:
     """One action's bindings, with its atoms as columns (one list per atom, one entry per binding)."""
 
-    def __init__(self, schema: _Schema, bindings: list[tuple[str, ...]], names: tuple[str, ...]) -> None:
-        self.name = schema.action.name
+    def __init__(self, schema: _Schema, bindings: list[tuple[str, ...]]) -> None:
+        action = schema.action
+        self.name = action.name
         self.args = bindings
-        full = [b + names for b in bindings]
-        self.columns = [[list(map(t, full)) for t in templates]
-                        for templates in (schema.pre, schema.pre_neg, schema.add, schema.delete)]
+        values = {var: list(map(itemgetter(i), bindings)) for i, (var, _) in enumerate(action.parameters)}
+
+        def column(atom: Atom) -> list[GroundAtom]:
+            """The atom under every binding: tuples zipped from the predicate and argument columns."""
+            parts = [values.get(arg) or repeat(arg, len(bindings)) for arg in atom.args]
+            return list(zip(repeat(atom.predicate, len(bindings)), *parts, strict=True))
+
+        self.columns = [list(map(column, atoms)) for atoms in (schema.pre, schema.pre_neg, action.add, action.delete)]
 
     def number(self, first_seen: dict[GroundAtom, int], mentions: Iterator[int]) -> None:
         """Replace each atom by its id: the number of its first mention, counted by ``mentions``."""
@@ -164,7 +167,7 @@ class _Grounder:
         groups = []
         for action in self.domain.actions:
             schema = _Schema(action, self.names, self.fluent)
-            groups.append(_Candidates(schema, self.bindings(schema), self.names))
+            groups.append(_Candidates(schema, self.bindings(schema)))
         first_seen: dict[GroundAtom, int] = {}
         mentions = count()
         init = [(a.predicate, *a.args) for a in self.problem.init if a.predicate in self.fluent]

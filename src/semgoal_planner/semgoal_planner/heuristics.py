@@ -18,9 +18,7 @@ from collections.abc import Callable
 
 from semgoal_planner.grounding import Task
 
-INF = float("inf")
 HEURISTICS = ("blind", "hmax", "hff", "lmcut")
-ADMISSIBLE = {"blind", "hmax", "lmcut"}
 Heuristic = Callable[[int], float]
 
 

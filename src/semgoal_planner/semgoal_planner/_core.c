@@ -126,7 +126,7 @@ typedef struct {
        the goal operator nops */
     Rows rpre, radd, consumers, achievers;
     /* heuristic workspace, reused between evaluations */
-    int *fact_cost, *achiever, *missing, *supporter, *op_max;
+    int *fact_cost, *achiever, *missing, *supporter, *op_max; /* achiever: the unit-cost sweep's, for hFF */
     int *base_cost, *cost; /* 1 per operator, 0 for the goal operator; LM-cut's costs, lowered by its cuts */
     int *mark, *in_zone, *op_mark, *stack, *cut; /* marks hold the epoch of their last use */
     int epoch;
@@ -184,13 +184,12 @@ static int next_epoch(TaskObject *t) {
     return ++t->epoch;
 }
 
-/* Lower the cost of every fact that operator o adds to `value`, where that is cheaper. */
+/* LM-cut's Dijkstra: lower the cost of every fact that operator o adds to `value`, where that is cheaper. */
 static int offer(TaskObject *t, int o, int value) {
     for (int k = t->radd.start[o]; k < t->radd.start[o + 1]; k++) {
         int g = t->radd.items[k];
         if (value < t->fact_cost[g]) {
             t->fact_cost[g] = value;
-            t->achiever[g] = o;
             if (heap_push(&t->heap, value, g, g)) return -1;
         }
     }

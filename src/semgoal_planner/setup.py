@@ -11,8 +11,9 @@ setup(
         (f"share/{PACKAGE}", ["package.xml"]),
     ],
     package_data={PACKAGE: ["domains/*.pddl"]},
-    # the searches and heuristics in C (parsing and grounding stay in Python)
-    ext_modules=[Extension(f"{PACKAGE}._core", [f"{PACKAGE}/_core.c"], extra_compile_args=["-O2", "-std=c11"])],
+    # grounding's inner loop, and the searches and heuristics, in C (parsing stays in Python)
+    ext_modules=[Extension(f"{PACKAGE}.{name}", [f"{PACKAGE}/{name}.c"], depends=[f"{PACKAGE}/_support.h"],
+                           extra_compile_args=["-O2", "-std=c11"]) for name in ("_core", "_ground")],
     install_requires=["setuptools"],
     zip_safe=False,
     maintainer="semgoal developers",

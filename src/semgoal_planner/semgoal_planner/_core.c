@@ -1,8 +1,8 @@
 /* The planner's hot loop in C: forward searches (breadth-first, A*, greedy best-first) and the
  * delete-relaxation heuristics (blind, hmax, hFF, LM-cut) over a grounded STRIPS task.
  *
- * Parsing and grounding stay in Python (semgoal_planner.pddl, .grounding); this module gets the ground
- * operators as bit masks and returns plans as operator indices. It holds the GIL throughout and checks
+ * Parsing stays in Python (semgoal_planner.pddl), grounding in Python and _ground.c; this module gets the
+ * ground operators as bit masks and returns plans as operator indices. It holds the GIL throughout and checks
  * for signals now and then, so Ctrl-C still stops a long search.
  *
  * States are bitsets of `nwords` 64-bit words. The searches keep every state they meet in one arena
@@ -16,15 +16,10 @@
  * operators that have none), and a Dijkstra over facts (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
  * Helmert & Domshlak 2009).
  */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
+#include "_support.h" /* Python.h, word, Rows, int <-> words */
 
 #include <limits.h>
-#include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
-typedef uint64_t word;
 #define COST_INF INT_MAX
 #define SIGNAL_CHECK_MASK 0x3FFF /* check for Ctrl-C every 16384 expansions */
 
@@ -32,34 +27,6 @@ enum { H_BLIND, H_HMAX, H_HFF, H_LMCUT, H_COUNT };
 static const char *const HEURISTIC_NAMES[H_COUNT] = {"blind", "hmax", "hff", "lmcut"};
 
 /* -- small containers ------------------------------------------------------------------------------ */
-
-/* Rows of ints: row i is items[start[i] .. start[i + 1]). */
-typedef struct {
-    int *start;
-    int *items;
-} Rows;
-
-static void rows_free(Rows *rows) {
-    free(rows->start);
-    free(rows->items);
-}
-
-/* Rows from (row, item) pairs, items kept in pair order within a row. */
-static int rows_build(Rows *rows, int nrows, const int *row_of, const int *item_of, int npairs) {
-    rows->start = calloc((size_t)nrows + 1, sizeof(int));
-    rows->items = malloc(sizeof(int) * (size_t)(npairs ? npairs : 1));
-    int *fill = malloc(sizeof(int) * (size_t)(nrows + 1));
-    if (!rows->start || !rows->items || !fill) {
-        free(fill);
-        return -1;
-    }
-    for (int k = 0; k < npairs; k++) rows->start[row_of[k] + 1]++;
-    for (int i = 0; i < nrows; i++) rows->start[i + 1] += rows->start[i];
-    memcpy(fill, rows->start, sizeof(int) * (size_t)(nrows + 1));
-    for (int k = 0; k < npairs; k++) rows->items[fill[row_of[k]]++] = item_of[k];
-    free(fill);
-    return 0;
-}
 
 /* A binary min-heap of (key, item, tie) ordered lexicographically: Python's heapq on tuples. */
 typedef struct {
@@ -233,9 +200,9 @@ static int relaxed_costs(TaskObject *t, const word *s) {
 
 /* hmax costs from state `s` with every operator costing 1: a breadth-first sweep over facts, which meets
    them in order of cost, so each fact's first achiever is a cheapest one (t->achiever). Only the goal
-   operator costs 0, and nothing needs its fact. With `stop_at_goal`, stops once the goal fact is set
-   (its cost and every achiever a relaxed plan can need are final by then). */
-static void unit_costs(TaskObject *t, const word *s, int stop_at_goal) {
+   operator costs 0, and nothing needs its fact. It stops once the goal fact is set (its cost and every
+   achiever a relaxed plan can need are final by then). */
+static void unit_costs(TaskObject *t, const word *s) {
     int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, head = 0, tail = 0;
     int *queue = t->stack;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
@@ -258,7 +225,7 @@ static void unit_costs(TaskObject *t, const word *s, int stop_at_goal) {
                 if (t->fact_cost[g] != COST_INF) continue;
                 t->fact_cost[g] = value + t->base_cost[o];
                 t->achiever[g] = o;
-                if (g == goal && stop_at_goal) return;
+                if (g == goal) return;
                 queue[tail++] = g;
             }
         }
@@ -266,14 +233,14 @@ static void unit_costs(TaskObject *t, const word *s, int stop_at_goal) {
 }
 
 static int h_hmax(TaskObject *t, const word *s) {
-    unit_costs(t, s, 1);
+    unit_costs(t, s);
     return t->fact_cost[t->nfacts];
 }
 
 /* hFF: the size of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
    goal fact. */
 static int h_hff(TaskObject *t, const word *s) {
-    unit_costs(t, s, 1);
+    unit_costs(t, s);
     int goal = t->nfacts, truth = t->nfacts + 1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int epoch = next_epoch(t), size = 0, top = 0;
@@ -598,41 +565,6 @@ done:
 
 /* -- Python glue ------------------------------------------------------------------------------------- */
 
-#if !PY_LITTLE_ENDIAN
-#error "states are read from Python ints as little-endian words"
-#endif
-
-/* A non-negative int as `nwords` little-endian words; an OverflowError for a negative int or one with
-   bits beyond them. */
-static int int_to_words(PyObject *value, word *out, int nwords, const char *what) {
-    if (!PyLong_Check(value)) {
-        PyErr_Format(PyExc_TypeError, "%s must be an int bitset, not %.100s", what, Py_TYPE(value)->tp_name);
-        return -1;
-    }
-    size_t nbytes = sizeof(word) * (size_t)nwords;
-#if PY_VERSION_HEX >= 0x030D0000
-    Py_ssize_t needed = PyLong_AsNativeBytes(value, out, (Py_ssize_t)nbytes,
-                                             Py_ASNATIVEBYTES_LITTLE_ENDIAN | Py_ASNATIVEBYTES_UNSIGNED_BUFFER |
-                                                 Py_ASNATIVEBYTES_REJECT_NEGATIVE);
-    if (needed < 0) return -1;
-    if ((size_t)needed > nbytes) {
-        PyErr_Format(PyExc_OverflowError, "%s has bits beyond the task's facts", what);
-        return -1;
-    }
-    return 0;
-#else
-    return _PyLong_AsByteArray((PyLongObject *)value, (unsigned char *)out, nbytes, 1, 0);
-#endif
-}
-
-static PyObject *words_to_int(const word *w, int nwords) {
-#if PY_VERSION_HEX >= 0x030D0000
-    return PyLong_FromUnsignedNativeBytes(w, sizeof(word) * (size_t)nwords, Py_ASNATIVEBYTES_LITTLE_ENDIAN);
-#else
-    return _PyLong_FromByteArray((const unsigned char *)w, sizeof(word) * (size_t)nwords, 1, 0);
-#endif
-}
-
 static int heuristic_id(const char *name) {
     for (int i = 0; i < H_COUNT; i++)
         if (!strcmp(name, HEURISTIC_NAMES[i])) return i;
@@ -723,29 +655,6 @@ static PyObject *Task_successors(TaskObject *t, PyObject *state) {
     free(child);
     free(ops);
     return result;
-}
-
-static PyObject *Task_reachable(TaskObject *t, PyObject *Py_UNUSED(ignored)) {
-    unit_costs(t, t->init, 0);
-    word *mask = calloc((size_t)t->nwords, sizeof(word));
-    PyObject *ops = PyList_New(0), *facts = NULL;
-    if (!mask) PyErr_NoMemory();
-    for (int o = 0; mask && ops && o < t->nops; o++) {
-        PyObject *index = t->missing[o] ? NULL : PyLong_FromLong(o);
-        if (index && PyList_Append(ops, index)) Py_CLEAR(ops);
-        Py_XDECREF(index);
-    }
-    if (mask && ops) {
-        for (int f = 0; f < t->nfacts; f++)
-            if (t->fact_cost[f] != COST_INF) mask[f >> 6] |= (word)1 << (f & 63);
-        facts = words_to_int(mask, t->nwords);
-    }
-    free(mask);
-    if (!facts) {
-        Py_XDECREF(ops);
-        return NULL;
-    }
-    return Py_BuildValue("(NN)", facts, ops);
 }
 
 static void Task_dealloc(TaskObject *t) {
@@ -857,9 +766,11 @@ done:
     return status;
 }
 
+static const char *const MASK_NAMES[4] = {"pre", "pre_neg", "add", "delete"};
+static PyObject *mask_names[4]; /* the same, interned at import */
+
 static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
     static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", NULL};
-    static const char *const MASKS[4] = {"pre", "pre_neg", "add", "delete"};
     int nfacts;
     PyObject *operators, *init, *goal, *goal_neg;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO", keywords, &nfacts, &operators, &init, &goal, &goal_neg))
@@ -894,8 +805,8 @@ static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) 
     for (int o = 0; o < t->nops; o++) {
         word *into[4] = {W(t, t->pre, o), W(t, t->neg, o), W(t, t->add, o), W(t, t->keep, o)};
         for (int m = 0; m < 4; m++) {
-            PyObject *mask = PyObject_GetAttrString(PySequence_Fast_GET_ITEM(seq, o), MASKS[m]);
-            int failed = !mask || int_to_words(mask, into[m], t->nwords, MASKS[m]);
+            PyObject *mask = PyObject_GetAttr(PySequence_Fast_GET_ITEM(seq, o), mask_names[m]);
+            int failed = !mask || int_to_words(mask, into[m], t->nwords, MASK_NAMES[m]);
             Py_XDECREF(mask);
             if (failed) goto fail;
         }
@@ -917,9 +828,6 @@ static PyMethodDef Task_methods[] = {
     {"search", (PyCFunction)Task_search, METH_VARARGS,
      "search(search, heuristic) -> (plan as operator indices or None, expanded, generated)"},
     {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS, "heuristic(name, state) -> h (inf for a dead end)"},
-    {"reachable", (PyCFunction)Task_reachable, METH_NOARGS,
-     "reachable() -> (mask of the facts, list of the operators) reachable from init when delete effects and "
-     "negative preconditions are ignored"},
     {"successors", (PyCFunction)Task_successors, METH_O,
      "successors(state) -> [(child state, operator index)] in generation order"},
     {NULL, NULL, 0, NULL},
@@ -945,6 +853,8 @@ static struct PyModuleDef core_module = {
 };
 
 PyMODINIT_FUNC PyInit__core(void) {
+    for (int m = 0; m < 4; m++)
+        if (!mask_names[m] && !(mask_names[m] = PyUnicode_InternFromString(MASK_NAMES[m]))) return NULL;
     if (PyType_Ready(&TaskType) < 0) return NULL;
     PyObject *module = PyModule_Create(&core_module);
     if (!module) return NULL;

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TypeVar
+from typing import NamedTuple, TypeVar
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
 ROOT_TYPE = "object"
@@ -112,8 +112,10 @@ def _read(text: str, reader: Callable[[list], Parsed]) -> Parsed:
 
 
 # -- the model -------------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class Atom:
+class Atom(NamedTuple):
+    """A predicate over arguments (variables, objects or constants). A named tuple: grounding builds
+    thousands of them."""
+
     predicate: str
     args: tuple[str, ...]
 
@@ -121,8 +123,7 @@ class Atom:
         return f"({' '.join((self.predicate, *self.args))})"
 
 
-@dataclass(frozen=True)
-class Condition:
+class Condition(NamedTuple):
     """A literal of a precondition or goal: an atom (or equality ``=``), possibly negated."""
 
     atom: Atom

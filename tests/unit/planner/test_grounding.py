@@ -1,0 +1,124 @@
+"""Grounding against a naive reference (every binding, then a relaxed fixpoint), and the C grounder's
+refusal of malformed input."""
+
+import itertools
+from pathlib import Path
+
+import pytest
+
+from semgoal_planner import _ground
+from semgoal_planner.blocksworld import DOMAIN_PATH, problem
+from semgoal_planner.grounding import Task, ground
+from semgoal_planner.pddl import Atom, Domain, Problem, parse_domain, parse_problem
+
+FIXTURES = Path(__file__).parent / "fixtures"
+CASES = [("blocksworld-domain", "blocksworld-sussman"), ("gripper-domain", "gripper-4balls"),
+         ("logistics-domain", "logistics-p1"), ("keys-domain", "keys-vault")]
+
+
+def naive_ground(domain: Domain, prob: Problem) -> tuple:
+    """The task as plain sets: every binding over the objects of each parameter's type, kept when its
+    static preconditions hold in the initial state, then the candidates and atoms a relaxed exploration
+    (positive preconditions only) reaches, found by iterating to a fixpoint."""
+    fluent = {a.predicate for action in domain.actions for a in (*action.add, *action.delete)}
+    static = {a for a in prob.init if a.predicate not in fluent}
+    candidates = []
+    for action in domain.actions:
+        pools = [[o for o in sorted(prob.objects) if domain.is_subtype(prob.objects[o], kind)]
+                 for _, kind in action.parameters]
+        for values in itertools.product(*pools):
+            binding = dict(zip((v for v, _ in action.parameters), values, strict=True))
+
+            def bound(atom: Atom, binding=binding) -> Atom:
+                return Atom(atom.predicate, tuple(binding.get(a, a) for a in atom.args))
+
+            pre, pre_neg, static_ok = set(), set(), True
+            for cond in action.precondition:
+                atom = bound(cond.atom)
+                if atom.predicate == "=":
+                    static_ok &= (atom.args[0] == atom.args[1]) == cond.positive
+                elif atom.predicate not in fluent:
+                    static_ok &= (atom in static) == cond.positive
+                else:
+                    (pre if cond.positive else pre_neg).add(atom)
+            if static_ok:
+                candidates.append((f"({' '.join((action.name, *values))})", pre, pre_neg,
+                                   set(map(bound, action.add)), set(map(bound, action.delete))))
+    reached = {a for a in prob.init if a.predicate in fluent}
+    fired: set[int] = set()
+    while new := [i for i, c in enumerate(candidates) if i not in fired and c[1] <= reached]:
+        fired.update(new)
+        reached.update(*(candidates[i][3] for i in new))
+    operators = [(name, pre & reached, pre_neg & reached, add, (delete - add) & reached)
+                 for i, (name, pre, pre_neg, add, delete) in enumerate(candidates) if i in fired]
+    goal = {c.atom for c in prob.goal if c.positive} & reached  # an unreached one makes the task unsolvable
+    goal_neg = {c.atom for c in prob.goal if not c.positive} & reached
+    return sorted(reached), {a for a in prob.init if a.predicate in fluent}, goal, goal_neg, operators
+
+
+def as_sets(task: Task) -> tuple:
+    def atoms(mask: int) -> set[Atom]:
+        return set(task.atoms(mask))
+
+    operators = [(str(op), atoms(op.pre), atoms(op.pre_neg), atoms(op.add), atoms(op.delete)) for op in task.operators]
+    return list(task.facts), atoms(task.init), atoms(task.goal), atoms(task.goal_neg), operators
+
+
+def grounded(domain_text: str, problem_text: str) -> tuple[Task, tuple]:
+    domain = parse_domain(domain_text)
+    prob = parse_problem(problem_text, domain)
+    return ground(domain, prob), naive_ground(domain, prob)
+
+
+@pytest.mark.parametrize(("domain", "problem_name"), CASES)
+def test_grounding_matches_the_naive_reference_on_standard_domains(domain: str, problem_name: str) -> None:
+    task, expected = grounded((FIXTURES / f"{domain}.pddl").read_text(), (FIXTURES / f"{problem_name}.pddl").read_text())
+    assert as_sets(task) == expected
+    assert not task.unsolvable_reason
+
+
+@pytest.mark.parametrize(("blocks", "seed"), [(n, seed) for n in (1, 2, 3, 5, 7, 9) for seed in range(2)])
+def test_grounding_matches_the_naive_reference_on_blocksworld(blocks: int, seed: int) -> None:
+    task, expected = grounded(DOMAIN_PATH.read_text(), problem(blocks, seed))
+    assert as_sets(task) == expected
+    assert len(task.facts) > 64 or blocks < 7  # masks of more than one word, too
+
+
+def test_a_goal_atom_no_operator_reaches_makes_the_task_unsolvable() -> None:
+    vault = (FIXTURES / "keys-vault.pddl").read_text().replace("(has master)", "(lies k1 hall)")
+    task, expected = grounded((FIXTURES / "keys-domain.pddl").read_text(), vault)  # keys are taken, never put down
+    assert as_sets(task) == expected
+    assert task.unsolvable_reason == "goal (lies k1 hall) is not reachable from the initial state"
+
+
+SHAPE = {"predicates": ("on",), "objects": ("a", "b"), "width": 3, "init": [], "goal": [], "goal_neg": []}
+MOVE = ("move", 2, [(0, 1)], [(0, 0, 1)], [], [(0, 1, 0)], [(0, 0, 1)])
+
+
+@pytest.mark.parametrize(("change", "error", "words"), [
+    ({"width": 0}, ValueError, "width"),
+    ({"init": [(1, 0, 1)]}, ValueError, "predicate index"),
+    ({"init": [(0, 0, 2)]}, ValueError, "in range"),
+    ({"init": [(0, 0, 1, 1)]}, ValueError, "at most 3"),
+    ({"goal": [("on", 0, 1)]}, TypeError, "integer"),
+    ({"actions": [("move", 2, [(0,)], [], [], [], [])]}, ValueError, "2 object indices"),
+    ({"actions": [("move", 2, [(0, 1)], [(0, 0, 2)], [], [], [])]}, ValueError, "argument codes"),
+    ({"actions": [("move", 2, [(0, 1)], [(0, 0, ~2)], [], [], [])]}, ValueError, "argument codes"),
+    ({"actions": [("move", -1, [], [], [], [], [])]}, ValueError, "nparams"),
+    ({"actions": [("move", 2, ((0, 1),), [], [], [], [])]}, TypeError, "list"),
+    ({"atom_type": list}, TypeError, "tuple types"),
+])
+def test_the_c_grounder_refuses_malformed_input_with_a_message(change: dict, error: type, words: str) -> None:
+    arguments = {**SHAPE, "actions": [MOVE], **change}
+    with pytest.raises(error, match=words):
+        _ground.ground(**arguments)
+
+
+def test_the_c_grounder_builds_masks_and_constants() -> None:
+    """A constant argument (~object) and a delete effect that the operator also adds."""
+    toggle = ("toggle", 1, [(0,), (1,)], [(0, 0, ~1)], [], [(0, 0, 0)], [(0, 0, 0), (0, 0, ~1)])
+    facts, init, goal, goal_neg, unreached, operators = _ground.ground(
+        **{**SHAPE, "init": [(0, 0, 1), (0, 1, 1)], "goal": [(0, 1, 0), (0, 1, 1)], "actions": [toggle]})
+    assert facts == [("on", ("a", "a")), ("on", ("a", "b")), ("on", ("b", "b"))]
+    assert (init, goal, goal_neg, unreached) == (0b110, 0b100, 0, [0])  # (on b a) is never reached
+    assert operators == [("toggle", ("a",), 0b010, 0, 0b001, 0b010), ("toggle", ("b",), 0b100, 0, 0b100, 0)]

@@ -108,7 +108,7 @@ class _Grounder:
                 (pre if cond.positive else pre_neg).append(self._template(atom, position))
             else:  # checked once its last parameter is bound
                 depth = max((position[a] + 1 for a in atom.args if a in position), default=0)
-                checks[depth].append((itemgetter(slot_of[atom.predicate], *map(slot_of.__getitem__, atom.args)),
+                checks[depth].append((_getter(slot_of[atom.predicate], *map(slot_of.__getitem__, atom.args)),
                                       cond.positive))
         return (action.name, len(params), self._bindings(action, checks), pre, pre_neg,
                 [self._template(a, position) for a in action.add], [self._template(a, position) for a in action.delete])
@@ -151,6 +151,14 @@ class _Grounder:
                                                                                           cond.positive):
                 return f"goal {'' if cond.positive else 'not '}{cond.atom} can never hold (static)"
         return ""
+
+
+def _getter(*slots: int) -> Callable[[tuple], tuple]:
+    """A function from a padded binding to the tuple of its items at ``slots``: ``itemgetter``, which
+    returns a bare item, not a 1-tuple, when given one slot."""
+    if len(slots) == 1:
+        return lambda padded: (padded[slots[0]],)
+    return itemgetter(*slots)
 
 
 def ground(domain: Domain, problem: Problem) -> Task:

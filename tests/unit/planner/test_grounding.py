@@ -5,6 +5,8 @@ import itertools
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from semgoal_planner import _ground
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
@@ -89,6 +91,62 @@ def test_a_goal_atom_no_operator_reaches_makes_the_task_unsolvable() -> None:
     task, expected = grounded((FIXTURES / "keys-domain.pddl").read_text(), vault)  # keys are taken, never put down
     assert as_sets(task) == expected
     assert task.unsolvable_reason == "goal (lies k1 hall) is not reachable from the initial state"
+
+
+TYPES = ("object", "t0", "t1")
+
+
+@st.composite
+def random_tasks(draw) -> tuple[str, str]:
+    """A random STRIPS domain and problem: predicates of arity 0-3, typed parameters, a typed constant,
+    equality and negative preconditions; predicates no effect mentions are static."""
+    arity = draw(st.lists(st.integers(0, 3), min_size=1, max_size=4))
+    objects = draw(st.lists(st.sampled_from(TYPES), min_size=1, max_size=4))
+    names = [f"o{i}" for i in range(len(objects))]
+
+    def atom(args: list[str]) -> str:
+        predicate = draw(st.integers(0, len(arity) - 1))
+        return f"(p{predicate} {' '.join(draw(st.sampled_from(args)) for _ in range(arity[predicate]))})"
+
+    def literal(args: list[str]) -> str:
+        """An atom, or one time in five an equality; negated half the time."""
+        equality = draw(st.integers(0, 4)) == 0
+        text = f"(= {draw(st.sampled_from(args))} {draw(st.sampled_from(args))})" if equality else atom(args)
+        return f"(not {text})" if draw(st.booleans()) else text
+
+    actions = []
+    for a in range(draw(st.integers(1, 3))):
+        params = [f"?v{i}" for i in range(draw(st.integers(0, 3)))]
+        args = [*params, "c0"]
+        typed = " ".join(f"{v} - {draw(st.sampled_from(TYPES))}" for v in params)
+        pre = " ".join(literal(args) for _ in range(draw(st.integers(0, 3))))
+        effects = [atom(args) for _ in range(draw(st.integers(1, 3)))]
+        effect = " ".join(e if draw(st.booleans()) else f"(not {e})" for e in effects)
+        actions.append(f"(:action a{a} :parameters ({typed}) :precondition (and {pre}) :effect (and {effect}))")
+    predicates = " ".join(f"(p{i} {' '.join(f'?x{j}' for j in range(n))})" for i, n in enumerate(arity))
+    domain = (f"(define (domain random) (:requirements :strips :typing :negative-preconditions :equality)"
+              f" (:types t0 t1) (:constants c0 - t0) (:predicates {predicates}) {' '.join(actions)})")
+    everything = [*names, "c0"]
+    init = " ".join(atom(everything) for _ in range(draw(st.integers(0, 6))))
+    goal = " ".join(literal(everything) for _ in range(draw(st.integers(1, 3))))
+    problem_text = (f"(define (problem r) (:domain random) (:objects {' '.join(f'{o} - {t}' for o, t in zip(names, objects, strict=True))})"
+                    f" (:init {init}) (:goal (and {goal})))")
+    return domain, problem_text
+
+
+@settings(max_examples=150, deadline=None)
+@given(random_tasks())
+def test_grounding_matches_the_naive_reference_on_random_domains(texts: tuple[str, str]) -> None:
+    task, expected = grounded(*texts)
+    assert as_sets(task) == expected
+    domain = parse_domain(texts[0])
+    prob = parse_problem(texts[1], domain)
+    fluent = {a.predicate for action in domain.actions for a in (*action.add, *action.delete)}
+    facts = set(task.facts)
+    static_false = any((c.atom.args[0] == c.atom.args[-1] if c.atom.predicate == "=" else c.atom in prob.init) != c.positive
+                       for c in prob.goal if c.atom.predicate not in fluent)
+    unreached = any(c.positive and c.atom not in facts for c in prob.goal if c.atom.predicate in fluent)
+    assert bool(task.unsolvable_reason) == (static_false or unreached)
 
 
 SHAPE = {"predicates": ("on",), "objects": ("a", "b"), "width": 3, "init": [], "goal": [], "goal_neg": []}

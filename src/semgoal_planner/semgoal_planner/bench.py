@@ -174,7 +174,7 @@ def _medians_by_search(rows: list[dict], key: str) -> dict[str, float]:
     for row in rows:
         if row[key]:
             values.setdefault(row["search"], []).append(row[key])
-    return {search: statistics.median(v) for search, v in values.items()}
+    return {search: round(statistics.median(v), 2) for search, v in values.items()}
 
 
 def _ratio_cell(ratio: float | None, bound: str) -> str:
@@ -183,5 +183,5 @@ def _ratio_cell(ratio: float | None, bound: str) -> str:
 
 def _cell(result: dict) -> str:
     if result["status"] != "ok":
-        return f"{result['status']:>22s}"
-    return f"len {result['length']!s:>3s} {result['median_ms']:9.1f} ms"
+        return f"{result['status']:>21s}"
+    return f"len {result['length']!s:>3s} {result['median_ms']:10.2f} ms"

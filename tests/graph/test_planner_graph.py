@@ -8,7 +8,8 @@ from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.vocabulary import LAYOUTS, SUBGOAL_CONFIRM_STEPS
+from semgoal_sim.settling import SETTLE_STEPS
+from semgoal_sim.vocabulary import LAYOUTS
 
 BLOCKS = ("red", "green", "blue")
 
@@ -46,7 +47,7 @@ class Operator:
     def observe(self, true: set[str], step: int, held: bool = True, fallen: tuple[str, ...] = ()) -> None:
         """The world as the predicates would report it at ``step`` (and, ``held``, long enough after it to
         confirm a robot step)."""
-        for at in (step, step + SUBGOAL_CONFIRM_STEPS - 1)[: 2 if held else 1]:
+        for at in (step, step + SETTLE_STEPS - 1)[: 2 if held else 1]:
             self.states.publish(semantic_state(true, at, fallen))
             self.probe.spin_for(0.3)
 

@@ -8,7 +8,9 @@ latency, :func:`~semgoal_policy.lockstep.lockstep_subgoal`). So an in-process ep
 one through the graph (``./semgoal eval --via-ros``) follow the same rules.
 
 Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
-test: the task's goal literals hold.
+test: the task's goal literals hold with the world at rest (:mod:`semgoal_sim.settling`) over
+``SETTLE_STEPS`` control steps. Each outcome also records the first step at which the literals held at
+all, the rule before issue 49, so the two can be compared on the same episodes.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import SubgoalController
 from semgoal_policy.lockstep import lockstep_subgoal
+from semgoal_sim.settling import moving_blocks
 from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
 
@@ -35,6 +38,13 @@ class Outcome:
     success: bool
     steps: int
     replans: int = 0
+    first_held: int | None = None
+    """The first control step at which the goal's literals held, at rest or not (None: never)."""
+
+    @property
+    def first_step_success(self) -> bool:
+        """Success by the rule before issue 49: the literals held at some step, moving blocks or not."""
+        return self.first_held is not None
 
 
 def observe(world: FetchWorld) -> Observation:
@@ -44,7 +54,8 @@ def observe(world: FetchWorld) -> Observation:
     vector = world.semantic_vector(snapshot)
     present = [name for name, here in zip(world.layout.objects, world.present, strict=True) if here]
     return Observation(tuple(present), world.layout.decode(vector), world.step_count,
-                       tuple(world.fallen_blocks(snapshot)))
+                       tuple(world.fallen_blocks(snapshot)),
+                       moving_blocks(world.blocks, snapshot.block_velocities))
 
 
 class HierarchicalAgent:
@@ -64,9 +75,9 @@ class HierarchicalAgent:
         executive = Executive(SemanticPlanner(task.scene))
         executive.observe(observe(world))
         planned, _ = executive.set_goal(task.name, step_budget=budget)
-        steps, decided_before = 0, None
+        steps, decided_before, first_held = 0, None, None
         while planned and executive.status == "executing":
-            decided_now = executive.active.subgoal.literals() if executive.active else None
+            decided_now = executive.active.subgoal.literals() if executive.active else ([] if executive.settling else None)
             literals = lockstep_subgoal(decided_before, decided_now)
             if literals is None:  # a human step: nobody acts in an evaluation
                 break
@@ -75,7 +86,9 @@ class HierarchicalAgent:
             steps, decided_before = steps + 1, decided_now
             executive.tick(steps)
             executive.observe(observe(world))
-        return Outcome(task.name, seed, executive.status == "succeeded", steps, executive.replans)
+            if first_held is None and executive.observation.holds(executive.goal):
+                first_held = steps
+        return Outcome(task.name, seed, executive.status == "succeeded", steps, executive.replans, first_held)
 
 
 class FlatAgent:

@@ -1,12 +1,15 @@
 """The plan under execution: operator edits, the execution monitor and re-planning. No ROS here.
 
-``observe`` takes every new semantic state, ``tick`` every control step. The active step is done when
-its literals hold; a robot step that stalls for ``stall_steps`` control steps, or a plan that the
-observed state contradicts for ``contradiction_steps`` in a row (a block moved by hand, a dropped block),
-is re-planned from the observed state, at most ``max_replans`` times; then the goal fails with the
-reason. A step assigned to a human is waited for (its literals observed), without a stall limit.
-Every edit is checked by simulating the remaining steps from the observed state (see
-:meth:`SemanticPlanner.simulate`); a refused edit leaves the plan exactly as it was.
+``observe`` takes every new semantic state, ``tick`` every control step. The goal, and the active step,
+are achieved when their literals hold with the world at rest (:mod:`semgoal_sim.settling`) over
+``settle_steps`` control steps in a row. While the goal's literals hold but the world has not settled
+yet, the plan is ``settling``: no step is active and the policy holds the arm still. A robot step that
+stalls for ``stall_steps`` control steps, or a plan that the observed state contradicts for
+``contradiction_steps`` in a row (a block moved by hand, a dropped block), is re-planned from the
+observed state, at most ``max_replans`` times; then the goal fails with the reason. A step assigned to
+a human is waited for (its literals observed at rest), without a stall limit. Every edit is checked by
+simulating the remaining steps from the observed state (see :meth:`SemanticPlanner.simulate`); a refused
+edit leaves the plan exactly as it was.
 """
 
 from __future__ import annotations
@@ -16,7 +19,8 @@ from dataclasses import dataclass, field
 
 from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
-from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Confirmation, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_sim.settling import SETTLE_STEPS, Settling, at_rest
+from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
 
 STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
 UNDER_WAY = ("executing", "paused", "awaiting_approval")
@@ -41,10 +45,17 @@ class Observation:
     step: int
     fallen: tuple[str, ...] = ()
     """Blocks that fell off the table: no robot step can move them again."""
+    moving: tuple[str, ...] = ()
+    """Blocks not at rest (:func:`semgoal_sim.settling.moving_blocks`)."""
 
     def holds(self, literals: list[Literal]) -> bool:
         values = {(lit.name, lit.args): lit.value for lit in self.literals}
         return all(values.get((lit.name, lit.args), False) == lit.value for lit in literals)
+
+    def settled(self, literals: list[Literal]) -> bool:
+        """The literals hold and the world is at rest for them (:func:`semgoal_sim.settling.at_rest`)."""
+        held = [lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value]
+        return self.holds(literals) and at_rest(literals, self.moving, held)
 
     @property
     def true_literals(self) -> list[Literal]:
@@ -62,8 +73,9 @@ class Executive:
     """Re-plans before the goal fails; the step budget bounds an episode anyway. On 100 validation starts per
     desk task (from 4000000), 10 instead of 5 gave 0 to 2 more points per actor (DC-4 81 -> 83 % with the
     shipped one), and no limit at all nothing more than 10 (session 18)."""
-    confirm_steps: int = SUBGOAL_CONFIRM_STEPS
-    """A robot step is done once its literals held over this many consecutive control steps."""
+    settle_steps: int = SETTLE_STEPS
+    """The goal, and a robot step, are achieved once their literals held at rest over this many consecutive
+    control steps."""
     require_approval: bool = False
     """New plans (and re-plans) wait for an operator's approve before they execute."""
 
@@ -78,8 +90,10 @@ class Executive:
     observation: Observation | None = None
     step_started: int = 0
     contradicted_since: int | None = None
-    confirmation: Confirmation = field(init=False)
-    """Counts the control steps over which the active step's literals held."""
+    confirmation: Settling = field(init=False)
+    """Counts the control steps over which the active step's literals held at rest."""
+    goal_settling: Settling = field(init=False)
+    """Counts the control steps over which the goal's literals held at rest."""
     last_tick: int = 0
     """The latest control step seen by :meth:`tick`: world states reach the planner before the semantic
     states the predicates derive from them, so confirmation counts up to here."""
@@ -90,7 +104,8 @@ class Executive:
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
 
     def __post_init__(self) -> None:
-        self.confirmation = Confirmation(self.confirm_steps)
+        self.confirmation = Settling(self.settle_steps)
+        self.goal_settling = Settling(self.settle_steps)
 
     # -- goals ---------------------------------------------------------------------------------------
     def set_goal(self, text: str, step_budget: int = 0) -> tuple[bool, str]:
@@ -118,9 +133,9 @@ class Executive:
     # -- monitoring ----------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> None:
         changed = (self.observation is None or observation.literals != self.observation.literals
-                   or observation.fallen != self.observation.fallen)
+                   or observation.fallen != self.observation.fallen or observation.moving != self.observation.moving)
         self.observation = observation
-        confirming = self.confirmation.pending
+        confirming = self.confirmation.pending or self.goal_settling.pending
         if (changed or confirming) and self.status in UNDER_WAY:
             self._advance()
             if self.status == "executing":
@@ -134,9 +149,9 @@ class Executive:
         self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)
-        if self.status == "executing" and self.confirmation.pending:
+        if self.status == "executing" and (self.confirmation.pending or self.goal_settling.pending):
             self._advance()  # may finish the plan, re-plan, or fail the goal
-        if self.status != "executing" or self.current >= len(self.steps):
+        if self.status != "executing" or self.current >= len(self.steps) or self.settling:
             return
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
@@ -145,9 +160,15 @@ class Executive:
                         f"{self.stall_steps} control steps")
 
     @property
+    def settling(self) -> bool:
+        """The goal's literals hold and the plan waits for them to hold at rest: the arm holds still."""
+        obs = self.observation
+        return self.status == "executing" and obs is not None and obs.holds(self.goal)
+
+    @property
     def active(self) -> PlanStep | None:
-        """The step the policy should execute now; None while paused, waiting, done or on a human step."""
-        if self.status != "executing" or self.current >= len(self.steps):
+        """The step the policy should execute now; None while paused, waiting, settling, done or on a human step."""
+        if self.status != "executing" or self.current >= len(self.steps) or self.settling:
             return None
         step = self.steps[self.current]
         return step if step.assignee == "robot" else None
@@ -156,11 +177,13 @@ class Executive:
         obs = self.observation
         if obs is None or self.status in ("empty", "succeeded", "failed"):
             return
-        if obs.holds(self.goal):
+        if self.goal_settling.update(obs.settled(self.goal), obs.step, max(obs.step, self.last_tick)):
             for step in self.steps[self.current:]:
                 step.status = "done" if obs.holds(step.subgoal.literals()) else "skipped"
             self.current = len(self.steps)
-            self._finish("succeeded", f"goal {self.goal_text} holds")
+            self._finish("succeeded", f"goal {self.goal_text} holds at rest")
+            return
+        if self.settling:
             return
         while self.current < len(self.steps) and self._achieved(self.steps[self.current], obs):
             self.steps[self.current].status = "done"
@@ -189,9 +212,9 @@ class Executive:
                                    f"{self.current} {step.subgoal} cannot be done")
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
-        """The step's literals hold, for ``confirm_steps`` control steps in a row if the robot runs it
+        """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
-        holds = obs.holds(step.subgoal.literals())
+        holds = obs.settled(step.subgoal.literals())
         if holds and (step.assignee == "human" or self.status != "executing"):
             return True
         done = self.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))
@@ -232,6 +255,7 @@ class Executive:
     def _install(self, steps: list[PlanStep], message: str, keep: int = 0) -> None:
         self.steps, self.current = steps, keep
         self.confirmation.reset()
+        self.goal_settling.reset()
         self.status = "awaiting_approval" if self.require_approval else "executing"
         self.contradicted_since = None
         self.step_started = self.observation.step if self.observation else 0

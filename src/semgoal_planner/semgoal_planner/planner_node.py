@@ -94,7 +94,8 @@ class PlannerNode(Node):
                 waiter.set_result(True)
         self.state_waiters.clear()
         self.executive.tick(int(msg.step))
-        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen)))
+        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
+                                           tuple(msg.moving)))
         self.publish(decided=True)
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
@@ -230,10 +231,13 @@ class PlannerNode(Node):
             self.subgoal_publisher.publish(self.subgoal_message())
 
     def subgoal_message(self) -> SubGoal:
-        """The active robot step; else an empty goal (the policy holds still) with the reason as status."""
+        """The active robot step; else an empty goal (the policy holds still) with the reason as status:
+        ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` or the plan's status."""
         ex = self.executive
         active = ex.active
-        if active is None:
+        if ex.settling:
+            msg = SubGoal(index=ex.current, status="settling")
+        elif active is None:
             waiting = ex.status == "executing"  # executing without an active robot step: a human's turn
             msg = SubGoal(index=ex.current, status="waiting_for_human" if waiting else ex.status,
                           assignee="human" if waiting else "")

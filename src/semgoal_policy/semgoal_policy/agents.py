@@ -13,10 +13,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from semgoal_policy.replay import RewardFn
 from semgoal_sim import layout
 from semgoal_sim.env import SubgoalEnv
+from semgoal_sim.settling import MotionReward
 from semgoal_sim.task_env import TaskEnv, scene_tasks
-from semgoal_sim.vocabulary import SCENES
+from semgoal_sim.vocabulary import LAYOUTS, SCENES
 
 
 @dataclass(frozen=True)
@@ -26,8 +28,8 @@ class AgentSpec:
     ``is_success`` info entry; ``reset(options={"kind": k})`` fixes the kind."""
     kinds: Callable[[str], tuple[str, ...]]
     """scene -> the goal kinds the curriculum draws and evaluation reports (sub-goal types or tasks)."""
-    reward_fn: Callable
-    """(achieved, desired) -> reward, vectorised: the function HER relabels with."""
+    reward_fn: Callable[[str], RewardFn]
+    """scene -> (achieved, desired, motion) -> reward, vectorised: the function HER relabels with."""
     goal: str = "semantic"
     """The goal layout (:data:`semgoal_sim.layout.GOAL_KINDS`), stored with the exported actor."""
     suffix: str = ""
@@ -35,6 +37,17 @@ class AgentSpec:
 
     def model_name(self, scene: str) -> str:
         return scene + self.suffix
+
+
+def semantic_reward(scene: str) -> RewardFn:
+    """The sparse semantic reward at rest (:class:`semgoal_sim.settling.MotionReward`)."""
+    motion_reward = MotionReward(LAYOUTS[scene])
+    return lambda achieved, desired, motion: layout.goal_reward(achieved, desired) * motion_reward.settled(desired, motion)
+
+
+def position_reward(scene: str) -> RewardFn:
+    """The flat-continuous baseline's dense distance reward; it has no goal literals to judge at rest."""
+    return lambda achieved, desired, motion: layout.position_reward(achieved, desired)
 
 
 def _task_env(goal: str) -> Callable[..., TaskEnv]:
@@ -51,18 +64,18 @@ AGENTS: dict[str, AgentSpec] = {
     "hierarchical": AgentSpec(
         make_env=lambda scene, derived=(), spawn_margin=0.0: SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin),
         kinds=lambda scene: SCENES[scene].subgoal_types,
-        reward_fn=layout.goal_reward,
+        reward_fn=semantic_reward,
     ),
     "flat-semantic": AgentSpec(
         make_env=_task_env("semantic"),
         kinds=scene_tasks,
-        reward_fn=layout.goal_reward,
+        reward_fn=semantic_reward,
         suffix="-flat-semantic",
     ),
     "flat-continuous": AgentSpec(
         make_env=_task_env("positions"),
         kinds=scene_tasks,
-        reward_fn=layout.position_reward,
+        reward_fn=position_reward,
         goal="positions",
         suffix="-flat-continuous",
     ),

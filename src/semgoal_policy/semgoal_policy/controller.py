@@ -8,7 +8,8 @@ import numpy as np
 
 from semgoal_policy import actor as actor_io
 from semgoal_sim import features, layout
-from semgoal_sim.vocabulary import LAYOUTS, Confirmation, Literal, VocabularyError
+from semgoal_sim.settling import Settling, at_rest
+from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError
 
 HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""
@@ -32,7 +33,8 @@ class SubgoalController:
         self.actor, self.meta = actor_io.load(model_dir or actor_io.MODELS_DIR / scene, scene)
         self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None
-        self.confirmation = Confirmation()
+        self.literals: list[Literal] = []
+        self.confirmation = Settling()
         self.obs_size = layout.observation_size(scene)
 
     def set_subgoal(self, literals: list[Literal]) -> None:
@@ -43,12 +45,15 @@ class SubgoalController:
             goal = np.concatenate([target, mask])
         if goal is None or self.goal is None or not np.array_equal(goal, self.goal):
             self.confirmation.reset()  # a new sub-goal: its confirmation starts over
-        self.goal = goal
+        self.goal, self.literals = goal, list(literals)
 
-    def confirmed(self, step: int, semantic_vector: np.ndarray) -> bool:
-        """Whether the sub-goal's literals held over the last ``SUBGOAL_CONFIRM_STEPS`` control steps up to
-        ``step`` (the planner's rule for done); call it once per new control step."""
-        return self.confirmation.update(self.achieved(semantic_vector), step)
+    def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
+        """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
+        ``SETTLE_STEPS`` control steps up to ``step`` (the planner's rule for done); call it once per new
+        control step."""
+        held = [lit.args[0] for lit in self.layout.true_literals(semantic_vector) if lit.name == "holding"]
+        settled = self.achieved(semantic_vector) and at_rest(self.literals, moving, held)
+        return self.confirmation.update(settled, step)
 
     def achieved(self, semantic_vector: np.ndarray) -> bool:
         """Whether the active sub-goal's literals hold in this semantic state (False when there is none)."""

@@ -1,8 +1,8 @@
 """Batched rollouts of goal-conditioned envs: evaluation of an actor per sub-goal type, and collection.
 
 Several envs step side by side so the actor runs once per step for all of them. An evaluation episode
-succeeds when its goal holds after some step within the horizon, as the planner node advances on the
-first step at which the active sub-goal holds.
+succeeds when its goal held at rest (the env's ``is_success``) over ``SETTLE_STEPS`` consecutive steps
+within the horizon: the rule by which the planner's executive confirms a robot step.
 """
 
 from __future__ import annotations
@@ -11,6 +11,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+
+from semgoal_sim.settling import SETTLE_STEPS
 
 EVAL_SEED_BASE = 1_000_000
 """Evaluation episodes use seeds from here on; training envs are seeded far below (see trainer)."""
@@ -24,11 +26,13 @@ class Episodes:
 
     obs: np.ndarray
     achieved: np.ndarray
+    motion: np.ndarray
+    """(B, T+1, M) each state's motion bits (empty where the env reports none)."""
     goal: np.ndarray
     action: np.ndarray
     expert_action: np.ndarray
     success: np.ndarray
-    """(B,) whether the goal held after some step."""
+    """(B,) whether the goal held at rest over ``SETTLE_STEPS`` consecutive steps."""
     kinds: list[str]
 
 
@@ -43,10 +47,14 @@ def run_episodes(envs: Sequence, act: ActFn, options: Sequence[dict], seeds: Seq
     """
     count = len(options)
     seeds = seeds if seeds is not None else [None] * count
-    first = [env.reset(seed=seed, options=opt)[0] for env, opt, seed in zip(envs, options, seeds, strict=False)]
+    resets = [env.reset(seed=seed, options=opt) for env, opt, seed in zip(envs, options, seeds, strict=False)]
+    first = [o for o, _ in resets]
     horizon = envs[0].max_steps
     obs = np.zeros((count, horizon + 1, first[0]["observation"].size), np.float32)
     achieved = np.zeros((count, horizon + 1, first[0]["achieved_goal"].size), np.float32)
+    motion = np.zeros((count, horizon + 1, np.size(resets[0][1].get("motion", ()))), np.float32)
+    motion[:, 0] = [info.get("motion", ()) for _, info in resets]
+    streak = np.zeros(count, int)
     actions = np.zeros((count, horizon, 4), np.float32)
     labels = np.zeros((count, horizon, 4), np.float32)
     success = np.zeros(count, bool)
@@ -64,9 +72,11 @@ def run_episodes(envs: Sequence, act: ActFn, options: Sequence[dict], seeds: Seq
         for i, env in enumerate(envs[:count]):
             step_obs, _, _, _, info = env.step(action[i])
             obs[i, t + 1], achieved[i, t + 1] = step_obs["observation"], step_obs["achieved_goal"]
-            success[i] |= info["is_success"]
+            motion[i, t + 1] = info.get("motion", ())
+            streak[i] = streak[i] + 1 if info["is_success"] else 0
+            success[i] |= streak[i] >= SETTLE_STEPS
     kinds = [env.kind for env in envs[:count]]
-    return Episodes(obs, achieved, goal, actions, labels, success, kinds)
+    return Episodes(obs, achieved, motion, goal, actions, labels, success, kinds)
 
 
 def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: int, seed: int = EVAL_SEED_BASE

@@ -11,7 +11,8 @@ Decision = TypeVar("Decision")
 
 def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | None) -> Decision | None:
     """The planner's decision the policy follows at a lockstep control step, given the active sub-goals
-    decided on the step before and on this one (None where a decision names none or has not come).
+    decided on the step before and on this one (None where a decision names none or has not come; an
+    empty decision, the goal settling, is followed by holding still).
 
     The decision on the step before, when it names a sub-goal: one control step of decision latency, as
     in realtime, lets the actor run while the predicates and the planner work on the same world state,
@@ -20,6 +21,11 @@ def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | No
     episode both follow this rule, so they take the same steps.
     """
     return decided_before if decided_before is not None else decided_now
+
+
+FOLLOWED = ("active", "settling")
+"""Sub-goal statuses the policy answers with a command: act on the step, or hold still while the goal's
+world settles (in lockstep the world waits for a command, so holding still must be one)."""
 
 
 class PlannerDecision(Protocol):
@@ -35,6 +41,6 @@ def followed_decision(decisions: Mapping[tuple[int, int], Message], episode: int
 
     def active(decided_step: int) -> Message | None:
         decision = decisions.get((episode, decided_step))
-        return decision if decision is not None and decision.status == "active" else None
+        return decision if decision is not None and decision.status in FOLLOWED else None
 
     return lockstep_subgoal(active(step - 1), active(step))

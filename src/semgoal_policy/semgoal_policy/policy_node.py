@@ -6,9 +6,10 @@ decision latency, as the nodes have in realtime, and the in-process episode keep
 the graph takes exactly its steps. The actor then runs as soon as a world state comes, while the
 predicates and the planner work on the same state, instead of after them. At an episode's first step,
 or when the decision on the step before names no sub-goal, the policy waits for the decision on the
-current step; without an active sub-goal no command goes out and the world waits. Realtime: a command
-at ``rate_hz`` with the latest sub-goal; once that holds (its literals held for
-``SUBGOAL_CONFIRM_STEPS`` steps, the planner's rule) the arm holds still until the planner names the
+current step; without an active sub-goal no command goes out and the world waits, except while the
+goal settles (status ``settling``): then the arm holds still, so the world steps on and comes to rest.
+Realtime: a command at ``rate_hz`` with the latest sub-goal; once that is achieved (its literals held at
+rest for ``SETTLE_STEPS`` steps, the planner's rule) the arm holds still until the planner names the
 next. It never publishes NaN or values outside [-1, 1].
 """
 
@@ -98,7 +99,8 @@ class PolicyNode(Node):
 
     def decide_realtime(self, msg: WorldState) -> np.ndarray:
         """The command for a world state; hold still once the sub-goal is confirmed (the planner names the next)."""
-        if self.controller.goal is not None and self.controller.confirmed(msg.step, conversions.semantic_vector(msg)):
+        if self.controller.goal is not None and self.controller.confirmed(
+                msg.step, conversions.semantic_vector(msg), conversions.moving(msg)):
             return HOLD
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
@@ -111,9 +113,8 @@ class PolicyNode(Node):
         decision = followed_decision(self.decisions, msg.episode, msg.step)
         if decision is None:
             return
-        self.follow(decision)
-        if self.controller.goal is not None:
-            self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
+        self.follow(decision)  # a settling decision: no goal, the actor's command is to hold still
+        self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))

@@ -2,7 +2,9 @@
 
 Episodes have a fixed length T. Each stored step keeps the action taken and the scripted expert's action
 in that state for the episode's own goal, so behaviour cloning can use every state the agent visited
-(DAgger-style labels) and not only the demonstrations. Relabelled samples carry no expert label.
+(DAgger-style labels) and not only the demonstrations. Relabelled samples carry no expert label. Each
+state also keeps its motion bits (:func:`semgoal_sim.settling.motion_bits`), so the reward of a relabelled
+goal is judged at rest, as the episode's own goal was.
 """
 
 from __future__ import annotations
@@ -13,7 +15,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-RewardFn = Callable[[np.ndarray, np.ndarray], np.ndarray]
+RewardFn = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""(achieved, desired, motion) -> reward, vectorised over the leading axis."""
 
 
 class Batch(NamedTuple):
@@ -30,14 +33,15 @@ class Batch(NamedTuple):
 class EpisodeReplay:
     """Ring buffer of whole episodes: obs and achieved goals (T+1 rows), actions and labels (T rows)."""
 
-    FIELDS = ("obs", "achieved", "goal", "action", "expert_action")
+    FIELDS = ("obs", "achieved", "motion", "goal", "action", "expert_action")
 
     def __init__(self, capacity_episodes: int, horizon: int, obs_size: int, goal_size: int,
-                 reward_fn: RewardFn, her_ratio: float = 0.8) -> None:
+                 reward_fn: RewardFn, her_ratio: float = 0.8, motion_size: int = 0) -> None:
         self.capacity, self.horizon, self.reward_fn, self.her_ratio = capacity_episodes, horizon, reward_fn, her_ratio
         e, t = capacity_episodes, horizon
         self.obs = np.zeros((e, t + 1, obs_size), np.float32)
         self.achieved = np.zeros((e, t + 1, goal_size), np.float32)
+        self.motion = np.zeros((e, t + 1, motion_size), np.float32)
         self.goal = np.zeros((e, goal_size), np.float32)
         self.action = np.zeros((e, t, 4), np.float32)
         self.expert_action = np.zeros((e, t, 4), np.float32)
@@ -48,12 +52,13 @@ class EpisodeReplay:
     def transitions(self) -> int:
         return self.size * self.horizon
 
-    def add(self, obs: np.ndarray, achieved: np.ndarray, goal: np.ndarray, action: np.ndarray,
+    def add(self, obs: np.ndarray, achieved: np.ndarray, motion: np.ndarray, goal: np.ndarray, action: np.ndarray,
             expert_action: np.ndarray) -> None:
-        """Store a batch of episodes: obs (B, T+1, O), achieved (B, T+1, G), goal (B, G), actions (B, T, 4)."""
+        """Store a batch of episodes: obs (B, T+1, O), achieved (B, T+1, G), motion (B, T+1, M), goal (B, G),
+        actions (B, T, 4)."""
         for i in range(len(goal)):
             j = self.next_index
-            self.obs[j], self.achieved[j], self.goal[j] = obs[i], achieved[i], goal[i]
+            self.obs[j], self.achieved[j], self.motion[j], self.goal[j] = obs[i], achieved[i], motion[i], goal[i]
             self.action[j], self.expert_action[j] = action[i], expert_action[i]
             self.next_index = (j + 1) % self.capacity
             self.size = min(self.size + 1, self.capacity)
@@ -73,7 +78,7 @@ class EpisodeReplay:
             obs=self.obs[episodes, steps],
             goal=goal,
             action=self.action[episodes, steps],
-            reward=self.reward_fn(self.achieved[episodes, steps + 1], goal),
+            reward=self.reward_fn(self.achieved[episodes, steps + 1], goal, self.motion[episodes, steps + 1]),
             next_obs=self.obs[episodes, steps + 1],
             expert_action=self.expert_action[episodes, steps],
             has_label=has_label.astype(np.float32),

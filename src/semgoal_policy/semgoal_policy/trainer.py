@@ -29,6 +29,7 @@ from semgoal_policy.agents import AGENTS, AgentSpec
 from semgoal_policy.evaluate import EVAL_SEED_BASE, run_episodes, success_by_kind
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_policy.sac import SacAgent, SacConfig
+from semgoal_sim.vocabulary import SCENES
 
 RUNS_DIR = Path("runs")
 
@@ -116,8 +117,9 @@ class Trainer:
         self.kinds = self.spec.kinds(cfg.scene)
         self.agent = SacAgent(obs_size, goal_size, cfg.sac)
         horizon = self.envs[0].max_steps
+        motion_size = 2 * SCENES[cfg.scene].max_blocks
         self.replay = EpisodeReplay(cfg.steps // horizon + cfg.n_envs, horizon, obs_size, goal_size,
-                                    self.spec.reward_fn)
+                                    self.spec.reward_fn(cfg.scene), motion_size=motion_size)
         self.curriculum = Curriculum(self.kinds, cfg.curriculum)
         self.env_steps = 0
         self.wall_s = 0.0
@@ -177,7 +179,7 @@ class Trainer:
             expert[:] = True  # the buffer starts with demonstrations only
         result = run_episodes(self.envs, self.agent.explore, [{"kind": k} for k in kinds],
                               expert_mask=expert, expert_noise=cfg.demo_noise, rng=self.rng)
-        self.replay.add(result.obs, result.achieved, result.goal, result.action, result.expert_action)
+        self.replay.add(result.obs, result.achieved, result.motion, result.goal, result.action, result.expert_action)
         self.agent.actor.normaliser.update(result.obs)
         agent_runs = ~expert
         self.curriculum.record([k for k, a in zip(result.kinds, agent_runs, strict=True) if a], result.success[agent_runs])

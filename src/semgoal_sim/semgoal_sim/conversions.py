@@ -10,6 +10,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
 from semgoal_sim.expert import WorldView
 from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
+from semgoal_sim.settling import moving_blocks
 from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks
 from semgoal_sim.world import FetchWorld, Snapshot
 
@@ -69,13 +70,19 @@ def world_view(msg: WorldState) -> WorldView:
                      np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), scene.bin)
 
 
+def moving(msg: WorldState) -> tuple[str, ...]:
+    """The blocks of a world state message that are not at rest (:func:`semgoal_sim.settling.moving_blocks`)."""
+    velocities = np.array([[b.twist.linear.x, b.twist.linear.y, b.twist.linear.z] for b in msg.blocks]).reshape(-1, 3)
+    return moving_blocks([b.name for b in msg.blocks], velocities)
+
+
 def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     layout = LAYOUTS[msg.scene]
     positions, present = block_positions(msg)
     objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
     state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
                           vector=[bool(v) for v in vector],
-                          fallen=fallen_blocks(objects, positions[present], TABLE_HEIGHT))
+                          fallen=fallen_blocks(objects, positions[present], TABLE_HEIGHT), moving=list(moving(msg)))
     state.header = msg.header
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
                         for (name, args), v in zip(layout.atoms, vector, strict=True)]

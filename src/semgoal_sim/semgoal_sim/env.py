@@ -1,7 +1,9 @@
 """A goal-conditioned gymnasium environment over any scene, for training the low-level policy.
 
 Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
-``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold (sparse, semantic). Episodes
+``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold with the world at rest (sparse,
+semantic; :mod:`semgoal_sim.settling`): a block in free fall earns nothing. ``info["motion"]`` carries what
+HER needs to judge rest for a relabelled goal, ``info["is_success"]`` the reward as a flag. Episodes
 start where the previous step of a plan leaves the arm: a put starts once a pick of its block has been
 confirmed (the scripted expert picks it, with a little noise); a pick starts at the home pose, with the arm
 moved somewhere over the table, or right where the expert's put of another block was confirmed: open
@@ -21,7 +23,8 @@ import numpy as np
 from semgoal_sim import features, layout, tasks
 from semgoal_sim.expert import clear_of, expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
-from semgoal_sim.vocabulary import SCENES, SUBGOAL_CONFIRM_STEPS, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
+from semgoal_sim.settling import MotionReward
+from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
@@ -59,6 +62,10 @@ others take a block outside the bin, as desk plans do (they never take a block o
 bin, and DC-4's last pick (three blocks binned, the arm back from the bin) was rare in training. It was
 where desk actors lost DC-4: seed 26 picked the last block in 39 of 60 such starts, 58 of 60 with the
 other blocks on the table (session 20)."""
+TAKE_OUT_SHARE = 0.5
+"""With blocks in the bin: the share of put_on_table sub-goals that take a binned block back out, so
+operators' take-outs are in the training distribution (issue 49: an actor that had rarely lifted a block
+out let it go over the bin, where it landed back in)."""
 MAX_SPAWN_MARGIN = 0.1
 """Largest ``spawn_margin`` (m): 1.05..1.55 in x, still inside the workspace and within the expert's reach."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
@@ -86,6 +93,7 @@ class SubgoalEnv(gym.Env):
         self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}
         self.world = self.worlds[self.block_counts[-1]]
         self.layout = self.world.layout
+        self.motion_reward = MotionReward(self.layout)
         self.subgoal_types = subgoal_types or self.scene.subgoal_types
         self.max_steps = max_steps
         obs_size = layout.observation_size(scene) + features.width(self.derived)
@@ -100,7 +108,8 @@ class SubgoalEnv(gym.Env):
         self._target = self._mask = np.zeros(self.layout.size, dtype=np.float32)
         self._steps = 0
         self._achieved = False
-        """Whether the sub-goal held after the latest reset or step (the expert's label reads it)."""
+        """Whether the sub-goal's literals held after the latest reset or step, at rest or not (the expert's
+        label reads it: once they hold, it backs away instead of picking a falling block up again)."""
 
     # -- gymnasium API -------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
@@ -117,21 +126,28 @@ class SubgoalEnv(gym.Env):
             if not self._success() or "subgoal" in options:
                 break
         self._steps = 0
-        info = self._info()
-        self._achieved = info["is_success"]
-        return self._obs(), info
+        obs = self._obs()
+        return obs, self._reward(obs)[1]
 
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
         obs = self._obs()
-        reward = float(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
-        self._achieved = reward > 0
-        return obs, reward, False, self._steps >= self.max_steps, self._info(success=reward > 0)
+        reward, info = self._reward(obs)
+        return obs, reward, False, self._steps >= self.max_steps, info
+
+    def _reward(self, obs: dict[str, np.ndarray]) -> tuple[float, dict[str, Any]]:
+        motion = self.world.motion()
+        self._achieved = bool(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
+        reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], {"motion": motion}))
+        return reward, {"subgoal": str(self.subgoal), "subgoal_type": self.kind, "is_success": reward > 0,
+                        "motion": motion}
 
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
-        """Vectorised sparse semantic reward, for HER relabelling."""
-        return layout.goal_reward(achieved_goal, desired_goal)
+        """Vectorised sparse semantic reward at rest, for HER relabelling: ``info`` is a step's info dict,
+        or a sequence of them, one per row (as Stable-Baselines3's HER passes them)."""
+        motion = np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
+        return layout.goal_reward(achieved_goal, desired_goal) * self.motion_reward.settled(desired_goal, motion)
 
     # -- sampling ------------------------------------------------------------------------------------
     def _sample_positions(self) -> np.ndarray:
@@ -209,7 +225,7 @@ class SubgoalEnv(gym.Env):
         other = self._sample_subgoal(str(self.np_random.choice(kinds)), exclude=block)
         if other is None or not self._pick_up(other.block):
             return False
-        if not run_subgoal(self.world, other, self._noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]:
+        if not run_subgoal(self.world, other, self._noisy_expert, EPISODE_STEPS)[0]:
             return False
         return not self._under_another(block)
 
@@ -221,7 +237,7 @@ class SubgoalEnv(gym.Env):
         """The expert picks ``block`` (with a little noise) until holding it is confirmed, as the planner
         confirms a pick."""
         pick = SubGoal("pick", (block,))
-        return run_subgoal(self.world, pick, self._noisy_expert, EPISODE_STEPS, SUBGOAL_CONFIRM_STEPS)[0]
+        return run_subgoal(self.world, pick, self._noisy_expert, EPISODE_STEPS)[0]
 
     def _noisy_expert(self, subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
         """The expert as the trained actor behaves: once a put holds it backs away (over the steps that
@@ -242,8 +258,12 @@ class SubgoalEnv(gym.Env):
         kind = kind or str(rng.choice(self.subgoal_types))
         vector = self.world.semantic_vector()
         candidates = [b for b in self.world.blocks if b != exclude]
-        if self.scene.bin is not None and rng.uniform() >= BINNED_TARGET_SHARE:
-            candidates = [b for b in candidates if not vector[self.layout.index(Literal("in_bin", (b,)))]] or candidates
+        if self.scene.bin is not None:
+            binned = [b for b in candidates if vector[self.layout.index(Literal("in_bin", (b,)))]]
+            if kind == "put_on_table" and binned and rng.uniform() < TAKE_OUT_SHARE:
+                candidates = binned
+            elif rng.uniform() >= BINNED_TARGET_SHARE:
+                candidates = [b for b in candidates if b not in binned] or candidates
         x = str(rng.choice(candidates))
         others = rng.permutation([b for b in self.world.blocks if b != x]).tolist()
         if self._under_another(x):  # a block under another cannot be picked: the plan would clear it first
@@ -277,6 +297,7 @@ class SubgoalEnv(gym.Env):
 
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:
+        """The sub-goal's literals hold (at rest or not): a start that already meets them is drawn again."""
         achieved = layout.achieved_goal(self.world.semantic_vector(), self._mask)
         return bool(layout.goal_reward(achieved, np.concatenate([self._target, self._mask])))
 
@@ -288,7 +309,3 @@ class SubgoalEnv(gym.Env):
             "achieved_goal": layout.achieved_goal(self.world.semantic_vector(snapshot), self._mask),
             "desired_goal": goal,
         }
-
-    def _info(self, success: bool | None = None) -> dict[str, Any]:
-        return {"subgoal": str(self.subgoal), "subgoal_type": self.subgoal.kind if self.subgoal else "",
-                "is_success": self._success() if success is None else success}

@@ -9,8 +9,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from semgoal_sim.expert import WorldView, expert_action
+from semgoal_sim.settling import SETTLE_STEPS, Settling, at_rest, moving_blocks
 from semgoal_sim.tasks import get_task
-from semgoal_sim.vocabulary import Confirmation, Literal, SemanticLayout, SubGoal
+from semgoal_sim.vocabulary import Literal, SemanticLayout, SubGoal
 from semgoal_sim.world import FetchWorld
 
 SUBGOAL_STEPS = 60
@@ -20,6 +21,15 @@ SUBGOAL_STEPS = 60
 def satisfied(layout: SemanticLayout, vector: np.ndarray, literals: list[Literal]) -> bool:
     """Whether every literal holds in the semantic ``vector``."""
     return all(bool(vector[layout.index(lit)]) == lit.value for lit in literals)
+
+
+def settled(world: FetchWorld, literals: list[Literal]) -> bool:
+    """The literals hold in ``world`` now, with the world at rest for them (:mod:`semgoal_sim.settling`)."""
+    snapshot = world.snapshot()
+    vector = world.semantic_vector(snapshot)
+    held = [b for b in world.blocks if vector[world.layout.index(Literal("holding", (b,)))]]
+    return (satisfied(world.layout, vector, literals)
+            and at_rest(literals, moving_blocks(world.blocks, snapshot.block_velocities), held))
 
 
 def _close_clique(layout: SemanticLayout, vector: np.ndarray, view: WorldView, x: str,
@@ -76,13 +86,24 @@ def expert_controller(subgoal: SubGoal, world: FetchWorld) -> np.ndarray:
 
 
 def run_subgoal(world: FetchWorld, subgoal: SubGoal, controller: Controller = expert_controller,
-                max_steps: int = SUBGOAL_STEPS, confirm_steps: int = 1) -> tuple[bool, int]:
-    """Act until the sub-goal's literals held over ``confirm_steps`` consecutive steps (checked after every
-    step; the planner confirms a robot step over ``SUBGOAL_CONFIRM_STEPS``) or ``max_steps`` ran out."""
-    literals, confirmation = subgoal.literals(), Confirmation(confirm_steps)
+                max_steps: int = SUBGOAL_STEPS, confirm_steps: int = SETTLE_STEPS) -> tuple[bool, int]:
+    """Act until the sub-goal's literals held at rest over ``confirm_steps`` consecutive steps (checked after
+    every step, the planner's rule) or ``max_steps`` ran out."""
+    literals, settling = subgoal.literals(), Settling(confirm_steps)
     for step in range(1, max_steps + 1):
         world.step(controller(subgoal, world))
-        if confirmation.update(satisfied(world.layout, world.semantic_vector(), literals), step):
+        if settling.update(settled(world, literals), step):
+            return True, step
+    return False, max_steps
+
+
+def hold_until_settled(world: FetchWorld, literals: list[Literal], max_steps: int = 4 * SETTLE_STEPS) -> tuple[bool, int]:
+    """Hold the arm still until ``literals`` held at rest over ``SETTLE_STEPS`` steps (what the executive
+    does once a goal's literals hold) or ``max_steps`` ran out."""
+    settling = Settling()
+    for step in range(1, max_steps + 1):
+        world.step(np.zeros(4))
+        if settling.update(settled(world, literals), step):
             return True, step
     return False, max_steps
 
@@ -106,4 +127,5 @@ def run_task(task_name: str, seed: int, controller: Controller = expert_controll
         for subgoal in expert_next_steps(goal, world.layout, world.semantic_vector(), world.view()):
             steps += run_subgoal(world, subgoal, controller, max_steps)[1]
             subgoals += 1
-    return EpisodeResult(satisfied(world.layout, world.semantic_vector(), goal), steps, subgoals)
+    success, settle_steps = hold_until_settled(world, goal)
+    return EpisodeResult(success, steps + settle_steps, subgoals)

@@ -25,6 +25,7 @@ import numpy as np
 from semgoal_sim import layout, tasks
 from semgoal_sim.expert import expert_action
 from semgoal_sim.rollout import SUBGOAL_STEPS, expert_next_steps, satisfied
+from semgoal_sim.settling import MotionReward
 from semgoal_sim.vocabulary import SCENES, Literal, SubGoal
 from semgoal_sim.world import FetchWorld
 
@@ -65,6 +66,7 @@ class TaskEnv(gym.Env):
         self.worlds = {n: FetchWorld(scene, n) for n in sorted({tasks.TASKS[t].n_blocks for t in self.task_names})}
         self.world = next(iter(self.worlds.values()))
         self.layout = self.world.layout
+        self.motion_reward = MotionReward(self.layout)
         self.max_steps = max_steps or TASK_EPISODE_STEPS[scene]
         obs_size = layout.observation_size(scene)
         achieved_size = layout.goal_size(scene, goal)
@@ -112,12 +114,16 @@ class TaskEnv(gym.Env):
         self.world.step(action)
         self._steps += 1
         obs, info = self._read()
-        reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], None))
+        reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], info))
         return obs, reward, False, self._steps >= self.max_steps, info
 
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
-        reward = layout.goal_reward if self.goal_kind == "semantic" else layout.position_reward
-        return reward(achieved_goal, desired_goal)
+        """Semantic goals: the sparse reward at rest (``info``: a step's info dict, or one per row), as the
+        sub-goal env has it. Positions: the dense distance reward."""
+        if self.goal_kind != "semantic":
+            return layout.position_reward(achieved_goal, desired_goal)
+        motion = np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
+        return layout.goal_reward(achieved_goal, desired_goal) * self.motion_reward.settled(desired_goal, motion)
 
     def expert_action(self) -> np.ndarray:
         """The scripted expert's action toward the task goal (zeros once it holds), as :func:`run_task`
@@ -143,4 +149,7 @@ class TaskEnv(gym.Env):
                     else self._padded(snapshot.block_positions))
         obs = {"observation": self.world.observation(snapshot), "achieved_goal": achieved,
                "desired_goal": self._desired.copy()}
-        return obs, {"task": self.kind, "is_success": satisfied(self.layout, vector, self.goal_literals)}
+        motion = self.world.motion(snapshot)
+        settled = self.motion_reward.settled(np.concatenate(self.layout.encode(self.goal_literals)), motion)
+        success = satisfied(self.layout, vector, self.goal_literals) and bool(settled)
+        return obs, {"task": self.kind, "is_success": success, "motion": motion}

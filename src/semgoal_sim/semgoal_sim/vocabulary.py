@@ -340,42 +340,6 @@ SUBGOAL_ARITY: dict[str, tuple[int, int]] = {
 """(min, max) arguments of each sub-goal type. put_near / put_away take one or two reference blocks:
 ``put_near(blue,red,green)`` means near red and near green (MC-3's last move needs both)."""
 
-SUBGOAL_CONFIRM_STEPS = 5
-"""A sub-goal run by the robot counts as achieved once its literals held over this many consecutive control
-steps: the planner advances and the policy stops acting on it only then. One step is not enough: a
-closing grasp can brush a block's top edge (holding for a step) and a block let go in mid-air is
-briefly "not held and away"; the sub-goal policy, trained on episodes that go on after success, keeps
-the grasp and settles the block. Measured in process (12 episodes, task seeds 3000000+), DC-2 solved
-with 1 / 3 / 5 / 8 / 10 steps: 5 / 8 / 10 / 9 / 8 of 12; DC-3: 0 / 1 / 3 / 2 / 0."""
-
-
-@dataclass
-class Confirmation:
-    """The rule that ends a robot sub-goal, kept by the planner's executive and by the policy alike: its
-    literals held over ``steps`` consecutive control steps."""
-
-    steps: int = SUBGOAL_CONFIRM_STEPS
-    since: int | None = None
-    """First step of the current run of steps in which the literals hold."""
-
-    def update(self, holds: bool, step: int, now: int | None = None) -> bool:
-        """Record whether the literals hold at ``step``; True once they held from ``since`` up to ``now``
-        (default ``step``)."""
-        if not holds:
-            self.since = None
-            return False
-        if self.since is None:
-            self.since = step
-        return (step if now is None else now) - self.since + 1 >= self.steps
-
-    def reset(self) -> None:
-        self.since = None
-
-    @property
-    def pending(self) -> bool:
-        return self.since is not None
-
-
 @dataclass(frozen=True)
 class SubGoal:
     """A sub-goal: a typed symbolic action such as put_near(red,green)."""

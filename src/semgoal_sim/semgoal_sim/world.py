@@ -17,7 +17,8 @@ from semgoal_sim import layout
 from semgoal_sim.expert import WorldView
 from semgoal_sim.layout import CONTROL_DT
 from semgoal_sim.scene import TABLE_HEIGHT, block_body_name, build_model
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks
+from semgoal_sim.settling import motion_bits
+from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
@@ -180,6 +181,13 @@ class FetchWorld:
         snapshot = snapshot or self.snapshot()
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
                         snapshot.finger_opening, TABLE_HEIGHT, self.present)
+
+    def motion(self, snapshot: Snapshot | None = None) -> np.ndarray:
+        """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_sim.settling.motion_bits`)."""
+        snapshot = snapshot or self.snapshot()
+        speeds = np.linalg.norm(snapshot.block_velocities[:, :3], axis=1)
+        held = held_alone(snapshot.block_positions, snapshot.grip_position, snapshot.finger_opening)
+        return motion_bits(speeds, held, self.scene.max_blocks)
 
     def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:
         """The blocks that fell off the table, out of the arm's reach."""

@@ -21,7 +21,7 @@ def observe(true: list[str], step: int = 0, scene: str = "desk_cleanup", objects
 
 def executive(**kwargs) -> Executive:
     """Steps are done as soon as their literals hold (confirmation is tested on its own below)."""
-    ex = Executive(SemanticPlanner("desk_cleanup"), **{"confirm_steps": 1, **kwargs})
+    ex = Executive(SemanticPlanner("desk_cleanup"), **{"settle_steps": 1, **kwargs})
     ex.observe(observe([]))
     return ex
 
@@ -41,7 +41,7 @@ def test_goal_is_planned_then_followed_to_success() -> None:
 
 
 def test_a_robot_step_is_done_only_once_its_literals_held_for_the_confirmation_steps() -> None:
-    ex = executive(confirm_steps=3)
+    ex = executive(settle_steps=3)
     ex.set_goal("in_bin(red)")
     ex.observe(observe(["holding(red)"], 20))
     ex.tick(21)
@@ -55,7 +55,7 @@ def test_a_robot_step_is_done_only_once_its_literals_held_for_the_confirmation_s
 
 
 def test_confirmation_counts_world_ticks_that_arrive_before_the_semantic_state() -> None:
-    ex = executive(confirm_steps=3)
+    ex = executive(settle_steps=3)
     ex.set_goal("in_bin(red)")
     for step in (1, 2, 3):  # the lockstep world stops after the policy's confirmation at step 3
         ex.tick(step)
@@ -109,7 +109,7 @@ def test_contradiction_replans_after_the_debounce() -> None:
 def test_a_confirmation_that_ends_the_plan_inside_a_tick_fails_cleanly() -> None:
     """The last step is confirmed by a tick, the goal does not hold (green left the bin) and no re-plan
     is left: the goal fails with the reason instead of the tick indexing past the plan."""
-    ex = executive(confirm_steps=3, max_replans=0)
+    ex = executive(settle_steps=3, max_replans=0)
     ex.set_goal("in_bin(red) & in_bin(green)")
     for step, true in enumerate((["holding(green)"], ["in_bin(green)"], ["in_bin(green)", "holding(red)"])):
         for offset in range(3):

@@ -7,24 +7,26 @@ import pytest
 import torch
 
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
-from semgoal_policy.agents import get_agent
+from semgoal_policy.agents import get_agent, semantic_reward
 from semgoal_policy.controller import HOLD, SubgoalController
 from semgoal_policy.lockstep import followed_decision, lockstep_subgoal
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_sim import features, layout
-from semgoal_sim.vocabulary import SUBGOAL_CONFIRM_STEPS, Literal, VocabularyError
+from semgoal_sim.settling import SETTLE_STEPS
+from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError
 
 SCENE = "two_blocks"
 
 
 def test_her_relabels_with_future_achieved_goals_and_keeps_labels_only_for_own_goals() -> None:
     horizon, goal_size = 5, 4
-    replay = EpisodeReplay(10, horizon, 3, goal_size, layout.goal_reward, her_ratio=1.0)
+    replay = EpisodeReplay(10, horizon, 3, goal_size, lambda a, d, m: layout.goal_reward(a, d), her_ratio=1.0)
     achieved = np.zeros((1, horizon + 1, goal_size), np.float32)
     achieved[0, :, 2:] = 1.0  # mask travels with the achieved goal
     achieved[0, 3:, 0] = 1.0  # entry 0 becomes true at step 3
     goal = np.array([[1.0, 0.0, 1.0, 1.0]], np.float32)
-    replay.add(np.zeros((1, horizon + 1, 3)), achieved, goal, np.zeros((1, horizon, 4)), np.ones((1, horizon, 4)))
+    replay.add(np.zeros((1, horizon + 1, 3)), achieved, np.zeros((1, horizon + 1, 0)), goal, np.zeros((1, horizon, 4)),
+               np.ones((1, horizon, 4)))
     batch = replay.sample(np.random.default_rng(0), 2000)
     assert batch.reward.shape == (2000,)
     # relabelled goals are achieved ones: entry 0 false (early) or true (from step 3); both rewards occur
@@ -35,17 +37,36 @@ def test_her_relabels_with_future_achieved_goals_and_keeps_labels_only_for_own_g
     assert clone.has_label.all() and np.all(clone.goal == goal)
 
 
+def test_her_pays_a_relabelled_goal_only_where_the_world_was_at_rest() -> None:
+    """put_near(red,green)'s literals hold from the first step, but red falls until step 3: a transition
+    into steps 1 to 3 earns nothing, into steps 4 and 5 it earns 1 (issue 49)."""
+    horizon = 5
+    goal_layout = LAYOUTS[SCENE]
+    target, mask = goal_layout.encode([Literal("close", ("red", "green")), Literal("holding", ("red",), False)])
+    goal = np.concatenate([target, mask])[None]
+    achieved = np.repeat(layout.achieved_goal(target, mask)[None, None], horizon + 1, axis=1)
+    motion = np.zeros((1, horizon + 1, 4), np.float32)
+    motion[0, :4, 0] = 1.0  # red moving at steps 0..3
+    obs = np.arange(horizon + 1, dtype=np.float32).reshape(1, -1, 1)  # obs = the step, to read it back
+    replay = EpisodeReplay(4, horizon, 1, goal.shape[1], semantic_reward(SCENE), motion_size=4)
+    replay.add(obs, achieved, motion, goal, np.zeros((1, horizon, 4)), np.zeros((1, horizon, 4)))
+    batch = replay.sample(np.random.default_rng(0), 500)
+    assert np.array_equal(batch.reward, (batch.next_obs[:, 0] >= 4).astype(np.float32))
+    assert set(np.unique(batch.reward)) == {0.0, 1.0}
+
+
 def test_a_saved_buffer_larger_than_the_capacity_loads_its_newest_episodes(tmp_path) -> None:
     horizon, goal_size = 2, 2
-    big = EpisodeReplay(4, horizon, 1, goal_size, layout.goal_reward)
+    reward = lambda a, d, m: layout.goal_reward(a, d)  # noqa: E731
+    big = EpisodeReplay(4, horizon, 1, goal_size, reward)
     for episode in range(6):  # wraps: the ring holds episodes 2..5, the oldest (2) at next_index 2
-        big.add(np.zeros((1, horizon + 1, 1)), np.zeros((1, horizon + 1, goal_size)), np.full((1, goal_size), episode),
-                np.zeros((1, horizon, 4)), np.zeros((1, horizon, 4)))
+        big.add(np.zeros((1, horizon + 1, 1)), np.zeros((1, horizon + 1, goal_size)), np.zeros((1, horizon + 1, 0)),
+                np.full((1, goal_size), episode), np.zeros((1, horizon, 4)), np.zeros((1, horizon, 4)))
     big.save(tmp_path / "replay.npz")
-    same = EpisodeReplay(4, horizon, 1, goal_size, layout.goal_reward)
+    same = EpisodeReplay(4, horizon, 1, goal_size, reward)
     same.load(tmp_path / "replay.npz")
     assert np.array_equal(same.goal, big.goal) and same.next_index == big.next_index == 2
-    small = EpisodeReplay(3, horizon, 1, goal_size, layout.goal_reward)
+    small = EpisodeReplay(3, horizon, 1, goal_size, reward)
     small.load(tmp_path / "replay.npz")
     assert small.goal[:, 0].tolist() == [3, 4, 5] and small.size == 3 and small.next_index == 0
 
@@ -127,11 +148,11 @@ def test_controller_knows_when_its_subgoal_holds(tmp_path) -> None:
     assert not controller.achieved(vector)
     vector[controller.layout.index(Literal("holding", ("red",)))] = 1.0
     assert controller.achieved(vector)
-    # confirmed (the planner's rule) only once it held over SUBGOAL_CONFIRM_STEPS distinct steps
-    assert [controller.confirmed(step, vector) for step in range(10, 10 + SUBGOAL_CONFIRM_STEPS)] == \
-        [False] * (SUBGOAL_CONFIRM_STEPS - 1) + [True]
+    # confirmed (the planner's rule) only once it held over SETTLE_STEPS distinct steps
+    assert [controller.confirmed(step, vector) for step in range(10, 10 + SETTLE_STEPS)] == \
+        [False] * (SETTLE_STEPS - 1) + [True]
     controller.set_subgoal([Literal("holding", ("red",))])  # the same sub-goal again: the count goes on
-    assert controller.confirmed(10 + SUBGOAL_CONFIRM_STEPS, vector)
+    assert controller.confirmed(10 + SETTLE_STEPS, vector)
     controller.set_subgoal([Literal("holding", ("green",))])
     assert not controller.confirmed(20, np.zeros_like(vector))
 

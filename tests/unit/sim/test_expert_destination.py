@@ -1,13 +1,13 @@
-"""Where the scripted expert puts a carried block. It lets go where it is when the put will hold once the
-block has fallen (put_near, put_away, put_in_bin: the labels teach the actor to let go, as the reward
-does, not to carry on to one exact spot); otherwise a put_near heads for the most compact spot, a
+"""Where the scripted expert puts a carried block. It places it where it is when the put will hold once
+the block rests there (put_near, put_away, put_in_bin: lowered to PLACE_HEIGHT, then let go; the labels
+teach the actor to let go, as the reward does, not to carry on to one exact spot); otherwise a put_near heads for the most compact spot, a
 put_in_bin for a free slot (dropped anywhere over the floor, blocks crowd the bin for the next ones)."""
 
 import itertools
 
 import numpy as np
 
-from semgoal_sim.expert import RELEASE, WorldView, destination, expert_action
+from semgoal_sim.expert import PLACE_HEIGHT, RELEASE, WorldView, destination, expert_action
 from semgoal_sim.tasks import TABLE_TOP
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
 
@@ -29,13 +29,24 @@ def assert_lets_go(action: np.ndarray, where: object = None) -> None:
     assert action[3] == RELEASE, where
 
 
-def test_put_near_lets_go_wherever_every_reference_is_within_reach() -> None:
-    """Beside green or over it, low or at carry height: the block falls close to green, so the label opens
-    the fingers where it is. Until session 28 the expert carried it on to its exact spot with the fingers
-    shut, while the reward (and so the critic) said let go: cloning froze the actor there."""
+def test_put_near_places_wherever_every_reference_is_within_reach() -> None:
+    """Beside green, with every reference within reach: the label opens the fingers where the block is,
+    once it is at most PLACE_HEIGHT over what it lands on, and lowers it (fingers shut) while higher. Until
+    session 28 the expert carried it on to its exact spot, and cloning froze the actor there; until
+    session 44 it let go at carry height, and the block fell for 6 to 8 steps (issue 49)."""
     green = np.array([1.30, 0.75, REST_Z])
-    for offset in ([0.08, 0.0, 0.03], [0.0, 0.07, 0.10], [0.03, 0.0, 0.12], [0.06, 0.05, 0.06]):
+    for offset in ([0.08, 0.0, 0.015], [0.0, 0.07, 0.01], [0.06, 0.05, PLACE_HEIGHT - 0.002]):
         assert_lets_go(expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green})), offset)
+    for offset in ([0.0, 0.07, 0.10], [0.06, 0.05, 0.06]):
+        action = expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green}))
+        assert action[3] < 0 and action[2] < 0, offset  # shut, going down
+
+
+def test_a_block_over_another_is_placed_on_its_top() -> None:
+    """Over green, the block lands on green's top: low enough 2 cm above it, not 2 cm above the table."""
+    green = np.array([1.30, 0.75, REST_Z])
+    assert_lets_go(expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array([0.03, 0.0, 0.065]), {"green": green})))
+    assert expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array([0.03, 0.0, 0.09]), {"green": green}))[3] < 0
 
 
 def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> None:
@@ -50,8 +61,11 @@ def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None
     than 10 cm from the others), the expert's label carrying it on with the fingers shut."""
     green, blue = np.array([1.20, 0.60, REST_Z]), np.array([1.40, 0.80, REST_Z])
     subgoal, others = SubGoal("put_away", ("red", "green")), {"green": green, "blue": blue}
-    for xy, height in itertools.product(([1.40, 0.55], [1.33, 0.60]), (0.02, 0.06, 0.11)):  # 13 cm from green
+    for xy, height in itertools.product(([1.40, 0.55], [1.33, 0.60]), (0.005, 0.015)):  # 13 cm from green
         assert_lets_go(expert_action(subgoal, carried(np.array([*xy, REST_Z + height]), others)), (xy, height))
+    for height in (0.06, 0.11):  # far enough, but high: lowered first
+        lowered = expert_action(subgoal, carried(np.array([1.40, 0.55, REST_Z + height]), others))
+        assert lowered[3] < 0 and lowered[2] < 0
     far_from_both = np.array([1.40, 0.55])
     too_high = expert_action(subgoal, carried(np.array([*far_from_both, REST_Z + 0.15]), others))
     near_green = expert_action(subgoal, carried(np.array([1.28, 0.60, REST_Z + 0.06]), others))

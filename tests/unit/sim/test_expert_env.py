@@ -57,9 +57,14 @@ def test_env_contract_and_her_reward() -> None:
     desired = np.stack([obs["desired_goal"]] * 4)
     relabelled = desired.copy()
     relabelled[1] = achieved[1]  # HER: an achieved goal copied into the desired one is always reached
-    rewards = env.compute_reward(achieved, relabelled, {})
+    still = {"motion": np.zeros((4, 6), np.float32)}
+    rewards = env.compute_reward(achieved, relabelled, still)
     assert rewards[1] == 1.0 and rewards[0] == 0.0
     assert np.array_equal(rewards, goal_reward(achieved, relabelled))
+    falling = {"motion": np.zeros((4, 6), np.float32)}
+    falling["motion"][1, 2] = 1.0  # blue moves: the relabelled goal is not achieved at rest
+    assert env.compute_reward(achieved, relabelled, falling)[1] == 0.0
+    assert env.compute_reward(achieved, relabelled, [{"motion": m} for m in still["motion"]])[1] == 1.0  # SB3 passes a list
 
 
 def test_explicit_subgoal_option() -> None:

@@ -26,7 +26,7 @@ from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import SubgoalController
 from semgoal_policy.lockstep import lockstep_subgoal
-from semgoal_sim.settling import moving_blocks
+from semgoal_sim.settling import Settling, moving_blocks
 from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
 
@@ -102,12 +102,15 @@ class FlatAgent:
     def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
         task = _scene_task(task_name, self.scene)
         obs, _ = self.env.reset(seed=seed, options={"kind": task.name, "start_seed": seed})
+        settling, first_held = Settling(), None
         for step in range(1, budget + 1):
             action = np.clip(self.actor.act(obs["observation"], obs["desired_goal"]), -1.0, 1.0)
             obs, _, _, _, info = self.env.step(action)
-            if info["is_success"]:
-                return Outcome(task.name, seed, True, step)
-        return Outcome(task.name, seed, False, budget)
+            if first_held is None and info["goal_holds"]:
+                first_held = step
+            if settling.update(info["is_success"], step):
+                return Outcome(task.name, seed, True, step, first_held=first_held)
+        return Outcome(task.name, seed, False, budget, first_held=first_held)
 
 
 def _scene_task(task_name: str, scene: str) -> Task:

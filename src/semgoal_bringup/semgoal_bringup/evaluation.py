@@ -4,12 +4,15 @@
         --via-ros --json --out results/
 
 Every agent meets the same starts (episode ``i`` of a task uses the task sampler's seed ``--seed + i``),
-the same step budget and the same success test (the task's goal literals hold). ``--seeds N`` averages
+the same step budget and the same success test, the executive's: the task's goal literals hold with the
+world at rest over ``SETTLE_STEPS`` control steps (:mod:`semgoal_sim.settling`). In-process rows also
+report the rule before issue 49 (the literals held at some step) on the same episodes, and the median
+control steps to success at rest. ``--seeds N`` averages
 up to N training seeds of each agent where exported actors exist (the shipped one, plus
 ``models/seeds/<name>/seedK``); the table says how many each row has. ``--via-ros`` also runs the
 hierarchical agent through the real node graph in lockstep (:mod:`semgoal_bringup.graph_eval`).
 Writes ``table1.md``, ``table1.csv`` and ``table1.png`` under ``--out``; the last line printed is the
-JSON ``{task: {agent: rate}}``.
+JSON ``{task: {agent: rate, "settled_steps": {agent: median steps}, "first_step_rule": {agent: rate}}}``.
 """
 
 from __future__ import annotations
@@ -20,12 +23,18 @@ import json
 import math
 import os
 import shlex
+import statistics
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
+from semgoal_sim.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_sim.tasks import TASK_STEP_BUDGET, TASKS, get_task
+
+if TYPE_CHECKING:
+    from semgoal_bringup.episodes import Outcome
 
 PAPER_TABLE1 = {
     "flat-semantic": {"MC-2": 10, "MA-2": 80, "Swap-2": 0, "MC-3": 5, "MA-3": 10, "DC-2": 30, "DC-3": 0, "DC-4": 0},
@@ -48,6 +57,10 @@ class Tally:
     wins: int = 0
     episodes: int = 0
     steps: int = 0
+    first_step_wins: int | None = 0
+    """Episodes whose goal literals held at some step, at rest or not (None: not observed, via ROS)."""
+    settled_steps: list[int] = field(default_factory=list)
+    """Control steps to success at rest, one per successful episode."""
 
 
 @dataclass
@@ -66,11 +79,18 @@ class Row:
         """Training env steps of the actors evaluated."""
         return set().union(*self.seed_steps.values())
 
-    def add(self, seed_label: str, task: str, success: bool, steps: int) -> None:
-        tally = self.per_seed.setdefault(seed_label, {}).setdefault(task, Tally())
-        tally.wins += int(success)
+    def add(self, seed_label: str, outcome: Outcome, first_step_observed: bool = True) -> None:
+        """Count one episode; ``first_step_observed``: whether ``outcome.first_held`` was watched (not via ROS)."""
+        tally = self.per_seed.setdefault(seed_label, {}).setdefault(outcome.task, Tally())
+        tally.wins += int(outcome.success)
         tally.episodes += 1
-        tally.steps += steps
+        tally.steps += outcome.steps
+        if outcome.success:
+            tally.settled_steps.append(outcome.steps)
+        if not first_step_observed or tally.first_step_wins is None:
+            tally.first_step_wins = None
+        else:
+            tally.first_step_wins += int(outcome.first_step_success)
 
     def tallies(self, task: str) -> list[Tally]:
         return [by_task[task] for by_task in self.per_seed.values() if task in by_task]
@@ -90,6 +110,15 @@ class Row:
 
     def rate(self, task: str) -> float:
         return self.wins(task) / self.episodes(task)
+
+    def first_step_rate(self, task: str) -> float | None:
+        """The rate under the rule before issue 49 (literals held at some step), where it was observed."""
+        counts = [t.first_step_wins for t in self.tallies(task)]
+        return None if None in counts else sum(counts) / self.episodes(task)
+
+    def median_settled_steps(self, task: str) -> float | None:
+        steps = [s for t in self.tallies(task) for s in t.settled_steps]
+        return statistics.median(steps) if steps else None
 
     def interval(self, task: str) -> tuple[float, float]:
         """95 % Wilson score interval of the rate: unlike the normal approximation it stays wide at 0 and
@@ -155,8 +184,7 @@ def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: i
         row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
         for i in range(episodes):
-            outcome = runner.run(task_name, seed + i)
-            row.add(label, task_name, outcome.success, outcome.steps)
+            row.add(label, runner.run(task_name, seed + i))
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -204,7 +232,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
     started = time.perf_counter()
     outcomes = run_via_ros(task_names, episodes, seed)
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
-        row.add("shipped", outcome.task, outcome.success, outcome.steps)  # the graph runs the shipped actors
+        row.add("shipped", outcome, first_step_observed=False)  # the graph runs the shipped actors
     for task_name in task_names:
         meta = json.loads((actor_io.MODELS_DIR / get_task(task_name).scene / "actor.json").read_text())
         row.seed_steps.setdefault("shipped", set()).add(meta["env_steps"])
@@ -230,7 +258,9 @@ def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, p
         "# Table 1: task completion (%)",
         "",
         f"Ours: task seeds from {seed} (episode i of every agent starts from the same state), at most "
-        f"{TASK_STEP_BUDGET} control steps each; brackets hold the 95 % (Wilson) interval. "
+        f"{TASK_STEP_BUDGET} control steps each; success when the goal's literals hold with the world at rest "
+        f"(every block slower than {REST_SPEED} m/s, none held unless asked) over {SETTLE_STEPS} control steps, "
+        "the executive's rule; brackets hold the 95 % (Wilson) interval. "
         "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
         f"Regenerate: `{command}`",
         "",
@@ -246,9 +276,13 @@ def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, p
             if row.agent.split(" ")[0] == agent:
                 cells = [f"{100 * row.rate(t):.0f} [{100 * low:.0f}-{100 * high:.0f}]"
                          for t in tasks for low, high in [row.interval(t)]]
+                episodes = min(tally.episodes for t in tasks for tally in row.tallies(t))
                 lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row, tasks)} | {_steps_text(row.env_steps)} | "
-                             f"{min(tally.episodes for t in tasks for tally in row.tallies(t))} | "
-                             + " | ".join(cells) + " |")
+                             f"{episodes} | " + " | ".join(cells) + " |")
+                if all(row.first_step_rate(t) is not None for t in tasks):
+                    lines.append(f"| {row.agent} (ours), first-step rule (before issue 49), same episodes | "
+                                 f"{_seeds_text(row, tasks)} | {_steps_text(row.env_steps)} | {episodes} | "
+                                 + " | ".join(f"{100 * row.first_step_rate(t):.0f}" for t in tasks) + " |")
     for row in rows:
         if len(row.per_seed) > 1:
             lines += _per_seed_lines(row, tasks)
@@ -272,17 +306,22 @@ def write_csv(rows: list[Row], tasks: list[str], path: Path) -> None:
     with path.open("w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["agent", "source", "task", "success_rate", "episodes", "ci95_low", "ci95_high", "mean_steps",
-                         "training_seeds", "training_steps"])
+                         "training_seeds", "training_steps", "median_settled_steps", "first_step_rule_rate"])
         for agent in AGENT_NAMES:
             if any(r.agent.startswith(agent) for r in rows):
                 for t in tasks:
-                    writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000])
+                    writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000, "", ""])
         for row in rows:
             for t in tasks:
                 writer.writerow([row.agent, "ours", t, round(row.rate(t), 4), row.episodes(t),
                                  *(round(bound, 4) for bound in row.interval(t)),
                                  round(row.mean_steps(t), 1), row.training_seeds(t),
-                                 "/".join(map(str, sorted(row.env_steps)))])
+                                 "/".join(map(str, sorted(row.env_steps))), _blank(row.median_settled_steps(t)),
+                                 _blank(row.first_step_rate(t))])
+
+
+def _blank(value: float | None) -> str | float:
+    return "" if value is None else round(value, 4)
 
 
 def _error_bars(row: Row, tasks: list[str]) -> list[list[float]]:
@@ -323,6 +362,15 @@ def write_chart(rows: list[Row], tasks: list[str], path: Path) -> None:
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def summary(rows: list[Row], task: str) -> dict:
+    """One task's JSON: each agent's rate at rest, the median steps to success at rest and, where observed,
+    the rate under the first-step rule on the same episodes."""
+    first_step = {row.agent: round(row.first_step_rate(task), 4) for row in rows if row.first_step_rate(task) is not None}
+    return {**{row.agent: round(row.rate(task), 4) for row in rows},
+            "settled_steps": {row.agent: row.median_settled_steps(task) for row in rows},
+            "first_step_rule": first_step}
 
 
 def main(argv: list[str]) -> int:
@@ -372,5 +420,5 @@ def main(argv: list[str]) -> int:
         write_chart(rows, tasks, args.out / "table1.png")
         print(f"wrote {args.out}/table1.md, table1.csv, table1.png", file=sys.stderr)
     if args.json:
-        print(json.dumps({t: {row.agent: round(row.rate(t), 4) for row in rows} for t in tasks}))
+        print(json.dumps({t: summary(rows, t) for t in tasks}))
     return 1 if failed else 0

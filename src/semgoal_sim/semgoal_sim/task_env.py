@@ -151,5 +151,5 @@ class TaskEnv(gym.Env):
                "desired_goal": self._desired.copy()}
         motion = self.world.motion(snapshot)
         settled = self.motion_reward.settled(np.concatenate(self.layout.encode(self.goal_literals)), motion)
-        success = satisfied(self.layout, vector, self.goal_literals) and bool(settled)
-        return obs, {"task": self.kind, "is_success": success, "motion": motion}
+        holds = satisfied(self.layout, vector, self.goal_literals)
+        return obs, {"task": self.kind, "is_success": holds and bool(settled), "goal_holds": holds, "motion": motion}

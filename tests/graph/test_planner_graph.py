@@ -158,3 +158,21 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     result = probe.spin_future(handle.get_result_async(), 20, "fallen-block result").result
     assert not result.success and result.replans == 0
     assert result.message == "blue fell off the table, out of the arm's reach: step 0 pick(blue) cannot be done"
+
+
+def test_a_sentence_on_the_goal_topic_is_planned_and_achieved(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    """`ros2 topic pub /semgoal/goal ... "{text: 'put the red block in the bin'}"`: the plan's goal shows the
+    literals the sentence became; an ambiguous sentence is refused and the plan stays."""
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
+    op = Operator(probe)
+    probe.spin_until(lambda: op.states.get_subscription_count() > 0, 30, "planner subscribed")
+    op.observe(set(), 0, held=False)
+    op.goals.publish(GoalRequest(text="please put the red block in the bin"))
+    probe.spin_until(lambda: op.plans and op.plans[-1].status == "executing", 20, "plan for the sentence")
+    assert op.plans[-1].goal == "in_bin(red)" and op.actions() == ["pick(red)", "put_in_bin(red)"]
+    op.goals.publish(GoalRequest(text="put it in the bin"))  # which block? refused, the plan stays
+    probe.spin_for(1.0)
+    assert op.plans[-1].goal == "in_bin(red)" and op.plans[-1].status == "executing"
+    op.observe({"holding(red)"}, 20)
+    op.observe({"in_bin(red)"}, 40)
+    probe.spin_until(lambda: op.plans[-1].status == "succeeded", 20, "goal achieved at rest")

@@ -41,3 +41,37 @@ def plan_pddl_main(argv: list[str]) -> int:
     for op in result.plan:
         print(op)
     return 0
+
+
+def parse_goal_main(argv: list[str]) -> int:
+    """`./semgoal parse-goal --scene S [--blocks a,b,...] [--json] TEXT...`: the literals each sentence becomes.
+
+    With ``--json``, one object per TEXT, in order: ``{"text": TEXT, "literals": [...]}`` or ``{"text": TEXT,
+    "error": "..."}``. Exit 0 when every TEXT parsed, 2 otherwise."""
+    import json
+
+    from semgoal_planner.english import LanguageError, parse_english
+    from semgoal_sim.vocabulary import SCENES
+
+    parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.splitlines()[0])
+    parser.add_argument("--scene", required=True, choices=list(SCENES))
+    parser.add_argument("--blocks", help="comma-separated blocks present (default: all of the scene's)")
+    parser.add_argument("--json", action="store_true", help="one JSON object per TEXT")
+    parser.add_argument("texts", nargs="+", metavar="TEXT")
+    args = parser.parse_args(argv)
+    blocks = tuple(b.strip().lower() for b in args.blocks.split(",") if b.strip()) if args.blocks else SCENES[args.scene].objects
+    unknown = [b for b in blocks if b not in SCENES[args.scene].objects]
+    if unknown or not blocks:
+        parser.error(f"--blocks: {', '.join(unknown) or 'none'} not in scene {args.scene} "
+                     f"({', '.join(SCENES[args.scene].objects)})")
+    failed = False
+    for text in args.texts:
+        try:
+            result = {"text": text, "literals": [str(lit) for lit in parse_english(text, args.scene, blocks)]}
+        except LanguageError as error:
+            result, failed = {"text": text, "error": str(error)}, True
+        if args.json:
+            print(json.dumps(result))
+        else:
+            print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
+    return 2 if failed else 0

@@ -122,7 +122,8 @@ class Executive:
             return False, str(error)
         self.goal, self.goal_text = goal, " & ".join(map(str, goal))
         self.replans, self.goal_started, self.step_budget = 0, obs.step, max(0, step_budget)
-        self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}")
+        meaning = "" if text.strip() == self.goal_text else f" (the goal: {self.goal_text})"
+        self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}{meaning}")
         self._advance()
         return True, self.message
 

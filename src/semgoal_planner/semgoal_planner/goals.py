@@ -1,4 +1,5 @@
-"""Goal requests: a task name (``DC-3``) or a conjunction of literals (``in_bin(red) & not close(red,green)``).
+"""Goal requests: a task name (``DC-3``), a conjunction of literals (``in_bin(red) & not close(red,green)``)
+or a plain-English sentence (``put the red block in the bin``, :mod:`semgoal_planner.english`).
 
 Parsing checks every literal against the scene's vocabulary and the objects present, and refuses
 contradictions, so a planner only ever sees goals it can state.
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
 from semgoal_sim.tasks import TASKS, Task, get_task, goal_in_state
 from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 
@@ -31,10 +33,23 @@ def is_task_name(text: str) -> bool:
     return any(text.strip().lower() == name.lower() for name in TASKS)
 
 
+def looks_like_literals(text: str) -> bool:
+    """Literal syntax (``name(args)``), as opposed to a sentence."""
+    return "(" in text or ")" in text
+
+
 def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
-    """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
+    """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``:
+    a task, literals, or else a sentence."""
+    if len(text) > MAX_GOAL_CHARS:
+        raise GoalError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     if is_task_name(text):
         return task_goal(text, scene, objects, state)
+    if not looks_like_literals(text):
+        try:
+            return parse_english(text, scene, objects)
+        except LanguageError as error:
+            raise GoalError(f"{error} (or give a task, {', '.join(TASKS)}, or literals such as in_bin(red))") from None
     layout = LAYOUTS[scene]
     goal: dict[tuple[str, tuple[str, ...]], Literal] = {}
     for part in split_literals(text):

@@ -60,7 +60,7 @@ def format_plan(plan) -> str:
 def goal_main(argv: list[str]) -> int:
     """`./semgoal goal TASK|LITERALS [--wait [--max-steps N]]`: send a goal to planner_node."""
     parser = argparse.ArgumentParser(prog="semgoal goal", description=goal_main.__doc__)
-    parser.add_argument("goal", help="a task name (DC-3) or literals joined by '&'")
+    parser.add_argument("goal", help="a task name (DC-3), literals joined by '&', or a sentence ('put red in the bin')")
     parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
     parser.add_argument("--max-steps", type=int, default=0,
                         help="with --wait: control steps the goal may take before it fails (default 0: no limit)")
@@ -71,11 +71,15 @@ def goal_main(argv: list[str]) -> int:
     if args.max_steps and not args.wait:
         parser.error("--max-steps needs --wait: the budget travels with the ExecuteGoal action, not the goal topic")
     from semgoal_msgs.msg import GoalRequest
-    from semgoal_planner.goals import is_task_name
+    from semgoal_planner.goals import is_task_name, looks_like_literals
     from semgoal_sim import ros_interfaces as topics
 
-    is_task = is_task_name(args.goal)
-    request = GoalRequest(task=args.goal.strip() if is_task else "", literals=[] if is_task else [args.goal])
+    if is_task_name(args.goal):
+        request = GoalRequest(task=args.goal.strip())
+    elif looks_like_literals(args.goal):
+        request = GoalRequest(literals=[args.goal])
+    else:
+        request = GoalRequest(text=args.goal)
     client = OperatorClient()
     try:
         if args.wait:

@@ -29,10 +29,11 @@ FINAL = ("succeeded", "failed")
 
 
 def goal_text(msg: GoalRequest) -> str:
-    """A GoalRequest as the text the executive parses (a task, or literals joined by '&')."""
-    if msg.task.strip() and msg.literals:
-        raise ValueError("give a task or literals, not both")
-    return msg.task.strip() or " & ".join(msg.literals)
+    """A GoalRequest as the text the executive parses (a task, literals joined by '&', or a sentence)."""
+    given = [bool(msg.task.strip()), bool(msg.literals), bool(msg.text.strip())]
+    if sum(given) != 1:
+        raise ValueError("give exactly one of a task, literals or a sentence (text)")
+    return msg.task.strip() or " & ".join(msg.literals) or msg.text.strip()
 
 
 class PlannerNode(Node):
@@ -77,7 +78,7 @@ class PlannerNode(Node):
             ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
         except ValueError as error:
             ok, message = False, str(error)
-        self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)}: {message}")
+        self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)} text={msg.text!r}: {message}")
         if ok:
             self.end_action_goal("superseded by a new goal")
         self.publish()

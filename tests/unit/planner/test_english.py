@@ -1,0 +1,180 @@
+"""Plain-English goals (issue 51): phrasings and the literals they become, refusals that name the problem,
+a round trip from random literal sets through sentences, and the `parse-goal` contract."""
+
+import json
+import time
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from semgoal_planner.cli import parse_goal_main
+from semgoal_planner.english import LanguageError, parse_english
+from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.goals import GoalError, parse_goal
+from semgoal_planner.semantic import SemanticPlanner
+from semgoal_sim.vocabulary import LAYOUTS, SCENES, Literal, parse_literal
+
+PHRASES = [
+    ("desk_cleanup", "put the red block in the bin", "in_bin(red)"),
+    ("desk_cleanup", "Could you please put the yellow cube into the basket?", "in_bin(yellow)"),
+    ("desk_cleanup", "Put red, green and blue into the box.", "in_bin(red) & in_bin(green) & in_bin(blue)"),
+    ("desk_cleanup", "drop green in the bin", "in_bin(green)"),
+    ("desk_cleanup", "throw yellow in the trash", "in_bin(yellow)"),
+    ("desk_cleanup", "put all the blocks in the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "clean up the desk", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "tidy up", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "clean up the desk but leave green out",
+     "in_bin(red) & not in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "put everything except red in the bin",
+     "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
+    ("desk_cleanup", "put all blocks in the bin except green and blue",
+     "in_bin(red) & in_bin(yellow) & not in_bin(green) & not in_bin(blue)"),
+    ("desk_cleanup", "take the red one out of the bin", "not in_bin(red)"),
+    ("desk_cleanup", "remove blue from the box", "not in_bin(blue)"),
+    ("desk_cleanup", "empty the bin", "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "take everything out of the bin",
+     "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "put red in the bin and green too", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "put red in the bin but not green", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "red in the bin, not green", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "don't put red in the bin", "not in_bin(red)"),
+    ("desk_cleanup", "keep yellow out of the bin", "not in_bin(yellow)"),
+    ("desk_cleanup", "put red and green in the bin and blue out", "in_bin(red) & in_bin(green) & not in_bin(blue)"),
+    ("desk_cleanup", "red and blue in the bin, the others on the table",
+     "in_bin(red) & in_bin(blue) & not holding(green) & not in_bin(green) & not holding(yellow) & not in_bin(yellow)"),
+    ("desk_cleanup", "put red in the bin then take it out", "not in_bin(red)"),
+    ("desk_cleanup", "pick up red and put it in the bin", "in_bin(red)"),
+    ("desk_cleanup", "pick up blue", "holding(blue)"),
+    ("desk_cleanup", "grab the green cube", "holding(green)"),
+    ("desk_cleanup", "hold red", "holding(red)"),
+    ("desk_cleanup", "let go of red", "not holding(red)"),
+    ("three_blocks", "put red next to green", "close(red,green)"),
+    ("three_blocks", "move the red cube close to the blue one", "close(red,blue)"),
+    ("three_blocks", "put blue near red and green", "close(red,blue) & close(green,blue)"),
+    ("three_blocks", "keep blue away from red and green", "not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "put red near green but not near blue", "close(red,green) & not close(red,blue)"),
+    ("three_blocks", "make sure red is close to green and far from blue", "close(red,green) & not close(red,blue)"),
+    ("three_blocks", "red near green, green near blue, red away from blue",
+     "close(red,green) & close(green,blue) & not close(red,blue)"),
+    ("three_blocks", "group all blocks", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "gather the blocks together", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "separate the blocks", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "spread out the cubes", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "red and green together, blue apart from both",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "separate red from green", "not close(red,green)"),
+    ("three_blocks", "put red near green then put blue near green", "close(red,green) & close(green,blue)"),
+    ("two_blocks", "stack red on green", "above(red,green)"),
+    ("two_blocks", "put green on top of red", "above(green,red)"),
+    ("two_blocks", "place the red block onto the green one", "above(red,green)"),
+    ("two_blocks", "put red under green", "above(green,red)"),
+    ("two_blocks", "take red off green", "not above(red,green)"),
+    ("two_blocks", "unstack the blocks", "not above(red,green) & not above(green,red)"),
+    ("two_blocks", "put red on the table", "not holding(red) & not above(red,green)"),
+    ("two_blocks", "put red on green then put green on red", "above(green,red)"),
+    ("two_blocks", "place red next to green and keep it there", "close(red,green)"),
+    ("two_blocks", "stack red on green and keep them close", "above(red,green) & close(red,green)"),
+]
+
+REFUSALS = [
+    ("desk_cleanup", "put it in the bin", "'it' is ambiguous"),
+    ("desk_cleanup", "put purple in the bin", "unknown word 'purple'"),
+    ("desk_cleanup", "swap the blocks", "unknown word 'swap'"),
+    ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
+    ("three_blocks", "put red in the bin", "'in_bin' is not used in scene 'three_blocks'"),
+    ("three_blocks", "put yellow near red", "there is no yellow block here"),
+    ("desk_cleanup", "hold red and green", "holds one block at a time"),
+    ("desk_cleanup", "put red in the bin and take it out", "contradictory goal"),
+    ("desk_cleanup", "leave red where it is", "asks for no change"),
+    ("desk_cleanup", "put red in the", "cannot read the goal as a sentence"),
+    ("desk_cleanup", "in in in", "cannot read the goal as a sentence"),
+    ("desk_cleanup", "", "says nothing to do"),
+    ("three_blocks", "put red near", "cannot read the goal as a sentence"),
+    ("two_blocks", "stack red on green and blue", "there is no blue block here"),
+    ("three_blocks", "group red", "needs two or more blocks"),
+]
+
+
+def literals(text: str) -> set[Literal]:
+    return {parse_literal(part) for part in text.split(" & ")}
+
+
+@pytest.mark.parametrize("scene, sentence, expected", PHRASES)
+def test_phrasings_become_their_literals(scene: str, sentence: str, expected: str) -> None:
+    canonical = {LAYOUTS[scene].validate(lit) for lit in literals(expected)}
+    assert set(parse_english(sentence, scene)) == canonical
+
+
+@pytest.mark.parametrize("scene, sentence, reason", REFUSALS)
+def test_ill_posed_sentences_are_refused_with_the_reason(scene: str, sentence: str, reason: str) -> None:
+    with pytest.raises(LanguageError, match=reason):
+        parse_english(sentence, scene)
+
+
+def test_a_block_not_present_is_named() -> None:
+    with pytest.raises(LanguageError, match="no yellow block here: the blocks are red, green, blue"):
+        parse_english("put yellow in the bin", "desk_cleanup", ("red", "green", "blue"))
+
+
+def test_a_megabyte_goal_is_refused_at_once() -> None:
+    start = time.perf_counter()
+    with pytest.raises(GoalError, match="characters long"):
+        parse_goal("put red in the bin " + " " * 1_000_000 + "x", "desk_cleanup", SCENES["desk_cleanup"].objects, [])
+    assert time.perf_counter() - start < 0.1
+
+
+SAYINGS = {
+    ("in_bin", True): ["put {0} in the bin", "{0} in the box", "drop the {0} block into the basket"],
+    ("in_bin", False): ["take {0} out of the bin", "keep {0} out of the bin", "{0} not in the bin"],
+    ("close", True): ["put {0} next to {1}", "{0} near {1}", "move the {0} cube close to the {1} one"],
+    ("close", False): ["keep {0} away from {1}", "put {0} far from {1}", "{0} not near {1}"],
+    ("above", True): ["stack {0} on {1}", "put {0} on top of {1}", "put {1} under {0}"],
+    ("above", False): ["take {0} off {1}", "{0} not on {1}"],
+    ("holding", True): ["pick up {0}", "grab the {0} block", "hold {0}"],
+    ("holding", False): ["release {0}", "let go of {0}"],
+}
+
+
+@st.composite
+def goals_and_sentences(draw) -> tuple[str, set[Literal], str]:
+    scene = draw(st.sampled_from(list(SCENES)))
+    layout = LAYOUTS[scene]
+    atoms = draw(st.lists(st.sampled_from([a for a in layout.atoms if a[0] != "holding"]), min_size=1, max_size=3,
+                          unique=True))
+    goal = [Literal(name, args, draw(st.booleans())) for name, args in atoms]
+    held = draw(st.sampled_from([None, *layout.objects]))
+    if held is not None:  # last: "pick up red and put it ..." would make the picking a means
+        goal.append(Literal("holding", (held,), draw(st.booleans())))
+    clauses = [draw(st.sampled_from(SAYINGS[(lit.name, lit.value)])).format(*lit.args) for lit in goal]
+    joiner = draw(st.sampled_from([" and ", ", ", " & "]))
+    return scene, {layout.validate(lit) for lit in goal}, joiner.join(clauses)
+
+
+@settings(max_examples=300, deadline=None)
+@given(goals_and_sentences())
+def test_random_goals_said_in_english_parse_back_to_themselves(case: tuple[str, set[Literal], str]) -> None:
+    scene, goal, sentence = case
+    assert set(parse_english(sentence, scene)) == goal, sentence
+
+
+def test_the_planner_plans_a_sentence_and_says_what_it_became() -> None:
+    executive = Executive(SemanticPlanner("desk_cleanup"))
+    objects = ("red", "green")
+    executive.observe(Observation(objects, [Literal("in_bin", ("red",), False), Literal("in_bin", ("green",), False)], 0))
+    ok, message = executive.set_goal("please put the red block in the bin")
+    assert ok and "(the goal: in_bin(red))" in message
+    assert [str(s.subgoal) for s in executive.steps] == ["pick(red)", "put_in_bin(red)"]
+    refused, reason = executive.set_goal("put it in the bin")
+    assert not refused and "'it' is ambiguous" in reason and executive.goal_text == "in_bin(red)"
+
+
+def test_parse_goal_cli_contract(capsys) -> None:
+    code = parse_goal_main(["--scene", "desk_cleanup", "--blocks", "red,green", "--json",
+                            "put red in the bin", "put blue in the bin"])
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert code == 2
+    assert lines[0] == {"text": "put red in the bin", "literals": ["in_bin(red)"]}
+    assert lines[1]["text"] == "put blue in the bin" and "no blue block" in lines[1]["error"]
+    assert parse_goal_main(["--scene", "two_blocks", "--json", "stack red on green"]) == 0
+    assert json.loads(capsys.readouterr().out) == {"text": "stack red on green", "literals": ["above(red,green)"]}

@@ -11,8 +11,9 @@ from semgoal_planner.search import SEARCHES
 
 
 def plan_pddl_main(argv: list[str]) -> int:
-    """`./semgoal plan-pddl DOMAIN PROBLEM --search S [--heuristic H]`: exit 0 plan, 1 unsolvable, 2 bad PDDL."""
-    from semgoal_planner.pddl import PddlError
+    """`./semgoal plan-pddl DOMAIN PROBLEM --search S [--heuristic H]`: exit 0 plan, 1 unsolvable, 2 bad PDDL or
+    an unreadable file, 3 valid PDDL outside the supported STRIPS fragment (the message names the construct)."""
+    from semgoal_planner.pddl import PddlError, PddlUnsupportedError
     from semgoal_planner.planner import solve_pddl
 
     parser = argparse.ArgumentParser(prog="semgoal plan-pddl", description=plan_pddl_main.__doc__)
@@ -27,6 +28,9 @@ def plan_pddl_main(argv: list[str]) -> int:
     except OSError as error:
         print(f"semgoal plan-pddl: {error}", file=sys.stderr)
         return 2
+    except PddlUnsupportedError as error:
+        print(f"semgoal plan-pddl: unsupported PDDL: {error}", file=sys.stderr)
+        return 3
     except PddlError as error:
         print(f"semgoal plan-pddl: bad PDDL: {error}", file=sys.stderr)
         return 2

@@ -24,8 +24,16 @@ class PddlError(ValueError):
     """Malformed or unsupported PDDL; the message starts with ``line:column``."""
 
 
+class PddlUnsupportedError(PddlError):
+    """Valid PDDL outside the fragment this reader plans for (``or``, ``forall``, ``:functions``, ...)."""
+
+
 class _UnlocatedError(Exception):
     """An error found on the fast pass, which does not know where tokens are: read again, located."""
+
+    def __init__(self, message: str, unsupported: bool = False) -> None:
+        super().__init__(message)
+        self.unsupported = unsupported
 
 
 class Located(str):
@@ -40,12 +48,20 @@ class SExpr(list):
     where: str
 
 
-def _error(at: str | list, message: str) -> Exception:
+def _error(at: str | list, message: str, unsupported: bool = False) -> Exception:
     where = getattr(at, "where", None)
-    return _UnlocatedError(message) if where is None else PddlError(f"{where}: {message}")
+    if where is None:
+        return _UnlocatedError(message, unsupported)
+    return (PddlUnsupportedError if unsupported else PddlError)(f"{where}: {message}")
 
 
-_TOKEN = re.compile(r"[()]|[^\s();]+")
+def _unsupported(at: str | list, message: str) -> Exception:
+    return _error(at, message, unsupported=True)
+
+
+_TOKEN = re.compile(r"[()]|\?[^\s()?;]*|[^\s()?;]+")
+"""Parentheses, then names; a ``?`` always starts a new token, as other PDDL readers have it
+(zenotravel writes ``(aircraft?a)``)."""
 _COMMENT = re.compile(r";[^\n]*")
 
 
@@ -108,7 +124,7 @@ def _read(text: str, reader: Callable[[list], Parsed]) -> Parsed:
         try:
             return reader(parse_sexpr(text, located=True))
         except _UnlocatedError as error:  # an error site without a token: report it unlocated
-            raise PddlError(f"?:?: {error}") from None
+            raise (PddlUnsupportedError if error.unsupported else PddlError)(f"?:?: {error}") from None
 
 
 # -- the model -------------------------------------------------------------------------------------------
@@ -185,7 +201,7 @@ def _typed_list(items: list, where: list, variables: bool) -> list[tuple[str, st
             if i + 1 >= len(items) or not pending:
                 raise _error(token, "'-' must sit between names and their type")
             if isinstance(items[i + 1], list):
-                raise _error(items[i + 1], "'either' types are not supported")
+                raise _unsupported(items[i + 1], "'either' types are not supported")
             kind = items[i + 1]
             result += [(name, kind, tok) for name, tok in pending]
             pending, i = [], i + 2
@@ -248,7 +264,7 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
             raise _error(expr, "negative preconditions need :negative-preconditions in :requirements")
         return [Condition(_atom(inner, domain, variables, objects), positive=False)]
     if head in ("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"):
-        raise _error(expr, f"{head!r} is not STRIPS: only conjunctions of literals are supported")
+        raise _unsupported(expr, f"{head!r} is not STRIPS: only conjunctions of literals are supported")
     return [Condition(_atom(expr, domain, variables, objects))]
 
 
@@ -281,7 +297,7 @@ def _domain(root: list) -> Domain:
             domain.requirements = {_name(r, "a requirement") for r in body}
             unsupported = domain.requirements - SUPPORTED_REQUIREMENTS
             if unsupported:
-                raise _error(section, f"unsupported requirement(s) {', '.join(sorted(unsupported))}; "
+                raise _unsupported(section, f"unsupported requirement(s) {', '.join(sorted(unsupported))}; "
                                       f"supported: {', '.join(sorted(SUPPORTED_REQUIREMENTS))}")
         elif key == ":types":
             for child, parent, _ in _typed_list(body, section, variables=False):
@@ -303,7 +319,7 @@ def _domain(root: list) -> Domain:
         elif key == ":action":
             domain.actions.append(_action(section, domain))
         else:
-            raise _error(section, f"unsupported domain section {key or '()'!r}")
+            raise (_unsupported if key else _error)(section, f"unsupported domain section {key or '()'!r}")
     return domain
 
 
@@ -319,7 +335,7 @@ def _action(section: list, domain: Domain) -> Action:
         raise _error(items[-1], f"action {name}: a keyword without a value")
     unknown = set(fields) - {":parameters", ":precondition", ":effect"}
     if unknown:
-        raise _error(section, f"action {name}: unsupported field(s) {', '.join(sorted(unknown))}")
+        raise _unsupported(section, f"action {name}: unsupported field(s) {', '.join(sorted(unknown))}")
     params = _typed_list(list(fields.get(":parameters", [])), section, variables=True)
     for _, kind, token in params:
         _check_type(domain, kind, token)
@@ -354,7 +370,10 @@ def _problem(root: list, domain: Domain) -> Problem:
         elif key == ":init":
             for fact in section[1:]:
                 fact = _sub(fact, "initial fact")
-                if fact and _name(fact[0], "") in ("not", "="):
+                head = _name(fact[0], "") if fact else ""
+                if head == "=" and any(isinstance(arg, list) for arg in fact[1:]):
+                    raise _unsupported(fact, "numeric fluents ((= (f) n) in :init) are not supported")
+                if head in ("not", "="):
                     raise _error(fact, "the initial state lists true atoms only")
                 problem.init.add(_atom(fact, domain, None, problem.objects))
         elif key == ":goal":
@@ -362,7 +381,7 @@ def _problem(root: list, domain: Domain) -> Problem:
         elif key == ":requirements":
             continue
         else:
-            raise _error(section, f"unsupported problem section {key or '()'!r}")
+            raise (_unsupported if key else _error)(section, f"unsupported problem section {key or '()'!r}")
     if goal_section is None or len(goal_section) != 2:
         raise _error(goal_section or root, "the problem needs one (:goal EXPRESSION)")
     problem.goal = tuple(_literals(_sub(goal_section[1], "goal"), domain, None, problem.objects, "goal"))

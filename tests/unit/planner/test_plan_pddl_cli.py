@@ -36,3 +36,42 @@ def test_bad_pddl_and_missing_files_exit_2_with_a_message(tmp_path: Path, capsys
     assert "bad PDDL: 2:3: '(' is never closed" in capsys.readouterr().err
     assert plan_pddl_main([KEYS, str(tmp_path / "absent.pddl")]) == 2
     assert "absent.pddl" in capsys.readouterr().err
+
+
+TOKENS_DOMAIN = """(define (domain Hops) (:requirements :strips)
+  (:predicates (at ?x) (link ?x ?y) (PLANE?a))   ; '?' starts a token; names in any case
+  (:action hop :parameters (?from ?to) :precondition (and (at?from) (link ?from?to))
+   :effect (and (at ?to) (not (at ?from)))))"""
+TOKENS_PROBLEM = """(define (problem p1) (:domain HOPS) (:objects a b c)
+  (:init (AT a) (link a b) (link b c)) (:goal (at c)))"""
+
+
+def test_a_question_mark_starts_a_token_and_names_ignore_case(tmp_path: Path, capsys) -> None:
+    """zenotravel writes ``(aircraft?a)``: read as ``aircraft ?a``, as other PDDL readers do (issue 56)."""
+    (tmp_path / "d.pddl").write_text(TOKENS_DOMAIN)
+    (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
+    assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 0
+    assert capsys.readouterr().out.splitlines() == ["(hop a b)", "(hop b c)"]
+
+
+@pytest.mark.parametrize("construct, snippet", [
+    ("or", "(:action hop :parameters (?from ?to) :precondition (or (at ?from) (link ?from ?to))"),
+    ("requirement", "(:requirements :strips :conditional-effects)"),
+    ("functions", "(:functions (total-cost))"),
+])
+def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path, capsys, construct: str,
+                                                                 snippet: str) -> None:
+    domain = TOKENS_DOMAIN
+    if construct == "or":
+        domain = domain.replace("(:action hop :parameters (?from ?to) :precondition (and (at?from) (link ?from?to))",
+                                snippet)
+    elif construct == "requirement":
+        domain = domain.replace("(:requirements :strips)", snippet)
+    else:
+        domain = domain.replace("(:predicates", snippet + " (:predicates")
+    (tmp_path / "d.pddl").write_text(domain)
+    (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
+    assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 3
+    err = capsys.readouterr().err
+    assert "unsupported PDDL" in err and {"or": "'or'", "requirement": ":conditional-effects",
+                                          "functions": ":functions"}[construct] in err

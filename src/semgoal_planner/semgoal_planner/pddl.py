@@ -18,6 +18,8 @@ from typing import NamedTuple, TypeVar
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
 ROOT_TYPE = "object"
+EITHER = "either("
+"""Prefix of a union type's name: ``(either a b)`` is read as the type ``either(a,b)``."""
 
 
 class PddlError(ValueError):
@@ -168,6 +170,11 @@ class Domain:
     actions: list[Action] = field(default_factory=list)
 
     def is_subtype(self, sub: str, sup: str) -> bool:
+        """Whether every object of type ``sub`` is one of type ``sup`` (``either`` types: unions)."""
+        if sub.startswith(EITHER):
+            return all(self.is_subtype(member, sup) for member in either_members(sub))
+        if sup.startswith(EITHER):
+            return any(self.is_subtype(sub, member) for member in either_members(sup))
         while sub:
             if sub == sup:
                 return True
@@ -200,9 +207,7 @@ def _typed_list(items: list, where: list, variables: bool) -> list[tuple[str, st
         if text == "-":
             if i + 1 >= len(items) or not pending:
                 raise _error(token, "'-' must sit between names and their type")
-            if isinstance(items[i + 1], list):
-                raise _unsupported(items[i + 1], "'either' types are not supported")
-            kind = items[i + 1]
+            kind = _either(items[i + 1]) if isinstance(items[i + 1], list) else items[i + 1]
             result += [(name, kind, tok) for name, tok in pending]
             pending, i = [], i + 2
             continue
@@ -213,9 +218,25 @@ def _typed_list(items: list, where: list, variables: bool) -> list[tuple[str, st
     return result + [(name, ROOT_TYPE, tok) for name, tok in pending]
 
 
+def _either(expr: list) -> str:
+    """``(either a b)`` -> the union type's name, ``either(a,b)``."""
+    if len(expr) < 2 or _name(expr[0], "'either'") != "either":
+        raise _error(expr, "a type is a name or (either TYPE ...)")
+    return f"{EITHER}{','.join(sorted(_name(member, 'a type name') for member in expr[1:]))})"
+
+
+def either_members(kind: str) -> list[str]:
+    return kind[len(EITHER):-1].split(",")
+
+
 def _check_type(domain: Domain, kind: str, token: str) -> None:
-    if kind not in domain.types:
-        raise _error(token, f"unknown type {kind!r}")
+    """Refuse an unknown type; an ``either`` of known types becomes a type of its own (its objects: those of
+    any member), so grounding lists its objects like any other type's."""
+    members = either_members(kind) if kind.startswith(EITHER) else [kind]
+    for member in members:
+        if member not in domain.types:
+            raise _error(token, f"unknown type {member!r}")
+    domain.types.setdefault(kind, ROOT_TYPE)
 
 
 def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str]) -> Atom:
@@ -300,7 +321,9 @@ def _domain(root: list) -> Domain:
                 raise _unsupported(section, f"unsupported requirement(s) {', '.join(sorted(unsupported))}; "
                                       f"supported: {', '.join(sorted(SUPPORTED_REQUIREMENTS))}")
         elif key == ":types":
-            for child, parent, _ in _typed_list(body, section, variables=False):
+            for child, parent, token in _typed_list(body, section, variables=False):
+                if parent.startswith(EITHER):
+                    raise _unsupported(token, f"type {child!r}: an (either ...) supertype is not supported")
                 domain.types[child] = parent
                 domain.types.setdefault(parent, ROOT_TYPE)
             domain.types[ROOT_TYPE] = ""

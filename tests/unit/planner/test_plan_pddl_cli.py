@@ -75,3 +75,30 @@ def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path,
     err = capsys.readouterr().err
     assert "unsupported PDDL" in err and {"or": "'or'", "requirement": ":conditional-effects",
                                           "functions": ":functions"}[construct] in err
+
+
+EITHER_DOMAIN = """(define (domain depotish) (:requirements :typing)
+  (:types crate hoist place - object)
+  (:predicates (at ?x - (either crate hoist) ?p - place) (free ?p - place))
+  (:action shift :parameters (?x - (either crate hoist) ?from ?to - place)
+   :precondition (and (at ?x ?from) (free ?to)) :effect (and (at ?x ?to) (free ?from) (not (at ?x ?from)) (not (free ?to)))))"""
+EITHER_PROBLEM = """(define (problem p) (:domain depotish) (:objects c - crate h - hoist a b d - place)
+  (:init (at c a) (at h b) (free d)) (:goal (and (at c d) (at h a))))"""
+
+
+def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) -> None:
+    """storage's ``(either ...)`` parameters (issue 56): planned, and the plan checks out step by step."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parents[3] / "bench"))
+    from validate_plan import invalid_step, read_plan
+
+    from semgoal_planner.pddl import parse_domain, parse_problem
+
+    (tmp_path / "d.pddl").write_text(EITHER_DOMAIN)
+    (tmp_path / "p.pddl").write_text(EITHER_PROBLEM)
+    assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 0
+    plan = read_plan(capsys.readouterr().out)
+    domain = parse_domain(EITHER_DOMAIN)
+    assert len(plan) == 2 and invalid_step(domain, parse_problem(EITHER_PROBLEM, domain), plan) is None
+    assert invalid_step(domain, parse_problem(EITHER_PROBLEM, domain), [("shift", "a", "b", "d")]) is not None

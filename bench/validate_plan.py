@@ -1,0 +1,71 @@
+"""Check a plan against a PDDL task by executing it on the lifted actions, without the planner's grounding:
+each step's action exists, its arguments are objects of the parameters' types, its precondition holds
+(equality included), and the goal holds at the end. A second opinion on ``plan-pddl``'s plans where VAL
+is not at hand.
+
+    source tools/env.sh && python bench/validate_plan.py DOMAIN PROBLEM PLAN
+Exit 0 valid, 1 invalid (the reason on stderr).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain, parse_problem
+
+
+def _holds(condition: Condition, state: set[Atom]) -> bool:
+    atom = condition.atom
+    value = atom.args[0] == atom.args[1] if atom.predicate == "=" else atom in state
+    return value == condition.positive
+
+
+def _bind(atom: Atom, binding: dict[str, str]) -> Atom:
+    return Atom(atom.predicate, tuple(binding.get(a, a) for a in atom.args))
+
+
+def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) -> str | None:
+    """None for a valid plan, else why not (naming the step)."""
+    actions = {action.name: action for action in domain.actions}
+    objects = {**domain.constants, **problem.objects}
+    state = set(problem.init)
+    for number, (name, *args) in enumerate(plan, 1):
+        action = actions.get(name)
+        if action is None or len(args) != len(action.parameters):
+            return f"step {number} ({name} {' '.join(args)}): no such action with {len(args)} arguments"
+        binding = dict(zip((variable for variable, _ in action.parameters), args, strict=True))
+        for arg, (_, kind) in zip(args, action.parameters, strict=True):
+            if arg not in objects or not domain.is_subtype(objects[arg], kind):
+                return f"step {number}: {arg!r} is not an object of type {kind}"
+        unmet = [c for c in action.precondition if not _holds(Condition(_bind(c.atom, binding), c.positive), state)]
+        if unmet:
+            return f"step {number} ({name} {' '.join(args)}): precondition {unmet[0]} does not hold"
+        state = (state - {_bind(a, binding) for a in action.delete}) | {_bind(a, binding) for a in action.add}
+    unmet = [c for c in problem.goal if not _holds(c, state)]
+    return f"the goal {unmet[0]} does not hold at the end" if unmet else None
+
+
+def read_plan(text: str) -> list[tuple[str, ...]]:
+    """``(move a b)`` lines (comments after ';' ignored) -> name-and-arguments tuples, lower case."""
+    steps = []
+    for line in text.lower().splitlines():
+        line = line.split(";", 1)[0].strip()
+        if line:
+            steps.append(tuple(line.strip("()").split()))
+    return steps
+
+
+def main(argv: list[str]) -> int:
+    domain_path, problem_path, plan_path = map(Path, argv)
+    domain = parse_domain(domain_path.read_text())
+    problem = parse_problem(problem_path.read_text(), domain)
+    reason = invalid_step(domain, problem, read_plan(plan_path.read_text()))
+    if reason:
+        print(f"invalid: {reason}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -135,7 +135,12 @@ class Executive:
     def observe(self, observation: Observation) -> None:
         changed = (self.observation is None or observation.literals != self.observation.literals
                    or observation.fallen != self.observation.fallen or observation.moving != self.observation.moving)
+        reset = self.observation is not None and observation.objects != self.observation.objects
         self.observation = observation
+        if reset and self.status in UNDER_WAY:  # a world reset to other blocks: the plan names blocks gone
+            self._finish("failed", f"the world now has {', '.join(observation.objects)}: the goal {self.goal_text} "
+                                   "was for another world; send it again")
+            return
         confirming = self.confirmation.pending or self.goal_settling.pending
         if (changed or confirming) and self.status in UNDER_WAY:
             self._advance()

@@ -67,7 +67,8 @@ class SubgoalController:
         observation = np.asarray(observation, dtype=np.float32)
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
-        noise = np.random.default_rng(noise_key).standard_normal(4) if self.mode == "sample" else None
+        # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
+        noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 

@@ -16,6 +16,9 @@ from semgoal_sim.tasks import TASKS, get_task
 from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES
 from semgoal_sim.world import FetchWorld, Snapshot
 
+MAX_SEED = 2**63
+"""Task seeds lie in [0, 2**63): what ``WorldState.seed`` (int64) carries."""
+
 
 @dataclass(frozen=True)
 class CommandCheck:
@@ -68,7 +71,7 @@ class SimCore:
             return False, f"task {task.name} runs in scene {task.scene}, this sim is {self.scene} (tasks here: {scene_tasks})"
         if seed < 0:
             seed = self._next_seed
-        self._next_seed = seed + 1
+        self._next_seed = (seed + 1) % MAX_SEED  # WorldState.seed is an int64: the stream wraps, never overflows
         if task.n_blocks not in self._worlds:
             self._worlds[task.n_blocks] = FetchWorld(self.scene, task.n_blocks)
         self._blocks = task.n_blocks

@@ -214,3 +214,15 @@ def test_before_any_state_a_goal_is_checked_against_the_scene_then_refused_for_w
         ok, message = ex.set_goal(text)
         assert not ok and words in message, (text, message)
     assert ex.status == "empty" and ex.steps == []
+
+
+def test_a_world_reset_to_other_blocks_fails_the_goal_instead_of_crashing() -> None:
+    """Issue 57: ResetWorld to DC-2 while a DC-4 goal ran raised KeyError('blue') in the consistency check."""
+    ex = Executive(SemanticPlanner("desk_cleanup"))
+    four = ("red", "green", "blue", "yellow")
+    ex.observe(Observation(four, [Literal("in_bin", (b,), False) for b in four], 0))
+    assert ex.set_goal("DC-4")[0] and ex.status == "executing"
+    two = ("red", "green")
+    ex.tick(1)
+    ex.observe(Observation(two, [Literal("in_bin", (b,), False) for b in two], 1))
+    assert ex.status == "failed" and "now has red, green" in ex.message

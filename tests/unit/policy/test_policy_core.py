@@ -135,6 +135,7 @@ def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
     assert np.isfinite(action).all() and np.abs(action).max() <= 1.0 and not np.array_equal(action, HOLD)
     assert np.array_equal(controller.act(np.full_like(obs, np.nan)), HOLD)
     assert np.array_equal(controller.act(obs[:5]), HOLD)
+    assert np.isfinite(controller.act(obs, (-5, 2**63 - 1))).all()  # a malformed seed (issue 57) keys noise too
     with pytest.raises(VocabularyError):
         controller.set_subgoal([Literal("in_bin", ("red",))])
 

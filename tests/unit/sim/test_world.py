@@ -135,3 +135,10 @@ def test_a_block_flung_over_the_bin_stays_on_the_desk(speed: float) -> None:
         world.step(np.zeros(4))
     assert world.fallen_blocks() == []
     assert world.semantic_vector()[world.layout.index(Literal("in_bin", ("red",)))] == 1.0
+
+
+def test_the_seed_stream_wraps_within_int64() -> None:
+    """Issue 57: a reset to seed 2**63 - 1, then to the next seed (-1), overflowed WorldState.seed."""
+    core = SimCore("two_blocks", "MC-2", seed=0)
+    assert core.reset("MC-2", 2**63 - 1)[0]
+    assert core.reset("MC-2", -1) == (True, "reset to MC-2 with seed 0")

@@ -1,4 +1,4 @@
-"""Block speeds behind ``semgoal_sim.settling.REST_SPEED``: resting blocks, and a block let go 2, 5 and 12 cm
+"""Block speeds behind ``semgoal_core.settling.REST_SPEED``: resting blocks, and a block let go 2, 5 and 12 cm
 over the table (the last control step at which it still moves at REST_SPEED or faster), at four spots.
 
     source tools/env.sh && python bench/rest_speeds.py
@@ -6,9 +6,9 @@ over the table (the last control step at which it still moves at REST_SPEED or f
 
 import numpy as np
 
-from semgoal_sim.settling import REST_SPEED
-from semgoal_sim.tasks import TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE
+from semgoal_core.settling import REST_SPEED
+from semgoal_core.tasks import TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE
 from semgoal_sim.world import FetchWorld
 
 REST_Z = TABLE_TOP + BLOCK_HALF_SIZE

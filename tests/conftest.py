@@ -111,8 +111,8 @@ class GraphProbe:
 
     def send_goal(self, action, goal, feedback_callback=None):
         """The goal's handle once the server answers (sent again if no answer comes, as the product's
-        clients do: :func:`semgoal_sim.ros_interfaces.send_goal`); fails the test without one."""
-        from semgoal_sim.ros_interfaces import SEND_ATTEMPTS, send_goal
+        clients do: :func:`semgoal_ros.interfaces.send_goal`); fails the test without one."""
+        from semgoal_ros.interfaces import SEND_ATTEMPTS, send_goal
 
         handle = send_goal(action, goal, self.poll, feedback_callback)
         if handle is None:
@@ -146,13 +146,13 @@ def desk_with_a_fallen_block():
     """A DC-3 world whose green block was dropped past the desk's edge and has come to rest below it."""
     import numpy as np
 
-    from semgoal_sim.scene import TABLE_HEIGHT
-    from semgoal_sim.tasks import TASKS
+    from semgoal_core.geometry import TABLE_TOP
+    from semgoal_core.tasks import TASKS
     from semgoal_sim.world import FetchWorld
 
     world = FetchWorld("desk_cleanup", 3)
     world.reset(TASKS["DC-3"].initial_state(0)[0])
-    world.set_block_pose("green", np.array([0.9, 0.3, TABLE_HEIGHT + 0.1]))
+    world.set_block_pose("green", np.array([0.9, 0.3, TABLE_TOP + 0.1]))
     for _ in range(25):
         world.step(np.zeros(4))
     return world

@@ -11,7 +11,7 @@ from conftest import NodeProcesses
 from semgoal_bringup.episodes import make_agent
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
-from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 CASES = [("Swap-2", 2), ("MC-3", 22), ("DC-4", 3_000_004)]
 """One start per scene where the shipped actors re-plan in process (Swap-2: once; MC-3: three times; DC-4:

@@ -4,12 +4,12 @@ operator (goals, plan edits, the ExecuteGoal action) and checks the plan and sub
 from rclpy.action import ActionClient
 
 from conftest import GraphProbe, NodeProcesses
+from semgoal_core.settling import SETTLE_STEPS
+from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
-from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.settling import SETTLE_STEPS
-from semgoal_sim.vocabulary import LAYOUTS
+from semgoal_ros import interfaces as topics
 
 BLOCKS = ("red", "green", "blue")
 

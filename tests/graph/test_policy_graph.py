@@ -8,7 +8,7 @@ import numpy as np
 from conftest import GraphProbe, NodeProcesses
 from semgoal_msgs.msg import Predicate, SemanticState, SubGoal, WorldState
 from semgoal_msgs.srv import ResetWorld
-from semgoal_sim import ros_interfaces as topics
+from semgoal_ros import interfaces as topics
 
 STEP_BUDGET = 50
 

@@ -6,8 +6,8 @@ is solved within its step budget."""
 from conftest import NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_bringup.graph_client import GraphClient
-from semgoal_sim.layout import CONTROL_DT
-from semgoal_sim.tasks import TASK_STEP_BUDGET
+from semgoal_core.layout import CONTROL_DT
+from semgoal_core.tasks import TASK_STEP_BUDGET
 
 TASK, SEED = "MC-2", 3_000_000
 

@@ -16,7 +16,7 @@ import time
 from itertools import pairwise
 
 from semgoal_bringup.episodes import make_agent
-from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 REALTIME_HZ = 25.0
 

@@ -14,7 +14,7 @@ import os
 import sys
 from pathlib import Path
 
-from semgoal_sim.tasks import TASK_STEP_BUDGET
+from semgoal_core.tasks import TASK_STEP_BUDGET
 
 DEFAULT_TASK = "DC-3"
 DEFAULT_SEED = 6
@@ -36,7 +36,7 @@ def main(argv: list[str]) -> int:
     if args.max_steps < 0:
         parser.error("--max-steps must be 0 (no limit) or a number of control steps")
     from semgoal_bringup.graph import fresh_domain, start_graph, stop_graph
-    from semgoal_sim.tasks import get_task
+    from semgoal_core.tasks import get_task
 
     fresh_domain()  # per-run domain: parallel demos never meet
 
@@ -59,8 +59,8 @@ class Demo:
         from sensor_msgs.msg import JointState
 
         from semgoal_bringup.graph_client import GraphClient
+        from semgoal_core.tasks import get_task
         from semgoal_msgs.msg import SubGoal, WorldState
-        from semgoal_sim.tasks import get_task
 
         self.task, self.seed = get_task(task_name), seed
         self.client = GraphClient("semgoal_demo")
@@ -92,7 +92,7 @@ class Demo:
         """The last episode's frames: each even step's world state, the arm's joints at that step and the
         sub-goal the policy followed there (:func:`followed_decision`), or the planner's status."""
         from semgoal_bringup.episode_gif import Frame
-        from semgoal_policy.lockstep import followed_decision
+        from semgoal_core.lockstep import followed_decision
 
         episode = self.worlds[-1].episode if self.worlds else None
         frames, seen = [], set()

@@ -12,7 +12,7 @@ from rclpy.node import Node
 
 from semgoal_msgs import msg, srv
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_sim import ros_interfaces as topics
+from semgoal_ros import interfaces as topics
 
 MESSAGE_TYPES = [msg.Predicate, msg.SemanticState, msg.BlockState, msg.WorldState, msg.ArmCommand,
                  msg.SubGoal, msg.Plan, msg.GoalRequest]

@@ -4,11 +4,11 @@ The hierarchical episode composes the same cores the nodes wrap (no ROS): the pl
 :class:`Executive`, the policy node's :class:`SubgoalController` and the sim node's :class:`FetchWorld`,
 stepped as the graph steps them in lockstep: the executive sees every new semantic state and every
 control step, and the policy follows the sub-goal decided on the step before (one step of decision
-latency, :func:`~semgoal_policy.lockstep.lockstep_subgoal`). So an in-process episode and
+latency, :func:`~semgoal_core.lockstep.lockstep_subgoal`). So an in-process episode and
 one through the graph (``./semgoal eval --via-ros``) follow the same rules.
 
 Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
-test: the task's goal literals hold with the world at rest (:mod:`semgoal_sim.settling`) over
+test: the task's goal literals hold with the world at rest (:mod:`semgoal_core.settling`) over
 ``SETTLE_STEPS`` control steps. Each outcome also records the first step at which the literals held at
 all, the rule before issue 49, so the two can be compared on the same episodes.
 """
@@ -20,14 +20,14 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_core.lockstep import lockstep_subgoal
+from semgoal_core.settling import Settling, moving_blocks
+from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import SubgoalController
-from semgoal_policy.lockstep import lockstep_subgoal
-from semgoal_sim.settling import Settling, moving_blocks
-from semgoal_sim.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_sim.world import FetchWorld
 
 

@@ -5,7 +5,7 @@
 
 Every agent meets the same starts (episode ``i`` of a task uses the task sampler's seed ``--seed + i``),
 the same step budget and the same success test, the executive's: the task's goal literals hold with the
-world at rest over ``SETTLE_STEPS`` control steps (:mod:`semgoal_sim.settling`). In-process rows also
+world at rest over ``SETTLE_STEPS`` control steps (:mod:`semgoal_core.settling`). In-process rows also
 report the rule before issue 49 (the literals held at some step) on the same episodes, and the median
 control steps to success at rest. ``--seeds N`` averages
 up to N training seeds of each agent where exported actors exist (the shipped one, plus
@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from semgoal_sim.settling import REST_SPEED, SETTLE_STEPS
-from semgoal_sim.tasks import TASK_STEP_BUDGET, TASKS, get_task
+from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
+from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
 
 if TYPE_CHECKING:
     from semgoal_bringup.episodes import Outcome

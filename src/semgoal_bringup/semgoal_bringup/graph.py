@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from semgoal_sim.tasks import get_task
+from semgoal_core.tasks import get_task
 
 NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
          ("semgoal_planner", "planner_node"), ("semgoal_policy", "policy_node"))

@@ -45,7 +45,7 @@ class GraphClient:
         from semgoal_msgs.action import ExecuteGoal
         from semgoal_msgs.msg import SemanticState, SubGoal, WorldState
         from semgoal_msgs.srv import EditPlan, GetPlan, MoveBlock, ResetWorld
-        from semgoal_sim import ros_interfaces as topics
+        from semgoal_ros import interfaces as topics
 
         if not rclpy.ok():
             rclpy.init(domain_id=int(os.environ["ROS_DOMAIN_ID"]))

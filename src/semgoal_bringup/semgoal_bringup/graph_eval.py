@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from semgoal_bringup.episodes import Outcome
-from semgoal_sim.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 
 def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "") -> Iterator[Outcome]:

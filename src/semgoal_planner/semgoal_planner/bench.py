@@ -83,10 +83,10 @@ def _median_ms(seconds: list[float]) -> float:
 
 def project_tasks(repeats: int) -> dict[str, dict]:
     """Each task planned from a typical start state with breadth-first search, in this process."""
+    from semgoal_core.tasks import TASKS
+    from semgoal_core.vocabulary import Literal
     from semgoal_planner.goals import parse_goal
     from semgoal_planner.semantic import SemanticPlanner
-    from semgoal_sim.tasks import TASKS
-    from semgoal_sim.vocabulary import Literal
 
     starts = {"MA-2": [Literal("close", ("red", "green"))],
               "Swap-2": [Literal("close", ("red", "green")), Literal("above", ("green", "red"))],

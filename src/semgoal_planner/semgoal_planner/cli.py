@@ -54,8 +54,8 @@ def parse_goal_main(argv: list[str]) -> int:
     "error": "..."}``. Exit 0 when every TEXT parsed, 2 otherwise."""
     import json
 
+    from semgoal_core.vocabulary import SCENES
     from semgoal_planner.english import LanguageError, parse_english
-    from semgoal_sim.vocabulary import SCENES
 
     parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.splitlines()[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))

@@ -33,7 +33,7 @@ from dataclasses import dataclass, replace
 
 import lark
 
-from semgoal_sim.vocabulary import BLOCK_COLOURS, LAYOUTS, Literal, VocabularyError
+from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, Literal, VocabularyError
 
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""

@@ -1,7 +1,7 @@
 """The plan under execution: operator edits, the execution monitor and re-planning. No ROS here.
 
 ``observe`` takes every new semantic state, ``tick`` every control step. The goal, and the active step,
-are achieved when their literals hold with the world at rest (:mod:`semgoal_sim.settling`) over
+are achieved when their literals hold with the world at rest (:mod:`semgoal_core.settling`) over
 ``settle_steps`` control steps in a row. While the goal's literals hold but the world has not settled
 yet, the plan is ``settling``: no step is active and the policy holds the arm still. A robot step that
 stalls for ``stall_steps`` control steps, or a plan that the observed state contradicts for
@@ -17,10 +17,10 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field
 
+from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
-from semgoal_sim.settling import SETTLE_STEPS, Settling, at_rest
-from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
 
 STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
 UNDER_WAY = ("executing", "paused", "awaiting_approval")
@@ -46,14 +46,14 @@ class Observation:
     fallen: tuple[str, ...] = ()
     """Blocks that fell off the table: no robot step can move them again."""
     moving: tuple[str, ...] = ()
-    """Blocks not at rest (:func:`semgoal_sim.settling.moving_blocks`)."""
+    """Blocks not at rest (:func:`semgoal_core.settling.moving_blocks`)."""
 
     def holds(self, literals: list[Literal]) -> bool:
         values = {(lit.name, lit.args): lit.value for lit in self.literals}
         return all(values.get((lit.name, lit.args), False) == lit.value for lit in literals)
 
     def settled(self, literals: list[Literal]) -> bool:
-        """The literals hold and the world is at rest for them (:func:`semgoal_sim.settling.at_rest`)."""
+        """The literals hold and the world is at rest for them (:func:`semgoal_core.settling.at_rest`)."""
         held = [lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value]
         return self.holds(literals) and at_rest(literals, self.moving, held)
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import re
 
+from semgoal_core.tasks import TASKS, Task, get_task, goal_in_state
+from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
-from semgoal_sim.tasks import TASKS, Task, get_task, goal_in_state
-from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 
 _SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
 

@@ -37,7 +37,7 @@ class OperatorClient:
     def call(self, service_type, name: str, request, timeout: float = WAIT_S):
         """Call a service, sending the request again while no answer comes (the request must be safe to
         repeat: a read, or an edit with a request id)."""
-        from semgoal_sim import ros_interfaces as topics
+        from semgoal_ros import interfaces as topics
 
         client = self.node.create_client(service_type, name)
         if not client.wait_for_service(timeout_sec=timeout):
@@ -72,7 +72,7 @@ def goal_main(argv: list[str]) -> int:
         parser.error("--max-steps needs --wait: the budget travels with the ExecuteGoal action, not the goal topic")
     from semgoal_msgs.msg import GoalRequest
     from semgoal_planner.goals import is_task_name, looks_like_literals
-    from semgoal_sim import ros_interfaces as topics
+    from semgoal_ros import interfaces as topics
 
     if is_task_name(args.goal):
         request = GoalRequest(task=args.goal.strip())
@@ -103,7 +103,7 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
     from rclpy.action import ActionClient
 
     from semgoal_msgs.action import ExecuteGoal
-    from semgoal_sim import ros_interfaces as topics
+    from semgoal_ros import interfaces as topics
 
     action = ActionClient(client.node, ExecuteGoal, topics.EXECUTE_GOAL)
     if not action.wait_for_server(timeout_sec=WAIT_S):
@@ -155,7 +155,7 @@ def plan_main(argv: list[str]) -> int:
     if args.op != "show" and len(args.args) != len(fields):
         parser.error(f"{args.op} takes {len(fields)} argument(s): {' '.join(f.upper() for f in fields) or '(none)'}")
     from semgoal_msgs.srv import EditPlan, GetPlan
-    from semgoal_sim import ros_interfaces as topics
+    from semgoal_ros import interfaces as topics
 
     client = OperatorClient()
     try:

@@ -14,6 +14,8 @@ from rclpy.action.server import ServerGoalHandle
 from rclpy.node import Node
 from rclpy.task import Future
 
+from semgoal_core.layout import CONTROL_DT
+from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
@@ -21,9 +23,7 @@ from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
 from semgoal_planner.operator import format_plan
 from semgoal_planner.semantic import SemanticPlanner
-from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.layout import CONTROL_DT
-from semgoal_sim.vocabulary import SCENES, Literal
+from semgoal_ros import interfaces as topics
 
 FINAL = ("succeeded", "failed")
 

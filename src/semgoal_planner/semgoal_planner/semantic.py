@@ -3,7 +3,7 @@
 A scene's PDDL domain (``domains/<scene>.pddl``) has one action per sub-goal type; put near / put away
 with two references are the ``*_both`` actions. Problems are built from the true literals of a semantic
 state (close written in both orders; ``hand-empty`` when nothing is held) and goal literals.
-Plan2Goals maps every planned action to a :class:`~semgoal_sim.vocabulary.SubGoal`, whose literals
+Plan2Goals maps every planned action to a :class:`~semgoal_core.vocabulary.SubGoal`, whose literals
 are what the policy is conditioned on.
 """
 
@@ -13,10 +13,10 @@ import functools
 from dataclasses import dataclass
 from pathlib import Path
 
+from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_planner.grounding import Operator, Task, ground
 from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
 from semgoal_planner.planner import solve_task
-from semgoal_sim.vocabulary import Literal, SubGoal
 
 DOMAIN_DIR = Path(__file__).resolve().parent / "domains"
 HAND_EMPTY = "hand-empty"

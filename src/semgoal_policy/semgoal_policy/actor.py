@@ -3,7 +3,7 @@
 An exported actor is a directory with ``actor.pt`` (a plain ``state_dict`` plus the observation
 normaliser; no SB3, no pickled classes) and ``actor.json`` (the observation/goal layout it was trained
 on, with any derived features appended to the observation, training steps, wall time, command,
-evaluation). Loading compares the stored layout with :func:`semgoal_sim.layout.describe` for the current
+evaluation). Loading compares the stored layout with :func:`semgoal_core.layout.describe` for the current
 code and refuses a mismatch.
 """
 
@@ -16,7 +16,7 @@ import numpy as np
 import torch
 from torch import nn
 
-from semgoal_sim import features, layout
+from semgoal_core import features, layout
 
 HIDDEN = (256, 256)
 LOG_STD_MIN, LOG_STD_MAX = -5.0, 2.0
@@ -102,7 +102,7 @@ class Actor(nn.Module):
 def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "semantic",
            derived: tuple[str, ...] = ()) -> None:
     """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``; ``derived``: the
-    features (``semgoal_sim.features``) appended to the observation it was trained on."""
+    features (``semgoal_core.features``) appended to the observation it was trained on."""
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
     meta = {"layout": layout.describe(scene, goal, features.widths(derived)), "hidden": list(HIDDEN),

@@ -13,12 +13,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from semgoal_core import layout
+from semgoal_core.settling import MotionReward
+from semgoal_core.vocabulary import LAYOUTS, SCENES
 from semgoal_policy.replay import RewardFn
-from semgoal_sim import layout
 from semgoal_sim.env import SubgoalEnv
-from semgoal_sim.settling import MotionReward
 from semgoal_sim.task_env import TaskEnv, scene_tasks
-from semgoal_sim.vocabulary import LAYOUTS, SCENES
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,7 @@ class AgentSpec:
     reward_fn: Callable[[str], RewardFn]
     """scene -> (achieved, desired, motion) -> reward, vectorised: the function HER relabels with."""
     goal: str = "semantic"
-    """The goal layout (:data:`semgoal_sim.layout.GOAL_KINDS`), stored with the exported actor."""
+    """The goal layout (:data:`semgoal_core.layout.GOAL_KINDS`), stored with the exported actor."""
     suffix: str = ""
     """Appended to the scene for the export folder under ``models/``."""
 
@@ -40,7 +40,7 @@ class AgentSpec:
 
 
 def semantic_reward(scene: str) -> RewardFn:
-    """The sparse semantic reward at rest (:class:`semgoal_sim.settling.MotionReward`)."""
+    """The sparse semantic reward at rest (:class:`semgoal_core.settling.MotionReward`)."""
     motion_reward = MotionReward(LAYOUTS[scene])
     return lambda achieved, desired, motion: layout.goal_reward(achieved, desired) * motion_reward.settled(desired, motion)
 

@@ -99,9 +99,9 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
     """Latency of one action for one observation, ours and SB3's, on one thread."""
     import torch
 
+    from semgoal_core.vocabulary import SCENES
     from semgoal_policy.controller import SubgoalController
     from semgoal_sim.env import SubgoalEnv
-    from semgoal_sim.vocabulary import SCENES
 
     torch.set_num_threads(1)
     envs, observations, controllers = {}, {}, {}

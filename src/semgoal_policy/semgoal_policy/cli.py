@@ -8,15 +8,15 @@ import shlex
 import sys
 from pathlib import Path
 
-from semgoal_sim.vocabulary import SCENES
+from semgoal_core.vocabulary import SCENES
 
 
 def train_main(argv: list[str]) -> int:
     """`./semgoal train --scene S [--agent A] --steps N --seed S [--resume]`: train with SAC+HER and export."""
+    from semgoal_core.features import DERIVED_FEATURES
     from semgoal_policy.agents import AGENTS
     from semgoal_policy.sac import SacConfig
     from semgoal_policy.trainer import TrainConfig, Trainer
-    from semgoal_sim.features import DERIVED_FEATURES
 
     defaults = TrainConfig(scene="two_blocks")
     parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_core import features, layout
+from semgoal_core.settling import Settling, at_rest
+from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
 from semgoal_policy import actor as actor_io
-from semgoal_sim import features, layout
-from semgoal_sim.settling import Settling, at_rest
-from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError
 
 HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.settling import SETTLE_STEPS
+from semgoal_core.settling import SETTLE_STEPS
 
 EVAL_SEED_BASE = 1_000_000
 """Evaluation episodes use seeds from here on; training envs are seeded far below (see trainer)."""

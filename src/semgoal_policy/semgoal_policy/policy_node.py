@@ -20,12 +20,12 @@ import time
 import numpy as np
 from rclpy.node import Node
 
+from semgoal_core.lockstep import followed_decision
+from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
-from semgoal_policy.lockstep import followed_decision
-from semgoal_sim import conversions
-from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.vocabulary import SCENES, Literal
+from semgoal_ros import interfaces as topics
+from semgoal_ros import messages
 
 DECISIONS_KEPT = 8
 """Decisions remembered: the step before the world's and its own are the ones used, a few more cover a
@@ -100,7 +100,7 @@ class PolicyNode(Node):
     def decide_realtime(self, msg: WorldState) -> np.ndarray:
         """The command for a world state; hold still once the sub-goal is confirmed (the planner names the next)."""
         if self.controller.goal is not None and self.controller.confirmed(
-                msg.step, conversions.semantic_vector(msg), conversions.moving(msg)):
+                msg.step, messages.semantic_vector(msg), messages.moving(msg)):
             return HOLD
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 

@@ -3,7 +3,7 @@
 Episodes have a fixed length T. Each stored step keeps the action taken and the scripted expert's action
 in that state for the episode's own goal, so behaviour cloning can use every state the agent visited
 (DAgger-style labels) and not only the demonstrations. Relabelled samples carry no expert label. Each
-state also keeps its motion bits (:func:`semgoal_sim.settling.motion_bits`), so the reward of a relabelled
+state also keeps its motion bits (:func:`semgoal_core.settling.motion_bits`), so the reward of a relabelled
 goal is judged at rest, as the episode's own goal was.
 """
 

@@ -24,12 +24,12 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
+from semgoal_core.vocabulary import SCENES
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import AGENTS, AgentSpec
 from semgoal_policy.evaluate import EVAL_SEED_BASE, run_episodes, success_by_kind
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_policy.sac import SacAgent, SacConfig
-from semgoal_sim.vocabulary import SCENES
 
 RUNS_DIR = Path("runs")
 
@@ -56,7 +56,7 @@ class TrainConfig:
     """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
     demo_noise: float = 0.2
     derived_features: tuple[str, ...] = ()
-    """Features appended to the observation (``semgoal_sim.features``; hierarchical agent only)."""
+    """Features appended to the observation (``semgoal_core.features``; hierarchical agent only)."""
     spawn_margin: float = 0.0
     """How far (m, in x) training blocks may start beyond the tasks' spawn area (``SubgoalEnv``; hierarchical
     agent only). Evaluation during training keeps to the tasks' area."""

@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 
-from semgoal_sim.tasks import TASKS, get_task
+from semgoal_core.tasks import TASKS, get_task
 
 
 def expert_main(argv: list[str]) -> int:

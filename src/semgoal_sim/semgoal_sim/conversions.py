@@ -1,4 +1,5 @@
-"""Between plain arrays and semgoal_msgs / standard messages. Used by the nodes, never by the cores."""
+"""The sim node's messages from its world: world and joint states, RViz markers, camera images, and the
+expert's view of a world state. What every node reads from a world state is in ``semgoal_ros.messages``."""
 
 from __future__ import annotations
 
@@ -7,11 +8,11 @@ from geometry_msgs.msg import Point, Vector3
 from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
-from semgoal_msgs.msg import BlockState, Predicate, SemanticState, WorldState
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES
+from semgoal_msgs.msg import BlockState, WorldState
+from semgoal_ros.messages import block_positions
 from semgoal_sim.expert import WorldView
-from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
-from semgoal_sim.settling import moving_blocks
-from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks
 from semgoal_sim.world import FetchWorld, Snapshot
 
 
@@ -36,29 +37,9 @@ def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, 
     msg.finger_velocities = snapshot.finger_velocities.astype(float).tolist()
     if world.scene.bin is not None:
         msg.has_bin = True
-        msg.bin_position = Point(x=world.scene.bin.center[0], y=world.scene.bin.center[1], z=TABLE_HEIGHT)
+        msg.bin_position = Point(x=world.scene.bin.center[0], y=world.scene.bin.center[1], z=TABLE_TOP)
     msg.observation = world.observation(snapshot).astype(float).tolist()
     return msg
-
-
-def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
-    """(max_blocks, 3) centres in the scene's slot order and the (max_blocks,) presence mask."""
-    objects = SCENES[msg.scene].objects
-    positions = np.zeros((len(objects), 3))
-    present = np.zeros(len(objects), dtype=bool)
-    for block in msg.blocks:
-        i = objects.index(block.name)
-        p = block.pose.position
-        positions[i], present[i] = (p.x, p.y, p.z), True
-    return positions, present
-
-
-def semantic_vector(msg: WorldState) -> np.ndarray:
-    """Evaluate the scene's predicates on a world state message."""
-    positions, present = block_positions(msg)
-    g = msg.gripper_position
-    return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
-                    float(sum(msg.finger_positions)), TABLE_HEIGHT, present)
 
 
 def world_view(msg: WorldState) -> WorldView:
@@ -68,25 +49,6 @@ def world_view(msg: WorldState) -> WorldView:
     g = msg.gripper_position
     return WorldView({n: p for n, p, here in zip(scene.objects, positions, present, strict=True) if here},
                      np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), scene.bin)
-
-
-def moving(msg: WorldState) -> tuple[str, ...]:
-    """The blocks of a world state message that are not at rest (:func:`semgoal_sim.settling.moving_blocks`)."""
-    velocities = np.array([[b.twist.linear.x, b.twist.linear.y, b.twist.linear.z] for b in msg.blocks]).reshape(-1, 3)
-    return moving_blocks([b.name for b in msg.blocks], velocities)
-
-
-def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
-    layout = LAYOUTS[msg.scene]
-    positions, present = block_positions(msg)
-    objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
-    state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
-                          vector=[bool(v) for v in vector],
-                          fallen=fallen_blocks(objects, positions[present], TABLE_HEIGHT), moving=list(moving(msg)))
-    state.header = msg.header
-    state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
-                        for (name, args), v in zip(layout.atoms, vector, strict=True)]
-    return state
 
 
 def joint_state(world: FetchWorld, snapshot: Snapshot) -> JointState:
@@ -108,16 +70,16 @@ def _cube(marker_id: int, ns: str, position, size, rgba) -> Marker:
 
 def markers(msg: WorldState) -> MarkerArray:
     """Table, bin (with its backboard) and blocks as RViz cubes."""
-    table = _cube(0, "table", (*TABLE_CENTER, TABLE_HEIGHT / 2), (2 * TABLE_HALF_SIZE[0], 2 * TABLE_HALF_SIZE[1],
-                                                                  TABLE_HEIGHT), (0.9, 0.9, 0.9, 1.0))
+    table = _cube(0, "table", (*TABLE_CENTER, TABLE_TOP / 2), (2 * TABLE_HALF_SIZE[0], 2 * TABLE_HALF_SIZE[1],
+                                                                  TABLE_TOP), (0.9, 0.9, 0.9, 1.0))
     items = [table]
     scene = SCENES[msg.scene]
     if scene.bin is not None:
         b, colour = scene.bin, (0.45, 0.33, 0.22, 0.6)
-        items.append(_cube(0, "bin", (*b.center, TABLE_HEIGHT + b.wall_height / 2),
+        items.append(_cube(0, "bin", (*b.center, TABLE_TOP + b.wall_height / 2),
                            (2 * b.inner_half_size[0], 2 * b.inner_half_size[1], b.wall_height), colour))
         back_y = b.center[1] + b.inner_half_size[1] + b.wall_thickness / 2
-        items.append(_cube(1, "bin", (b.center[0], back_y, TABLE_HEIGHT + b.back_wall_height / 2),
+        items.append(_cube(1, "bin", (b.center[0], back_y, TABLE_TOP + b.back_wall_height / 2),
                            (2 * b.inner_half_size[0], b.wall_thickness, b.back_wall_height), colour))
     for i, block in enumerate(msg.blocks):
         p = block.pose.position

@@ -2,7 +2,7 @@
 
 Each episode draws a start state and a sub-goal of the scene's types (paper, table of goals), e.g.
 ``put_near(red,green)``; the reward is 1 when the sub-goal's literals hold with the world at rest (sparse,
-semantic; :mod:`semgoal_sim.settling`): a block in free fall earns nothing. ``info["motion"]`` carries what
+semantic; :mod:`semgoal_core.settling`): a block in free fall earns nothing. ``info["motion"]`` carries what
 HER needs to judge rest for a relabelled goal, ``info["is_success"]`` the reward as a flag. Episodes
 start where the previous step of a plan leaves the arm: a put starts once a pick of its block has been
 confirmed (the scripted expert picks it, with a little noise); a pick starts at the home pose, with the arm
@@ -20,11 +20,11 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from semgoal_sim import features, layout, tasks
+from semgoal_core import features, layout, tasks
+from semgoal_core.settling import MotionReward
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.expert import clear_of, expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
-from semgoal_sim.settling import MotionReward
-from semgoal_sim.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
@@ -78,7 +78,7 @@ class SubgoalEnv(gym.Env):
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0) -> None:
-        """:param derived: features (``semgoal_sim.features``) appended to the observation.
+        """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (session 31: desk actors
             stalled over blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.

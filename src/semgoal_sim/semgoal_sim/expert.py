@@ -13,8 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry, SubGoal, held_alone
+from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP, bin_spot, clear_of, nearest
+from semgoal_core.tasks import SPAWN_HIGH, SPAWN_LOW
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry, SubGoal, held_alone
 
 GAIN = 15.0
 """Action per metre of position error (saturates at 1, i.e. 0.05 m per step, beyond 6.7 cm)."""
@@ -37,9 +38,7 @@ to each finger's target, so anything above about +0.005 drops a held block: the 
 :data:`GRASP_OPENING` takes was cloned as 0 by three_blocks actors, which hovered holding the block over
 the spot while the critic rated opening higher (session 33). Wider than :data:`GRASP_OPENING`, but the
 block is gone before the fingers reach a neighbour; the expert alone succeeds as often as before."""
-GRASP_OPENING = 0.08
-"""Finger opening (m) used to straddle a 5 cm block when grasping it and releasing it onto another.
-Opening no wider keeps the fingers (they open along y) off neighbouring blocks."""
+
 NEAR_RANGE = (0.055, 0.093)
 """Centre distances at which put_near places a block next to its references (close: <= 0.10 m)."""
 AWAY_DISTANCE = 0.16
@@ -62,11 +61,6 @@ SLOT_TOLERANCE = 0.02
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
 DROP_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
 """put_in_bin lets go only where every other block's centre is this far (xy): the block falls clear of it."""
-MIN_CENTRE_DISTANCE = 0.058
-FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
-FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
-"""A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
-finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
 
 
 @dataclass(frozen=True)
@@ -106,22 +100,6 @@ def _placement_candidates(step: float = 0.005) -> np.ndarray:
 CANDIDATES = _placement_candidates()
 
 
-def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
-    """Spots where a block fits and the fingers, opening there, touch no obstacle."""
-    if not obstacles:
-        return np.ones(len(candidates), dtype=bool)
-    delta = np.abs(candidates[:, None, :] - np.array(obstacles)[None, :, :2])
-    fingers_miss = (delta[..., 0] >= FINGER_REACH_X) | (delta[..., 1] >= FINGER_REACH_Y)
-    return np.all(fingers_miss & (np.linalg.norm(delta, axis=2) >= clearance), axis=1)
-
-
-def _nearest(candidates: np.ndarray, ok: np.ndarray, to: np.ndarray) -> np.ndarray | None:
-    if not ok.any():
-        return None
-    options = candidates[ok]
-    return options[np.argmin(np.linalg.norm(options - to[:2], axis=1))]
-
-
 def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
     """Where the moved block's centre should come to rest for a put sub-goal; None when nowhere fits."""
     x = subgoal.block
@@ -141,18 +119,8 @@ def destination(subgoal: SubGoal, world: WorldView) -> np.ndarray | None:
         if not ok.any():
             return None
         ok &= spread <= spread[ok].min() + COMPACT_SLACK  # the most compact spot: room for a third block
-    spot = _nearest(CANDIDATES, ok, here)
+    spot = nearest(CANDIDATES, ok, here)
     return None if spot is None else np.array([*spot, rest_z])
-
-
-def bin_spot(bin_geometry: BinGeometry, obstacles: list[np.ndarray], near: np.ndarray) -> np.ndarray | None:
-    """Where a block goes in the bin: the free slot nearest ``near``; when untidy puts left no slot free,
-    the free floor spot nearest it (a gap may still be wide enough). None when the bin is full."""
-    for candidates in (bin_geometry.slots(), bin_geometry.interior()):
-        spot = _nearest(candidates, clear_of(candidates, obstacles), near)
-        if spot is not None:
-            return spot
-    return None
 
 
 def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tuple[np.ndarray, np.ndarray]:

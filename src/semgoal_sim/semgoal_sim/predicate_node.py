@@ -7,10 +7,10 @@ is logged in the scene's readable form, and a block that falls off the table as 
 
 from rclpy.node import Node
 
+from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.msg import SemanticState, WorldState
-from semgoal_sim import conversions
-from semgoal_sim import ros_interfaces as topics
-from semgoal_sim.vocabulary import LAYOUTS
+from semgoal_ros import interfaces as topics
+from semgoal_ros import messages
 
 
 class PredicateNode(Node):
@@ -27,11 +27,11 @@ class PredicateNode(Node):
             self.get_logger().warn(f"ignored a world state of unknown scene {msg.scene!r}", throttle_duration_sec=5.0)
             return
         try:
-            vector = conversions.semantic_vector(msg)
+            vector = messages.semantic_vector(msg)
         except (ValueError, IndexError) as error:
             self.get_logger().warn(f"ignored a malformed world state: {error}", throttle_duration_sec=5.0)
             return
-        state = conversions.semantic_state(msg, vector)
+        state = messages.semantic_state(msg, vector)
         self.publisher.publish(state)
         key = (msg.scene, msg.episode, tuple(vector))
         if key != self.last_key:

@@ -41,7 +41,7 @@ def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     import imageio.v3 as iio
 
-    from semgoal_sim.tasks import get_task
+    from semgoal_core.tasks import get_task
 
     parser = argparse.ArgumentParser(prog="semgoal render", description=main.__doc__)
     parser.add_argument("--task", required=True)

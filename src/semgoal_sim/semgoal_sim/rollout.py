@@ -8,10 +8,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, moving_blocks
+from semgoal_core.tasks import get_task
+from semgoal_core.vocabulary import Literal, SemanticLayout, SubGoal
 from semgoal_sim.expert import WorldView, expert_action
-from semgoal_sim.settling import SETTLE_STEPS, Settling, at_rest, moving_blocks
-from semgoal_sim.tasks import get_task
-from semgoal_sim.vocabulary import Literal, SemanticLayout, SubGoal
 from semgoal_sim.world import FetchWorld
 
 SUBGOAL_STEPS = 60
@@ -24,7 +24,7 @@ def satisfied(layout: SemanticLayout, vector: np.ndarray, literals: list[Literal
 
 
 def settled(world: FetchWorld, literals: list[Literal]) -> bool:
-    """The literals hold in ``world`` now, with the world at rest for them (:mod:`semgoal_sim.settling`)."""
+    """The literals hold in ``world`` now, with the world at rest for them (:mod:`semgoal_core.settling`)."""
     snapshot = world.snapshot()
     vector = world.semantic_vector(snapshot)
     held = [b for b in world.blocks if vector[world.layout.index(Literal("holding", (b,)))]]

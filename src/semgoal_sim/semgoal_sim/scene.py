@@ -12,13 +12,9 @@ from pathlib import Path
 
 import mujoco
 
-from semgoal_sim.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES, BinGeometry, Scene
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES, BinGeometry, Scene
 
-TABLE_CENTER = (1.3, 0.75)
-"""Centre of the table top in the world frame (m), as in the Fetch benchmark."""
-TABLE_HALF_SIZE = (0.25, 0.35)
-TABLE_HEIGHT = 0.4
-"""z of the table top (m)."""
 BLOCK_MASS = 2.0
 """kg, as the Fetch benchmark's object0."""
 TOUCHING_LINKS = ("forearm_roll_link", "wrist_flex_link", "wrist_roll_link", "gripper_link",
@@ -47,7 +43,7 @@ def block_body_name(block: str) -> str:
 
 
 def _add_block(spec: mujoco.MjSpec, name: str) -> None:
-    body = spec.worldbody.add_body(name=block_body_name(name), pos=[0.0, 0.0, TABLE_HEIGHT + BLOCK_HALF_SIZE])
+    body = spec.worldbody.add_body(name=block_body_name(name), pos=[0.0, 0.0, TABLE_TOP + BLOCK_HALF_SIZE])
     body.add_freejoint(name=f"{block_body_name(name)}:joint")
     body.add_geom(
         name=block_body_name(name),
@@ -65,7 +61,7 @@ def _add_bin(spec: mujoco.MjSpec, geometry: BinGeometry) -> None:
     cx, cy = geometry.center
     hx, hy = geometry.inner_half_size
     t, h, back = geometry.wall_thickness, geometry.wall_height, geometry.back_wall_height
-    body = spec.worldbody.add_body(name="bin", pos=[cx, cy, TABLE_HEIGHT])
+    body = spec.worldbody.add_body(name="bin", pos=[cx, cy, TABLE_TOP])
     colour = [0.45, 0.33, 0.22, 1.0]
     body.add_geom(name="bin_floor", type=mujoco.mjtGeom.mjGEOM_BOX, rgba=colour,
                   size=[hx + t, hy + t, geometry.floor_thickness / 2], pos=[0, 0, geometry.floor_thickness / 2])

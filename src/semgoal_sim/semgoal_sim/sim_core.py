@@ -11,9 +11,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.scene import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_HEIGHT
-from semgoal_sim.tasks import TASKS, get_task
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.tasks import TASKS, get_task
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES
 from semgoal_sim.world import FetchWorld, Snapshot
 
 MAX_SEED = 2**63
@@ -104,7 +104,7 @@ class SimCore:
         for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
             if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
                 return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
-        world.set_block_pose(block, np.array([*xy, TABLE_HEIGHT + BLOCK_HALF_SIZE]))
+        world.set_block_pose(block, np.array([*xy, TABLE_TOP + BLOCK_HALF_SIZE]))
         return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f})"
 
     def snapshot(self) -> Snapshot:

@@ -15,8 +15,9 @@ from visualization_msgs.msg import MarkerArray
 
 from semgoal_msgs.msg import ArmCommand, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
+from semgoal_ros import interfaces as topics
+from semgoal_ros import messages
 from semgoal_sim import conversions
-from semgoal_sim import ros_interfaces as topics
 from semgoal_sim.sim_core import SimCore, check_command
 
 MODES = ("lockstep", "realtime")
@@ -122,7 +123,7 @@ class SimNode(Node):
         self.report(response.success, response.message)
         self.held_command = np.zeros(4)
         response.world = self.publish_state()
-        response.state = conversions.semantic_state(response.world, conversions.semantic_vector(response.world))
+        response.state = messages.semantic_state(response.world, messages.semantic_vector(response.world))
         return response
 
     def move_block_callback(self, request: MoveBlock.Request, response: MoveBlock.Response) -> MoveBlock.Response:

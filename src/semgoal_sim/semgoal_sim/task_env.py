@@ -7,7 +7,7 @@ whole task and no planner. The goal is either
   predicate vector, sparse reward 1 when they all hold, exactly the sub-goal env's encoding; or
 - ``positions`` (flat continuous baseline): the block centres of one goal configuration that satisfies
   the task (a cluster, a far-apart scatter, the swapped stack, the bin slots), with the dense reward
-  minus the summed distance (:func:`semgoal_sim.layout.position_reward`).
+  minus the summed distance (:func:`semgoal_core.layout.position_reward`).
 
 Success is the same for both and for the hierarchical agent: the task's goal literals hold.
 ``reset(options={"kind": "MC-2", "start_seed": s})`` fixes the task and its start (evaluation uses the
@@ -22,11 +22,11 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from semgoal_sim import layout, tasks
+from semgoal_core import layout, tasks
+from semgoal_core.settling import MotionReward
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal
 from semgoal_sim.expert import expert_action
 from semgoal_sim.rollout import SUBGOAL_STEPS, expert_next_steps, satisfied
-from semgoal_sim.settling import MotionReward
-from semgoal_sim.vocabulary import SCENES, Literal, SubGoal
 from semgoal_sim.world import FetchWorld
 
 TASK_EPISODE_STEPS = {"two_blocks": 120, "three_blocks": 150, "desk_cleanup": 250}

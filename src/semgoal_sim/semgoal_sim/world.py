@@ -13,12 +13,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from semgoal_sim import layout
+from semgoal_core import layout
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.layout import CONTROL_DT
+from semgoal_core.settling import motion_bits
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
 from semgoal_sim.expert import WorldView
-from semgoal_sim.layout import CONTROL_DT
-from semgoal_sim.scene import TABLE_HEIGHT, block_body_name, build_model
-from semgoal_sim.settling import motion_bits
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
+from semgoal_sim.scene import block_body_name, build_model
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
@@ -28,8 +29,8 @@ GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
 """Gripper pointing down, fixed orientation (the benchmark's mocap rotation)."""
 INITIAL_QPOS = {"robot0:slide0": 0.405, "robot0:slide1": 0.48, "robot0:slide2": 0.0}
-WORKSPACE_LOW = np.array([1.0, 0.35, TABLE_HEIGHT + 0.005])
-WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_HEIGHT + 0.35])
+WORKSPACE_LOW = np.array([1.0, 0.35, TABLE_TOP + 0.005])
+WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_TOP + 0.35])
 """The mocap target is kept in this box so the arm never drives into the table or out of reach."""
 
 
@@ -89,7 +90,7 @@ class FetchWorld:
         for name, value in INITIAL_QPOS.items():
             d.qpos[m.joint(name).qposadr[0]] = value
         for i, addr in enumerate(self._block_qpos):  # park blocks apart, off the arm's way, during settling
-            d.qpos[addr: addr + 7] = [1.1 + 0.1 * i, 0.45, TABLE_HEIGHT + BLOCK_HALF_SIZE, 1, 0, 0, 0]
+            d.qpos[addr: addr + 7] = [1.1 + 0.1 * i, 0.45, TABLE_TOP + BLOCK_HALF_SIZE, 1, 0, 0, 0]
         mujoco.mj_forward(m, d)
         d.mocap_pos[0] = d.site_xpos[self._grip_site] + GRIPPER_HOME_OFFSET
         d.mocap_quat[0] = GRIPPER_QUAT
@@ -180,10 +181,10 @@ class FetchWorld:
     def semantic_vector(self, snapshot: Snapshot | None = None) -> np.ndarray:
         snapshot = snapshot or self.snapshot()
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
-                        snapshot.finger_opening, TABLE_HEIGHT, self.present)
+                        snapshot.finger_opening, TABLE_TOP, self.present)
 
     def motion(self, snapshot: Snapshot | None = None) -> np.ndarray:
-        """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_sim.settling.motion_bits`)."""
+        """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`)."""
         snapshot = snapshot or self.snapshot()
         speeds = np.linalg.norm(snapshot.block_velocities[:, :3], axis=1)
         held = held_alone(snapshot.block_positions, snapshot.grip_position, snapshot.finger_opening)
@@ -192,7 +193,7 @@ class FetchWorld:
     def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:
         """The blocks that fell off the table, out of the arm's reach."""
         snapshot = snapshot or self.snapshot()
-        return fallen_blocks(self.blocks, snapshot.block_positions, TABLE_HEIGHT)
+        return fallen_blocks(self.blocks, snapshot.block_positions, TABLE_TOP)
 
     def view(self, snapshot: Snapshot | None = None) -> WorldView:
         """The expert's view of the world: block centres by name, grip, finger opening, bin."""
@@ -201,7 +202,7 @@ class FetchWorld:
                          snapshot.finger_opening, self.scene.bin)
 
     def observation(self, snapshot: Snapshot | None = None) -> np.ndarray:
-        """The policy observation (layout: :mod:`semgoal_sim.layout`)."""
+        """The policy observation (layout: :mod:`semgoal_core.layout`)."""
         snapshot = snapshot or self.snapshot()
         return layout.observation(self.scene.name, snapshot.grip_position, snapshot.grip_velocity,
                                   snapshot.finger_positions, snapshot.finger_velocities,

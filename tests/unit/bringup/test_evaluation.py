@@ -7,7 +7,7 @@ import pytest
 
 from semgoal_bringup import evaluation
 from semgoal_bringup.episodes import make_agent
-from semgoal_sim.tasks import TASK_STEP_BUDGET
+from semgoal_core.tasks import TASK_STEP_BUDGET
 
 
 def test_hierarchical_episode_is_reproducible_and_bounded() -> None:

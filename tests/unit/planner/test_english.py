@@ -8,12 +8,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
 from semgoal_planner.english import LanguageError, parse_english
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import SemanticPlanner
-from semgoal_sim.vocabulary import LAYOUTS, SCENES, Literal, parse_literal
 
 PHRASES = [
     ("desk_cleanup", "put the red block in the bin", "in_bin(red)"),

@@ -5,9 +5,9 @@ import copy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_planner.executive import EDIT_OPS, Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
-from semgoal_sim.vocabulary import LAYOUTS, Literal
 
 BLOCKS = ("red", "green", "blue")
 

@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from semgoal_core.vocabulary import Literal
 from semgoal_planner.goals import GoalError, parse_goal
-from semgoal_sim.vocabulary import Literal
 
 BLOCKS = ("red", "green", "blue")
 

@@ -2,11 +2,11 @@
 
 import pytest
 
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal
 from semgoal_planner.goals import parse_goal
 from semgoal_planner.grounding import Operator
 from semgoal_planner.semantic import PlanningError, SemanticPlanner, plan2goal
-from semgoal_sim.tasks import TASKS
-from semgoal_sim.vocabulary import SCENES, Literal, SubGoal
 
 STARTS = {  # a typical start state of each task (true literals)
     "MC-2": [], "MA-2": [Literal("close", ("red", "green"))],

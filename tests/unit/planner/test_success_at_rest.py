@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from semgoal_bringup.episodes import observe
+from semgoal_core.settling import REST_SPEED, SETTLE_STEPS, at_rest, restless
+from semgoal_core.tasks import TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, Literal
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
-from semgoal_sim.settling import REST_SPEED, SETTLE_STEPS, at_rest, restless
-from semgoal_sim.tasks import TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, Literal
 from semgoal_sim.world import FetchWorld
 
 REST_Z = TABLE_TOP + BLOCK_HALF_SIZE

@@ -6,14 +6,14 @@ import numpy as np
 import pytest
 import torch
 
+from semgoal_core import features, layout
+from semgoal_core.lockstep import followed_decision, lockstep_subgoal
+from semgoal_core.settling import SETTLE_STEPS
+from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
 from semgoal_policy.agents import get_agent, semantic_reward
 from semgoal_policy.controller import HOLD, SubgoalController
-from semgoal_policy.lockstep import followed_decision, lockstep_subgoal
 from semgoal_policy.replay import EpisodeReplay
-from semgoal_sim import features, layout
-from semgoal_sim.settling import SETTLE_STEPS
-from semgoal_sim.vocabulary import LAYOUTS, Literal, VocabularyError
 
 SCENE = "two_blocks"
 

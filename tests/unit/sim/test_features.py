@@ -4,10 +4,10 @@ the subject offset at the block(s) the sub-goal names."""
 import numpy as np
 import pytest
 
-from semgoal_sim import features, layout
+from semgoal_core import features, layout
+from semgoal_core.tasks import TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_sim.env import SubgoalEnv
-from semgoal_sim.tasks import TABLE_TOP
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 
 SCENE = "desk_cleanup"
 BIN = SCENES[SCENE].bin

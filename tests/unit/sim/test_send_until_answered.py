@@ -4,7 +4,7 @@ come for the first ``lost`` goals, as in the Fast DDS discovery race)."""
 
 from concurrent.futures import Future
 
-from semgoal_sim.ros_interfaces import RecentAnswers, send_goal, send_until_answered
+from semgoal_ros.interfaces import RecentAnswers, send_goal, send_until_answered
 
 
 class LosingAction:

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from semgoal_sim import layout
+from semgoal_core import layout
 from semgoal_sim.task_env import TaskEnv, scene_tasks
 
 

@@ -5,8 +5,8 @@ import itertools
 import numpy as np
 import pytest
 
-from semgoal_sim.tasks import MIN_SEPARATION, SPAWN_HIGH, SPAWN_LOW, TASKS, get_task
-from semgoal_sim.vocabulary import LAYOUTS, SCENES
+from semgoal_core.tasks import MIN_SEPARATION, SPAWN_HIGH, SPAWN_LOW, TASKS, get_task
+from semgoal_core.vocabulary import LAYOUTS, SCENES
 
 
 @pytest.mark.parametrize("name", list(TASKS))

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from semgoal_sim.vocabulary import (
+from semgoal_core.vocabulary import (
     LAYOUTS,
     THRESHOLDS,
     Literal,

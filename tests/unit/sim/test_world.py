@@ -4,12 +4,13 @@ import mujoco
 import numpy as np
 import pytest
 
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_sim.expert import move_to
 from semgoal_sim.rollout import run_subgoal
-from semgoal_sim.scene import TABLE_HEIGHT, build_model
+from semgoal_sim.scene import build_model
 from semgoal_sim.sim_core import SimCore, check_command
-from semgoal_sim.tasks import TASKS
-from semgoal_sim.vocabulary import Literal, SubGoal
 from semgoal_sim.world import FetchWorld
 
 
@@ -30,7 +31,7 @@ def test_reset_is_deterministic_and_blocks_rest_on_the_table() -> None:
     first = world.reset(positions)
     second = world.reset(positions)
     np.testing.assert_allclose(first.block_positions, second.block_positions, atol=1e-9)
-    assert np.allclose(first.block_positions[:, 2], TABLE_HEIGHT + 0.025, atol=0.002)
+    assert np.allclose(first.block_positions[:, 2], TABLE_TOP + 0.025, atol=0.002)
     np.testing.assert_allclose(first.grip_position, world.home_grip_position, atol=0.01)
 
 
@@ -81,7 +82,7 @@ def test_only_the_hand_end_of_the_arm_collides_and_the_floor_catches_blocks() ->
     model = world.model
     assert model.geom_contype[model.geom("robot0:head_pan_link").id] == 0
     assert model.geom_conaffinity[model.geom("robot0:r_gripper_finger_link").id] == 1
-    world.set_block_pose("red", np.array([0.9, 0.3, TABLE_HEIGHT + 0.1]))  # off the desk's edge, in the air
+    world.set_block_pose("red", np.array([0.9, 0.3, TABLE_TOP + 0.1]))  # off the desk's edge, in the air
     for _ in range(25):
         world.step(np.zeros(4))
     red = world.snapshot().block_positions[0]
@@ -108,15 +109,15 @@ def test_robot_joint_state_names_every_robot_joint_and_reads_them_now() -> None:
 
 def test_a_grasp_low_on_a_stack_lifts_both_blocks_and_the_expert_picks_the_top_one_alone() -> None:
     world = FetchWorld("two_blocks")
-    world.reset(np.array([[1.3, 0.7, TABLE_HEIGHT + 0.025], [1.3, 0.7, TABLE_HEIGHT + 0.075]]))
+    world.reset(np.array([[1.3, 0.7, TABLE_TOP + 0.025], [1.3, 0.7, TABLE_TOP + 0.075]]))
     above, low, lifted = (world.view().positions["green"] + np.array([0, 0, dz]) for dz in (0.08, -0.013, 0.05))
     for target, fingers, steps in ((above, 1.0, 15), (low, 1.0, 15), (low, -1.0, 8), (lifted, -1.0, 10)):
         for _ in range(steps):
             world.step(move_to(world.view().grip, target, fingers))
-    assert world.view().positions["red"][2] > TABLE_HEIGHT + 0.04, "the low grasp should lift the bottom block too"
+    assert world.view().positions["red"][2] > TABLE_TOP + 0.04, "the low grasp should lift the bottom block too"
     assert not any(lit.name == "holding" for lit in world.layout.true_literals(world.semantic_vector()))
     picked, _ = run_subgoal(world, SubGoal("pick", ("green",)), max_steps=80, confirm_steps=3)
-    assert picked and world.view().positions["red"][2] < TABLE_HEIGHT + 0.03  # red back on the table
+    assert picked and world.view().positions["red"][2] < TABLE_TOP + 0.03  # red back on the table
 
 
 @pytest.mark.parametrize("speed", [0.5, 1.0])
@@ -126,9 +127,9 @@ def test_a_block_flung_over_the_bin_stays_on_the_desk(speed: float) -> None:
     reach: most lost DC-4 episodes until session 29."""
     world = FetchWorld("desk_cleanup", 2)
     bin_ = world.scene.bin
-    rest = TABLE_HEIGHT + 0.025
+    rest = TABLE_TOP + 0.025
     world.reset(np.array([[1.20, 0.60, rest], [1.40, 0.60, rest]]))
-    world.set_block_pose("red", np.array([bin_.center[0], bin_.center[1], TABLE_HEIGHT + 0.12]))
+    world.set_block_pose("red", np.array([bin_.center[0], bin_.center[1], TABLE_TOP + 0.12]))
     dof = world.model.joint("block_red:joint").dofadr[0]
     world.data.qvel[dof + 1] = speed  # +y, away from the robot
     for _ in range(25):

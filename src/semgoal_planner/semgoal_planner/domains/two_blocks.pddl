@@ -1,6 +1,6 @@
 ; Two blocks (paper, "Experiments"): predicates close, above, holding; sub-goal types pick, put near,
 ; put away, put on top. Each action is one sub-goal; its effects are the literals the sub-goal makes
-; true (semgoal_sim.vocabulary.SubGoal.literals) plus what follows physically (a block put on another
+; true (semgoal_core.vocabulary.SubGoal.literals) plus what follows physically (a block put on another
 ; is close to it). hand-empty is a planning helper derived from "no holding(x)"; close is kept symmetric.
 (define (domain two_blocks)
   (:requirements :typing :negative-preconditions :equality)

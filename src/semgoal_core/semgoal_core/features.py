@@ -22,9 +22,9 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from semgoal_sim.expert import bin_spot
-from semgoal_sim.layout import ARM_SIZE, BLOCK_SIZE, BLOCK_SLICE, observation_size
-from semgoal_sim.vocabulary import LAYOUTS, SCENES, THRESHOLDS
+from semgoal_core.geometry import bin_spot
+from semgoal_core.layout import ARM_SIZE, BLOCK_SIZE, BLOCK_SLICE, observation_size
+from semgoal_core.vocabulary import LAYOUTS, SCENES, THRESHOLDS
 
 PRESENT, POSITION, RELATIVE = (BLOCK_SLICE["present"].start, BLOCK_SLICE["position"],
                               BLOCK_SLICE["relative_position"])
@@ -79,7 +79,7 @@ DERIVED_FEATURES: dict[str, tuple[int, DerivedFeature]] = {"bin_target": (2, bin
 
 
 def widths(names: Sequence[str]) -> dict[str, int]:
-    """Name -> width for ``names``, as :func:`semgoal_sim.layout.describe` records them."""
+    """Name -> width for ``names``, as :func:`semgoal_core.layout.describe` records them."""
     return {name: DERIVED_FEATURES[name][0] for name in names}
 
 

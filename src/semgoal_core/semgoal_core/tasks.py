@@ -15,9 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.vocabulary import BLOCK_HALF_SIZE, SCENES, Literal
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, Literal
 
-TABLE_TOP = 0.4
 REST_Z = TABLE_TOP + BLOCK_HALF_SIZE
 SPAWN_LOW = np.array([1.15, 0.50])
 SPAWN_HIGH = np.array([1.45, 0.85])

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_sim.vocabulary import Literal, SemanticLayout
+from semgoal_core.vocabulary import Literal, SemanticLayout
 
 REST_SPEED = 0.02
 """A block slower than this (m/s, linear) is still. Resting blocks measure about 2e-9 m/s; a block let go

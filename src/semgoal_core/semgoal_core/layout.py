@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from semgoal_sim.vocabulary import LAYOUTS, SCENES
+from semgoal_core.vocabulary import LAYOUTS, SCENES
 
 CONTROL_DT = 0.04
 """Seconds per control step (20 substeps of 0.002 s); velocities are scaled by it, as in Fetch."""
@@ -52,7 +52,7 @@ def goal_size(scene: str, goal: str = "semantic") -> int:
 
 def describe(scene: str, goal: str = "semantic", derived: dict[str, int] | None = None) -> dict:
     """The layout as data: stored next to exported actors and checked when they are loaded. ``derived``:
-    name -> width of the features an actor gets appended to the observation (``semgoal_sim.features``);
+    name -> width of the features an actor gets appended to the observation (``semgoal_core.features``);
     recorded only when there are some, as actors from before session 30 have none."""
     described = {
         "scene": scene,

@@ -1,0 +1,55 @@
+"""Table and bin geometry shared by the simulator, the scripted expert and the policy's derived features.
+
+Where a block fits among others (:func:`clear_of`) and where it goes in the bin (:func:`bin_spot`) are
+defined here, once: a learned actor's ``bin_target`` input (``semgoal_core.features``) and the expert's
+puts read the same function, and neither defines it for the other.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, BinGeometry
+
+TABLE_TOP = 0.4
+"""z of the table top (m), as in the Fetch benchmark."""
+TABLE_CENTER = (1.3, 0.75)
+"""Centre of the table top in the world frame (m), as in the Fetch benchmark."""
+TABLE_HALF_SIZE = (0.25, 0.35)
+"""Half extent of the table top in x and y (m)."""
+GRASP_OPENING = 0.08
+"""Finger opening (m) used to straddle a 5 cm block when grasping it and releasing it onto another.
+Opening no wider keeps the fingers (they open along y) off neighbouring blocks."""
+MIN_CENTRE_DISTANCE = 0.058
+"""Closest two block centres may be (m) for a block to be set down between others: 5 cm and some play."""
+FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
+FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
+"""A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
+finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
+
+
+def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
+    """Spots where a block fits and the fingers, opening there, touch no obstacle."""
+    if not obstacles:
+        return np.ones(len(candidates), dtype=bool)
+    delta = np.abs(candidates[:, None, :] - np.array(obstacles)[None, :, :2])
+    fingers_miss = (delta[..., 0] >= FINGER_REACH_X) | (delta[..., 1] >= FINGER_REACH_Y)
+    return np.all(fingers_miss & (np.linalg.norm(delta, axis=2) >= clearance), axis=1)
+
+
+def nearest(candidates: np.ndarray, ok: np.ndarray, to: np.ndarray) -> np.ndarray | None:
+    """The ``ok`` candidate (M, 2) nearest ``to`` in the table plane; None when none is ok."""
+    if not ok.any():
+        return None
+    options = candidates[ok]
+    return options[np.argmin(np.linalg.norm(options - to[:2], axis=1))]
+
+
+def bin_spot(bin_geometry: BinGeometry, obstacles: list[np.ndarray], near: np.ndarray) -> np.ndarray | None:
+    """Where a block goes in the bin: the free slot nearest ``near``; when untidy puts left no slot free,
+    the free floor spot nearest it (a gap may still be wide enough). None when the bin is full."""
+    for candidates in (bin_geometry.slots(), bin_geometry.interior()):
+        spot = nearest(candidates, clear_of(candidates, obstacles), near)
+        if spot is not None:
+            return spot
+    return None

@@ -1,0 +1,50 @@
+"""Between semgoal_msgs and the semantic core: what the predicate, planner and policy nodes read from a
+world state. No MuJoCo (the sim's own messages are built in ``semgoal_sim.conversions``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.settling import moving_blocks
+from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, fallen_blocks
+from semgoal_msgs.msg import Predicate, SemanticState, WorldState
+
+
+def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
+    """(max_blocks, 3) centres in the scene's slot order and the (max_blocks,) presence mask."""
+    objects = SCENES[msg.scene].objects
+    positions = np.zeros((len(objects), 3))
+    present = np.zeros(len(objects), dtype=bool)
+    for block in msg.blocks:
+        i = objects.index(block.name)
+        p = block.pose.position
+        positions[i], present[i] = (p.x, p.y, p.z), True
+    return positions, present
+
+
+def semantic_vector(msg: WorldState) -> np.ndarray:
+    """Evaluate the scene's predicates on a world state message."""
+    positions, present = block_positions(msg)
+    g = msg.gripper_position
+    return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
+                    float(sum(msg.finger_positions)), TABLE_TOP, present)
+
+
+def moving(msg: WorldState) -> tuple[str, ...]:
+    """The blocks of a world state message that are not at rest (:func:`semgoal_core.settling.moving_blocks`)."""
+    velocities = np.array([[b.twist.linear.x, b.twist.linear.y, b.twist.linear.z] for b in msg.blocks]).reshape(-1, 3)
+    return moving_blocks([b.name for b in msg.blocks], velocities)
+
+
+def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
+    layout = LAYOUTS[msg.scene]
+    positions, present = block_positions(msg)
+    objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
+    state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
+                          vector=[bool(v) for v in vector],
+                          fallen=fallen_blocks(objects, positions[present], TABLE_TOP), moving=list(moving(msg)))
+    state.header = msg.header
+    state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
+                        for (name, args), v in zip(layout.atoms, vector, strict=True)]
+    return state

@@ -1,0 +1,46 @@
+"""The packages' import graph (issue 50): core <- ros <- {sim, planner, policy} <- bringup, and the nodes that
+only read world states (predicates, planner, policy) load no MuJoCo."""
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).parents[2] / "src"
+ALLOWED = {
+    "semgoal_core": set(),
+    "semgoal_ros": {"semgoal_core", "semgoal_msgs"},
+    "semgoal_planner": {"semgoal_core", "semgoal_ros", "semgoal_msgs"},
+}
+POLICY_RUNTIME = ("controller.py", "actor.py", "policy_node.py", "replay.py", "sac.py", "evaluate.py")
+"""The policy's run-time modules; its training front (agents, trainer, cli, bench) drives the simulator's envs."""
+
+
+def semgoal_imports(path: Path) -> set[str]:
+    """The semgoal packages a module imports (at any depth of the module: lazy imports count)."""
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+            [node.module or ""] if isinstance(node, ast.ImportFrom) else []
+        found |= {name.split(".")[0] for name in names if name.startswith("semgoal_")}
+    return found
+
+
+@pytest.mark.parametrize("package", sorted(ALLOWED))
+def test_a_package_imports_only_the_layers_below_it(package: str) -> None:
+    for path in sorted((SRC / package / package).glob("*.py")):
+        assert semgoal_imports(path) - {package} <= ALLOWED[package], path.name
+
+
+def test_the_policy_runtime_imports_no_simulator() -> None:
+    for name in POLICY_RUNTIME:
+        assert "semgoal_sim" not in semgoal_imports(SRC / "semgoal_policy" / "semgoal_policy" / name), name
+
+
+@pytest.mark.parametrize("module", ["semgoal_sim.predicate_node", "semgoal_planner.planner_node", "semgoal_policy.policy_node"])
+def test_a_node_that_reads_world_states_loads_no_mujoco(module: str) -> None:
+    loaded = subprocess.run([sys.executable, "-c", f"import sys, {module}; print('mujoco' in sys.modules)"],
+                            capture_output=True, text=True, check=True).stdout.strip()
+    assert loaded == "False"

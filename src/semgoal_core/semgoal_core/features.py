@@ -76,6 +76,11 @@ DerivedFeature = Callable[[str, np.ndarray, np.ndarray | None], np.ndarray]
 DERIVED_FEATURES: dict[str, tuple[int, DerivedFeature]] = {"bin_target": (2, bin_target),
                                                            "subject_offset": (3, subject_offset)}
 """Name -> (width, function of scene, observation and semantic goal)."""
+FEATURE_VERSIONS: dict[str, int] = {"bin_target": 1, "subject_offset": 1}
+"""Name -> version of what the feature computes. An exported actor records the versions it was trained on
+and loading refuses another (``semgoal_policy.actor``): bump a version whenever a change here, or in what a
+feature calls (``semgoal_core.geometry.bin_spot``), changes its values; ``tests/unit/core/test_features.py``
+holds golden values that fail until it is bumped."""
 
 
 def widths(names: Sequence[str]) -> dict[str, int]:

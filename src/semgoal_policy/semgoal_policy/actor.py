@@ -106,7 +106,8 @@ def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "s
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
     meta = {"layout": layout.describe(scene, goal, features.widths(derived)), "hidden": list(HIDDEN),
-            "log_std_max": actor.log_std_max, **info}
+            "log_std_max": actor.log_std_max, "feature_versions": {n: features.FEATURE_VERSIONS[n] for n in derived},
+            **info}
     (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
@@ -129,6 +130,12 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
         diff = sorted(k for k in current if stored.get(k) != current[k])
         raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "
                                   f"scene {scene!r} (differs in: {', '.join(diff)}); retrain or use a matching actor")
+    trained_on = meta.get("feature_versions", dict.fromkeys(names, 1))  # actors before session 44: version 1
+    changed = [n for n in names if trained_on.get(n) != features.FEATURE_VERSIONS[n]]
+    if changed:
+        raise LayoutMismatchError(f"actor in {directory} was trained on another version of the derived feature(s) "
+                                  f"{', '.join(changed)} (actor: {trained_on}, code: {features.FEATURE_VERSIONS}); "
+                                  "retrain it")
     actor = Actor(current["observation_size"] + features.width(names), current["goal_size"],
                   tuple(meta["hidden"]),
                   meta.get("log_std_max", LOG_STD_MAX))  # actors exported before session 24 used the default

@@ -257,3 +257,14 @@ def test_followed_decision_reads_the_active_decisions_of_the_worlds_episode() ->
     assert followed_decision(decisions, 3, 5) is pick  # the step before
     assert followed_decision(decisions, 3, 6) is None  # the step before named none, this one has not come
     assert followed_decision(decisions, 4, 0) is None  # another episode's decisions do not count
+
+
+def test_an_actor_trained_on_another_feature_version_refuses_to_load(tmp_path, monkeypatch) -> None:
+    actor = Actor(layout.observation_size("desk_cleanup") + features.width(("bin_target",)),
+                  layout.goal_size("desk_cleanup"))
+    export(actor, tmp_path, "desk_cleanup", {}, derived=("bin_target",))
+    assert json.loads((tmp_path / "actor.json").read_text())["feature_versions"] == {"bin_target": 1}
+    load(tmp_path, "desk_cleanup")
+    monkeypatch.setitem(features.FEATURE_VERSIONS, "bin_target", 2)
+    with pytest.raises(LayoutMismatchError, match="another version of the derived feature"):
+        load(tmp_path, "desk_cleanup")

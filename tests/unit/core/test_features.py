@@ -98,3 +98,18 @@ def test_the_env_computes_the_subject_offset_for_its_episode_goal() -> None:
     green = env.world.observation()[layout.ARM_SIZE:].reshape(-1, layout.BLOCK_SIZE)[SCENES[SCENE].objects.index("green")]
     assert env.observation_space["observation"].shape == (obs["observation"].size,)
     assert np.allclose(obs["observation"][-3:], green[layout.BLOCK_SLICE["relative_position"]])
+
+
+def test_feature_values_are_pinned_to_their_versions() -> None:
+    """Golden values: a change to what a derived feature computes (here or in geometry.bin_spot) fails this
+    until FEATURE_VERSIONS is bumped, and a bumped version makes every actor trained on the old one refuse
+    to load, rather than silently see other inputs (issue 50)."""
+    assert features.FEATURE_VERSIONS == {"bin_target": 1, "subject_offset": 1}
+    scene = "desk_cleanup"
+    blocks = np.array([[1.20, 0.60, 0.425], [1.34, 1.00, 0.436], [1.40, 0.70, 0.425], [1.26, 1.00, 0.436]])
+    obs = layout.observation(scene, np.array([1.30, 0.65, 0.50]), np.zeros(3), np.array([0.04, 0.04]), np.zeros(2),
+                             blocks, np.zeros((4, 3)))
+    target, mask = LAYOUTS[scene].encode([Literal("in_bin", ("red",)), Literal("holding", ("red",), False)])
+    goal = np.concatenate([target, mask])
+    np.testing.assert_allclose(features.bin_target(scene, obs, goal), [-0.12, 0.35], atol=1e-6)
+    np.testing.assert_allclose(features.subject_offset(scene, obs, goal), [-0.10, -0.05, -0.075], atol=1e-6)

@@ -84,7 +84,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES
     from semgoal_policy.evaluate import success_by_kind
-    from semgoal_sim.env import EPISODE_STEPS
+    from semgoal_sim.env import EPISODE_STEPS, TAKE_OUT
 
     parser = argparse.ArgumentParser(prog="semgoal eval-subgoals", description=eval_subgoals_main.__doc__)
     parser.add_argument("--scene", required=True, choices=list(SCENES))
@@ -118,7 +118,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
         """The actor's mean, or a sample of its Gaussian as the policy node draws it."""
         return actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
 
-    rates = success_by_kind(envs, act, spec.kinds(args.scene), args.episodes, args.seed)
+    kinds = spec.kinds(args.scene) + ((TAKE_OUT,) if envs[0].scene.bin is not None else ())  # put_on_table from the bin
+    rates = success_by_kind(envs, act, kinds, args.episodes, args.seed)
     result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon,
               "action_mode": args.action_mode, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)}

@@ -66,6 +66,9 @@ TAKE_OUT_SHARE = 0.5
 """With blocks in the bin: the share of put_on_table sub-goals that take a binned block back out, so
 operators' take-outs are in the training distribution (issue 49: an actor that had rarely lifted a block
 out let it go over the bin, where it landed back in)."""
+TAKE_OUT = "take_out"
+"""A pseudo sub-goal type for ``reset(options={"kind": TAKE_OUT})``: ``put_on_table`` of a block that starts in
+the bin (desk scenes), so evaluation can report take-outs apart."""
 MAX_SPAWN_MARGIN = 0.1
 """Largest ``spawn_margin`` (m): 1.05..1.55 in x, still inside the workspace and within the expert's reach."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
@@ -115,10 +118,14 @@ class SubgoalEnv(gym.Env):
     def reset(self, *, seed: int | None = None, options: dict[str, Any] | None = None):
         super().reset(seed=seed)
         options = options or {}
+        take_out = options.get("kind") == TAKE_OUT
+        if take_out and self.scene.bin is None:
+            raise ValueError(f"{TAKE_OUT} needs a bin; scene {self.scene.name!r} has none")
         for _ in range(100):
             self.world = self.worlds[int(self.np_random.choice(self.block_counts))]
-            self.world.reset(self._sample_positions())
+            self.world.reset(self._sample_positions(binned=take_out))
             subgoal = (parse_subgoal(options["subgoal"], self.scene) if "subgoal" in options
+                       else self._sample_subgoal("put_on_table", take_out=True) if take_out
                        else self._sample_subgoal(options.get("kind")))
             if subgoal is None or not self._start_for(subgoal):
                 continue
@@ -150,10 +157,15 @@ class SubgoalEnv(gym.Env):
         return layout.goal_reward(achieved_goal, desired_goal) * self.motion_reward.settled(desired_goal, motion)
 
     # -- sampling ------------------------------------------------------------------------------------
-    def _sample_positions(self) -> np.ndarray:
-        """Scattered, clustered or (with a bin) partly binned starts, so every sub-goal meets variety."""
+    def _sample_positions(self, binned: bool = False) -> np.ndarray:
+        """Scattered, clustered or (with a bin) partly binned starts, so every sub-goal meets variety;
+        ``binned``: always some blocks in the bin."""
         rng, count = self.np_random, len(self.world.blocks)
         area = self.spawn_area()
+        if binned:
+            positions = tasks.scatter(rng, count, **area)
+            self._bin_some(positions)
+            return positions
         kind = rng.uniform()
         if kind < 0.3 and count >= 2:
             positions = tasks.scatter(rng, count, **area)
@@ -252,18 +264,22 @@ class SubgoalEnv(gym.Env):
         others = [p for name, p in positions.items() if name != block]
         return bool(rests_on(np.array(others), positions[block]).any())
 
-    def _sample_subgoal(self, kind: str | None = None, exclude: str | None = None) -> SubGoal | None:
-        """A sub-goal of ``kind`` (default: any type) for a random block other than ``exclude``."""
+    def _sample_subgoal(self, kind: str | None = None, exclude: str | None = None, take_out: bool = False
+                        ) -> SubGoal | None:
+        """A sub-goal of ``kind`` (default: any type) for a random block other than ``exclude``; ``take_out``:
+        a binned block (None when none is)."""
         rng = self.np_random
         kind = kind or str(rng.choice(self.subgoal_types))
         vector = self.world.semantic_vector()
         candidates = [b for b in self.world.blocks if b != exclude]
         if self.scene.bin is not None:
             binned = [b for b in candidates if vector[self.layout.index(Literal("in_bin", (b,)))]]
-            if kind == "put_on_table" and binned and rng.uniform() < TAKE_OUT_SHARE:
+            if take_out or (kind == "put_on_table" and binned and rng.uniform() < TAKE_OUT_SHARE):
                 candidates = binned
             elif rng.uniform() >= BINNED_TARGET_SHARE:
                 candidates = [b for b in candidates if b not in binned] or candidates
+        if not candidates:
+            return None
         x = str(rng.choice(candidates))
         others = rng.permutation([b for b in self.world.blocks if b != x]).tolist()
         if self._under_another(x):  # a block under another cannot be picked: the plan would clear it first

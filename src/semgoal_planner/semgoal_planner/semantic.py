@@ -10,6 +10,7 @@ are what the policy is conditioned on.
 from __future__ import annotations
 
 import functools
+import itertools
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -87,8 +88,21 @@ class SemanticPlanner:
         result = solve_task(self.task(objects, state, goal), self.search, self.heuristic)
         if result.plan is None:
             goal_text = " & ".join(map(str, goal))
-            raise PlanningError(f"no plan reaches {goal_text} from the current state: {result.reason}")
+            raise PlanningError(f"no plan reaches {goal_text} from the current state: "
+                                f"{self.conflict(objects, state, goal) or result.reason}")
         return [plan2goal(op) for op in result.plan]
+
+    def conflict(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> str:
+        """Why no plan reaches ``goal``, in its own literals: one no plan reaches alone, or the first pair
+        that no plan reaches together ("" when every pair is reachable: the conflict takes three or more)."""
+        reaches = lambda literals: solve_task(self.task(objects, state, literals), self.search, self.heuristic).plan is not None  # noqa: E731
+        for literal in goal:
+            if not reaches([literal]):
+                return f"{literal} cannot be reached in this scene"
+        for pair in itertools.combinations(goal, 2):
+            if not reaches(list(pair)):
+                return f"{pair[0]} and {pair[1]} cannot hold together (no action sequence of the scene's domain reaches both)"
+        return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
                  steps: list[SubGoal]) -> None:

@@ -61,3 +61,15 @@ def test_unreachable_goal_is_reported() -> None:
     goal = [Literal("holding", ("red",)), Literal("holding", ("green",))]
     with pytest.raises(PlanningError, match="no plan reaches"):
         planner.plan(("red", "green"), state, goal)
+
+
+@pytest.mark.parametrize("scene, goal, named", [
+    ("desk_cleanup", "holding(red) & in_bin(red)", "holding(red) and in_bin(red) cannot hold together"),
+    ("desk_cleanup", "in_bin(green) & holding(red) & holding(green)", "in_bin(green) and holding(green) cannot hold together"),
+    ("two_blocks", "above(red,green) & above(green,red)", "above(red,green) and above(green,red) cannot hold together"),
+])
+def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: str, named: str) -> None:
+    """Issue 51: not only "no state reachable", but which of the goal's literals exclude each other."""
+    objects = ("red", "green")
+    with pytest.raises(PlanningError, match=named):
+        SemanticPlanner(scene).plan(objects, [], parse_goal(goal, scene, objects, []))

@@ -128,9 +128,9 @@ def test_a_spawn_margin_widens_training_starts_but_not_evaluation(tmp_path) -> N
     seen = []
     original = type(trainer.envs[0])._sample_positions
 
-    def spy(env):
+    def spy(env, binned: bool = False):
         seen.append(env.spawn_margin)
-        return original(env)
+        return original(env, binned)
 
     for env in trainer.envs:
         env._sample_positions = spy.__get__(env)

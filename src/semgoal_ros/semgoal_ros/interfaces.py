@@ -143,7 +143,15 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
     from rclpy.executors import ExternalShutdownException
 
     rclpy.init(args=args)
-    node = node_class()
+    try:
+        node = node_class()
+    except (KeyboardInterrupt, ExternalShutdownException):
+        rclpy.try_shutdown()
+        return
+    except Exception:
+        if rclpy.ok():
+            raise
+        return  # SIGINT shut the context down while the node built its servers (rcl: context invalid)
     try:
         rclpy.spin(node)
     except (KeyboardInterrupt, ExternalShutdownException):

@@ -4,7 +4,9 @@ come for the first ``lost`` goals, as in the Fast DDS discovery race)."""
 
 from concurrent.futures import Future
 
-from semgoal_ros.interfaces import RecentAnswers, send_goal, send_until_answered
+import pytest
+
+from semgoal_ros.interfaces import RecentAnswers, run_node, send_goal, send_until_answered
 
 
 class LosingAction:
@@ -59,3 +61,27 @@ def test_requests_without_an_id_are_never_remembered() -> None:
     recent = RecentAnswers()
     recent.remember("", "answer")
     assert recent.get("") is None and not recent.answers
+
+
+def test_run_node_stops_cleanly_when_interrupted_while_a_node_is_built() -> None:
+    """A SIGINT while a node creates its servers invalidates the context and rcl raises from the constructor
+    (seen in CI as "Failed to create action server: rcl node's context is invalid"): a clean stop, exit 0."""
+    import rclpy
+
+
+
+    class InterruptedWhileBuilt:
+        def __init__(self) -> None:
+            rclpy.shutdown()  # what the SIGINT handler does
+            raise ValueError("Failed to create action server: rcl node's context is invalid")
+
+    run_node(InterruptedWhileBuilt, [])
+    assert not rclpy.ok()
+
+    class Broken:
+        def __init__(self) -> None:
+            raise ValueError("a real error while the context is fine")
+
+    with pytest.raises(ValueError, match="a real error"):
+        run_node(Broken, [])
+    rclpy.try_shutdown()

@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import time
 import uuid
@@ -154,6 +155,9 @@ def plan_main(argv: list[str]) -> int:
     fields = EDITS_WITH_INDEX.get(args.op, ())
     if args.op != "show" and len(args.args) != len(fields):
         parser.error(f"{args.op} takes {len(fields)} argument(s): {' '.join(f.upper() for f in fields) or '(none)'}")
+    for name, value in zip(fields, args.args, strict=False):  # checked before anything is sent
+        if name in ("index", "to_index") and not (re.fullmatch(r"[0-9]{1,10}", value) and int(value) < 2**32):
+            parser.error(f"{name.upper()} must be a step number (0 to {2**32 - 1}), got {value!r}")
     from semgoal_msgs.srv import EditPlan, GetPlan
     from semgoal_ros import interfaces as topics
 
@@ -167,8 +171,6 @@ def plan_main(argv: list[str]) -> int:
         request = EditPlan.Request(op=args.op, revision=args.revision, request_id=uuid.uuid4().hex)
         for name, value in zip(fields, args.args, strict=True):
             if name in ("index", "to_index"):
-                if not value.isdigit():
-                    parser.error(f"{name.upper()} must be a step number, got {value!r}")
                 setattr(request, name, int(value))
             else:
                 request.action = value

@@ -59,7 +59,8 @@ def format_plan(plan) -> str:
 
 
 def goal_main(argv: list[str]) -> int:
-    """`./semgoal goal TASK|LITERALS [--wait [--max-steps N]]`: send a goal to planner_node."""
+    """`./semgoal goal TASK|LITERALS|SENTENCE [--wait [--max-steps N]]`: send a goal to planner_node. Exit 0
+    sent (or, with --wait, achieved), 1 failed or no planner, 2 refused with the reason."""
     parser = argparse.ArgumentParser(prog="semgoal goal", description=goal_main.__doc__)
     parser.add_argument("goal", help="a task name (DC-3), literals joined by '&', or a sentence ('put red in the bin')")
     parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
@@ -92,12 +93,35 @@ def goal_main(argv: list[str]) -> int:
         if publisher.get_subscription_count() == 0:
             print(f"semgoal goal: nobody subscribes to {topics.GOAL}: is planner_node running?", file=sys.stderr)
             return 1
+        refusal = _refusal(client, args.goal)
+        if refusal:  # the topic has no answer: a goal the planner would refuse is not sent
+            print(f"semgoal goal: refused: {refusal}", file=sys.stderr)
+            return 2
         publisher.publish(request)
         time.sleep(0.3)  # let DDS deliver before the node goes away
         print(f"published goal {args.goal!r}; see it with ./semgoal plan show")
         return 0
     finally:
         client.close()
+
+
+def _refusal(client: OperatorClient, text: str) -> str:
+    """Why the planner would refuse ``text`` in the world it last observed ("" when it would plan it, or
+    when no world state is known yet): the goal is parsed here as the planner parses it."""
+    from semgoal_core.vocabulary import Literal
+    from semgoal_msgs.srv import GetPlan
+    from semgoal_planner.goals import GoalError, parse_goal
+    from semgoal_ros import interfaces as topics
+
+    state = client.call(GetPlan, topics.GET_PLAN, GetPlan.Request()).state
+    if not state.scene:
+        return ""
+    true = [Literal(p.name, tuple(p.args)) for p in state.predicates if p.value]
+    try:
+        parse_goal(text, state.scene, tuple(state.objects), true)
+    except GoalError as error:
+        return str(error)
+    return ""
 
 
 def _execute(client: OperatorClient, request, timeout: float, max_steps: int) -> int:

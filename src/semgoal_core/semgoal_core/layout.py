@@ -95,6 +95,17 @@ def observation(
     return obs
 
 
+def arm_state(observation: np.ndarray) -> dict[str, np.ndarray]:
+    """The arm's features of an observation by name (:data:`ARM_FEATURES`; velocities as stored, x dt)."""
+    return {name: observation[s] for name, s in _slices(ARM_FEATURES).items()}
+
+
+def block_slots(scene: str, observation: np.ndarray) -> dict[str, np.ndarray]:
+    """The block slots of an observation by feature name, each (max_blocks, width) (:data:`BLOCK_FEATURES`)."""
+    blocks = np.asarray(observation)[ARM_SIZE:observation_size(scene)].reshape(-1, BLOCK_SIZE)
+    return {name: blocks[:, s] for name, s in BLOCK_SLICE.items()}
+
+
 def achieved_goal(semantic_vector: np.ndarray, mask: np.ndarray) -> np.ndarray:
     """The achieved goal of a state for an episode's ``mask``: the constrained entries of the semantic vector."""
     mask = np.asarray(mask, dtype=np.float32)

@@ -8,11 +8,14 @@ import numpy as np
 
 from semgoal_core import features, layout
 from semgoal_core.settling import Settling, at_rest
-from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
+from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, held_alone
 from semgoal_policy import actor as actor_io
 
 HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""
+HOLD_GRIP = np.array([0.0, 0.0, 0.0, -1.0], dtype=np.float32)
+"""The arm holds still and the fingers keep squeezing: a held block is kept, not let slip (issue 57: a pause
+dropped the held block)."""
 
 
 ACTION_MODES = ("sample", "mean")
@@ -66,11 +69,23 @@ class SubgoalController:
         """The command for an observation; ``noise_key`` (task seed, step) seeds the sampled noise."""
         observation = np.asarray(observation, dtype=np.float32)
         if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
-            return HOLD.copy()
+            return self.hold(observation)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
         return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
 
 
-__all__ = ["ACTION_MODES", "HOLD", "SubgoalController", "VocabularyError"]
+    def hold(self, observation: np.ndarray) -> np.ndarray:
+        """Hold still, keeping a block that sits between the closed fingers (``holding``'s geometry)."""
+        observation = np.asarray(observation, dtype=np.float32)
+        if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
+            return HOLD.copy()
+        arm = layout.arm_state(observation)
+        blocks = layout.block_slots(self.scene, observation)
+        held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
+                          blocks["present"][:, 0] > 0.5)
+        return (HOLD_GRIP if held.any() else HOLD).copy()
+
+
+__all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "SubgoalController", "VocabularyError"]

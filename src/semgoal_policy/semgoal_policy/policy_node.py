@@ -23,7 +23,7 @@ from rclpy.node import Node
 from semgoal_core.lockstep import followed_decision
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
-from semgoal_policy.controller import ACTION_MODES, HOLD, SubgoalController, VocabularyError
+from semgoal_policy.controller import ACTION_MODES, SubgoalController, VocabularyError
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
 
@@ -101,7 +101,7 @@ class PolicyNode(Node):
         """The command for a world state; hold still once the sub-goal is confirmed (the planner names the next)."""
         if self.controller.goal is not None and self.controller.confirmed(
                 msg.step, messages.semantic_vector(msg), messages.moving(msg)):
-            return HOLD
+            return self.controller.hold(np.asarray(msg.observation, dtype=np.float32))
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 
     def answer_lockstep(self) -> None:

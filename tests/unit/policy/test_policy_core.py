@@ -268,3 +268,22 @@ def test_an_actor_trained_on_another_feature_version_refuses_to_load(tmp_path, m
     monkeypatch.setitem(features.FEATURE_VERSIONS, "bin_target", 2)
     with pytest.raises(LayoutMismatchError, match="another version of the derived feature"):
         load(tmp_path, "desk_cleanup")
+
+
+def test_holding_still_keeps_a_held_block(tmp_path) -> None:
+    """Without a sub-goal (paused, settling, a human's turn) the arm holds still; with a block between the
+    closed fingers it keeps squeezing, so the block is not let slip (issue 57)."""
+    from semgoal_policy.controller import HOLD_GRIP
+    from semgoal_sim.world import FetchWorld
+
+    export(_actor(), tmp_path, SCENE, {})
+    controller = SubgoalController(SCENE, tmp_path)
+    world = FetchWorld(SCENE)
+    world.reset(np.array([[1.25, 0.70, 0.425], [1.40, 0.80, 0.425]]))
+    assert np.array_equal(controller.act(world.observation()), HOLD)
+    world.place_in_gripper("red")
+    assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)
+    for _ in range(25):  # held still for a second: the block stays in the hand
+        world.step(controller.act(world.observation()))
+    assert world.view().holds("red")
+    assert np.array_equal(controller.hold(np.full(3, np.nan)), HOLD)

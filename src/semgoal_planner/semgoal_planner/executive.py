@@ -240,21 +240,28 @@ class Executive:
                            f"within {self.contradiction_steps} steps")
 
     # -- re-planning ---------------------------------------------------------------------------------
-    def replan(self, reason: str) -> tuple[bool, str]:
+    def replan(self, reason: str, by_operator: bool = False) -> tuple[bool, str]:
+        """Plan again from the observed state. The monitor's re-plans spend ``max_replans``; an operator's
+        re-plan spends none of it, and a paused plan stays paused (issue 57)."""
         obs = self.observation
         if self.status in ("empty", "succeeded", "failed") or obs is None:
             return False, "nothing to re-plan: no goal is being executed"
-        if self.replans >= self.max_replans:
+        if not by_operator and self.replans >= self.max_replans:
             self._finish("failed", f"{reason}; gave up after {self.replans} re-plans")
             return False, self.message
-        self.replans += 1
         try:
             steps = self.planner.plan(obs.objects, obs.true_literals, self.goal)
         except PlanningError as error:
+            if by_operator:  # the plan stays as it was
+                return False, f"re-planning failed: {error}"
             self._finish("failed", f"{reason}; re-planning failed: {error}")
             return False, self.message
+        self.replans += not by_operator
+        paused = self.status == "paused"
         done = [s for s in self.steps[: self.current] if s.status == "done"]
         self._install(done + [PlanStep(s) for s in steps], f"re-planned ({reason})", keep=len(done))
+        if paused:
+            self.status = "paused"
         self._advance()
         return True, self.message
 
@@ -309,7 +316,7 @@ class Executive:
         if op in ("pause", "resume"):
             return self._pause(op == "pause")
         if op == "replan":
-            return self.replan("asked by the operator")
+            return self.replan("asked by the operator", by_operator=True)
         return self._edit_steps(op, index, to_index, action)
 
     def _pause(self, pause: bool) -> tuple[bool, str]:

@@ -226,3 +226,17 @@ def test_a_world_reset_to_other_blocks_fails_the_goal_instead_of_crashing() -> N
     ex.tick(1)
     ex.observe(Observation(two, [Literal("in_bin", (b,), False) for b in two], 1))
     assert ex.status == "failed" and "now has red, green" in ex.message
+
+
+def test_an_operators_replan_keeps_the_pause_and_spends_no_automatic_budget() -> None:
+    """Issue 57: `plan replan` resumed a paused plan and spent max_replans (the 11th failed the goal)."""
+    ex = Executive(SemanticPlanner("desk_cleanup"), max_replans=2)
+    blocks = ("red", "green")
+    ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
+    assert ex.set_goal("DC-2")[0]
+    assert ex.edit("pause")[0] and ex.status == "paused"
+    for _ in range(5):
+        ok, message = ex.edit("replan")
+        assert ok, message
+    assert ex.status == "paused" and ex.replans == 0
+    assert ex.edit("resume")[0] and ex.status == "executing"

@@ -89,7 +89,8 @@ class SimCore:
         return check
 
     def move_block(self, block: str, position: np.ndarray) -> tuple[bool, str]:
-        """Operator intervention: put ``block`` at ``position`` (x, y; z is set to rest on the table)."""
+        """Operator intervention: put ``block`` at ``position`` (x, y; z is set to rest on the table, or on the
+        bin's floor inside its walls). Refused off the table, on another block or across the bin's walls."""
         world = self.world
         if block not in world.blocks:
             return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
@@ -104,8 +105,20 @@ class SimCore:
         for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
             if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
                 return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
-        world.set_block_pose(block, np.array([*xy, TABLE_TOP + BLOCK_HALF_SIZE]))
-        return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f})"
+        rest_z, where = TABLE_TOP + BLOCK_HALF_SIZE, ""
+        bin_ = world.scene.bin
+        if bin_ is not None:
+            offset = np.abs(xy - np.asarray(bin_.center))
+            inner = np.asarray(bin_.inner_half_size)
+            outer = inner + bin_.wall_thickness + BLOCK_HALF_SIZE
+            if np.all(offset <= inner - BLOCK_HALF_SIZE):  # on the bin's floor
+                rest_z, where = TABLE_TOP + bin_.floor_thickness + BLOCK_HALF_SIZE, " in the bin"
+            elif np.all(offset < outer):  # set there, it would cut into a wall and be thrown off the desk
+                return False, (f"({xy[0]:.3f}, {xy[1]:.3f}) overlaps the bin's walls: put the block inside them "
+                               f"(|x - {bin_.center[0]}| <= {inner[0] - BLOCK_HALF_SIZE:.3f}, "
+                               f"|y - {bin_.center[1]}| <= {inner[1] - BLOCK_HALF_SIZE:.3f}) or clear of them")
+        world.set_block_pose(block, np.array([*xy, rest_z]))
+        return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f}){where}"
 
     def snapshot(self) -> Snapshot:
         return self.world.snapshot()

@@ -143,3 +143,18 @@ def test_the_seed_stream_wraps_within_int64() -> None:
     core = SimCore("two_blocks", "MC-2", seed=0)
     assert core.reset("MC-2", 2**63 - 1)[0]
     assert core.reset("MC-2", -1) == (True, "reset to MC-2 with seed 0")
+
+
+def test_move_block_sets_a_block_in_the_bin_and_refuses_the_walls() -> None:
+    """Issue 57: a MoveBlock into the bin's wall reported success and the block was thrown off the desk."""
+    core = SimCore("desk_cleanup", "DC-2", seed=0)
+    bin_ = core.world.scene.bin
+    ok, message = core.move_block("red", np.array(bin_.center))
+    assert ok and message.endswith("in the bin")
+    wall = np.array([bin_.center[0], bin_.center[1] + bin_.inner_half_size[1] + bin_.wall_thickness / 2])
+    ok, message = core.move_block("green", wall)
+    assert not ok and "overlaps the bin's walls" in message
+    for _ in range(25):
+        core.world.step(np.zeros(4))
+    assert "in_bin(red)" in core.world.layout.readable(core.world.semantic_vector())
+    assert not core.world.fallen_blocks()

@@ -128,6 +128,7 @@ def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: G
     handle = probe.send_goal(client, bad)
     result = probe.spin_future(handle.get_result_async(), 20, "action result").result
     assert not result.success and "runs in scene two_blocks" in result.message
+    assert (result.control_steps, result.replans, result.sim_time) == (0, 0, 0.0)  # not the last goal's figures
 
     cancel_goal = ExecuteGoal.Goal()
     cancel_goal.goal.literals = ["in_bin(green)"]

@@ -127,7 +127,9 @@ class PlannerNode(Node):
         if self.last_state is None and self.stateable(handle.request.goal):
             await self.first_state(self.state_wait_s)
         ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
-        start_step, end_step = self.executive.goal_started, self.observed_step()
+        # a refused goal ran no steps: its result must not carry the previous goal's figures (issue 57)
+        start_step = self.executive.goal_started if ok else self.observed_step()
+        end_step = self.observed_step()
         if ok and self.executive.status not in FINAL:
             ended = Future(executor=self.executor)
             self.action_goal = (handle, ended)
@@ -137,11 +139,11 @@ class PlannerNode(Node):
         if handle.is_cancel_requested:
             handle.canceled()
             result.message = "cancelled"
-            return self._fill(result, start_step, end_step)
+            return self._fill(result, ok, start_step, end_step)
         result.success = ok and self.executive.status == "succeeded"
         result.message = message
         (handle.succeed if result.success else handle.abort)()
-        return self._fill(result, start_step, end_step)
+        return self._fill(result, ok, start_step, end_step)
 
     def stateable(self, msg: GoalRequest) -> bool:
         """Whether the goal passes every check that needs no world state (else it is refused at once)."""
@@ -186,8 +188,8 @@ class PlannerNode(Node):
         obs = self.executive.observation
         return obs.step if obs else 0
 
-    def _fill(self, result: ExecuteGoal.Result, start_step: int, end_step: int) -> ExecuteGoal.Result:
-        result.replans = self.executive.replans
+    def _fill(self, result: ExecuteGoal.Result, started: bool, start_step: int, end_step: int) -> ExecuteGoal.Result:
+        result.replans = self.executive.replans if started else 0
         result.control_steps = max(0, end_step - start_step)
         result.sim_time = result.control_steps * CONTROL_DT
         return result

@@ -377,4 +377,4 @@ class Executive:
 
     def _simulate(self, steps: list[SubGoal]) -> None:
         obs = self.observation
-        self.planner.simulate(obs.objects, obs.true_literals, self.goal, steps)
+        self.planner.simulate(obs.objects, obs.true_literals, self.goal, steps, first_index=self.current)

@@ -105,11 +105,12 @@ class SemanticPlanner:
         return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
-                 steps: list[SubGoal]) -> None:
-        """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError."""
+                 steps: list[SubGoal], first_index: int = 0) -> None:
+        """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError,
+        naming a step by its index in the plan (``first_index`` for the first of ``steps``), as `plan show` does."""
         task = self.task(objects, state, goal)
         current = task.init
-        for number, step in enumerate(steps, start=1):
+        for number, step in enumerate(steps, start=first_index):
             candidates = [op for op in task.operators if plan2goal(op) == step]
             if not candidates:
                 raise PlanningError(f"step {number} {step}: not an action of scene {self.scene} with these objects")

@@ -48,8 +48,10 @@ def test_swap_plan_unstacks_before_stacking() -> None:
 def test_simulation_explains_what_is_wrong() -> None:
     planner = SemanticPlanner("desk_cleanup")
     blocks, goal = ("red", "green"), [Literal("in_bin", ("red",))]
-    with pytest.raises(PlanningError, match=r"step 1 put_in_bin\(red\) cannot run: it needs holding\(red\)"):
+    with pytest.raises(PlanningError, match=r"step 0 put_in_bin\(red\) cannot run: it needs holding\(red\)"):
         planner.simulate(blocks, [], goal, [SubGoal("put_in_bin", ("red",))])
+    with pytest.raises(PlanningError, match=r"step 3 put_in_bin\(red\) cannot run"):  # numbered as in the plan
+        planner.simulate(blocks, [], goal, [SubGoal("put_in_bin", ("red",))], first_index=3)
     with pytest.raises(PlanningError, match=r"does not reach the goal: .*in_bin\(red\)"):
         planner.simulate(blocks, [], goal, [SubGoal("pick", ("red",)), SubGoal("put_on_table", ("red",))])
     with pytest.raises(PlanningError, match="not an action"):

@@ -99,6 +99,8 @@ def test_goal_plan_edits_and_subgoals(nodes: NodeProcesses, probe: GraphProbe) -
     assert first.success and again.success and again.message == first.message  # answered again, applied once
     assert again.plan.revision == first.plan.revision and again.plan.status == "paused"
     assert not op.edit("pause", request_id="operator-2").success  # a new request: already paused
+    reused = op.edit("resume", request_id="operator-1")  # another edit under a used id: refused, plan as it is
+    assert not reused.success and "was used for another request" in reused.message and reused.plan.status == "paused"
 
 
 def test_execute_goal_action_succeeds_and_reports(nodes: NodeProcesses, probe: GraphProbe) -> None:

@@ -108,7 +108,12 @@ class PlannerNode(Node):
         return response
 
     def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
-        answered = self.edit_answers.get(request.request_id)
+        asked = (request.op, request.index, request.to_index, request.action, request.revision)
+        try:
+            answered = self.edit_answers.get(request.request_id, asked)
+        except topics.ReusedRequestIdError as error:  # refused, the plan as it is
+            response.success, response.message, response.plan = False, str(error), self.plan_message()
+            return response
         if answered is not None:  # sent again because our answer was lost: it was applied once already
             response.success, response.message, response.plan = answered
             return response
@@ -117,7 +122,7 @@ class PlannerNode(Node):
         self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
         self.publish()
         response.plan = self.plan_message()
-        self.edit_answers.remember(request.request_id, (response.success, response.message, response.plan))
+        self.edit_answers.remember(request.request_id, (response.success, response.message, response.plan), asked)
         return response
 
     async def execute_callback(self, handle: ServerGoalHandle) -> ExecuteGoal.Result:

@@ -117,22 +117,33 @@ def send_goal(action, goal, spin_until: Callable[[Callable[[], bool], float], bo
                                spin_until, attempts, wait_s)
 
 
+class ReusedRequestIdError(ValueError):
+    """A request id that came with another request than the one it was first sent with."""
+
+
 class RecentAnswers:
     """The answers to the latest requests by request id, so a request sent again because its answer was
-    lost gets the same answer instead of being applied twice (an idempotency key). Bounded: the oldest
-    id is forgotten first."""
+    lost gets the same answer instead of being applied twice (an idempotency key). An id is bound to its
+    request: the same id with another request raises :class:`ReusedRequestIdError`. Bounded: the oldest id is
+    forgotten first."""
 
     def __init__(self, size: int = 32) -> None:
         self.size = size
-        self.answers: dict[str, object] = {}
+        self.answers: dict[str, tuple[object, object]] = {}
 
-    def get(self, request_id: str):
-        return self.answers.get(request_id) if request_id else None
+    def get(self, request_id: str, request: object = None):
+        """The answer given to ``request_id``, or None; ``request``: what the request asked (compared)."""
+        if not request_id or request_id not in self.answers:
+            return None
+        asked, answer = self.answers[request_id]
+        if asked != request:
+            raise ReusedRequestIdError(f"request id {request_id!r} was used for another request; send a new id")
+        return answer
 
-    def remember(self, request_id: str, answer) -> None:
+    def remember(self, request_id: str, answer, request: object = None) -> None:
         if not request_id:
             return
-        self.answers[request_id] = answer
+        self.answers[request_id] = (request, answer)
         while len(self.answers) > self.size:
             del self.answers[next(iter(self.answers))]
 

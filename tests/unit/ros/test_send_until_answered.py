@@ -6,7 +6,7 @@ from concurrent.futures import Future
 
 import pytest
 
-from semgoal_ros.interfaces import RecentAnswers, run_node, send_goal, send_until_answered
+from semgoal_ros.interfaces import RecentAnswers, ReusedRequestIdError, run_node, send_goal, send_until_answered
 
 
 class LosingAction:
@@ -55,6 +55,15 @@ def test_recent_answers_repeat_an_answer_by_request_id_and_forget_the_oldest() -
     assert recent.get("a") == 1 and recent.get("b") == 2
     recent.remember("c", 3)
     assert recent.get("a") is None and recent.get("c") == 3
+
+
+def test_a_request_id_is_bound_to_its_request() -> None:
+    """Issue 57: a reused request id returned the old answer for a different edit."""
+    recent = RecentAnswers()
+    recent.remember("id-1", "removed step 2", ("remove", 2))
+    assert recent.get("id-1", ("remove", 2)) == "removed step 2"
+    with pytest.raises(ReusedRequestIdError, match="was used for another request"):
+        recent.get("id-1", ("remove", 3))
 
 
 def test_requests_without_an_id_are_never_remembered() -> None:

@@ -179,3 +179,23 @@ def test_a_sentence_on_the_goal_topic_is_planned_and_achieved(nodes: NodeProcess
     op.observe({"holding(red)"}, 20)
     op.observe({"in_bin(red)"}, 40)
     probe.spin_until(lambda: op.plans[-1].status == "succeeded", 20, "goal achieved at rest")
+
+
+def test_ctrl_c_on_goal_wait_cancels_the_goal(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    """Issue 57: Ctrl-C on `./semgoal goal ... --wait` left the goal running; now it cancels it, exit 130."""
+    import signal
+    import subprocess
+
+    from conftest import ROOT
+
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
+    op = Operator(probe)
+    probe.spin_until(lambda: op.states.get_subscription_count() > 0, 30, "planner subscribed")
+    op.observe(set(), 0, held=False)
+    waiting = subprocess.Popen([str(ROOT / "semgoal"), "goal", "in_bin(red)", "--wait"], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    probe.spin_until(lambda: op.plans and op.plans[-1].status == "executing", 30, "goal executing")
+    waiting.send_signal(signal.SIGINT)
+    _, err = waiting.communicate(timeout=30)
+    assert waiting.returncode == 130 and "the goal was cancelled" in err, err
+    probe.spin_until(lambda: op.plans[-1].status == "failed", 10, "goal cancelled")

@@ -45,7 +45,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     module_name, _, function = COMMANDS[command][0].partition(":")
     entry = getattr(importlib.import_module(module_name), function or "main")
-    return int(entry(rest) or 0)
+    try:
+        return int(entry(rest) or 0)
+    except KeyboardInterrupt:  # Ctrl-C: the command cleaned up on its way out; no traceback
+        return 130
 
 
 if __name__ == "__main__":

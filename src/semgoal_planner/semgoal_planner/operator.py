@@ -26,8 +26,10 @@ class OperatorClient:
 
     def __init__(self) -> None:
         import rclpy
+        from rclpy.signals import SignalHandlerOptions
 
-        rclpy.init()
+        # Ctrl-C raises KeyboardInterrupt with the context still valid, so a command can clean up (cancel its goal)
+        rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
         self.rclpy = rclpy
         self.node = rclpy.create_node("semgoal_operator")
 
@@ -149,7 +151,13 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
         print("semgoal goal: the planner did not accept the goal", file=sys.stderr)
         return 1
     result_future = handle.get_result_async()
-    client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=timeout)
+    try:
+        client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=timeout)
+    except KeyboardInterrupt:  # Ctrl-C: the goal is the operator's to stop, not to leave running (issue 57)
+        cancelled = handle.cancel_goal_async()
+        client.rclpy.spin_until_future_complete(client.node, cancelled, timeout_sec=WAIT_S)
+        print("semgoal goal: interrupted; the goal was cancelled", file=sys.stderr)
+        return 130
     if not result_future.done():
         handle.cancel_goal_async()
         print(f"semgoal goal: no result within {timeout:.0f} s; cancelled", file=sys.stderr)

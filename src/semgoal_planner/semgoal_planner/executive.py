@@ -259,7 +259,10 @@ class Executive:
         self.replans += not by_operator
         paused = self.status == "paused"
         done = [s for s in self.steps[: self.current] if s.status == "done"]
-        self._install(done + [PlanStep(s) for s in steps], f"re-planned ({reason})", keep=len(done))
+        # a step the operator gave a person stays theirs when the new plan has it too (issue 57)
+        human = {s.subgoal for s in self.steps[self.current:] if s.assignee == "human"}
+        new = [PlanStep(s, assignee="human" if s in human else "robot") for s in steps]
+        self._install(done + new, f"re-planned ({reason})", keep=len(done))
         if paused:
             self.status = "paused"
         self._advance()

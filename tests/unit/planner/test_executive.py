@@ -240,3 +240,17 @@ def test_an_operators_replan_keeps_the_pause_and_spends_no_automatic_budget() ->
         assert ok, message
     assert ex.status == "paused" and ex.replans == 0
     assert ex.edit("resume")[0] and ex.status == "executing"
+
+
+def test_a_persons_steps_stay_theirs_across_a_replan() -> None:
+    """Issue 57: every re-plan turned human steps back into robot steps."""
+    ex = Executive(SemanticPlanner("desk_cleanup"))
+    blocks = ("red", "green")
+    ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
+    assert ex.set_goal("DC-2")[0]
+    handed = [i for i, s in enumerate(ex.steps) if str(s.subgoal).startswith("put_in_bin")]
+    for i in handed:
+        assert ex.edit("assign", i, action="human")[0]
+    assert ex.edit("replan")[0]
+    assert {str(s.subgoal): s.assignee for s in ex.steps if s.status == "pending" or s.status == "active"} == {
+        str(s.subgoal): ("human" if str(s.subgoal).startswith("put_in_bin") else "robot") for s in ex.steps}

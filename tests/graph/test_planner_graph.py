@@ -81,14 +81,16 @@ def test_goal_plan_edits_and_subgoals(nodes: NodeProcesses, probe: GraphProbe) -
     assert not swapped.success  # put_in_bin(blue) would then need holding(blue)
     reordered = [op.edit("replace", 4, action="pick(blue)"), op.edit("replace", 0, action="pick(red)")]
     assert not reordered[0].success and not reordered[1].success
-    assert op.edit("assign", 0, action="human").success
-    probe.spin_until(lambda: op.subgoals[-1].status == "waiting_for_human", 10, "human step")
-    assert op.edit("assign", 0, action="robot").success
+    handover = op.edit("assign", 0, action="human")  # a pick asks the robot's hand to hold: never a person's
+    assert not handover.success and "a person cannot do" in handover.message
+    assert op.edit("assign", 1, action="human").success
     assert op.edit("pause").success
     probe.spin_until(lambda: op.subgoals[-1].status == "paused", 10, "paused sub-goal")
     assert op.edit("resume").success
 
-    op.observe({"holding(blue)"}, 20)  # the pick is done: the put becomes active
+    op.observe({"holding(blue)"}, 20)  # the pick is done: the put is the person's
+    probe.spin_until(lambda: op.subgoals[-1].status == "waiting_for_human", 10, "human step")
+    assert op.edit("assign", 1, action="robot").success
     probe.spin_until(lambda: op.subgoals[-1].action == "put_in_bin(blue)", 10, "next sub-goal")
     shown = op.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
     assert shown.success and shown.plan.current == 1 and shown.plan.steps[0].status == "done"

@@ -7,7 +7,8 @@ yet, the plan is ``settling``: no step is active and the policy holds the arm st
 stalls for ``stall_steps`` control steps, or a plan that the observed state contradicts for
 ``contradiction_steps`` in a row (a block moved by hand, a dropped block), is re-planned from the
 observed state, at most ``max_replans`` times; then the goal fails with the reason. A step assigned to
-a human is waited for (its literals observed at rest), without a stall limit. Every edit is checked by
+a human is waited for (its literals observed at rest) up to ``human_steps`` control steps, then the goal
+fails with that reason; a pick is never a person's step. Every edit is checked by
 simulating the remaining steps from the observed state (see :meth:`SemanticPlanner.simulate`); a refused
 edit leaves the plan exactly as it was.
 """
@@ -67,6 +68,8 @@ class Executive:
     planner: SemanticPlanner
     stall_steps: int = 150
     """Control steps a robot step may take before it is re-planned (the policy needs about 20 to 40)."""
+    human_steps: int = 3000
+    """Control steps a person's step may take (2 min at 25 Hz) before the goal fails with that reason."""
     contradiction_steps: int = 10
     """Control steps the observed state must contradict the plan before a re-plan (debounces releases)."""
     max_replans: int = 10
@@ -164,6 +167,10 @@ class Executive:
         elif self.steps[self.current].assignee == "robot" and step - self.step_started > self.stall_steps:
             self.replan(f"step {self.current} {self.steps[self.current].subgoal} made no progress in "
                         f"{self.stall_steps} control steps")
+        elif self.steps[self.current].assignee == "human" and step - self.step_started > self.human_steps:
+            self._finish("failed", f"step {self.current} {self.steps[self.current].subgoal} was a person's and was "
+                                   f"not done within {self.human_steps} control steps; assign it to the robot "
+                                   "or send the goal again")
 
     @property
     def settling(self) -> bool:
@@ -357,6 +364,9 @@ class Executive:
                 who = action.strip().lower()
                 if who not in ASSIGNEES:
                     raise ValueError(f"assign takes 'robot' or 'human', got {action!r}")
+                if who == "human" and steps[index].subgoal.kind == "pick":
+                    raise ValueError(f"step {index} {steps[index].subgoal} asks the robot's hand to hold a block, which "
+                                     "a person cannot do for it: give the person the put after it")
                 steps[index].assignee = who
             self._simulate([s.subgoal for s in steps[self.current:]])
         except (ValueError, PlanningError) as error:

@@ -145,17 +145,24 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
             last[0] = key
             print(format_plan(plan), flush=True)
 
-    handle = topics.send_goal(action, ExecuteGoal.Goal(goal=request, max_steps=max_steps),
-                               partial(topics.spin_node_until, client.node), on_feedback)
-    if handle is None or not handle.accepted:
-        print("semgoal goal: the planner did not accept the goal", file=sys.stderr)
-        return 1
-    result_future = handle.get_result_async()
-    try:
-        client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=timeout)
-    except KeyboardInterrupt:  # Ctrl-C: the goal is the operator's to stop, not to leave running (issue 57)
-        cancelled = handle.cancel_goal_async()
-        client.rclpy.spin_until_future_complete(client.node, cancelled, timeout_sec=WAIT_S)
+    goal, sent = ExecuteGoal.Goal(goal=request, max_steps=max_steps), []
+
+    def send():
+        sent.append(action.send_goal_async(goal, feedback_callback=on_feedback))
+        return sent[-1]
+
+    spin_until = partial(topics.spin_node_until, client.node)
+    try:  # Ctrl-C, from the goal's sending on: the goal is the operator's to stop, not to leave running (issue 57)
+        handle = topics.send_until_answered(send, spin_until)
+        if handle is None or not handle.accepted:
+            print("semgoal goal: the planner did not accept the goal", file=sys.stderr)
+            return 1
+        result_future = handle.get_result_async()
+        deadline = time.monotonic() + timeout
+        while not result_future.done() and time.monotonic() < deadline:  # slices: Ctrl-C lands between them
+            client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=0.1)
+    except KeyboardInterrupt:
+        _cancel_sent(client, sent)
         print("semgoal goal: interrupted; the goal was cancelled", file=sys.stderr)
         return 130
     if not result_future.done():
@@ -166,6 +173,15 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
     print(f"{'success' if result.success else 'failure'}: {result.message} "
           f"({result.control_steps} control steps, {result.sim_time:.1f} s sim time, {result.replans} re-plans)")
     return 0 if result.success else 1
+
+
+def _cancel_sent(client: OperatorClient, sent: list) -> None:
+    """Cancel every goal sent that the planner accepted (waiting briefly for answers still on their way)."""
+    for future in sent:
+        client.rclpy.spin_until_future_complete(client.node, future, timeout_sec=WAIT_S)
+        handle = future.result() if future.done() else None
+        if handle is not None and handle.accepted:
+            client.rclpy.spin_until_future_complete(client.node, handle.cancel_goal_async(), timeout_sec=WAIT_S)
 
 
 EDITS_WITH_INDEX = {"insert": ("index", "action"), "remove": ("index",), "move": ("index", "to_index"),

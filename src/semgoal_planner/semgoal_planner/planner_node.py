@@ -45,6 +45,7 @@ class PlannerNode(Node):
         self.executive = Executive(
             SemanticPlanner(scene, self.declare_parameter("search", "bfs").value),
             stall_steps=self.declare_parameter("stall_steps", 150).value,
+            human_steps=self.declare_parameter("human_steps", 3000).value,
             contradiction_steps=self.declare_parameter("contradiction_steps", 10).value,
             max_replans=self.declare_parameter("max_replans", 10).value,
             require_approval=self.declare_parameter("require_approval", False).value,

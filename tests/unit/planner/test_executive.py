@@ -136,23 +136,26 @@ def test_a_step_that_needs_a_fallen_block_fails_at_once_with_the_reason() -> Non
 def test_a_fallen_block_does_not_fail_a_step_a_human_does() -> None:
     ex = executive()
     ex.set_goal("in_bin(red)")
-    ok, _ = ex.edit("assign", 0, action="human")
+    ok, _ = ex.edit("assign", 1, action="human")  # the person puts red in the bin once the robot has picked it
     assert ok
-    ex.observe(observe([], 5, fallen=["red"]))
+    ex.observe(observe(["holding(red)"], 3))
+    assert ex.current == 1 and ex.active is None
+    ex.observe(observe([], 5, fallen=["red"]))  # it slipped off the table: a person can still fetch it
     assert ex.status == "executing"
-    ex.observe(observe(["holding(red)"], 9))  # a person put it back and handed it over
-    assert str(ex.active.subgoal) == "put_in_bin(red)"
+    ex.observe(observe(["in_bin(red)"], 9))
+    assert ex.status == "succeeded"
 
 
 def test_human_step_is_waited_for_without_stall() -> None:
     ex = executive(stall_steps=5)
     ex.set_goal("in_bin(red)")
-    ok, _ = ex.edit("assign", 0, action="human")
+    ok, _ = ex.edit("assign", 1, action="human")
+    ex.observe(observe(["holding(red)"], 3))
     assert ok and ex.active is None
     ex.tick(100)
-    assert ex.replans == 0
-    ex.observe(observe(["holding(red)"], 120))
-    assert ex.active is not None and str(ex.active.subgoal) == "put_in_bin(red)"
+    assert ex.replans == 0 and ex.status == "executing"
+    ex.observe(observe(["in_bin(red)"], 120))
+    assert ex.status == "succeeded"
 
 
 def test_valid_edits_apply_and_invalid_ones_change_nothing() -> None:
@@ -254,3 +257,19 @@ def test_a_persons_steps_stay_theirs_across_a_replan() -> None:
     assert ex.edit("replan")[0]
     assert {str(s.subgoal): s.assignee for s in ex.steps if s.status == "pending" or s.status == "active"} == {
         str(s.subgoal): ("human" if str(s.subgoal).startswith("put_in_bin") else "robot") for s in ex.steps}
+
+
+def test_a_persons_step_has_a_time_limit_and_a_pick_is_never_theirs() -> None:
+    """Issue 57: a person could be asked to make the robot hold a block, and waited for without end."""
+    ex = Executive(SemanticPlanner("desk_cleanup"), human_steps=40)
+    blocks = ("red", "green")
+    ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
+    assert ex.set_goal("in_bin(red)")[0] and [str(s.subgoal) for s in ex.steps] == ["pick(red)", "put_in_bin(red)"]
+    refused, reason = ex.edit("assign", 0, action="human")
+    assert not refused and "a person cannot do" in reason and ex.steps[0].assignee == "robot"
+    assert ex.edit("assign", 1, action="human")[0]
+    held = [Literal("holding", ("red",)), Literal("in_bin", ("red",), False), Literal("in_bin", ("green",), False)]
+    for step in range(1, 60):
+        ex.tick(step)
+        ex.observe(Observation(blocks, held, step))
+    assert ex.status == "failed" and "was a person's and was not done within 40 control steps" in ex.message

@@ -8,6 +8,7 @@ spinning until a condition holds and sending a request again while no answer com
 memory of answers that makes such a repeat safe.
 """
 
+import contextlib
 import time
 from collections.abc import Callable
 
@@ -157,7 +158,7 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
     try:
         node = node_class()
     except (KeyboardInterrupt, ExternalShutdownException):
-        rclpy.try_shutdown()
+        _shutdown(rclpy)
         return
     except Exception:
         if rclpy.ok():
@@ -173,4 +174,11 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
         # SIGINT shut the context down while the executor built its wait set (rclpy raises RCLError there)
     finally:
         node.destroy_node()
+        _shutdown(rclpy)
+
+
+def _shutdown(rclpy) -> None:
+    """Shut the context down, unless SIGINT's handler is doing so at the same moment: rcl then refuses the
+    second shutdown with an RCLError (a CI run saw it when Ctrl-C landed while a node was being built)."""
+    with contextlib.suppress(RuntimeError):
         rclpy.try_shutdown()

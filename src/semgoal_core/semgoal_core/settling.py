@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from semgoal_core.layout import goal_reward
 from semgoal_core.vocabulary import Literal, SemanticLayout
 
 REST_SPEED = 0.02
@@ -32,6 +33,11 @@ SETTLE_STEPS = 5
 def held_blocks_asked(literals: Iterable[Literal]) -> set[str]:
     """The blocks the literals ask to be held (``holding(x)`` true): they may move with the arm."""
     return {lit.args[0] for lit in literals if lit.name == "holding" and lit.value}
+
+
+def info_motion(info: dict | Sequence[dict]) -> np.ndarray:
+    """The motion bits of a step's info dict, or of a sequence of them (as Stable-Baselines3's HER passes)."""
+    return np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
 
 
 def restless(moving: np.ndarray, held: np.ndarray, asked: np.ndarray) -> np.ndarray:
@@ -73,6 +79,10 @@ class MotionReward:
         """(..., N) bool: the goal asks for each block slot to be held."""
         target, mask = goal[..., : self.size], goal[..., self.size:]
         return (target[..., self.holding_entries] > 0.5) & (mask[..., self.holding_entries] > 0.5)
+
+    def __call__(self, achieved: np.ndarray, desired: np.ndarray, motion: np.ndarray) -> np.ndarray:
+        """The reward: 1 where every masked literal matches and the world is at rest, vectorised."""
+        return goal_reward(achieved, desired) * self.settled(desired, motion)
 
     def settled(self, goal: np.ndarray, motion: np.ndarray) -> np.ndarray:
         """(...,) bool: no restless block under ``goal``; ``motion`` (..., 2N) is moving then held."""

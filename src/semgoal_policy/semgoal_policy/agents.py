@@ -41,8 +41,7 @@ class AgentSpec:
 
 def semantic_reward(scene: str) -> RewardFn:
     """The sparse semantic reward at rest (:class:`semgoal_core.settling.MotionReward`)."""
-    motion_reward = MotionReward(LAYOUTS[scene])
-    return lambda achieved, desired, motion: layout.goal_reward(achieved, desired) * motion_reward.settled(desired, motion)
+    return MotionReward(LAYOUTS[scene])
 
 
 def position_reward(scene: str) -> RewardFn:

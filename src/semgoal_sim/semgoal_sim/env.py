@@ -21,7 +21,7 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_core import features, layout, tasks
-from semgoal_core.settling import MotionReward
+from semgoal_core.settling import MotionReward, info_motion
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.expert import clear_of, expert_action, move_to
 from semgoal_sim.rollout import run_subgoal, satisfied
@@ -153,8 +153,7 @@ class SubgoalEnv(gym.Env):
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
         """Vectorised sparse semantic reward at rest, for HER relabelling: ``info`` is a step's info dict,
         or a sequence of them, one per row (as Stable-Baselines3's HER passes them)."""
-        motion = np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
-        return layout.goal_reward(achieved_goal, desired_goal) * self.motion_reward.settled(desired_goal, motion)
+        return self.motion_reward(achieved_goal, desired_goal, info_motion(info))
 
     # -- sampling ------------------------------------------------------------------------------------
     def _sample_positions(self, binned: bool = False) -> np.ndarray:

@@ -23,7 +23,7 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_core import layout, tasks
-from semgoal_core.settling import MotionReward
+from semgoal_core.settling import MotionReward, info_motion
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal
 from semgoal_sim.expert import expert_action
 from semgoal_sim.rollout import SUBGOAL_STEPS, expert_next_steps, satisfied
@@ -122,8 +122,7 @@ class TaskEnv(gym.Env):
         sub-goal env has it. Positions: the dense distance reward."""
         if self.goal_kind != "semantic":
             return layout.position_reward(achieved_goal, desired_goal)
-        motion = np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
-        return layout.goal_reward(achieved_goal, desired_goal) * self.motion_reward.settled(desired_goal, motion)
+        return self.motion_reward(achieved_goal, desired_goal, info_motion(info))
 
     def expert_action(self) -> np.ndarray:
         """The scripted expert's action toward the task goal (zeros once it holds), as :func:`run_task`

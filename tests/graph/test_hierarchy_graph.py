@@ -10,7 +10,7 @@ import pytest
 
 from conftest import NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
-from semgoal_bringup.graph_client import GraphClient
+from semgoal_ros.client import GraphClient
 
 TASK, SEED = "MC-2", 4
 
@@ -39,8 +39,8 @@ def _free_spot(client: GraphClient, keep_away_from: str) -> tuple[float, float, 
 def _planner_sees(client: GraphClient, name: str, args: list[str], value: bool, timeout: float = 10.0) -> bool:
     """Whether the semantic state the planner last decided on comes to hold ``name(args)`` as ``value``."""
     def seen() -> bool:
-        reply = client.call(client.plan_client, client.GetPlan.Request())
-        return reply is not None and any(p.name == name and list(p.args) == args and bool(p.value) == value
+        reply = client.get_plan()
+        return any(p.name == name and list(p.args) == args and bool(p.value) == value
                                          for p in reply.state.predicates)
     return client.spin_until(seen, timeout)
 
@@ -58,16 +58,16 @@ def _with_the_block_held(client: GraphClient, while_paused: Callable[[str], None
         status = client.subgoal.status if client.subgoal else ""
         if status == "awaiting_approval" and not done:
             for edit in (("assign", 1, "human"), ("approve",)):
-                assert client.edit(*edit)[0], edit
+                assert client.edit(*edit).success, edit
             done.append("approved")
         elif status == "awaiting_approval":
             client.edit("approve")  # refused harmlessly when a stale sub-goal message repeats the status
         elif status == "waiting_for_human" and done == ["approved"]:
-            carry = client.call(client.plan_client, client.GetPlan.Request()).plan.steps[1].action
+            carry = client.get_plan().plan.steps[1].action
             for edit in (("pause",), ("assign", 1, "robot")):
-                assert client.edit(*edit)[0], edit
+                assert client.edit(*edit).success, edit
             while_paused(carry)
-            assert client.edit("resume")[0]
+            assert client.edit("resume").success
             after_resume()
             done.append("intervened")
 

@@ -10,8 +10,8 @@ import pytest
 from conftest import NodeProcesses
 from semgoal_bringup.episodes import make_agent
 from semgoal_bringup.graph import NODES, node_params
-from semgoal_bringup.graph_client import GraphClient
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_ros.client import GraphClient
 
 CASES = [("Swap-2", 3_000_000), ("MC-3", 3_000_000), ("DC-4", 3_000_006)]
 """One start per scene where the shipped actors re-plan in process (each once; all solved at rest). Re-pick

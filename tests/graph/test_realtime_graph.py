@@ -5,9 +5,9 @@ is solved within its step budget."""
 
 from conftest import NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
-from semgoal_bringup.graph_client import GraphClient
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.tasks import TASK_STEP_BUDGET
+from semgoal_ros.client import GraphClient
 
 TASK, SEED = "MC-2", 3_000_000
 

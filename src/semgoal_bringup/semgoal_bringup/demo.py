@@ -58,9 +58,10 @@ class Demo:
     def __init__(self, task_name: str, seed: int) -> None:
         from sensor_msgs.msg import JointState
 
-        from semgoal_bringup.graph_client import GraphClient
         from semgoal_core.tasks import get_task
         from semgoal_msgs.msg import SubGoal, WorldState
+        from semgoal_ros import interfaces as topics
+        from semgoal_ros.client import GraphClient
 
         self.task, self.seed = get_task(task_name), seed
         self.client = GraphClient("semgoal_demo")
@@ -73,7 +74,7 @@ class Demo:
         self.seen_steps: dict[int, str] = {}
         self.replans_shown = -1
         """Re-plans of the plan last printed (-1: none printed yet); a step done changes the plan too."""
-        node, topics = self.client.node, self.client.topics  # the GIF's own readers
+        node = self.client.node  # the GIF's own readers
         node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.RECORDING)
         node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.RECORDING)
         node.create_subscription(SubGoal, topics.SUBGOAL, self._on_decision, topics.RECORDING)

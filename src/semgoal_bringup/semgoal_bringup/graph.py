@@ -79,7 +79,7 @@ def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name
                   models: str = "", watch: bool = True) -> Iterator:
     """The four nodes and a :class:`GraphClient` on a fresh ROS domain, ready; all stopped on exit.
     ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do not come up."""
-    from semgoal_bringup.graph_client import GraphClient
+    from semgoal_ros.client import GraphClient
 
     fresh_domain()
     processes = start_graph(task_name, seed, mode=mode, models=models)

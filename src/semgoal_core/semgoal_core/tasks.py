@@ -157,6 +157,19 @@ def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
     return goal + task.released()
 
 
+def is_task_name(text: str) -> bool:
+    """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
+    return any(text.strip().lower() == name.lower() for name in TASKS)
+
+
+def goal_form(text: str) -> str:
+    """How a goal is written: ``"task"`` (``DC-3``), ``"literals"`` (``in_bin(red) & not close(red,green)``:
+    literal syntax has parentheses) or ``"text"`` (a sentence)."""
+    if is_task_name(text):
+        return "task"
+    return "literals" if "(" in text or ")" in text else "text"
+
+
 def get_task(name: str) -> Task:
     """Look a task up by its paper name (case-insensitive), or raise with the list of valid names."""
     for task_name, task in TASKS.items():

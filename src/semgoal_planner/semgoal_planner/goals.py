@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 
-from semgoal_core.tasks import TASKS, Task, get_task, goal_in_state
+from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
 
@@ -28,24 +28,15 @@ def split_literals(text: str) -> list[str]:
     return parts
 
 
-def is_task_name(text: str) -> bool:
-    """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
-    return any(text.strip().lower() == name.lower() for name in TASKS)
-
-
-def looks_like_literals(text: str) -> bool:
-    """Literal syntax (``name(args)``), as opposed to a sentence."""
-    return "(" in text or ")" in text
-
-
 def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
     """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``:
     a task, literals, or else a sentence."""
     if len(text) > MAX_GOAL_CHARS:
         raise GoalError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    if is_task_name(text):
+    form = goal_form(text)
+    if form == "task":
         return task_goal(text, scene, objects, state)
-    if not looks_like_literals(text):
+    if form == "text":
         try:
             return parse_english(text, scene, objects)
         except LanguageError as error:
@@ -68,7 +59,7 @@ def check_goal_text(text: str, scene: str) -> None:
     """Refuse a goal that no world of ``scene`` could state (a task of another scene, an unknown predicate
     or block, a wrong arity, a contradiction) before any state is known; the blocks present are checked
     once one is."""
-    if is_task_name(text):
+    if goal_form(text) == "task":
         scene_task(text, scene)
     else:
         parse_goal(text, scene, LAYOUTS[scene].objects, [])

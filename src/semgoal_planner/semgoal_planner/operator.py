@@ -14,55 +14,19 @@ from __future__ import annotations
 import argparse
 import re
 import sys
-import time
-import uuid
-from functools import partial
 
-WAIT_S = 10.0
+from semgoal_ros.client import GraphClient, GraphUnavailableError
+from semgoal_ros.messages import format_plan
 
 
-class OperatorClient:
-    """A short-lived rclpy node for one command."""
-
-    def __init__(self) -> None:
-        import rclpy
-        from rclpy.signals import SignalHandlerOptions
-
-        # Ctrl-C raises KeyboardInterrupt with the context still valid, so a command can clean up (cancel its goal)
-        rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
-        self.rclpy = rclpy
-        self.node = rclpy.create_node("semgoal_operator")
-
-    def close(self) -> None:
-        self.node.destroy_node()
-        self.rclpy.try_shutdown()
-
-    def call(self, service_type, name: str, request, timeout: float = WAIT_S):
-        """Call a service, sending the request again while no answer comes (the request must be safe to
-        repeat: a read, or an edit with a request id)."""
-        from semgoal_ros import interfaces as topics
-
-        client = self.node.create_client(service_type, name)
-        if not client.wait_for_service(timeout_sec=timeout):
-            raise TimeoutError(f"no {name} service: is planner_node running (same ROS_DOMAIN_ID)?")
-        response = topics.send_until_answered(lambda: client.call_async(request),
-                                              partial(topics.spin_node_until, self.node))
-        if response is None:
-            raise TimeoutError(f"{name} did not answer after {topics.SEND_ATTEMPTS} tries")
-        return response
-
-
-def format_plan(plan) -> str:
-    lines = [f"goal: {plan.goal or '(none)'}   status: {plan.status}   revision {plan.revision}   replans {plan.replans}"]
-    for step in plan.steps:
-        marker = ">" if step.index == plan.current and plan.status == "executing" else " "
-        lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")
-    return "\n".join(lines)
+def _client() -> GraphClient:
+    """A short-lived client for one command; Ctrl-C comes as a KeyboardInterrupt, so a command can cancel its goal."""
+    return GraphClient("semgoal_operator", watch=False, handle_signals=False)
 
 
 def goal_main(argv: list[str]) -> int:
     """`./semgoal goal TASK|LITERALS|SENTENCE [--wait [--max-steps N]]`: send a goal to planner_node. Exit 0
-    sent (or, with --wait, achieved), 1 failed or no planner, 2 refused with the reason."""
+    sent (or, with --wait, achieved), 1 failed or no planner, 2 refused with the reason, 130 interrupted."""
     parser = argparse.ArgumentParser(prog="semgoal goal", description=goal_main.__doc__)
     parser.add_argument("goal", help="a task name (DC-3), literals joined by '&', or a sentence ('put red in the bin')")
     parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
@@ -74,48 +38,34 @@ def goal_main(argv: list[str]) -> int:
         parser.error(f"--max-steps must be 0 (no limit) or more, got {args.max_steps}")
     if args.max_steps and not args.wait:
         parser.error("--max-steps needs --wait: the budget travels with the ExecuteGoal action, not the goal topic")
-    from semgoal_msgs.msg import GoalRequest
-    from semgoal_planner.goals import is_task_name, looks_like_literals
-    from semgoal_ros import interfaces as topics
-
-    if is_task_name(args.goal):
-        request = GoalRequest(task=args.goal.strip())
-    elif looks_like_literals(args.goal):
-        request = GoalRequest(literals=[args.goal])
-    else:
-        request = GoalRequest(text=args.goal)
-    client = OperatorClient()
+    client = _client()
     try:
         if args.wait:
-            return _execute(client, request, args.timeout, args.max_steps)
-        publisher = client.node.create_publisher(GoalRequest, topics.GOAL, 10)
-        deadline = time.monotonic() + WAIT_S
-        while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
-            time.sleep(0.05)
-        if publisher.get_subscription_count() == 0:
-            print(f"semgoal goal: nobody subscribes to {topics.GOAL}: is planner_node running?", file=sys.stderr)
-            return 1
+            return _execute(client, args.goal, args.timeout, args.max_steps)
         refusal = _refusal(client, args.goal)
         if refusal:  # the topic has no answer: a goal the planner would refuse is not sent
             print(f"semgoal goal: refused: {refusal}", file=sys.stderr)
             return 2
-        publisher.publish(request)
-        time.sleep(0.3)  # let DDS deliver before the node goes away
+        if not client.publish_goal(args.goal):
+            print("semgoal goal: nobody subscribes to the goal topic: is planner_node running?", file=sys.stderr)
+            return 1
+        client.spin_until(lambda: False, 0.3)  # let DDS deliver before the node goes away
         print(f"published goal {args.goal!r}; see it with ./semgoal plan show")
         return 0
+    except GraphUnavailableError as error:
+        print(f"semgoal goal: {error}", file=sys.stderr)
+        return 1
     finally:
         client.close()
 
 
-def _refusal(client: OperatorClient, text: str) -> str:
+def _refusal(client: GraphClient, text: str) -> str:
     """Why the planner would refuse ``text`` in the world it last observed ("" when it would plan it, or
     when no world state is known yet): the goal is parsed here as the planner parses it."""
     from semgoal_core.vocabulary import Literal
-    from semgoal_msgs.srv import GetPlan
     from semgoal_planner.goals import GoalError, parse_goal
-    from semgoal_ros import interfaces as topics
 
-    state = client.call(GetPlan, topics.GET_PLAN, GetPlan.Request()).state
+    state = client.get_plan().state
     if not state.scene:
         return ""
     true = [Literal(p.name, tuple(p.args)) for p in state.predicates if p.value]
@@ -126,16 +76,7 @@ def _refusal(client: OperatorClient, text: str) -> str:
     return ""
 
 
-def _execute(client: OperatorClient, request, timeout: float, max_steps: int) -> int:
-    from rclpy.action import ActionClient
-
-    from semgoal_msgs.action import ExecuteGoal
-    from semgoal_ros import interfaces as topics
-
-    action = ActionClient(client.node, ExecuteGoal, topics.EXECUTE_GOAL)
-    if not action.wait_for_server(timeout_sec=WAIT_S):
-        print("semgoal goal: no execute_goal action server: is planner_node running?", file=sys.stderr)
-        return 1
+def _execute(client: GraphClient, text: str, timeout: float, max_steps: int) -> int:
     last = [None]
 
     def on_feedback(message) -> None:
@@ -145,43 +86,14 @@ def _execute(client: OperatorClient, request, timeout: float, max_steps: int) ->
             last[0] = key
             print(format_plan(plan), flush=True)
 
-    goal, sent = ExecuteGoal.Goal(goal=request, max_steps=max_steps), []
-
-    def send():
-        sent.append(action.send_goal_async(goal, feedback_callback=on_feedback))
-        return sent[-1]
-
-    spin_until = partial(topics.spin_node_until, client.node)
-    try:  # Ctrl-C, from the goal's sending on: the goal is the operator's to stop, not to leave running (issue 57)
-        handle = topics.send_until_answered(send, spin_until)
-        if handle is None or not handle.accepted:
-            print("semgoal goal: the planner did not accept the goal", file=sys.stderr)
-            return 1
-        result_future = handle.get_result_async()
-        deadline = time.monotonic() + timeout
-        while not result_future.done() and time.monotonic() < deadline:  # slices: Ctrl-C lands between them
-            client.rclpy.spin_until_future_complete(client.node, result_future, timeout_sec=0.1)
+    try:
+        result = client.execute(text, on_feedback, timeout=timeout, max_steps=max_steps)
     except KeyboardInterrupt:
-        _cancel_sent(client, sent)
         print("semgoal goal: interrupted; the goal was cancelled", file=sys.stderr)
         return 130
-    if not result_future.done():
-        handle.cancel_goal_async()
-        print(f"semgoal goal: no result within {timeout:.0f} s; cancelled", file=sys.stderr)
-        return 1
-    result = result_future.result().result
     print(f"{'success' if result.success else 'failure'}: {result.message} "
           f"({result.control_steps} control steps, {result.sim_time:.1f} s sim time, {result.replans} re-plans)")
     return 0 if result.success else 1
-
-
-def _cancel_sent(client: OperatorClient, sent: list) -> None:
-    """Cancel every goal sent that the planner accepted (waiting briefly for answers still on their way)."""
-    for future in sent:
-        client.rclpy.spin_until_future_complete(client.node, future, timeout_sec=WAIT_S)
-        handle = future.result() if future.done() else None
-        if handle is not None and handle.accepted:
-            client.rclpy.spin_until_future_complete(client.node, handle.cancel_goal_async(), timeout_sec=WAIT_S)
 
 
 EDITS_WITH_INDEX = {"insert": ("index", "action"), "remove": ("index",), "move": ("index", "to_index"),
@@ -206,27 +118,20 @@ def plan_main(argv: list[str]) -> int:
     for name, value in zip(fields, args.args, strict=False):  # checked before anything is sent
         if name in ("index", "to_index") and not (re.fullmatch(r"[0-9]{1,10}", value) and int(value) < 2**32):
             parser.error(f"{name.upper()} must be a step number (0 to {2**32 - 1}), got {value!r}")
-    from semgoal_msgs.srv import EditPlan, GetPlan
-    from semgoal_ros import interfaces as topics
-
-    client = OperatorClient()
+    client = _client()
     try:
         if args.op == "show":
-            response = client.call(GetPlan, topics.GET_PLAN, GetPlan.Request())
+            response = client.get_plan()
             print(format_plan(response.plan))
             return 0 if response.success else 1
-        # the request id makes a resend after a lost answer safe: the planner answers it without applying it again
-        request = EditPlan.Request(op=args.op, revision=args.revision, request_id=uuid.uuid4().hex)
+        edit = {"revision": args.revision}
         for name, value in zip(fields, args.args, strict=True):
-            if name in ("index", "to_index"):
-                setattr(request, name, int(value))
-            else:
-                request.action = value
-        response = client.call(EditPlan, topics.EDIT_PLAN, request)
+            edit[name] = int(value) if name in ("index", "to_index") else value
+        response = client.edit(args.op, **edit)
         print(("applied: " if response.success else "refused: ") + response.message)
         print(format_plan(response.plan))
         return 0 if response.success else 1
-    except TimeoutError as error:
+    except GraphUnavailableError as error:
         print(f"semgoal plan: {error}", file=sys.stderr)
         return 1
     finally:

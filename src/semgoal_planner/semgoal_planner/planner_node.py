@@ -21,9 +21,9 @@ from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoa
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
-from semgoal_planner.operator import format_plan
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
+from semgoal_ros.messages import format_plan
 
 FINAL = ("succeeded", "failed")
 

@@ -12,70 +12,56 @@ from semgoal_core.vocabulary import SCENES
 
 
 def train_main(argv: list[str]) -> int:
-    """`./semgoal train --scene S [--agent A] --steps N --seed S [--resume]`: train with SAC+HER and export."""
-    from semgoal_core.features import DERIVED_FEATURES
-    from semgoal_policy.agents import AGENTS
-    from semgoal_policy.sac import SacConfig
-    from semgoal_policy.trainer import TrainConfig, Trainer
+    """`./semgoal train --recipe NAME --seed S [--resume] [--ship] [settings]` (or --scene S instead of a recipe):
+    train a goal-conditioned SAC+HER actor and export it to its run's folder (with --ship, over the shipped actor)."""
+    from semgoal_policy.trainer import Trainer
 
-    defaults = TrainConfig(scene="two_blocks")
-    parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)
-    parser.add_argument("--scene", required=True, choices=list(SCENES))
-    parser.add_argument("--agent", default="hierarchical", choices=list(AGENTS))
-    parser.add_argument("--steps", type=int, default=defaults.steps)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--resume", action="store_true", help="continue the run's last checkpoint")
-    parser.add_argument("--envs", type=int, default=defaults.n_envs)
-    parser.add_argument("--refill-steps", type=int, default=defaults.refill_steps,
-                        help="on --resume without the run's replay.npz: env steps collected before updates resume")
-    parser.add_argument("--updates-per-step", type=float, default=defaults.updates_per_step)
-    parser.add_argument("--demo-fraction", type=float, default=defaults.demo_fraction,
-                        help="share of episodes run by the scripted expert (0: no demonstrations)")
-    parser.add_argument("--lr", type=float, default=SacConfig.lr, help="Adam learning rate (also on --resume)")
-    parser.add_argument("--bc-weight", type=float, default=SacConfig.bc_weight, help="0: no behaviour cloning")
-    parser.add_argument("--no-q-filter", action="store_true", help="clone the expert's label in every state, "
-                        "not only where the critic rates it above the actor's action")
-    parser.add_argument("--target-entropy", type=float, default=SacConfig.target_entropy,
-                        help="entropy the SAC temperature is tuned toward")
-    parser.add_argument("--log-std-max", type=float, default=SacConfig.log_std_max,
-                        help="upper clamp of the actor's log std (2: SB3's)")
-    parser.add_argument("--mean-reg", type=float, default=SacConfig.mean_reg,
-                        help="weight of an L2 penalty on the actor's pre-tanh mean (0: off)")
-    parser.add_argument("--actor-average-rate", type=float, default=SacConfig.actor_average_rate,
-                        help="Polyak rate of the averaged actor that is evaluated and exported (0: the live actor)")
-    parser.add_argument("--derive", action="append", default=[], choices=list(DERIVED_FEATURES),
-                        help="append this derived feature to the observation (repeatable; hierarchical only)")
-    parser.add_argument("--spawn-margin", type=float, default=defaults.spawn_margin,
-                        help="m: training blocks start up to this far beyond the tasks' area in x (hierarchical only)")
-    parser.add_argument("--no-curriculum", action="store_true")
-    parser.add_argument("--eval-every", type=int, default=defaults.eval_every)
-    parser.add_argument("--eval-episodes", type=int, default=defaults.eval_episodes)
-    parser.add_argument("--final-eval-episodes", type=int, default=defaults.final_eval_episodes)
-    parser.add_argument("--snapshots", action="store_true", help="export the actor at every eval point too (run-dir/snapshots/)")
-    parser.add_argument("--max-wall-min", type=float, default=defaults.max_wall_s / 60)
-    parser.add_argument("--run-dir", type=Path, help="checkpoints and logs (default runs/SCENE-AGENT/seedS)")
-    parser.add_argument("--export-dir", type=Path, help="where the actor is exported (default models/...)")
-    args = parser.parse_args(argv)
-    config = TrainConfig(
-        scene=args.scene, agent=args.agent, steps=args.steps, seed=args.seed, n_envs=args.envs, refill_steps=args.refill_steps,
-        updates_per_step=args.updates_per_step, demo_fraction=args.demo_fraction, curriculum=not args.no_curriculum,
-        derived_features=tuple(args.derive), spawn_margin=args.spawn_margin,
-        eval_every=args.eval_every, eval_episodes=args.eval_episodes, final_eval_episodes=args.final_eval_episodes,
-        snapshots=args.snapshots, max_wall_s=args.max_wall_min * 60,
-        sac=SacConfig(lr=args.lr, bc_weight=args.bc_weight, q_filter=not args.no_q_filter, target_entropy=args.target_entropy,
-                      actor_average_rate=args.actor_average_rate, log_std_max=args.log_std_max,
-                      mean_reg=args.mean_reg),
-        run_dir=args.run_dir, export_dir=args.export_dir, command=shlex.join(["./semgoal", "train", *argv]),
-    )
+    config, args = train_config(argv)
     try:
         trainer = Trainer(config)
         final = trainer.run(resume=args.resume)
     except (FileExistsError, ValueError) as error:
         print(f"semgoal train: {error}", file=sys.stderr)
         return 2
-    print(json.dumps({"scene": args.scene, "agent": args.agent, "env_steps": trainer.env_steps,
+    print(json.dumps({"scene": config.scene, "agent": config.agent, "env_steps": trainer.env_steps,
                       "wall_s": round(trainer.wall_s, 1), "per_kind": final, "export": str(trainer.export_dir)}))
     return 0
+
+
+def train_config(argv: list[str]):
+    """The training configuration ``./semgoal train argv`` asks for (defaults, then the recipe, then the
+    flags), and the parsed arguments; exits 2 with the reason on a bad recipe or setting."""
+    from semgoal_policy.actor import MODELS_DIR
+    from semgoal_policy.agents import AGENTS
+    from semgoal_policy.recipes import RecipeError, add_config_flags, build_config, flag_overrides, load_recipe, recipe_names
+
+    parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)
+    parser.add_argument("--recipe", help=f"the settings of a shipped run: {', '.join(recipe_names())}, or a .yaml path")
+    parser.add_argument("--resume", action="store_true", help="continue the run's last checkpoint")
+    parser.add_argument("--ship", action="store_true", help="export over the shipped actor in models/ (else the run's export/)")
+    add_config_flags(parser)
+    args = parser.parse_args(argv)
+    try:
+        recipe = load_recipe(args.recipe) if args.recipe else {}
+    except RecipeError as error:
+        parser.error(str(error))
+    overrides = flag_overrides(args)
+    if "scene" in recipe and overrides.get("scene", recipe["scene"]) != recipe["scene"]:
+        parser.error(f"recipe {args.recipe} is for scene {recipe['scene']}, not {overrides['scene']}")
+    if "scene" not in recipe and "scene" not in overrides:
+        parser.error("give a --recipe or a --scene")
+    try:
+        config = build_config(recipe, overrides)
+    except (TypeError, ValueError) as error:
+        parser.error(str(error))
+    if config.scene not in SCENES or config.agent not in AGENTS:
+        parser.error(f"scenes are {', '.join(SCENES)} and agents {', '.join(AGENTS)}; got {config.scene}, {config.agent}")
+    if args.ship:
+        if config.export_dir is not None:
+            parser.error("--ship exports to models/: leave out --export-dir")
+        config.export_dir = MODELS_DIR / AGENTS[config.agent].model_name(config.scene)
+    config.command = shlex.join(["./semgoal", "train", *argv])
+    return config, args
 
 
 def eval_subgoals_main(argv: list[str]) -> int:

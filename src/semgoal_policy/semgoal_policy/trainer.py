@@ -6,13 +6,15 @@ per collected env step. Every ``eval_every`` env steps the deterministic actor i
 type, a CSV row is written and a checkpoint (model, optimisers, replay buffer, RNG, curriculum) saved,
 so ``--resume`` continues exactly where a killed run stopped. Without its ``replay.npz`` (the
 committed checkpoints leave it out: 35-60 MB each) a resumed run first refills the buffer with
-``refill_steps`` of collection and no updates.
+``refill_steps`` of collection and no updates; those steps are not counted in ``steps``, which is the
+budget of env steps that feed updates.
 """
 
 from __future__ import annotations
 
 import csv
 import json
+import os
 import shlex
 import sys
 import time
@@ -31,22 +33,27 @@ from semgoal_policy.evaluate import EVAL_SEED_BASE, run_episodes, success_by_kin
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_policy.sac import SacAgent, SacConfig
 
-RUNS_DIR = Path("runs")
+PROJECT_ROOT = Path(os.environ.get("SEMGOAL_ROOT") or Path.cwd())
+"""The checkout (``tools/env.sh`` sets SEMGOAL_ROOT), so a run's folder does not depend on where it is started."""
+RUNS_DIR = PROJECT_ROOT / "runs"
 
 
 @dataclass
 class TrainConfig:
     scene: str
+    """two_blocks, three_blocks or desk_cleanup."""
     agent: str = "hierarchical"
     """hierarchical (sub-goals), flat-semantic (task goals) or flat-continuous (block positions)."""
     steps: int = 300_000
     """Env steps to train for (all envs together)."""
     seed: int = 0
+    """Seeds the networks, the sampling and the training envs (whose episode seeds stay below the evaluation's)."""
     n_envs: int = 8
     """Envs stepped side by side; one episode each per collection cycle."""
     updates_per_step: float = 0.25
     """Gradient steps per collected env step (the HER baselines use 0.4 with 2 workers)."""
     learning_starts: int = 2_000
+    """Transitions collected (demonstrations only) before the first gradient step."""
     refill_steps: int = 100_000
     """Env steps collected without updates when a run resumes without its replay buffer (at most the steps
     it had). With only ``learning_starts`` refilled, the critic fitted the small buffer (its loss fell
@@ -55,6 +62,7 @@ class TrainConfig:
     demo_fraction: float = 0.25
     """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
     demo_noise: float = 0.2
+    """Std of the Gaussian noise on the expert's actions in demonstrations."""
     derived_features: tuple[str, ...] = ()
     """Features appended to the observation (``semgoal_core.features``; hierarchical agent only)."""
     spawn_margin: float = 0.0
@@ -63,18 +71,23 @@ class TrainConfig:
     curriculum: bool = True
     """Sample sub-goal types more often the lower their recent success (else uniformly)."""
     eval_every: int = 10_000
+    """Env steps between evaluations (each writes a progress row and a checkpoint)."""
     eval_episodes: int = 20
     """Evaluation episodes per sub-goal type at each eval point (the final eval uses ``final_eval_episodes``)."""
     final_eval_episodes: int = 100
+    """Evaluation episodes per sub-goal type after training (recorded in the exported actor.json)."""
     snapshots: bool = False
     """Also export the actor at every eval point (``run_dir/snapshots/<env steps>``, 350 KB each), so a
     checkpoint can be chosen on held-out task starts: per-type rates at 20 episodes are too noisy."""
     max_wall_s: float = 2 * 3600
     """Stop (and export) after this much wall time across resumes."""
     torch_threads: int = 1
+    """CPU threads for torch (1: small networks gain nothing from more, and runs share the cores)."""
     sac: SacConfig = field(default_factory=SacConfig)
     run_dir: Path | None = None
+    """Checkpoints, progress and snapshots (default runs/<scene>-<agent>/seed<seed> in the checkout)."""
     export_dir: Path | None = None
+    """Where the final actor is exported (default the run's export/; ``train --ship``: models/)."""
     command: str = ""
 
 
@@ -124,7 +137,7 @@ class Trainer:
         self.env_steps = 0
         self.wall_s = 0.0
         self.run_dir = cfg.run_dir or RUNS_DIR / f"{cfg.scene}-{cfg.agent}" / f"seed{cfg.seed}"
-        self.export_dir = cfg.export_dir or actor_io.MODELS_DIR / self.spec.model_name(cfg.scene)
+        self.export_dir = cfg.export_dir or self.run_dir / "export"
         self.last_metrics: dict[str, float] = {}
 
     # -- checkpoints ---------------------------------------------------------------------------------
@@ -158,7 +171,7 @@ class Trainer:
     def refill(self, progress: Callable[[int], object] = lambda steps: None) -> int:
         """Collect without updates until the buffer holds ``refill_steps`` transitions (a resumed run whose
         buffer was not kept: the committed checkpoints); ``progress`` gets each cycle's env steps.
-        Returns the env steps this took."""
+        Returns the env steps this took, which stay out of the run's count: they only replace the lost buffer."""
         target = min(self.config.refill_steps, self.env_steps, self.replay.capacity * self.envs[0].max_steps)
         if self.replay.transitions >= target:
             return 0
@@ -167,7 +180,8 @@ class Trainer:
         before = self.env_steps
         while self.replay.transitions < target:
             progress(self.collect())
-        return self.env_steps - before
+        refilled, self.env_steps = self.env_steps - before, before
+        return refilled
 
     # -- the loop ------------------------------------------------------------------------------------
     def collect(self) -> int:
@@ -233,7 +247,7 @@ class Trainer:
         bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
         session_start, wall_at_start = time.perf_counter(), self.wall_s
-        self.refill(bar.update)
+        self.refill(lambda steps: bar.set_postfix_str(f"refilling the replay buffer: {self.replay.transitions}"))
         next_eval = (self.env_steps // cfg.eval_every + 1) * cfg.eval_every
         while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
             bar.update(self.cycle())

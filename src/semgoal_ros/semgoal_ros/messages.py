@@ -1,5 +1,5 @@
 """Between semgoal_msgs and the semantic core: what the predicate, planner and policy nodes read from a
-world state. No MuJoCo (the sim's own messages are built in ``semgoal_sim.conversions``)."""
+world state, and the plan as the operator reads it. No MuJoCo (the sim's own messages are built in ``semgoal_sim.conversions``)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.settling import moving_blocks
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, fallen_blocks
-from semgoal_msgs.msg import Predicate, SemanticState, WorldState
+from semgoal_msgs.msg import Plan, Predicate, SemanticState, WorldState
 
 
 def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
@@ -48,3 +48,12 @@ def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
                         for (name, args), v in zip(layout.atoms, vector, strict=True)]
     return state
+
+
+def format_plan(plan: Plan) -> str:
+    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current)."""
+    lines = [f"goal: {plan.goal or '(none)'}   status: {plan.status}   revision {plan.revision}   replans {plan.replans}"]
+    for step in plan.steps:
+        marker = ">" if step.index == plan.current and plan.status == "executing" else " "
+        lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")
+    return "\n".join(lines)

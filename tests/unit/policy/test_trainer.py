@@ -65,7 +65,8 @@ def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_
     (tmp_path / "run" / "replay.npz").unlink()
     resumed = Trainer(config(tmp_path, 800))  # refill_steps 100k, capped at the 400 steps before the resume
     resumed.run(resume=True)
-    assert resumed.env_steps == 800 and resumed.replay.size == 400 // 50
+    # the refill's 400 steps replace the lost buffer and stay out of the budget: 400 more steps of training follow
+    assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
 
 
 def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
@@ -75,7 +76,7 @@ def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
     resumed.restore()
     weights = [p.clone() for p in (*resumed.agent.actor.net.parameters(), *resumed.agent.critic.parameters())]
     assert resumed.refill() == 400  # whole cycles of 4 envs x 50 steps until 300 are in
-    assert resumed.env_steps == 800 and resumed.replay.transitions == 400
+    assert resumed.env_steps == 400 and resumed.replay.transitions == 400
     after = (*resumed.agent.actor.net.parameters(), *resumed.agent.critic.parameters())
     assert all(torch.equal(a, b) for a, b in zip(weights, after, strict=True))
     assert resumed.refill() == 0  # a full enough buffer is left alone

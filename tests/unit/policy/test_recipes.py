@@ -1,0 +1,72 @@
+"""Recipes as data: each shipped actor's configuration is its recipe's, and the train command builds its
+configuration from defaults, then the recipe, then the flags."""
+
+import dataclasses
+import json
+
+import pytest
+
+from semgoal_policy.actor import MODELS_DIR
+from semgoal_policy.cli import train_config
+from semgoal_policy.recipes import RUN_FIELDS, RecipeError, build_config, load_recipe, recipe_names
+from semgoal_policy.trainer import PROJECT_ROOT, TrainConfig, Trainer
+
+SHIPPED = sorted(path.parent.name for path in MODELS_DIR.glob("*/actor.json"))
+
+
+def _recipe_part(config: dict) -> dict:
+    return {k: v for k, v in config.items() if k not in RUN_FIELDS}
+
+
+def test_every_shipped_actor_has_a_recipe() -> None:
+    assert SHIPPED and set(SHIPPED) <= set(recipe_names())
+
+
+@pytest.mark.parametrize("name", SHIPPED)
+def test_the_recipe_reproduces_the_shipped_configuration(name: str) -> None:
+    shipped = json.loads((MODELS_DIR / name / "actor.json").read_text())
+    config, _ = train_config(["--recipe", name, "--seed", str(shipped["seed"])])
+    rebuilt = json.loads(json.dumps(dataclasses.asdict(config), default=str))
+    assert _recipe_part(rebuilt) == _recipe_part(shipped["config"])
+    assert rebuilt["seed"] == shipped["seed"]
+
+
+def test_flags_override_the_recipe_and_the_recipe_overrides_the_defaults() -> None:
+    config, args = train_config(["--recipe", "desk_cleanup", "--seed", "81", "--lr", "3e-4", "--no-snapshots",
+                                 "--resume"])
+    assert config.sac.lr == 3e-4 and not config.snapshots and args.resume
+    assert config.derived_features == ("bin_target", "subject_offset") and config.sac.log_std_max == 0.0
+    assert config.sac.actor_average_rate == load_recipe("desk_cleanup")["sac"]["actor_average_rate"]
+    assert TrainConfig(scene="desk_cleanup").sac.log_std_max != 0.0  # the recipe's, not the default
+    plain, _ = train_config(["--scene", "two_blocks", "--derive", "subject_offset", "--derive", "bin_target"])
+    assert plain.derived_features == ("subject_offset", "bin_target") and plain.sac == TrainConfig("x").sac
+
+
+@pytest.mark.parametrize("argv, reason", [
+    (["--recipe", "kitchen"], "no recipe 'kitchen'"),
+    (["--recipe", "desk_cleanup", "--scene", "two_blocks"], "is for scene desk_cleanup"),
+    (["--seed", "3"], "give a --recipe or a --scene"),
+    (["--scene", "kitchen"], "scenes are"),
+    (["--recipe", "desk_cleanup", "--ship", "--export-dir", "x"], "leave out --export-dir"),
+    (["--scene", "two_blocks", "--lr", "fast"], "invalid float value"),
+])
+def test_bad_train_arguments_are_refused_with_the_reason(argv, reason, capsys) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        train_config(argv)
+    assert exit_info.value.code == 2 and reason in capsys.readouterr().err
+
+
+def test_a_recipe_with_an_unknown_setting_is_refused(tmp_path) -> None:
+    path = tmp_path / "typo.yaml"
+    path.write_text("scene: two_blocks\nlearning_rate: 0.1\n")
+    with pytest.raises(RecipeError, match="unknown settings learning_rate"):
+        load_recipe(str(path))
+
+
+def test_training_exports_into_its_run_unless_shipped(tmp_path) -> None:
+    trainer = Trainer(build_config({"scene": "two_blocks", "n_envs": 1}, {"run_dir": tmp_path}))
+    assert trainer.export_dir == tmp_path / "export"
+    default_run = Trainer(TrainConfig(scene="two_blocks", n_envs=1, seed=5)).run_dir
+    assert default_run == PROJECT_ROOT / "runs" / "two_blocks-hierarchical" / "seed5"
+    shipped, _ = train_config(["--recipe", "two_blocks", "--ship"])
+    assert shipped.export_dir == MODELS_DIR / "two_blocks"

@@ -1,7 +1,10 @@
-"""The `./semgoal` dispatcher: one registry of subcommands, each living in the package it belongs to."""
+"""The `./semgoal` dispatcher: one registry of subcommands, each living in the package it belongs to; the
+benchmarks live outside the product, in the checkout's ``bench/``."""
 
 import importlib
+import os
 import sys
+from pathlib import Path
 
 COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); function defaults to main
     "run": ("semgoal_bringup.run", "what `ros2 run PKG EXE` does on a native install"),
@@ -10,18 +13,18 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "up": ("semgoal_bringup.up", "start sim, predicates, planner and policy and stay up for an operator"),
     "expert": ("semgoal_sim.cli:expert_main", "run the scripted expert on a task: success rate, steps"),
     "render": ("semgoal_sim.render", "a PNG of a task's start state (offscreen)"),
-    "bench-sim": ("semgoal_sim.cli:bench_sim_main", "env steps/s per scene beside FetchPickAndPlace-v4"),
+    "bench-sim": ("bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),
     "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a plain-English goal becomes (or why not)"),
     "plan-pddl": ("semgoal_planner.cli:plan_pddl_main", "plan with our STRIPS planner on any PDDL domain and problem"),
     "goal": ("semgoal_planner.operator:goal_main", "send a goal to the planner (ros2 topic pub / action send_goal)"),
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
-    "bench-planner": ("semgoal_planner.bench", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
-    "train": ("semgoal_policy.cli:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
+    "bench-planner": ("bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
+    "train": ("semgoal_bringup.training:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
     "eval": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
-    "bench-graph": ("semgoal_bringup.bench_graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),
-    "ablation": ("semgoal_policy.ablation", "train the recipe's variants side by side: what expert supervision buys"),
-    "bench-policy": ("semgoal_policy.bench", "training steps/s and actor latency beside SB3 SAC+HER"),
-    "eval-subgoals": ("semgoal_policy.cli:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
+    "bench-graph": ("bench.graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),
+    "ablation": ("semgoal_bringup.ablation", "train the recipe's variants side by side: what expert supervision buys"),
+    "bench-policy": ("bench.policy", "training steps/s and actor latency beside SB3 SAC+HER"),
+    "eval-subgoals": ("semgoal_bringup.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }
 
 
@@ -44,6 +47,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"semgoal: unknown command {command!r}\n\n{usage()}", file=sys.stderr)
         return 2
     module_name, _, function = COMMANDS[command][0].partition(":")
+    if module_name.startswith("bench."):
+        sys.path.insert(0, os.environ.get("SEMGOAL_ROOT") or str(Path.cwd()))
     entry = getattr(importlib.import_module(module_name), function or "main")
     try:
         return int(entry(rest) or 0)

@@ -18,7 +18,7 @@ from semgoal_core.tasks import TASK_STEP_BUDGET
 
 DEFAULT_TASK = "DC-3"
 DEFAULT_SEED = 6
-"""A DC-3 start the shipped actors solve through the graph (124 control steps to success at rest, no re-plan, session 44)."""
+"""A DC-3 start the shipped actors solve through the graph (124 control steps to success at rest, no re-plan)."""
 TO_DO = ("pending", "active")
 """Plan steps a printed plan lists: a re-plan keeps the steps already done ahead of the new ones."""
 

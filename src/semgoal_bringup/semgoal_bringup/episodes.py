@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_bringup.training import make_env
 from semgoal_core.lockstep import lockstep_subgoal
 from semgoal_core.settling import Settling, moving_blocks
 from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
@@ -97,7 +98,7 @@ class FlatAgent:
     def __init__(self, agent: str, scene: str, actor_dir: Path) -> None:
         self.scene = scene
         self.actor = actor_io.load(actor_dir, scene)[0]
-        self.env = get_agent(agent).make_env(scene)
+        self.env = make_env(agent, scene)
 
     def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
         task = _scene_task(task_name, self.scene)

@@ -6,9 +6,9 @@ sim's observation, the flat baselines and older actors stay as they are.
 
 ``bin_target`` (desk cleanup): where the block between the fingers goes in the bin, relative to the grip
 (x, y; zeros when no spot is free): the free slot nearest the grip, else the nearest free floor spot, as
-the scripted expert chooses it (:func:`semgoal_sim.expert.bin_spot`). Session 29 found every desk actor
-weak at DC-4's last put, three blocks binned: it hovered over the middle of the bin instead of the free
-end, though the free spot is a function of the block positions it sees.
+the scripted expert chooses it (:func:`semgoal_sim.expert.bin_spot`). Desk actors were weak at DC-4's
+last put, three blocks binned: they hovered over the middle of the bin instead of the free end, though
+the free spot is a function of the block positions they see.
 
 ``subject_offset`` (any scene): where the block(s) the sub-goal names are, relative to the grip (x, y, z;
 the mean over the blocks named by the goal's mask, zeros when it names none). The observation holds every

@@ -53,7 +53,7 @@ def goal_size(scene: str, goal: str = "semantic") -> int:
 def describe(scene: str, goal: str = "semantic", derived: dict[str, int] | None = None) -> dict:
     """The layout as data: stored next to exported actors and checked when they are loaded. ``derived``:
     name -> width of the features an actor gets appended to the observation (``semgoal_core.features``);
-    recorded only when there are some, as actors from before session 30 have none."""
+    recorded only when there are some, as older actors have none."""
     described = {
         "scene": scene,
         "observation_size": observation_size(scene),

@@ -157,6 +157,11 @@ def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
     return goal + task.released()
 
 
+def scene_tasks(scene: str) -> tuple[str, ...]:
+    """The paper's tasks set in ``scene``, in Table 1's order."""
+    return tuple(name for name, task in TASKS.items() if task.scene == scene)
+
+
 def is_task_name(text: str) -> bool:
     """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
     return any(text.strip().lower() == name.lower() for name in TASKS)

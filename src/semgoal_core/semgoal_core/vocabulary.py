@@ -17,8 +17,8 @@ same predicates on the same Fetch blocks (5 cm cubes), except for close:
   a block grasped near its top edge hangs 3.4 cm below the grip site and is lifted all the same)
   and the fingers are closed on it (opening between 0.03 and 0.07 m: a 5 cm block, with give), and
   no other block sits between them: the hand holds one block, as the planner's domain has it. A grasp
-  low on a stacked block pinches the top of the one below too and lifts both (session 25: every Swap-2
-  failure of one actor); that is no pick of either. A grasped block still touching the table is held.
+  low on a stacked block pinches the top of the one below too and lifts both; that is no pick of
+  either. A grasped block still touching the table is held.
 - ``in_bin(a)``: the centre lies inside the bin walls (xy) and below the rim: a block lying on the rim
   is not in the bin.
 """
@@ -88,7 +88,7 @@ class BinGeometry:
     back_wall_height: float = 0.10
     """Height of the far wall (+y, away from the robot) above the floor's top (m): a backboard. The bin
     stands 3.5 cm from the desk's far edge, and a block let go moving, or pushed, over a low far wall fell
-    off the desk, out of reach: most DC-4 failures until session 29. The rim (``contains``) stays at
+    off the desk, out of reach (once most DC-4 failures). The rim (``contains``) stays at
     :attr:`wall_height`."""
     wall_thickness: float = 0.01
     floor_thickness: float = 0.01

@@ -73,9 +73,8 @@ class Executive:
     contradiction_steps: int = 10
     """Control steps the observed state must contradict the plan before a re-plan (debounces releases)."""
     max_replans: int = 10
-    """Re-plans before the goal fails; the step budget bounds an episode anyway. On 100 validation starts per
-    desk task (from 4000000), 10 instead of 5 gave 0 to 2 more points per actor (DC-4 81 -> 83 % with the
-    shipped one), and no limit at all nothing more than 10 (session 18)."""
+    """Re-plans before the goal fails; the step budget bounds an episode anyway. More than 10 gained nothing on
+    the desk tasks' validation starts (``docs/training-log.md``)."""
     settle_steps: int = SETTLE_STEPS
     """The goal, and a robot step, are achieved once their literals held at rest over this many consecutive
     control steps."""

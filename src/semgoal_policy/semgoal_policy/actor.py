@@ -130,7 +130,7 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
         diff = sorted(k for k in current if stored.get(k) != current[k])
         raise LayoutMismatchError(f"actor in {directory} was trained on another layout than the code's for "
                                   f"scene {scene!r} (differs in: {', '.join(diff)}); retrain or use a matching actor")
-    trained_on = meta.get("feature_versions", dict.fromkeys(names, 1))  # actors before session 44: version 1
+    trained_on = meta.get("feature_versions", dict.fromkeys(names, 1))  # actors exported without versions: 1
     changed = [n for n in names if trained_on.get(n) != features.FEATURE_VERSIONS[n]]
     if changed:
         raise LayoutMismatchError(f"actor in {directory} was trained on another version of the derived feature(s) "
@@ -138,7 +138,7 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
                                   "retrain it")
     actor = Actor(current["observation_size"] + features.width(names), current["goal_size"],
                   tuple(meta["hidden"]),
-                  meta.get("log_std_max", LOG_STD_MAX))  # actors exported before session 24 used the default
+                  meta.get("log_std_max", LOG_STD_MAX))  # older exports: the default
     actor.load_state_dict(torch.load(weights_path, weights_only=True))
     actor.eval()
     return actor, meta

@@ -34,7 +34,7 @@ class SacConfig:
     """Clone the expert only where Q(s, a_expert) > Q(s, pi(s))."""
     actor_average_rate: float = 0.0
     """Polyak rate of an averaged copy of the actor, the one evaluated and exported (0: off, the live actor
-    is). A few thousand gradient steps move a desk actor's DC-4 rate by tens of points (session 17): an
+    is). A few thousand gradient steps can move a desk actor's DC-4 rate by tens of points: an
     average over the last ~1/rate updates smooths that out; the live actor still explores."""
     target_entropy: float = -4.0
     """Entropy the temperature is tuned toward; -4 (minus the action size) is SB3's default. With three
@@ -43,13 +43,13 @@ class SacConfig:
     log_std_max: float = LOG_STD_MAX
     """Upper clamp of the actor's log std. At e^2 the finger's tanh-Gaussian is a coin flip whose mean
     barely moves the samples, so the mean (the deterministic actor) learns little where a block is held:
-    it freezes there while the sampled actor lets go by chance (session 24, ``docs/training-log.md``)."""
+    it freezes there while the sampled actor lets go by chance (``docs/training-log.md``)."""
     mean_reg: float = 0.0
     """Weight of an L2 penalty on the actor's pre-tanh mean (rlkit's ``policy_mean_reg_weight``; 0: off). The
     finger labels are exactly -1 or 1, so cloning them drives the mean towards infinity, where tanh's
     gradient vanishes: a quarter to a third of the finger means sit beyond 2.5. The penalty removes that,
-    but it did not free three_blocks' put near (session 27: 56.5 and 50.5 % at 1e-3 and 1e-2, against 72
-    and 65.5 % without), so it stays off: the expert's closed-finger labels hold the hand shut there."""
+    but it did not free three_blocks' put near (it lowered it, ``docs/training-log.md``), so it stays off:
+    the expert's closed-finger labels hold the hand shut there."""
 
 
 class TwinCritic(nn.Module):
@@ -75,7 +75,7 @@ class SacAgent:
         self.critic = TwinCritic(obs_size + goal_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
-        # fused: one kernel per step instead of one per tensor, 5 % off a whole update on this CPU (session 25)
+        # fused: one kernel per step instead of one per tensor, 5 % off a whole update on a CPU
         self.actor_optimizer = torch.optim.Adam(self.actor.net.parameters(), lr=config.lr, fused=True)
         self.critic_optimizer = torch.optim.Adam(self.critic.parameters(), lr=config.lr, fused=True)
         self.alpha_optimizer = torch.optim.Adam([self.log_alpha], lr=config.lr)

@@ -56,9 +56,8 @@ class TrainConfig:
     """Transitions collected (demonstrations only) before the first gradient step."""
     refill_steps: int = 100_000
     """Env steps collected without updates when a run resumes without its replay buffer (at most the steps
-    it had). With only ``learning_starts`` refilled, the critic fitted the small buffer (its loss fell
-    from 1.18 to 0.19 within 10k steps, session 16); the desk actors' loss of DC-4 on resuming is not
-    the refill's doing (it happened with this one too, session 17)."""
+    it had); they do not count toward ``steps``. With only ``learning_starts`` refilled, the critic
+    overfitted the small buffer."""
     demo_fraction: float = 0.25
     """Share of collection episodes run by the scripted expert (with noise): the demonstrations."""
     demo_noise: float = 0.2
@@ -113,15 +112,18 @@ class Curriculum:
 
 
 class Trainer:
-    def __init__(self, config: TrainConfig) -> None:
+    """SAC+HER with expert supervision on ``config.n_envs`` envs that ``make_env()`` builds: goal-conditioned
+    gymnasium envs with ``max_steps``, ``expert_action()``, an ``is_success`` info entry and
+    ``reset(options={"kind": k})`` (the simulator's, bound in ``semgoal_bringup.training``)."""
+
+    def __init__(self, config: TrainConfig, make_env: Callable[[], object]) -> None:
         self.config = cfg = config
         torch.set_num_threads(cfg.torch_threads)
         torch.manual_seed(cfg.seed)
         self.spec: AgentSpec = AGENTS[cfg.agent]
         self.rng = np.random.default_rng(cfg.seed)
         # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
-        self.envs = [self.spec.make_env(cfg.scene, tuple(cfg.derived_features), cfg.spawn_margin)
-                     for _ in range(cfg.n_envs)]
+        self.envs = [make_env() for _ in range(cfg.n_envs)]
         for i, env in enumerate(self.envs):
             env.reset(seed=cfg.seed * 1000 + i)
             env.action_space.seed(cfg.seed * 1000 + i)
@@ -218,7 +220,7 @@ class Trainer:
 
     def evaluate(self, episodes: int) -> dict[str, float]:
         # evaluation reseeds the envs: without this, every window of training after an evaluation would
-        # replay the same random starts (until session 17 it did)
+        # replay the same random starts
         training_rngs = [env.np_random.bit_generator.state for env in self.envs]
         self._set_spawn_margin(0.0)
         policy = self.agent.policy

@@ -39,29 +39,25 @@ ARM_START_HIGH = np.array([tasks.SPAWN_HIGH[0] + 0.05, tasks.SPAWN_HIGH[1] + 0.0
 """Where a pick episode's grip site starts when it does not start at home: above block height (m)."""
 STACKED_START_SHARE = {"two_blocks": 0.4, "three_blocks": 0.15}
 """Share of starts with one block resting on another. three_blocks: a put_near that lets go over its
-reference leaves one (close holds), and the pick and put after it must cope (MC-3's failures, session
-10). two_blocks: Swap-2 starts stacked, and an arm that swept across at the height it starts from
-knocked the top block off the table (most Swap-2 failures, session 11; the share was 0.2)."""
+reference leaves one (close holds), and the pick and put after it must cope (most MC-3 failures otherwise).
+two_blocks: Swap-2 starts stacked, and an arm that swept across at the height it starts from knocked the
+top block off the table."""
 BIN_SLOT_JITTER = np.array([0.012, 0.008])
 """Largest offset (m, x and y) of a block started in the bin from its slot: slots are 8 cm apart, so binned
 blocks stay at least 5.6 cm apart, and a block in an end slot keeps 3 mm from the end wall."""
 BINNED_START_SHARE = 0.5
-"""With a bin: the share of starts with some blocks already in it (0.3 until session 29)."""
+"""With a bin: the share of starts with some blocks already in it."""
 FULL_BIN_SHARE = 0.5
 """Share of binned starts with every block but one in the bin, the rest drawing 1 to count-1 binned blocks
-alike. Session 29: with three blocks binned (DC-4's last put) the shipped desk actor put the fourth in 31
-of 96 times, hovering over the middle instead of heading for the free end (one-off ``lastput.py``)."""
+alike: DC-4's last put (three blocks binned) was rare otherwise, and actors hovered over the middle instead
+of heading for the free end."""
 UNTIDY_BIN_SHARE = 0.5
-"""Share of binned starts whose blocks lie anywhere on the bin floor, not in slots. Session 28 traced DC-4's
-failures to the last put: actors let go wherever in_bin holds, three blocks 5 to 6 cm apart around the
-middle left only a narrow gap, and training had only ever started from tidy slots."""
+"""Share of binned starts whose blocks lie anywhere on the bin floor, not in slots: actors let go wherever
+in_bin holds, so a last put must find the gap that untidy neighbours leave."""
 BINNED_TARGET_SHARE = 0.1
 """With a bin: the share of sub-goals whose block is drawn from every block, a binned one included; the
-others take a block outside the bin, as desk plans do (they never take a block out again). Until session
-20 every block was drawn alike, so with three blocks binned three picks in four lifted a block out of the
-bin, and DC-4's last pick (three blocks binned, the arm back from the bin) was rare in training. It was
-where desk actors lost DC-4: seed 26 picked the last block in 39 of 60 such starts, 58 of 60 with the
-other blocks on the table (session 20)."""
+others take a block outside the bin, as desk plans do (they never take a block out again). Drawn alike,
+three picks in four lifted a block out of a bin holding three, and DC-4's last pick was rare in training."""
 TAKE_OUT_SHARE = 0.5
 """With blocks in the bin: the share of put_on_table sub-goals that take a binned block back out, so
 operators' take-outs are in the training distribution (issue 49: an actor that had rarely lifted a block
@@ -83,8 +79,8 @@ class SubgoalEnv(gym.Env):
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
-            edge alike, so that the area's edge is not the edge of the training data (session 31: desk actors
-            stalled over blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.
+            edge alike, so that the area's edge is not the edge of the training data (actors stalled over
+            blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")

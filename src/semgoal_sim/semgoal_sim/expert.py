@@ -27,16 +27,14 @@ ALIGN_XY = 0.008
 ALIGN_Z = 0.008
 FUNNEL_XY = 0.03
 """Within this xy distance of a block it is picking, the gripper's height follows a funnel: the block's
-centre at :data:`ALIGN_XY`, :data:`HOVER` above it here, linear between. Until session 34 it rose back to
-the hover height whenever it was more than :data:`ALIGN_XY` off, so labels 1 cm apart said rise and
-descend, and actors stalled between them, 5 to 10 cm over blocks 1 to 1.5 cm off in xy (task picks at
-the spawn area's edge)."""
+centre at :data:`ALIGN_XY`, :data:`HOVER` above it here, linear between: labels a centimetre apart never
+say rise and descend at once, which stalled actors over blocks slightly off in xy."""
 CLOSE = -1.0
 RELEASE = 1.0
 """Finger command when letting go of a carried block: open fully, at once. Finger commands are metres added
 to each finger's target, so anything above about +0.005 drops a held block: the +0.015 that opening to
 :data:`GRASP_OPENING` takes was cloned as 0 by three_blocks actors, which hovered holding the block over
-the spot while the critic rated opening higher (session 33). Wider than :data:`GRASP_OPENING`, but the
+the spot while the critic rated opening higher. Wider than :data:`GRASP_OPENING`, but the
 block is gone before the fingers reach a neighbour; the expert alone succeeds as often as before."""
 
 NEAR_RANGE = (0.055, 0.093)
@@ -55,7 +53,7 @@ steps (issue 49: a block let go 12 cm up fell for 6 to 8 steps, and the reward p
 AWAY_DROP_DISTANCE = THRESHOLDS.close_distance + 0.02
 """Centre distance (m) from every other block at which put_away lets go: 2 cm beyond ``close``, as the reward
 has it, not :data:`AWAY_DISTANCE` (the spot it heads for): with the latter, actors hovered between the two,
-holding the block (session 32)."""
+holding the block."""
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
@@ -257,8 +255,8 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
     if not world.holds(x):
         return _pick(x, world)
     # Place the block as soon as the put will hold once it rests there, not after carrying it on to the
-    # exact spot: cloning froze actors holding a block where letting go would have done (sessions 28 and
-    # 32, ``docs/training-log.md``). It is lowered first (:data:`PLACE_HEIGHT`), never dropped.
+    # exact spot: cloning froze actors holding a block where letting go would have done
+    # (``docs/training-log.md``). It is lowered first (:data:`PLACE_HEIGHT`), never dropped.
     spot = destination(subgoal, world)
     if ((subgoal.kind == "put_near" and _within_drop_reach(subgoal, world))
             or (subgoal.kind == "put_away" and _away_drop_holds(subgoal, world))

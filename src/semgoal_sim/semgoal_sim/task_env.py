@@ -34,11 +34,6 @@ TASK_EPISODE_STEPS = {"two_blocks": 120, "three_blocks": 150, "desk_cleanup": 25
 (Swap-2 58, MC-3 65, DC-4 165; ``./semgoal expert --task T --json``)."""
 
 
-def scene_tasks(scene: str) -> tuple[str, ...]:
-    """The paper's tasks set in ``scene``, in Table 1's order."""
-    return tuple(name for name, task in tasks.TASKS.items() if task.scene == scene)
-
-
 def goal_configuration(task: tasks.Task, start: np.ndarray, rng: np.random.Generator) -> np.ndarray:
     """Block centres (n, 3) of one configuration that satisfies ``task``'s goal from ``start``."""
     count = task.n_blocks
@@ -62,7 +57,7 @@ class TaskEnv(gym.Env):
     def __init__(self, scene: str, goal: str = "semantic", max_steps: int | None = None) -> None:
         self.scene = SCENES[scene]
         self.goal_kind = goal
-        self.task_names = scene_tasks(scene)
+        self.task_names = tasks.scene_tasks(scene)
         self.worlds = {n: FetchWorld(scene, n) for n in sorted({tasks.TASKS[t].n_blocks for t in self.task_names})}
         self.world = next(iter(self.worlds.values()))
         self.layout = self.world.layout

@@ -6,12 +6,13 @@ import numpy as np
 import pytest
 import torch
 
+from semgoal_bringup.training import make_env
 from semgoal_core import features, layout
 from semgoal_core.lockstep import followed_decision, lockstep_subgoal
 from semgoal_core.settling import SETTLE_STEPS
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
-from semgoal_policy.agents import get_agent, semantic_reward
+from semgoal_policy.agents import semantic_reward
 from semgoal_policy.controller import HOLD, SubgoalController
 from semgoal_policy.replay import EpisodeReplay
 
@@ -240,7 +241,7 @@ def test_derived_features_travel_with_the_export_and_the_controller_appends_them
 
 def test_flat_agents_refuse_derived_features() -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
-        get_agent("flat-semantic").make_env("desk_cleanup", ("bin_target",))
+        make_env("flat-semantic", "desk_cleanup", ("bin_target",))
 
 
 def test_lockstep_follows_the_decision_on_the_step_before_when_it_names_a_subgoal() -> None:

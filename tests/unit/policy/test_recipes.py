@@ -6,10 +6,10 @@ import json
 
 import pytest
 
+from semgoal_bringup.training import train_config, trainer_for
 from semgoal_policy.actor import MODELS_DIR
-from semgoal_policy.cli import train_config
 from semgoal_policy.recipes import RUN_FIELDS, RecipeError, build_config, load_recipe, recipe_names
-from semgoal_policy.trainer import PROJECT_ROOT, TrainConfig, Trainer
+from semgoal_policy.trainer import PROJECT_ROOT, TrainConfig
 
 SHIPPED = sorted(path.parent.name for path in MODELS_DIR.glob("*/actor.json"))
 
@@ -64,9 +64,9 @@ def test_a_recipe_with_an_unknown_setting_is_refused(tmp_path) -> None:
 
 
 def test_training_exports_into_its_run_unless_shipped(tmp_path) -> None:
-    trainer = Trainer(build_config({"scene": "two_blocks", "n_envs": 1}, {"run_dir": tmp_path}))
+    trainer = trainer_for(build_config({"scene": "two_blocks", "n_envs": 1}, {"run_dir": tmp_path}))
     assert trainer.export_dir == tmp_path / "export"
-    default_run = Trainer(TrainConfig(scene="two_blocks", n_envs=1, seed=5)).run_dir
+    default_run = trainer_for(TrainConfig(scene="two_blocks", n_envs=1, seed=5)).run_dir
     assert default_run == PROJECT_ROOT / "runs" / "two_blocks-hierarchical" / "seed5"
     shipped, _ = train_config(["--recipe", "two_blocks", "--ship"])
     assert shipped.export_dir == MODELS_DIR / "two_blocks"

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 import torch
 
+from semgoal_bringup.training import trainer_for
 from semgoal_policy.actor import load
 from semgoal_policy.replay import Batch
 from semgoal_policy.sac import SacAgent, SacConfig
-from semgoal_policy.trainer import TrainConfig, Trainer
+from semgoal_policy.trainer import TrainConfig
 
 
 def config(tmp_path, steps: int) -> TrainConfig:
@@ -19,10 +20,10 @@ def config(tmp_path, steps: int) -> TrainConfig:
 
 
 def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
-    first = Trainer(config(tmp_path, 400))
+    first = trainer_for(config(tmp_path, 400))
     first.run()
     assert first.env_steps == 400 and (tmp_path / "run" / "checkpoint.pt").exists()
-    resumed = Trainer(replace(config(tmp_path, 800), snapshots=True))
+    resumed = trainer_for(replace(config(tmp_path, 800), snapshots=True))
     resumed.run(resume=True)
     assert resumed.env_steps == 800 and resumed.replay.size == 800 // 50
     rows = list(csv.DictReader((tmp_path / "run" / "progress.csv").open()))
@@ -36,7 +37,7 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
 
 
 def test_averaged_runs_snapshot_the_live_actor_beside_the_averaged_one(tmp_path) -> None:
-    Trainer(replace(config(tmp_path, 400), snapshots=True, sac=SacConfig(actor_average_rate=0.25))).run()
+    trainer_for(replace(config(tmp_path, 400), snapshots=True, sac=SacConfig(actor_average_rate=0.25))).run()
     snapshots = tmp_path / "run" / "snapshots"
     assert sorted(p.name for p in snapshots.iterdir()) == ["400", "400-live"]
     averaged, live = (load(snapshots / name, "two_blocks")[0] for name in ("400", "400-live"))
@@ -44,7 +45,7 @@ def test_averaged_runs_snapshot_the_live_actor_beside_the_averaged_one(tmp_path)
 
 
 def test_evaluation_leaves_the_training_envs_random_streams_alone(tmp_path) -> None:
-    trainer = Trainer(config(tmp_path, 400))
+    trainer = trainer_for(config(tmp_path, 400))
     before = [env.np_random.bit_generator.state for env in trainer.envs]
     trainer.evaluate(2)
     assert [env.np_random.bit_generator.state for env in trainer.envs] == before
@@ -61,18 +62,18 @@ def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints(
 
 
 def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_path) -> None:
-    Trainer(config(tmp_path, 400)).run()
+    trainer_for(config(tmp_path, 400)).run()
     (tmp_path / "run" / "replay.npz").unlink()
-    resumed = Trainer(config(tmp_path, 800))  # refill_steps 100k, capped at the 400 steps before the resume
+    resumed = trainer_for(config(tmp_path, 800))  # refill_steps 100k, capped at the 400 steps before the resume
     resumed.run(resume=True)
     # the refill's 400 steps replace the lost buffer and stay out of the budget: 400 more steps of training follow
     assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
 
 
 def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
-    Trainer(config(tmp_path, 400)).run()
+    trainer_for(config(tmp_path, 400)).run()
     (tmp_path / "run" / "replay.npz").unlink()
-    resumed = Trainer(replace(config(tmp_path, 1200), refill_steps=300))
+    resumed = trainer_for(replace(config(tmp_path, 1200), refill_steps=300))
     resumed.restore()
     weights = [p.clone() for p in (*resumed.agent.actor.net.parameters(), *resumed.agent.critic.parameters())]
     assert resumed.refill() == 400  # whole cycles of 4 envs x 50 steps until 300 are in
@@ -85,7 +86,7 @@ def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
 def test_flat_baseline_trains_on_whole_tasks_and_exports_with_its_goal_layout(tmp_path) -> None:
     cfg = config(tmp_path, 2 * 4 * 120)
     cfg.agent, cfg.learning_starts, cfg.eval_every = "flat-semantic", 480, 960
-    trainer = Trainer(cfg)
+    trainer = trainer_for(cfg)
     trainer.run()
     _, meta = load(tmp_path / "export", "two_blocks")
     assert meta["agent"] == "flat-semantic" and set(meta["final_eval"]["per_kind"]) == {"MC-2", "MA-2", "Swap-2"}
@@ -125,7 +126,7 @@ def test_averaging_resumes_from_its_checkpoint_or_starts_at_the_actor() -> None:
 
 
 def test_a_spawn_margin_widens_training_starts_but_not_evaluation(tmp_path) -> None:
-    trainer = Trainer(replace(config(tmp_path, 400), spawn_margin=0.05))
+    trainer = trainer_for(replace(config(tmp_path, 400), spawn_margin=0.05))
     seen = []
     original = type(trainer.envs[0])._sample_positions
 
@@ -144,4 +145,4 @@ def test_a_spawn_margin_widens_training_starts_but_not_evaluation(tmp_path) -> N
 
 def test_flat_baselines_refuse_a_spawn_margin(tmp_path) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
-        Trainer(replace(config(tmp_path, 400), agent="flat-semantic", spawn_margin=0.05))
+        trainer_for(replace(config(tmp_path, 400), agent="flat-semantic", spawn_margin=0.05))

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from semgoal_core import layout
-from semgoal_sim.task_env import TaskEnv, scene_tasks
+from semgoal_core.tasks import scene_tasks
+from semgoal_sim.task_env import TaskEnv
 
 
 def test_scene_tasks_follow_table_1() -> None:

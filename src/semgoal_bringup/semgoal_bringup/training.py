@@ -1,4 +1,6 @@
-"""Policy subcommands of ./semgoal: `train` and `eval-subgoals`."""
+"""Training and sub-goal evaluation, where the policy's learning meets the simulator's envs: `./semgoal train`
+and `./semgoal eval-subgoals`. The policy package knows agents, recipes and the trainer; which env each
+agent trains in is chosen here (:func:`make_env`), so that the policy imports no simulator."""
 
 from __future__ import annotations
 
@@ -6,19 +8,43 @@ import argparse
 import json
 import shlex
 import sys
+from functools import partial
 from pathlib import Path
 
 from semgoal_core.vocabulary import SCENES
 
 
+def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0):
+    """The env ``agent`` learns in: sub-goal episodes for the hierarchy, whole tasks for the flat baselines
+    (semantic goals, or block positions for flat-continuous)."""
+    from semgoal_policy.agents import get_agent
+    from semgoal_sim.env import SubgoalEnv
+    from semgoal_sim.task_env import TaskEnv
+
+    spec = get_agent(agent)
+    if spec.subgoals:
+        return SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin)
+    if derived:
+        raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
+    if spawn_margin:
+        raise ValueError("a spawn margin is for the hierarchical agent only (task starts are the paper's)")
+    return TaskEnv(scene, spec.goal)
+
+
+def trainer_for(config):
+    """A :class:`~semgoal_policy.trainer.Trainer` on the envs of the configuration's agent and scene."""
+    from semgoal_policy.trainer import Trainer
+
+    return Trainer(config, partial(make_env, config.agent, config.scene, tuple(config.derived_features),
+                                   config.spawn_margin))
+
+
 def train_main(argv: list[str]) -> int:
     """`./semgoal train --recipe NAME --seed S [--resume] [--ship] [settings]` (or --scene S instead of a recipe):
     train a goal-conditioned SAC+HER actor and export it to its run's folder (with --ship, over the shipped actor)."""
-    from semgoal_policy.trainer import Trainer
-
     config, args = train_config(argv)
     try:
-        trainer = Trainer(config)
+        trainer = trainer_for(config)
         final = trainer.run(resume=args.resume)
     except (FileExistsError, ValueError) as error:
         print(f"semgoal train: {error}", file=sys.stderr)
@@ -95,7 +121,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     torch.set_num_threads(1)
     actor, meta = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
     spec = get_agent("hierarchical")
-    envs = [spec.make_env(args.scene, derived_features(meta)) for _ in range(args.envs)]
+    envs = [make_env("hierarchical", args.scene, derived_features(meta)) for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
     noise = np.random.default_rng(args.seed)

@@ -2,7 +2,7 @@
 
 import pytest
 
-from semgoal_bringup.bench_graph import arrival_timing
+from bench.graph import arrival_timing
 
 PERIOD = 0.04
 

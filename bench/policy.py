@@ -59,11 +59,12 @@ def train_rate(config: str, steps: int) -> float:
     """Env steps/s of one training configuration over ``steps`` env steps after the warm-up."""
     kind, _, arg = config.partition(":")
     if kind == "ours":
-        from semgoal_policy.trainer import TrainConfig, Trainer
+        from semgoal_bringup.training import trainer_for
+        from semgoal_policy.trainer import TrainConfig
 
         defaults = TrainConfig(scene="two_blocks")
         updates = 1.0 if arg == "1" else defaults.updates_per_step
-        trainer = Trainer(TrainConfig(scene="two_blocks", seed=0, updates_per_step=updates,
+        trainer = trainer_for(TrainConfig(scene="two_blocks", seed=0, updates_per_step=updates,
                                       learning_starts=WARMUP_STEPS, run_dir=None))
         while trainer.replay.transitions < WARMUP_STEPS:
             trainer.cycle()
@@ -122,7 +123,7 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
 
 
 def _child(args: list[str]) -> str:
-    result = subprocess.run([sys.executable, "-O", "-m", "semgoal_policy.bench", *args], capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-O", "-m", "bench.policy", *args], capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"bench worker {args} failed:\n{result.stderr[-2000:]}")
     return result.stdout.strip().splitlines()[-1]

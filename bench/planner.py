@@ -22,36 +22,14 @@ from pathlib import Path
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 PYPERPLAN = "pyperplan==2.1"
-VENV = Path(".bench/pyperplan")
+VENV = Path(__file__).resolve().parents[1] / ".bench" / "pyperplan"
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
 SIZES = (4, 6, 8, 10, 12)
 PHASES = ("parse_ground", "search")
 
-OURS_RUNNER = """
-import json, sys, time
-from semgoal_planner.planner import solve_pddl
-domain, prob, search, heur, repeats = sys.argv[1:6]
-times, front = [], []
-for _ in range(int(repeats)):
-    start = time.perf_counter()  # both runners read the files inside the timing, as pyperplan's parser does
-    result = solve_pddl(open(domain).read(), open(prob).read(), search, heur); times.append(time.perf_counter() - start)
-    front.append(times[-1] - result.seconds)  # result.seconds: the heuristic's set-up and the search
-print(json.dumps({"length": None if result.plan is None else len(result.plan), "seconds": times, "front_seconds": front}))
-"""
-PYPERPLAN_RUNNER = """
-import json, logging, sys, time
-from pyperplan.planner import HEURISTICS, SEARCHES, _ground, _parse, _search
-logging.disable(logging.CRITICAL)
-domain, prob, search, heur, repeats = sys.argv[1:6]
-search = {"gbfs": "gbf"}.get(search, search)
-heuristic = None if search == "bfs" else HEURISTICS[heur]
-times, front = [], []
-for _ in range(int(repeats)):
-    start = time.perf_counter()
-    task = _ground(_parse(domain, prob)); front.append(time.perf_counter() - start)
-    plan = _search(task, SEARCHES[search], heuristic and heuristic(task)); times.append(time.perf_counter() - start)
-print(json.dumps({"length": None if plan is None else len(plan), "seconds": times, "front_seconds": front}))
-"""
+RUNNERS = Path(__file__).resolve().parent / "runners"
+OURS_RUNNER = RUNNERS / "ours.py"
+PYPERPLAN_RUNNER = RUNNERS / "pyperplan.py"
 
 
 def ensure_pyperplan() -> Path:
@@ -62,10 +40,10 @@ def ensure_pyperplan() -> Path:
     return python
 
 
-def run_one(python: str, runner: str, domain: Path, prob: Path, search: str, heuristic: str, repeats: int,
+def run_one(python: str, runner: Path, domain: Path, prob: Path, search: str, heuristic: str, repeats: int,
             timeout: float) -> dict:
     try:
-        out = subprocess.run([python, "-c", runner, str(domain), str(prob), search, heuristic, str(repeats)],
+        out = subprocess.run([python, str(runner), str(domain), str(prob), search, heuristic, str(repeats)],
                              capture_output=True, text=True, timeout=timeout, check=True).stdout
     except subprocess.TimeoutExpired:
         return {"length": None, "median_ms": None, "status": f"timeout ({timeout:.0f} s)"}

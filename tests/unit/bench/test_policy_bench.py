@@ -1,7 +1,7 @@
 """bench-policy's inference worker times every shipped actor the way the policy node runs it."""
 
+from bench.policy import inference
 from semgoal_core.vocabulary import SCENES
-from semgoal_policy.bench import inference
 
 
 def test_inference_times_each_scenes_controller_and_the_peers():

@@ -3,7 +3,7 @@
 import sys
 from pathlib import Path
 
-from semgoal_planner.bench import OURS_RUNNER, phase_speedup, run_one, speedup
+from bench.planner import OURS_RUNNER, phase_speedup, run_one, speedup
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 

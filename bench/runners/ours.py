@@ -1,0 +1,26 @@
+"""Times our planner on one PDDL task in this process; bench/planner.py runs it once per (problem, search).
+
+    python bench/runners/ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
+"""
+
+import json
+import sys
+import time
+from pathlib import Path
+
+from semgoal_planner.planner import solve_pddl
+
+
+def main(domain: str, problem: str, search: str, heuristic: str, repeats: str) -> None:
+    times, front, result = [], [], None
+    for _ in range(int(repeats)):
+        start = time.perf_counter()  # both runners read the files inside the timing, as pyperplan's parser does
+        result = solve_pddl(Path(domain).read_text(), Path(problem).read_text(), search, heuristic)
+        times.append(time.perf_counter() - start)
+        front.append(times[-1] - result.seconds)  # result.seconds: the heuristic's set-up and the search
+    length = None if result.plan is None else len(result.plan)
+    print(json.dumps({"length": length, "seconds": times, "front_seconds": front}))
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:6])

@@ -1,0 +1,29 @@
+"""Times pyperplan (GPL: run in its own throwaway venv, never imported by the product) on one PDDL task.
+
+    .bench/pyperplan/bin/python bench/runners/pyperplan.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
+"""
+
+import json
+import logging
+import sys
+import time
+
+from pyperplan.planner import HEURISTICS, SEARCHES, _ground, _parse, _search
+
+
+def main(domain: str, problem: str, search: str, heuristic_name: str, repeats: str) -> None:
+    logging.disable(logging.CRITICAL)
+    search = {"gbfs": "gbf"}.get(search, search)
+    heuristic = None if search == "bfs" else HEURISTICS[heuristic_name]
+    times, front, plan = [], [], None
+    for _ in range(int(repeats)):
+        start = time.perf_counter()
+        task = _ground(_parse(domain, problem))
+        front.append(time.perf_counter() - start)
+        plan = _search(task, SEARCHES[search], heuristic and heuristic(task))
+        times.append(time.perf_counter() - start)
+    print(json.dumps({"length": None if plan is None else len(plan), "seconds": times, "front_seconds": front}))
+
+
+if __name__ == "__main__":
+    main(*sys.argv[1:6])

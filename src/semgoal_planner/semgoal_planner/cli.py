@@ -1,4 +1,4 @@
-"""Planner subcommands of ./semgoal: `plan-pddl` (any STRIPS domain) and the operator's `goal` and `plan`."""
+"""Planner subcommands of ./semgoal: `plan-pddl` (any STRIPS domain) and `parse-goal` (a sentence to literals)."""
 
 from __future__ import annotations
 

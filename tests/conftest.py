@@ -156,3 +156,21 @@ def desk_with_a_fallen_block():
     for _ in range(25):
         world.step(np.zeros(4))
     return world
+
+
+BLOCKS = ("red", "green", "blue")
+
+
+def semantic_state(true: set[str], step: int, fallen: tuple[str, ...] = ()):
+    """A desk SemanticState with red, green and blue present and exactly the atoms in ``true`` holding, as the
+    predicates node would publish it at ``step``."""
+    from semgoal_core.vocabulary import LAYOUTS
+    from semgoal_msgs.msg import Predicate, SemanticState
+
+    layout = LAYOUTS["desk_cleanup"]
+    msg = SemanticState(scene="desk_cleanup", step=step, objects=list(BLOCKS), fallen=list(fallen))
+    for name, args in layout.atoms:
+        if all(a in BLOCKS for a in args):
+            msg.predicates.append(Predicate(name=name, args=list(args), value=f"{name}({','.join(args)})" in true))
+    msg.vector = [p.value for p in msg.predicates]
+    return msg

@@ -1,5 +1,16 @@
-"""Everything about this package is declared in setup.cfg."""
+"""Metadata is declared in setup.cfg; the shipped actors and the recipes are installed from here, folder by
+folder, under share/semgoal_policy/ (found at run time through the ament index)."""
+
+from pathlib import Path
 
 from setuptools import setup
 
-setup()
+PACKAGE = "semgoal_policy"
+DATA = [path for root in ("models", "recipes") for path in sorted(Path(root).rglob("*")) if path.is_file()]
+FOLDERS = sorted({path.parent for path in DATA})
+
+setup(data_files=[
+    ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
+    (f"share/{PACKAGE}", ["package.xml", "README.md"]),
+    *((f"share/{PACKAGE}/{folder}", [str(p) for p in DATA if p.parent == folder]) for folder in FOLDERS),
+])

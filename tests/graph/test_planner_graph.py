@@ -3,25 +3,12 @@ operator (goals, plan edits, the ExecuteGoal action) and checks the plan and sub
 
 from rclpy.action import ActionClient
 
-from conftest import GraphProbe, NodeProcesses
+from conftest import GraphProbe, NodeProcesses, semantic_state
 from semgoal_core.settling import SETTLE_STEPS
-from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
+from semgoal_msgs.msg import GoalRequest, Plan, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_ros import interfaces as topics
-
-BLOCKS = ("red", "green", "blue")
-
-
-def semantic_state(true: set[str], step: int, fallen: tuple[str, ...] = ()) -> SemanticState:
-    layout = LAYOUTS["desk_cleanup"]
-    msg = SemanticState(scene="desk_cleanup", step=step, objects=list(BLOCKS), fallen=list(fallen))
-    for name, args in layout.atoms:
-        if all(a in BLOCKS for a in args):
-            msg.predicates.append(Predicate(name=name, args=list(args), value=f"{name}({','.join(args)})" in true))
-    msg.vector = [p.value for p in msg.predicates]
-    return msg
 
 
 class Operator:

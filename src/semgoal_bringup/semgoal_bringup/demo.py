@@ -14,12 +14,13 @@ import os
 import sys
 from pathlib import Path
 
+from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_core.tasks import TASK_STEP_BUDGET
 
 DEFAULT_TASK = "DC-3"
 DEFAULT_SEED = 6
 """A DC-3 start the shipped actors solve through the graph (124 control steps to success at rest, no re-plan)."""
-TO_DO = ("pending", "active")
+TO_DO = (StepStatus.PENDING, StepStatus.ACTIVE)
 """Plan steps a printed plan lists: a re-plan keeps the steps already done ahead of the new ones."""
 
 
@@ -116,14 +117,14 @@ class Demo:
 
     def feedback(self, message) -> None:
         plan = message.feedback.plan
-        if plan.replans != self.replans_shown and plan.steps and plan.status in ("executing", "awaiting_approval"):
+        if plan.replans != self.replans_shown and plan.steps and plan.status in (PlanStatus.EXECUTING, PlanStatus.AWAITING_APPROVAL):
             what = "plan" if self.replans_shown < 0 else f"re-plan {plan.replans}"
             self.log(f"{what}: " + ", ".join(f"{s.index}. {s.action}" for s in plan.steps if s.status in TO_DO))
             self.replans_shown = plan.replans
         for step in plan.steps:
-            if self.seen_steps.get(step.index) != f"{step.action}:{step.status}" and step.status in ("active", "done"):
+            if self.seen_steps.get(step.index) != f"{step.action}:{step.status}" and step.status in (StepStatus.ACTIVE, StepStatus.DONE):
                 self.seen_steps[step.index] = f"{step.action}:{step.status}"
-                verb = "started" if step.status == "active" else "done   "
+                verb = "started" if step.status == StepStatus.ACTIVE else "done   "
                 self.log(f"{verb} {step.index}. {step.action}")
 
     def run(self, gif: Path | None, max_steps: int = TASK_STEP_BUDGET) -> int:

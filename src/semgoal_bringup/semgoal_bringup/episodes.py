@@ -22,6 +22,7 @@ import numpy as np
 
 from semgoal_bringup.training import make_env
 from semgoal_core.lockstep import lockstep_subgoal
+from semgoal_core.names import PlanStatus
 from semgoal_core.settling import Settling, moving_blocks
 from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_planner.executive import Executive, Observation
@@ -77,7 +78,7 @@ class HierarchicalAgent:
         executive.observe(observe(world))
         planned, _ = executive.set_goal(task.name, step_budget=budget)
         steps, decided_before, first_held = 0, None, None
-        while planned and executive.status == "executing":
+        while planned and executive.status == PlanStatus.EXECUTING:
             decided_now = executive.active.subgoal.literals() if executive.active else ([] if executive.settling else None)
             literals = lockstep_subgoal(decided_before, decided_now)
             if literals is None:  # a human step: nobody acts in an evaluation
@@ -124,5 +125,5 @@ def _scene_task(task_name: str, scene: str) -> Task:
 def make_agent(agent: str, scene: str, actor_dir: Path | None = None) -> HierarchicalAgent | FlatAgent:
     """The runner for ``agent`` on ``scene``; ``actor_dir`` defaults to the shipped actor."""
     spec = get_agent(agent)  # KeyError with the valid names
-    actor_dir = actor_dir or actor_io.MODELS_DIR / spec.model_name(scene)
+    actor_dir = actor_dir or actor_io.models_dir() / spec.model_name(scene)
     return HierarchicalAgent(scene, actor_dir) if agent == "hierarchical" else FlatAgent(agent, scene, actor_dir)

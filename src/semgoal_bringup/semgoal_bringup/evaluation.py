@@ -234,7 +234,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
         row.add("shipped", outcome, first_step_observed=False)  # the graph runs the shipped actors
     for task_name in task_names:
-        meta = json.loads((actor_io.MODELS_DIR / get_task(task_name).scene / "actor.json").read_text())
+        meta = json.loads((actor_io.models_dir() / get_task(task_name).scene / "actor.json").read_text())
         row.seed_steps.setdefault("shipped", set()).add(meta["env_steps"])
     row.wall_s = time.perf_counter() - started
     return row
@@ -397,7 +397,7 @@ def main(argv: list[str]) -> int:
         parser.error(f"need tasks, episodes >= 1 and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
     from semgoal_policy import actor as actor_io
 
-    models_dir = args.models or actor_io.MODELS_DIR
+    models_dir = args.models or actor_io.models_dir()
     try:
         rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs)
     except FileNotFoundError as error:

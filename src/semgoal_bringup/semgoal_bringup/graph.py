@@ -28,9 +28,9 @@ def node_params(task_name: str, seed: int, mode: str, models: str = "") -> dict[
 
 def params_file() -> Path:
     """The nodes' parameter file as installed: share/semgoal_bringup/config/semgoal.yaml."""
-    from ament_index_python.packages import get_package_share_directory
+    from semgoal_ros.package_data import share_path
 
-    return Path(get_package_share_directory("semgoal_bringup")) / "config" / "semgoal.yaml"
+    return share_path("semgoal_bringup", "config", "semgoal.yaml")
 
 
 def node_command(package: str, executable: str, params: dict | None = None, log_level: str | None = None) -> list[str]:

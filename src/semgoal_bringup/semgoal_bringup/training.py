@@ -31,6 +31,13 @@ def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin
     return TaskEnv(scene, spec.goal)
 
 
+def checkout_models_dir() -> Path:
+    """Where `train --ship` writes: the checkout's ``src/semgoal_policy/models`` (``make setup`` installs it)."""
+    from semgoal_policy.trainer import PROJECT_ROOT
+
+    return PROJECT_ROOT / "src" / "semgoal_policy" / "models"
+
+
 def trainer_for(config):
     """A :class:`~semgoal_policy.trainer.Trainer` on the envs of the configuration's agent and scene."""
     from semgoal_policy.trainer import Trainer
@@ -57,7 +64,6 @@ def train_main(argv: list[str]) -> int:
 def train_config(argv: list[str]):
     """The training configuration ``./semgoal train argv`` asks for (defaults, then the recipe, then the
     flags), and the parsed arguments; exits 2 with the reason on a bad recipe or setting."""
-    from semgoal_policy.actor import MODELS_DIR
     from semgoal_policy.agents import AGENTS
     from semgoal_policy.recipes import RecipeError, add_config_flags, build_config, flag_overrides, load_recipe, recipe_names
 
@@ -85,14 +91,14 @@ def train_config(argv: list[str]):
     if args.ship:
         if config.export_dir is not None:
             parser.error("--ship exports to models/: leave out --export-dir")
-        config.export_dir = MODELS_DIR / AGENTS[config.agent].model_name(config.scene)
+        config.export_dir = checkout_models_dir() / AGENTS[config.agent].model_name(config.scene)
     config.command = shlex.join(["./semgoal", "train", *argv])
     return config, args
 
 
 def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
-    from semgoal_policy.actor import MODELS_DIR, derived_features, load
+    from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES
     from semgoal_policy.evaluate import success_by_kind
@@ -108,7 +114,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     parser.add_argument("--action-mode", choices=ACTION_MODES, default="mean",
                         help="mean: the deterministic actor (default); sample: its Gaussian, seeded by --seed, "
                              "as policy_node runs it (action_mode: sample)")
-    parser.add_argument("--model-dir", type=Path, help=f"exported actor (default {MODELS_DIR}/SCENE)")
+    parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
     parser.add_argument("--envs", type=int, default=10)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
@@ -119,7 +125,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     import torch
 
     torch.set_num_threads(1)
-    actor, meta = load(args.model_dir or MODELS_DIR / args.scene, args.scene)
+    actor, meta = load(args.model_dir or models_dir() / args.scene, args.scene)
     spec = get_agent("hierarchical")
     envs = [make_env("hierarchical", args.scene, derived_features(meta)) for _ in range(args.envs)]
     for env in envs:

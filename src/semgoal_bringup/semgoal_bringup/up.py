@@ -11,6 +11,7 @@ import os
 import time
 
 from semgoal_bringup.graph import start_graph, stop_graph
+from semgoal_core.names import Mode
 
 
 def main(argv: list[str]) -> int:
@@ -18,7 +19,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--task", default="DC-3", help="the task whose scene and start the sim loads")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped ones")
-    parser.add_argument("--mode", choices=["lockstep", "realtime"], default="realtime")
+    parser.add_argument("--mode", choices=list(Mode), default=Mode.REALTIME.value)
     parser.add_argument("--log-level", default="info")
     args = parser.parse_args(argv)
     processes = start_graph(args.task, args.seed, args.mode, args.log_level, models=args.models)

@@ -6,6 +6,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Protocol, TypeVar
 
+from semgoal_core.names import StepStatus
+
 Decision = TypeVar("Decision")
 
 
@@ -23,7 +25,7 @@ def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | No
     return decided_before if decided_before is not None else decided_now
 
 
-FOLLOWED = ("active", "settling")
+FOLLOWED = (StepStatus.ACTIVE, StepStatus.SETTLING)
 """Sub-goal statuses the policy answers with a command: act on the step, or hold still while the goal's
 world settles (in lockstep the world waits for a command, so holding still must be one)."""
 

@@ -18,24 +18,21 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass, field
 
+from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 
-STATUSES = ("empty", "awaiting_approval", "executing", "paused", "succeeded", "failed")
-UNDER_WAY = ("executing", "paused", "awaiting_approval")
-"""Statuses of a goal that has not ended yet."""
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
-ASSIGNEES = ("robot", "human")
 
 
 @dataclass
 class PlanStep:
     subgoal: SubGoal
-    status: str = "pending"
+    status: str = StepStatus.PENDING
     """pending, active, done, failed or skipped."""
-    assignee: str = "robot"
+    assignee: str = Assignee.ROBOT
 
 
 @dataclass
@@ -85,7 +82,7 @@ class Executive:
     goal_text: str = ""
     steps: list[PlanStep] = field(default_factory=list)
     current: int = 0
-    status: str = "empty"
+    status: str = PlanStatus.EMPTY
     revision: int = 0
     replans: int = 0
     message: str = ""
@@ -131,7 +128,7 @@ class Executive:
 
     def cancel(self, reason: str = "cancelled by the operator") -> None:
         if self.status in UNDER_WAY:
-            self._finish("failed", reason)
+            self._finish(PlanStatus.FAILED, reason)
 
     # -- monitoring ----------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> None:
@@ -140,34 +137,34 @@ class Executive:
         reset = self.observation is not None and observation.objects != self.observation.objects
         self.observation = observation
         if reset and self.status in UNDER_WAY:  # a world reset to other blocks: the plan names blocks gone
-            self._finish("failed", f"the world now has {', '.join(observation.objects)}: the goal {self.goal_text} "
+            self._finish(PlanStatus.FAILED, f"the world now has {', '.join(observation.objects)}: the goal {self.goal_text} "
                                    "was for another world; send it again")
             return
         confirming = self.confirmation.pending or self.goal_settling.pending
         if (changed or confirming) and self.status in UNDER_WAY:
             self._advance()
-            if self.status == "executing":
+            if self.status == PlanStatus.EXECUTING:
                 self._check_consistency()
         if (self.step_budget and self.status in UNDER_WAY
                 and observation.step - self.goal_started >= self.step_budget):
-            self._finish("failed", f"the goal did not hold within its budget of {self.step_budget} control steps")
+            self._finish(PlanStatus.FAILED, f"the goal did not hold within its budget of {self.step_budget} control steps")
 
     def tick(self, step: int) -> None:
         """A control step happened (from the world state stream): stall and contradiction clocks."""
         self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)
-        if self.status == "executing" and (self.confirmation.pending or self.goal_settling.pending):
+        if self.status == PlanStatus.EXECUTING and (self.confirmation.pending or self.goal_settling.pending):
             self._advance()  # may finish the plan, re-plan, or fail the goal
-        if self.status != "executing" or self.current >= len(self.steps) or self.settling:
+        if self.status != PlanStatus.EXECUTING or self.current >= len(self.steps) or self.settling:
             return
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
-        elif self.steps[self.current].assignee == "robot" and step - self.step_started > self.stall_steps:
+        elif self.steps[self.current].assignee == Assignee.ROBOT and step - self.step_started > self.stall_steps:
             self.replan(f"step {self.current} {self.steps[self.current].subgoal} made no progress in "
                         f"{self.stall_steps} control steps")
-        elif self.steps[self.current].assignee == "human" and step - self.step_started > self.human_steps:
-            self._finish("failed", f"step {self.current} {self.steps[self.current].subgoal} was a person's and was "
+        elif self.steps[self.current].assignee == Assignee.HUMAN and step - self.step_started > self.human_steps:
+            self._finish(PlanStatus.FAILED, f"step {self.current} {self.steps[self.current].subgoal} was a person's and was "
                                    f"not done within {self.human_steps} control steps; assign it to the robot "
                                    "or send the goal again")
 
@@ -175,38 +172,38 @@ class Executive:
     def settling(self) -> bool:
         """The goal's literals hold and the plan waits for them to hold at rest: the arm holds still."""
         obs = self.observation
-        return self.status == "executing" and obs is not None and obs.holds(self.goal)
+        return self.status == PlanStatus.EXECUTING and obs is not None and obs.holds(self.goal)
 
     @property
     def active(self) -> PlanStep | None:
         """The step the policy should execute now; None while paused, waiting, settling, done or on a human step."""
-        if self.status != "executing" or self.current >= len(self.steps) or self.settling:
+        if self.status != PlanStatus.EXECUTING or self.current >= len(self.steps) or self.settling:
             return None
         step = self.steps[self.current]
-        return step if step.assignee == "robot" else None
+        return step if step.assignee == Assignee.ROBOT else None
 
     def _advance(self) -> None:
         obs = self.observation
-        if obs is None or self.status in ("empty", "succeeded", "failed"):
+        if obs is None or self.status in FINISHED:
             return
         if self.goal_settling.update(obs.settled(self.goal), obs.step, max(obs.step, self.last_tick)):
             for step in self.steps[self.current:]:
-                step.status = "done" if obs.holds(step.subgoal.literals()) else "skipped"
+                step.status = StepStatus.DONE if obs.holds(step.subgoal.literals()) else StepStatus.SKIPPED
             self.current = len(self.steps)
-            self._finish("succeeded", f"goal {self.goal_text} holds at rest")
+            self._finish(PlanStatus.SUCCEEDED, f"goal {self.goal_text} holds at rest")
             return
         if self.settling:
             return
         while self.current < len(self.steps) and self._achieved(self.steps[self.current], obs):
-            self.steps[self.current].status = "done"
+            self.steps[self.current].status = StepStatus.DONE
             self._emit(f"step {self.current} {self.steps[self.current].subgoal} done")
             self.current += 1
             self.step_started, self.contradicted_since = obs.step, None
             self.revision += 1
         if self.current >= len(self.steps):
             self.replan("all steps are done but the goal does not hold")
-        elif self.status == "executing" and self.steps[self.current].status != "active":
-            self.steps[self.current].status = "active"
+        elif self.status == PlanStatus.EXECUTING and self.steps[self.current].status != StepStatus.ACTIVE:
+            self.steps[self.current].status = StepStatus.ACTIVE
             self.step_started = obs.step
             self._emit(f"step {self.current} {self.steps[self.current].subgoal} started "
                        f"({self.steps[self.current].assignee})")
@@ -220,14 +217,14 @@ class Executive:
             return
         lost = [block for block in step.subgoal.args if block in obs.fallen]
         if lost:
-            self._finish("failed", f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
+            self._finish(PlanStatus.FAILED, f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
                                    f"{self.current} {step.subgoal} cannot be done")
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
         holds = obs.settled(step.subgoal.literals())
-        if holds and (step.assignee == "human" or self.status != "executing"):
+        if holds and (step.assignee == Assignee.HUMAN or self.status != PlanStatus.EXECUTING):
             return True
         done = self.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))
         if done:
@@ -250,27 +247,27 @@ class Executive:
         """Plan again from the observed state. The monitor's re-plans spend ``max_replans``; an operator's
         re-plan spends none of it, and a paused plan stays paused (issue 57)."""
         obs = self.observation
-        if self.status in ("empty", "succeeded", "failed") or obs is None:
+        if self.status in FINISHED or obs is None:
             return False, "nothing to re-plan: no goal is being executed"
         if not by_operator and self.replans >= self.max_replans:
-            self._finish("failed", f"{reason}; gave up after {self.replans} re-plans")
+            self._finish(PlanStatus.FAILED, f"{reason}; gave up after {self.replans} re-plans")
             return False, self.message
         try:
             steps = self.planner.plan(obs.objects, obs.true_literals, self.goal)
         except PlanningError as error:
             if by_operator:  # the plan stays as it was
                 return False, f"re-planning failed: {error}"
-            self._finish("failed", f"{reason}; re-planning failed: {error}")
+            self._finish(PlanStatus.FAILED, f"{reason}; re-planning failed: {error}")
             return False, self.message
         self.replans += not by_operator
-        paused = self.status == "paused"
-        done = [s for s in self.steps[: self.current] if s.status == "done"]
+        paused = self.status == PlanStatus.PAUSED
+        done = [s for s in self.steps[: self.current] if s.status == StepStatus.DONE]
         # a step the operator gave a person stays theirs when the new plan has it too (issue 57)
-        human = {s.subgoal for s in self.steps[self.current:] if s.assignee == "human"}
-        new = [PlanStep(s, assignee="human" if s in human else "robot") for s in steps]
+        human = {s.subgoal for s in self.steps[self.current:] if s.assignee == Assignee.HUMAN}
+        new = [PlanStep(s, assignee=Assignee.HUMAN if s in human else Assignee.ROBOT) for s in steps]
         self._install(done + new, f"re-planned ({reason})", keep=len(done))
         if paused:
-            self.status = "paused"
+            self.status = PlanStatus.PAUSED
         self._advance()
         return True, self.message
 
@@ -278,15 +275,15 @@ class Executive:
         self.steps, self.current = steps, keep
         self.confirmation.reset()
         self.goal_settling.reset()
-        self.status = "awaiting_approval" if self.require_approval else "executing"
+        self.status = PlanStatus.AWAITING_APPROVAL if self.require_approval else PlanStatus.EXECUTING
         self.contradicted_since = None
         self.step_started = self.observation.step if self.observation else 0
         self._changed(message)
 
     def _finish(self, status: str, message: str) -> None:
         self.status = status
-        if status == "failed" and self.current < len(self.steps):
-            self.steps[self.current].status = "failed"
+        if status == PlanStatus.FAILED and self.current < len(self.steps):
+            self.steps[self.current].status = StepStatus.FAILED
         self._changed(message)
 
     def _changed(self, message: str) -> None:
@@ -310,15 +307,15 @@ class Executive:
         op = op.strip().lower()
         if op not in EDIT_OPS:
             return False, f"unknown edit {op!r}; valid: {', '.join(EDIT_OPS)}"
-        if self.status in ("empty", "succeeded", "failed"):
+        if self.status in FINISHED:
             return False, f"no plan to edit (plan is {self.status}); send a goal first"
         if revision and revision != self.revision:
             return False, (f"{op} refused: it was made against plan revision {revision}, and the plan is at "
                            f"revision {self.revision} now; look at it again (plan show)")
         if op == "approve":
-            if self.status != "awaiting_approval":
+            if self.status != PlanStatus.AWAITING_APPROVAL:
                 return False, f"nothing to approve: the plan is {self.status}"
-            self.status = "executing"
+            self.status = PlanStatus.EXECUTING
             self._changed("plan approved")
             self._advance()
             return True, self.message
@@ -329,11 +326,11 @@ class Executive:
         return self._edit_steps(op, index, to_index, action)
 
     def _pause(self, pause: bool) -> tuple[bool, str]:
-        if pause and self.status != "executing":
+        if pause and self.status != PlanStatus.EXECUTING:
             return False, f"cannot pause: the plan is {self.status}"
-        if not pause and self.status != "paused":
+        if not pause and self.status != PlanStatus.PAUSED:
             return False, f"cannot resume: the plan is {self.status}"
-        self.status = "paused" if pause else "executing"
+        self.status = PlanStatus.PAUSED if pause else PlanStatus.EXECUTING
         if not pause and self.observation:
             self.step_started = self.observation.step
         self._changed("paused" if pause else "resumed")
@@ -361,18 +358,18 @@ class Executive:
                 steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee)
             elif op == "assign":
                 who = action.strip().lower()
-                if who not in ASSIGNEES:
-                    raise ValueError(f"assign takes 'robot' or 'human', got {action!r}")
-                if who == "human" and steps[index].subgoal.kind == "pick":
+                if who not in list(Assignee):
+                    raise ValueError(f"assign takes {' or '.join(map(repr, map(str, Assignee)))}, got {action!r}")
+                if who == Assignee.HUMAN and steps[index].subgoal.kind == "pick":
                     raise ValueError(f"step {index} {steps[index].subgoal} asks the robot's hand to hold a block, which "
                                      "a person cannot do for it: give the person the put after it")
-                steps[index].assignee = who
+                steps[index].assignee = Assignee(who)
             self._simulate([s.subgoal for s in steps[self.current:]])
         except (ValueError, PlanningError) as error:
             return False, f"{op} refused: {error}"
         for i, step in enumerate(steps):
             if i >= self.current:
-                step.status = "pending"
+                step.status = StepStatus.PENDING
         self.steps = steps
         self._changed(f"{op} applied")
         self._advance()

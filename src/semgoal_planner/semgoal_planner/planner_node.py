@@ -15,17 +15,20 @@ from rclpy.node import Node
 from rclpy.task import Future
 
 from semgoal_core.layout import CONTROL_DT
+from semgoal_core.names import Assignee, PlanStatus, StepStatus
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
+from semgoal_planner.search import SEARCHES
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
 from semgoal_ros.messages import format_plan
+from semgoal_ros.parameters import Param, apply_changes, declare
 
-FINAL = ("succeeded", "failed")
+FINAL = (PlanStatus.SUCCEEDED, PlanStatus.FAILED)
 
 
 def goal_text(msg: GoalRequest) -> str:
@@ -36,21 +39,32 @@ def goal_text(msg: GoalRequest) -> str:
     return msg.task.strip() or " & ".join(msg.literals) or msg.text.strip()
 
 
+PARAMS = (
+    Param("scene", "desk_cleanup", "the scene whose vocabulary and domain the planner uses", choices=tuple(SCENES)),
+    Param("search", "bfs", "bfs (shortest plans) | astar | gbfs", choices=SEARCHES),
+    Param("stall_steps", 150, "control steps a robot step may take without holding before a re-plan",
+          low=1, high=1_000_000, runtime=True),
+    Param("human_steps", 3000, "control steps a person's step may take before the goal fails (2 min at 25 Hz)",
+          low=1, high=10_000_000, runtime=True),
+    Param("contradiction_steps", 10, "control steps the observed state may contradict the plan before a re-plan",
+          low=1, high=100_000, runtime=True),
+    Param("max_replans", 10, "re-plans before the goal fails with a reason", low=0, high=10_000, runtime=True),
+    Param("require_approval", False, "a new plan waits for the operator's approve", runtime=True),
+    Param("state_wait_s", 5.0, "ExecuteGoal before any semantic state: wait this long for one",
+          low=0.0, high=3600.0, runtime=True),
+)
+EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval")
+"""Parameters that are the executive's settings of the same name."""
+
+
 class PlannerNode(Node):
     def __init__(self) -> None:
         super().__init__("planner")
-        scene = self.declare_parameter("scene", "desk_cleanup").value
-        if scene not in SCENES:
-            raise SystemExit(f"planner: unknown scene {scene!r}; valid: {', '.join(SCENES)}")
-        self.executive = Executive(
-            SemanticPlanner(scene, self.declare_parameter("search", "bfs").value),
-            stall_steps=self.declare_parameter("stall_steps", 150).value,
-            human_steps=self.declare_parameter("human_steps", 3000).value,
-            contradiction_steps=self.declare_parameter("contradiction_steps", 10).value,
-            max_replans=self.declare_parameter("max_replans", 10).value,
-            require_approval=self.declare_parameter("require_approval", False).value,
-        )
-        self.state_wait_s = float(self.declare_parameter("state_wait_s", 5.0).value)
+        values = declare(self, PARAMS)
+        self.executive = Executive(SemanticPlanner(values["scene"], values["search"]),
+                                   **{name: values[name] for name in EXECUTIVE_PARAMS})
+        self.state_wait_s = float(values["state_wait_s"])
+        apply_changes(self, PARAMS, self.apply_parameter)
         self.state_waiters: list[Future] = []
         """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
@@ -69,6 +83,13 @@ class PlannerNode(Node):
         """The ExecuteGoal being executed and the future its coroutine awaits: resolved with the reason
         when the goal ends (succeeded, failed, cancelled or superseded by another goal)."""
         self.publish()
+
+    def apply_parameter(self, name: str, value) -> None:
+        """A change made while running: the executive's settings hold from the next control step on."""
+        if name in EXECUTIVE_PARAMS:
+            setattr(self.executive, name, value)
+        elif name == "state_wait_s":
+            self.state_wait_s = float(value)
 
     # -- inputs --------------------------------------------------------------------------------------
     def goal_callback(self, msg: GoalRequest) -> None:
@@ -104,7 +125,7 @@ class PlannerNode(Node):
         response.plan = self.plan_message()
         if self.last_state is not None:
             response.state = self.last_state
-        response.success = self.executive.status != "empty"
+        response.success = self.executive.status != PlanStatus.EMPTY
         response.message = format_plan(response.plan)
         return response
 
@@ -146,7 +167,7 @@ class PlannerNode(Node):
             handle.canceled()
             result.message = "cancelled"
             return self._fill(result, ok, start_step, end_step)
-        result.success = ok and self.executive.status == "succeeded"
+        result.success = ok and self.executive.status == PlanStatus.SUCCEEDED
         result.message = message
         (handle.succeed if result.success else handle.abort)()
         return self._fill(result, ok, start_step, end_step)
@@ -245,13 +266,13 @@ class PlannerNode(Node):
         ex = self.executive
         active = ex.active
         if ex.settling:
-            msg = SubGoal(index=ex.current, status="settling")
+            msg = SubGoal(index=ex.current, status=StepStatus.SETTLING)
         elif active is None:
-            waiting = ex.status == "executing"  # executing without an active robot step: a human's turn
-            msg = SubGoal(index=ex.current, status="waiting_for_human" if waiting else ex.status,
-                          assignee="human" if waiting else "")
+            waiting = ex.status == PlanStatus.EXECUTING  # executing without an active robot step: a human's turn
+            msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,
+                          assignee=Assignee.HUMAN if waiting else "")
         else:
-            msg = self.step_message(ex.current, active.subgoal, "active", "robot")
+            msg = self.step_message(ex.current, active.subgoal, StepStatus.ACTIVE, Assignee.ROBOT)
         msg.step = ex.observation.step if ex.observation else 0
         msg.episode = self.last_state.episode if self.last_state else 0
         return msg

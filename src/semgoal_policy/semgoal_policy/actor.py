@@ -17,14 +17,17 @@ import torch
 from torch import nn
 
 from semgoal_core import features, layout
+from semgoal_ros.package_data import share_path
 
 HIDDEN = (256, 256)
 LOG_STD_MIN, LOG_STD_MAX = -5.0, 2.0
 """Clamp of the Gaussian's log std before tanh; 2 is SB3's and CleanRL's upper bound (see ``SacConfig.log_std_max``)."""
 OBS_CLIP = 5.0
 """Normalised observations are clipped to +-5 standard deviations (as in the HER baselines)."""
-MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
-"""Shipped actors: ``models/<scene>/`` (hierarchical) and ``models/<scene>-<agent>/`` (baselines)."""
+def models_dir() -> Path:
+    """The shipped actors as installed: ``share/semgoal_policy/models/<scene>/`` (hierarchical),
+    ``<scene>-<agent>/`` (baselines) and ``seeds/<name>/seedS/`` (the pooled training seeds)."""
+    return share_path("semgoal_policy", "models")
 
 
 class LayoutMismatchError(RuntimeError):

@@ -21,12 +21,23 @@ import numpy as np
 from rclpy.node import Node
 
 from semgoal_core.lockstep import followed_decision
+from semgoal_core.names import Mode, StepStatus
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
+from semgoal_policy.actor import LayoutMismatchError
 from semgoal_policy.controller import ACTION_MODES, SubgoalController, VocabularyError
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
+from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, declare
 
+PARAMS = (
+    Param("scene", "desk_cleanup", "the scene the actor was trained for", choices=tuple(SCENES)),
+    Param("model_dir", "", "an exported actor's folder (empty: the shipped one for the scene)"),
+    Param("mode", Mode.LOCKSTEP.value, "must match the sim's: lockstep | realtime", choices=tuple(Mode)),
+    Param("rate_hz", 25.0, "realtime mode: commands per second", low=0.1, high=1000.0, runtime=True),
+    Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
+          choices=ACTION_MODES, runtime=True),
+)
 DECISIONS_KEPT = 8
 """Decisions remembered: the step before the world's and its own are the ones used, a few more cover a
 reordering between the two topics."""
@@ -35,14 +46,12 @@ reordering between the two topics."""
 class PolicyNode(Node):
     def __init__(self) -> None:
         super().__init__("policy")
-        scene = self.declare_parameter("scene", "desk_cleanup").value
-        model_dir = self.declare_parameter("model_dir", "").value
-        self.mode = self.declare_parameter("mode", "lockstep").value
-        rate_hz = self.declare_parameter("rate_hz", 25.0).value
-        action_mode = self.declare_parameter("action_mode", "sample").value
-        if scene not in SCENES or self.mode not in ("lockstep", "realtime") or action_mode not in ACTION_MODES:
-            raise SystemExit(f"policy: bad parameters scene={scene!r} mode={self.mode!r} action_mode={action_mode!r}")
-        self.controller = SubgoalController(scene, model_dir or None, action_mode)
+        values = declare(self, PARAMS)
+        self.mode, scene = values["mode"], values["scene"]
+        try:
+            self.controller = SubgoalController(scene, values["model_dir"] or None, values["action_mode"])
+        except (FileNotFoundError, ValueError, LayoutMismatchError) as error:  # no actor, or one of another layout
+            raise ParameterValueError(f"policy: {error}") from None
         self.get_logger().info(f"actor for {scene}: {self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
@@ -55,11 +64,20 @@ class PolicyNode(Node):
         self.answered_at = 0.0
         # realtime: act at rate_hz. lockstep: the world waits for each command, so the timer only resends
         # one that may have been lost
-        self.create_timer(1.0 / rate_hz if self.mode == "realtime" else 1.0, self.timer_callback)
+        self.timer = self.create_timer(1.0 / values["rate_hz"] if self.mode == Mode.REALTIME else 1.0,
+                                       self.timer_callback)
         self.subgoal_key: tuple | None = None
+        apply_changes(self, PARAMS, self.apply_parameter)
+
+    def apply_parameter(self, name: str, value) -> None:
+        """A change made while running: the realtime command rate, or mean / sampled actions."""
+        if name == "rate_hz" and self.mode == Mode.REALTIME:
+            self.timer.timer_period_ns = int(1e9 / value)
+        elif name == "action_mode":
+            self.controller.mode = value
 
     def subgoal_callback(self, msg: SubGoal) -> None:
-        if self.mode == "realtime":
+        if self.mode == Mode.REALTIME:
             self.follow(msg)
             return
         self.decisions[(msg.episode, msg.step)] = msg
@@ -73,7 +91,7 @@ class PolicyNode(Node):
         if key == self.subgoal_key:
             return
         self.subgoal_key = key
-        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == "active" else []
+        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == StepStatus.ACTIVE else []
         try:
             self.controller.set_subgoal(literals)
         except VocabularyError as error:
@@ -85,13 +103,13 @@ class PolicyNode(Node):
 
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg
-        if self.mode == "lockstep":
+        if self.mode == Mode.LOCKSTEP:
             self.answer_lockstep()
 
     def timer_callback(self) -> None:
         if self.latest is None:
             return
-        if self.mode == "realtime":
+        if self.mode == Mode.REALTIME:
             self.publish_command(self.latest, self.decide_realtime(self.latest))
         elif time.monotonic() - self.answered_at > 1.0:
             self.answered = None  # lockstep: the command for this step may have been lost; send it again

@@ -22,8 +22,8 @@ import yaml
 
 from semgoal_policy.sac import SacConfig
 from semgoal_policy.trainer import TrainConfig
+from semgoal_ros.package_data import share_path
 
-RECIPES_DIR = Path(__file__).resolve().parent.parent / "recipes"
 RUN_FIELDS = ("seed", "run_dir", "export_dir", "command")
 """A run's own settings: never part of a recipe."""
 FLAG_NAMES = {"n_envs": "--envs", "derived_features": "--derive"}
@@ -34,13 +34,18 @@ class RecipeError(ValueError):
     """A recipe that does not exist or names settings the configuration does not have."""
 
 
+def recipes_dir() -> Path:
+    """The recipes as installed: ``share/semgoal_policy/recipes``."""
+    return share_path("semgoal_policy", "recipes")
+
+
 def recipe_names() -> list[str]:
-    return sorted(path.stem for path in RECIPES_DIR.glob("*.yaml"))
+    return sorted(path.stem for path in recipes_dir().glob("*.yaml"))
 
 
 def recipe_path(name: str) -> Path:
-    """A recipe's file: a name under :data:`RECIPES_DIR` (``desk_cleanup``, ``two_blocks-flat-semantic``) or a path."""
-    path = Path(name) if name.endswith((".yaml", ".yml")) else RECIPES_DIR / f"{name}.yaml"
+    """A recipe's file: a name under :func:`recipes_dir` (``desk_cleanup``, ``two_blocks-flat-semantic``) or a path."""
+    path = Path(name) if name.endswith((".yaml", ".yml")) else recipes_dir() / f"{name}.yaml"
     if not path.is_file():
         raise RecipeError(f"no recipe {name!r}: recipes are {', '.join(recipe_names())} (or a path to a .yaml)")
     return path

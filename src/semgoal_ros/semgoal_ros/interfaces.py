@@ -150,9 +150,12 @@ class RecentAnswers:
 
 
 def run_node(node_class: type, args: list[str] | None = None) -> None:
-    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy)."""
+    """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy).
+    A node refusing a start-up parameter value exits with status 2 and the reason."""
     import rclpy
     from rclpy.executors import ExternalShutdownException
+
+    from semgoal_ros.parameters import ParameterValueError
 
     rclpy.init(args=args)
     try:
@@ -160,6 +163,10 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
     except (KeyboardInterrupt, ExternalShutdownException):
         _shutdown(rclpy)
         return
+    except ParameterValueError as error:  # a bad start-up value: one line that says which and why, exit 2
+        rclpy.logging.get_logger("semgoal").error(str(error))
+        _shutdown(rclpy)
+        raise SystemExit(2) from None
     except Exception:
         if rclpy.ok():
             raise

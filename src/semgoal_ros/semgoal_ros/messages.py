@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.names import PlanStatus
 from semgoal_core.settling import moving_blocks
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, fallen_blocks
 from semgoal_msgs.msg import Plan, Predicate, SemanticState, WorldState
@@ -54,6 +55,6 @@ def format_plan(plan: Plan) -> str:
     """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current)."""
     lines = [f"goal: {plan.goal or '(none)'}   status: {plan.status}   revision {plan.revision}   replans {plan.replans}"]
     for step in plan.steps:
-        marker = ">" if step.index == plan.current and plan.status == "executing" else " "
+        marker = ">" if step.index == plan.current and plan.status == PlanStatus.EXECUTING else " "
         lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")
     return "\n".join(lines)

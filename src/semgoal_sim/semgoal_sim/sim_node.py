@@ -8,38 +8,49 @@ is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``.
 """
 
 import numpy as np
-from rcl_interfaces.msg import SetParametersResult
 from rclpy.node import Node
 from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import MarkerArray
 
+from semgoal_core.names import Mode
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import SCENES
 from semgoal_msgs.msg import ArmCommand, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
+from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, declare
 from semgoal_sim import conversions
 from semgoal_sim.sim_core import SimCore, check_command
 
-MODES = ("lockstep", "realtime")
+PARAMS = (
+    Param("scene", "two_blocks", "the scene to simulate", choices=tuple(SCENES)),
+    Param("task", "", f"the task whose start the world takes: {', '.join(TASKS)} (empty: the scene's first)"),
+    Param("seed", 0, "initial-state seed of the task", low=0, high=2**31 - 1),
+    Param("mode", Mode.LOCKSTEP.value, "lockstep: one step per arm command; realtime: a timer at rate_hz",
+          choices=tuple(Mode)),
+    Param("rate_hz", 25.0, "control rate in realtime mode (the Fetch benchmark's 25 Hz)", low=0.1, high=1000.0,
+          runtime=True),
+    Param("markers_every", 5, "publish the RViz markers every N control steps", low=1, high=10_000, runtime=True),
+    Param("heartbeat_hz", 2.0, "lockstep: republish a world state that has not moved, for late joiners (0: off)",
+          low=0.0, high=100.0),
+    Param("render", False, "publish an offscreen camera image on /semgoal/camera/image_raw"),
+    Param("render_hz", 5.0, "camera frames per second", low=0.1, high=60.0),
+    Param("render_width", 480, "camera image width (px)", low=16, high=4096),
+    Param("render_height", 360, "camera image height (px)", low=16, high=4096),
+)
 
 
 class SimNode(Node):
     def __init__(self) -> None:
         super().__init__("sim")
-        scene = self.declare_parameter("scene", "two_blocks").value
-        task = self.declare_parameter("task", "").value
-        seed = self.declare_parameter("seed", 0).value
-        self.mode = self.declare_parameter("mode", "lockstep").value
-        self.rate_hz = self.declare_parameter("rate_hz", 25.0).value
-        self.markers_every = self.declare_parameter("markers_every", 5).value
-        heartbeat_hz = self.declare_parameter("heartbeat_hz", 2.0).value
-        render = self.declare_parameter("render", False).value
-        render_hz = self.declare_parameter("render_hz", 5.0).value
-        self.render_size = (self.declare_parameter("render_width", 480).value,
-                            self.declare_parameter("render_height", 360).value)
-        if self.mode not in MODES:
-            raise ValueError(f"mode must be one of {MODES}, got {self.mode!r}")
-        self.core = SimCore(scene, task, seed)
+        values = declare(self, PARAMS)
+        self.mode, self.rate_hz, self.markers_every = values["mode"], values["rate_hz"], values["markers_every"]
+        self.render_size = (values["render_width"], values["render_height"])
+        try:
+            self.core = SimCore(values["scene"], values["task"], values["seed"])
+        except ValueError as error:
+            raise ParameterValueError(f"sim: {error}") from None
         self.held_command = np.zeros(4)
         self.world_pub = self.create_publisher(WorldState, topics.WORLD_STATE, topics.STREAM)
         self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
@@ -47,24 +58,28 @@ class SimNode(Node):
         self.create_subscription(ArmCommand, topics.ARM_COMMAND, self.command_callback, topics.STREAM)
         self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
         self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
-        self.add_on_set_parameters_callback(self.parameters_callback)
         self.renderer = None
-        if render:
+        if values["render"]:
             self.image_pub = self.create_publisher(Image, topics.CAMERA_IMAGE, topics.CAMERA)
-            self.create_timer(1.0 / render_hz, self.publish_image)
-        if self.mode == "realtime":
+            self.create_timer(1.0 / values["render_hz"], self.publish_image)
+        self.timer = None
+        if self.mode == Mode.REALTIME:
             self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step)
-        elif heartbeat_hz > 0:  # lockstep: a late joiner (or a lost command) would otherwise wait forever
-            self.create_timer(1.0 / heartbeat_hz, self.heartbeat)
+        elif values["heartbeat_hz"] > 0:  # lockstep: a late joiner (or a lost command) would otherwise wait forever
+            self.create_timer(1.0 / values["heartbeat_hz"], self.heartbeat)
         self.heartbeat_step = -1
+        apply_changes(self, PARAMS, self.apply_parameter)
         self.publish_state()
-        self.get_logger().info(f"{scene} ready: task {self.core.task}, seed {self.core.seed}, {self.mode} mode")
+        self.get_logger().info(f"{values['scene']} ready: task {self.core.task}, seed {self.core.seed}, {self.mode} mode")
 
-    def parameters_callback(self, params) -> SetParametersResult:
-        for param in params:
-            if param.name in ("scene", "mode", "render", "render_hz"):
-                return SetParametersResult(successful=False, reason=f"{param.name} is fixed at start-up; restart the node")
-        return SetParametersResult(successful=True)
+    def apply_parameter(self, name: str, value) -> None:
+        """Put a change made while running into effect: the realtime rate, the markers' period."""
+        if name == "markers_every":
+            self.markers_every = value
+        elif name == "rate_hz":
+            self.rate_hz = value
+            if self.timer is not None:
+                self.timer.timer_period_ns = int(1e9 / value)
 
     def publish_state(self) -> WorldState:
         snapshot = self.core.snapshot()
@@ -87,7 +102,7 @@ class SimNode(Node):
 
     def command_callback(self, msg: ArmCommand) -> None:
         values = [msg.displacement.x, msg.displacement.y, msg.displacement.z, msg.gripper]
-        if self.mode == "lockstep" and msg.step != self.core.world.step_count:
+        if self.mode == Mode.LOCKSTEP and msg.step != self.core.world.step_count:
             self.get_logger().warn(f"dropped a stale command for step {msg.step} (now at {self.core.world.step_count})",
                                    throttle_duration_sec=1.0)
             return
@@ -96,7 +111,7 @@ class SimNode(Node):
             self.get_logger().warn(check.warning, throttle_duration_sec=1.0)
         if check.action is None:
             return
-        if self.mode == "realtime":
+        if self.mode == Mode.REALTIME:
             self.held_command = check.action
             return
         self.core.step(check.action)

@@ -62,12 +62,13 @@ def test_a_pool_file_names_the_pooled_training_seeds(tmp_path) -> None:
 
 def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
     """Two "seeds" that are the same shipped actor: pooled and per-seed rates must all agree."""
-    from semgoal_policy.actor import MODELS_DIR
+    from semgoal_policy.actor import models_dir
 
+    shipped = models_dir() / "two_blocks"
     models = tmp_path / "models"
     (models / "seeds" / "two_blocks").mkdir(parents=True)
-    (models / "two_blocks").symlink_to(MODELS_DIR / "two_blocks")
-    (models / "seeds" / "two_blocks" / "seed9").symlink_to(MODELS_DIR / "two_blocks")
+    (models / "two_blocks").symlink_to(shipped)
+    (models / "seeds" / "two_blocks" / "seed9").symlink_to(shipped)
     argv = ["--tasks", "MA-2", "--episodes", "2", "--seeds", "2", "--jobs", "1", "--models", str(models), "--json"]
     assert evaluation.main([*argv, "--out", str(tmp_path)]) == 0
     rate = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["MA-2"]["hierarchical"]

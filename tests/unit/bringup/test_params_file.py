@@ -1,8 +1,7 @@
 """The nodes' YAML parameter file names exactly the parameters each node declares (ROS ignores a
-misspelt key silently), with values of the declared types."""
+misspelt key silently), with values of the declared types that the node accepts."""
 
-import ast
-import re
+import importlib
 from pathlib import Path
 
 import pytest
@@ -10,31 +9,34 @@ import yaml
 
 ROOT = Path(__file__).resolve().parents[3]
 PARAMS = yaml.safe_load((ROOT / "src/semgoal_bringup/config/semgoal.yaml").read_text())
-NODE_SOURCES = {
-    "sim": "src/semgoal_sim/semgoal_sim/sim_node.py",
-    "predicates": "src/semgoal_sim/semgoal_sim/predicate_node.py",
-    "planner": "src/semgoal_planner/semgoal_planner/planner_node.py",
-    "policy": "src/semgoal_policy/semgoal_policy/policy_node.py",
+NODE_MODULES = {
+    "sim": "semgoal_sim.sim_node",
+    "predicates": "semgoal_sim.predicate_node",
+    "planner": "semgoal_planner.planner_node",
+    "policy": "semgoal_policy.policy_node",
 }
-DECLARATION = re.compile(r'declare_parameter\("(\w+)", ([^)]+)\)')
 
 
-@pytest.mark.parametrize("node", list(NODE_SOURCES))
+def declared(node: str) -> dict:
+    return {param.name: param for param in getattr(importlib.import_module(NODE_MODULES[node]), "PARAMS", ())}
+
+
+@pytest.mark.parametrize("node", list(NODE_MODULES))
 def test_yaml_matches_declared_parameters(node: str) -> None:
-    source = (ROOT / NODE_SOURCES[node]).read_text()
-    declared = {name: ast.literal_eval(default) for name, default in DECLARATION.findall(source)}
-    assert set(PARAMS) <= set(NODE_SOURCES)
+    specs = declared(node)
+    assert set(PARAMS) <= set(NODE_MODULES)
     values = PARAMS.get(node, {}).get("ros__parameters", {})  # a node without parameters has no section
-    assert set(values) == set(declared), f"{node}: YAML {sorted(values)} vs declared {sorted(declared)}"
+    assert set(values) == set(specs), f"{node}: YAML {sorted(values)} vs declared {sorted(specs)}"
     for name, value in values.items():
-        assert type(value) is type(declared[name]), f"{node}.{name}: {value!r} is not a {type(declared[name]).__name__}"
+        assert type(value) is type(specs[name].default), f"{node}.{name}: {value!r} is not a {type(specs[name].default).__name__}"
+        assert not specs[name].problem(value), f"{node}.{name}: {value!r} {specs[name].problem(value)}"
+        assert specs[name].description
 
 
 def test_planner_defaults_are_the_executives() -> None:
     from semgoal_planner.executive import Executive
 
-    source = (ROOT / NODE_SOURCES["planner"]).read_text()
-    declared = {name: ast.literal_eval(default) for name, default in DECLARATION.findall(source)}
     defaults = Executive.__dataclass_fields__
-    assert {name: value for name, value in declared.items() if name in defaults} == {
-        name: defaults[name].default for name in declared if name in defaults}
+    specs = declared("planner")
+    assert {name: spec.default for name, spec in specs.items() if name in defaults} == {
+        name: defaults[name].default for name in specs if name in defaults}

@@ -6,11 +6,12 @@ import json
 
 import pytest
 
-from semgoal_bringup.training import train_config, trainer_for
-from semgoal_policy.actor import MODELS_DIR
+from semgoal_bringup.training import checkout_models_dir, train_config, trainer_for
+from semgoal_policy.actor import models_dir
 from semgoal_policy.recipes import RUN_FIELDS, RecipeError, build_config, load_recipe, recipe_names
 from semgoal_policy.trainer import PROJECT_ROOT, TrainConfig
 
+MODELS_DIR = models_dir()
 SHIPPED = sorted(path.parent.name for path in MODELS_DIR.glob("*/actor.json"))
 
 
@@ -69,4 +70,4 @@ def test_training_exports_into_its_run_unless_shipped(tmp_path) -> None:
     default_run = trainer_for(TrainConfig(scene="two_blocks", n_envs=1, seed=5)).run_dir
     assert default_run == PROJECT_ROOT / "runs" / "two_blocks-hierarchical" / "seed5"
     shipped, _ = train_config(["--recipe", "two_blocks", "--ship"])
-    assert shipped.export_dir == MODELS_DIR / "two_blocks"
+    assert shipped.export_dir == checkout_models_dir() / "two_blocks" == PROJECT_ROOT / "src/semgoal_policy/models/two_blocks"

@@ -1,0 +1,43 @@
+"""The names the graph's messages carry as strings, defined once: plan and step statuses, assignees, the
+sub-goal topic's extra statuses and the control modes. ``semgoal_msgs`` repeats them as message constants
+for ROS users (``Plan.STATUS_EXECUTING``, ...); a test keeps the two equal."""
+
+from enum import StrEnum
+
+
+class PlanStatus(StrEnum):
+    EMPTY = "empty"
+    AWAITING_APPROVAL = "awaiting_approval"
+    EXECUTING = "executing"
+    PAUSED = "paused"
+    SUCCEEDED = "succeeded"
+    FAILED = "failed"
+
+
+FINISHED = (PlanStatus.EMPTY, PlanStatus.SUCCEEDED, PlanStatus.FAILED)
+"""No plan under way: nothing to edit, nothing to execute."""
+UNDER_WAY = (PlanStatus.EXECUTING, PlanStatus.PAUSED, PlanStatus.AWAITING_APPROVAL)
+
+
+class StepStatus(StrEnum):
+    """A step's status in a plan; on the sub-goal topic also ``settling`` and ``waiting_for_human``."""
+
+    PENDING = "pending"
+    ACTIVE = "active"
+    DONE = "done"
+    FAILED = "failed"
+    SKIPPED = "skipped"
+    SETTLING = "settling"
+    WAITING_FOR_HUMAN = "waiting_for_human"
+
+
+class Assignee(StrEnum):
+    ROBOT = "robot"
+    HUMAN = "human"
+
+
+class Mode(StrEnum):
+    """lockstep: the sim steps once per arm command; realtime: on its own clock."""
+
+    LOCKSTEP = "lockstep"
+    REALTIME = "realtime"

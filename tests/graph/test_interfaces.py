@@ -112,12 +112,12 @@ def _filled(interface: type, fields: dict):
 
 
 def test_the_readme_native_commands_name_real_interfaces_and_fields() -> None:
-    """The README's `ros2 topic pub` / `service call` / `action send_goal` lines, which ros2cli would run
+    """docs/operating.md's `ros2 topic pub` / `service call` / `action send_goal` lines, which ros2cli would run
     on a native install, use our names, types and fields (ros2cli itself is not on PyPI)."""
     from semgoal_ros import interfaces
 
     names = {v for k, v in vars(interfaces).items() if k.isupper() and isinstance(v, str) and v.startswith("/")}
-    readme = (Path(__file__).parents[2] / "README.md").read_text()
+    readme = (Path(__file__).parents[2] / "docs" / "operating.md").read_text()
     calls = [m.groups() for line in readme.splitlines() if (m := README_CALL.match(line.strip()))]
     assert len(calls) >= 4
     for name, type_path, payload in calls:

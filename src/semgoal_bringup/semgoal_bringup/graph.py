@@ -1,4 +1,6 @@
-"""The four nodes as separate processes: what a launch file would start (launch is not on PyPI)."""
+"""The four nodes as separate processes: the one definition of what `./semgoal up`, the demo, the evaluation
+and the graph tests start, and what ``launch/semgoal.launch.py`` starts natively (``ros2 launch`` is not on
+PyPI: here every node goes through `./semgoal run`)."""
 
 from __future__ import annotations
 
@@ -13,6 +15,48 @@ from semgoal_core.tasks import get_task
 
 NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
          ("semgoal_planner", "planner_node"), ("semgoal_policy", "policy_node"))
+
+
+LAUNCH_ARGUMENTS = (
+    ("scene", "", "two_blocks | three_blocks | desk_cleanup (empty: the task's)"),
+    ("task", "DC-3", "the task whose start the sim loads (empty: the scene's first)"),
+    ("seed", "0", "the task's start seed"),
+    ("mode", "realtime", "realtime: the sim steps on its clock | lockstep: one step per command"),
+    ("models", "", "a folder of exported actors (SCENE/actor.pt); empty: the shipped ones"),
+    ("rviz", "false", "also start RViz with share/semgoal_bringup/rviz/semgoal.rviz"),
+)
+"""The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
+
+
+def scene_task(scene: str, task_name: str):
+    """The task to start: ``task_name`` (in ``scene`` when one is given), else ``scene``'s first; ValueError if
+    the two disagree."""
+    from semgoal_core.tasks import TASKS
+
+    if not task_name:
+        if not scene:
+            raise ValueError("give a task or a scene")
+        first = next((t for t in TASKS.values() if t.scene == scene), None)
+        if first is None:
+            raise ValueError(f"unknown scene {scene!r}")
+        return first
+    task = get_task(task_name)
+    if scene and task.scene != scene:
+        raise ValueError(f"task {task.name} runs in scene {task.scene}, not {scene}")
+    return task
+
+
+def graph_nodes(task_name: str, seed: int, mode: str, models: str = "") -> list[tuple[str, str, dict[str, object]]]:
+    """(package, executable, parameters on top of :func:`params_file`) of every node, in start order."""
+    params = node_params(task_name, seed, mode, models)
+    return [(package, executable, params[executable]) for package, executable in NODES]
+
+
+def rviz_config() -> Path:
+    """The RViz view of the graph as installed: share/semgoal_bringup/rviz/semgoal.rviz."""
+    from semgoal_ros.package_data import share_path
+
+    return share_path("semgoal_bringup", "rviz", "semgoal.rviz")
 
 
 def node_params(task_name: str, seed: int, mode: str, models: str = "") -> dict[str, dict[str, object]]:
@@ -48,13 +92,8 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "") -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones."""
-    processes = {}
-    for package, executable in NODES:
-        if executable in skip:
-            continue
-        params = node_params(task_name, seed, mode, models)[executable]
-        processes[executable] = subprocess.Popen(node_command(package, executable, params, log_level))
-    return processes
+    return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
+            for package, executable, params in graph_nodes(task_name, seed, mode, models) if executable not in skip}
 
 
 def stop_graph(processes: dict[str, subprocess.Popen]) -> None:

@@ -6,11 +6,14 @@ from pathlib import Path
 
 
 def executable_path(package: str, executable: str) -> Path:
-    """Return ``install/PKG/lib/PKG/EXE`` of the workspace overlay, or raise with a helpful message."""
-    root = Path(os.environ.get("SEMGOAL_ROOT", Path.cwd()))
-    lib_dir = root / "ros_ws" / "install" / package / "lib" / package
-    if not lib_dir.is_dir():
-        raise FileNotFoundError(f"package {package!r} not found in {root / 'ros_ws/install'}; run 'make setup'")
+    """``<prefix>/lib/PKG/EXE`` of the install space the ament index names for ``package``, as ``ros2 run``
+    finds it; FileNotFoundError with a helpful message."""
+    from ament_index_python.packages import PackageNotFoundError, get_package_prefix
+
+    try:
+        lib_dir = Path(get_package_prefix(package)) / "lib" / package
+    except PackageNotFoundError:
+        raise FileNotFoundError(f"package {package!r} is not installed: run 'make setup' (or source an install)") from None
     path = lib_dir / executable
     if not path.is_file():
         available = ", ".join(sorted(p.name for p in lib_dir.iterdir())) or "none"

@@ -13,6 +13,7 @@ from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
 from rclpy.node import Node
 from rclpy.task import Future
+from visualization_msgs.msg import MarkerArray
 
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.names import Assignee, PlanStatus, StepStatus
@@ -25,6 +26,8 @@ from semgoal_planner.goals import check_goal_text
 from semgoal_planner.search import SEARCHES
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
+from semgoal_ros import messages
+from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
 from semgoal_ros.messages import format_plan
 from semgoal_ros.parameters import Param, apply_changes, declare
 
@@ -68,6 +71,7 @@ class PlannerNode(Node):
         self.state_waiters: list[Future] = []
         """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
+        self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
@@ -82,7 +86,16 @@ class PlannerNode(Node):
         self.action_goal: tuple[ServerGoalHandle, Future] | None = None
         """The ExecuteGoal being executed and the future its coroutine awaits: resolved with the reason
         when the goal ends (succeeded, failed, cancelled or superseded by another goal)."""
+        self.counters, self.planning, self.deciding = Counters(), Latencies(), Latencies()
+        """Goals and re-plans; the time to plan a goal and to decide on a semantic state (re-plans included)."""
+        self.diagnostics = Diagnostics(self, self.health)
         self.publish()
+
+    def health(self):
+        ex = self.executive
+        values = {"plan status": ex.status, "revision": ex.revision, "re-plans of this goal": ex.replans,
+                  **self.counters, **self.planning.summary("goal planning"), **self.deciding.summary("decision")}
+        return OK, f"plan {ex.status}, {self.counters['re-plans']} re-plans so far", values
 
     def apply_parameter(self, name: str, value) -> None:
         """A change made while running: the executive's settings hold from the next control step on."""
@@ -97,9 +110,11 @@ class PlannerNode(Node):
 
     def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
         try:
-            ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
+            with self.planning.time():
+                ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
         except ValueError as error:
             ok, message = False, str(error)
+        self.counters["goals planned" if ok else "goals refused"] += 1
         self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)} text={msg.text!r}: {message}")
         if ok:
             self.end_action_goal("superseded by a new goal")
@@ -116,9 +131,12 @@ class PlannerNode(Node):
             if not waiter.done():
                 waiter.set_result(True)
         self.state_waiters.clear()
-        self.executive.tick(int(msg.step))
-        self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
-                                           tuple(msg.moving)))
+        replans = self.executive.replans
+        with self.deciding.time():
+            self.executive.tick(int(msg.step))
+            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
+                                               tuple(msg.moving)))
+        self.counters["re-plans"] += max(0, self.executive.replans - replans)
         self.publish(decided=True)
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
@@ -251,7 +269,9 @@ class PlannerNode(Node):
         changed = key != self.last_published
         if changed:
             self.last_published = key
-            self.plan_publisher.publish(self.plan_message())
+            plan = self.plan_message()
+            self.plan_publisher.publish(plan)
+            self.plan_marker_publisher.publish(messages.plan_markers(plan))
             if self.action_goal is not None:
                 if ex.status in FINAL:
                     self.end_action_goal(ex.message)

@@ -33,7 +33,8 @@ class SubgoalController:
             raise ValueError(f"unknown action mode {mode!r}; valid: {', '.join(ACTION_MODES)}")
         self.scene, self.mode = scene, mode
         self.layout = LAYOUTS[scene]
-        self.actor, self.meta = actor_io.load(model_dir or actor_io.models_dir() / scene, scene)
+        self.model_dir = Path(model_dir or actor_io.models_dir() / scene)
+        self.actor, self.meta = actor_io.load(self.model_dir, scene)
         self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None
         self.literals: list[Literal] = []

@@ -20,6 +20,7 @@ import time
 import numpy as np
 from rclpy.node import Node
 
+from semgoal_core.layout import CONTROL_DT
 from semgoal_core.lockstep import followed_decision
 from semgoal_core.names import Mode, StepStatus
 from semgoal_core.vocabulary import SCENES, Literal
@@ -28,6 +29,7 @@ from semgoal_policy.actor import LayoutMismatchError
 from semgoal_policy.controller import ACTION_MODES, SubgoalController, VocabularyError
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
+from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics, Latencies
 from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, declare
 
 PARAMS = (
@@ -52,7 +54,8 @@ class PolicyNode(Node):
             self.controller = SubgoalController(scene, values["model_dir"] or None, values["action_mode"])
         except (FileNotFoundError, ValueError, LayoutMismatchError) as error:  # no actor, or one of another layout
             raise ParameterValueError(f"policy: {error}") from None
-        self.get_logger().info(f"actor for {scene}: {self.controller.meta.get('env_steps')} training steps, "
+        self.get_logger().info(f"actor for {scene} from {self.controller.model_dir}: "
+                               f"{self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
@@ -67,7 +70,17 @@ class PolicyNode(Node):
         self.timer = self.create_timer(1.0 / values["rate_hz"] if self.mode == Mode.REALTIME else 1.0,
                                        self.timer_callback)
         self.subgoal_key: tuple | None = None
+        self.counters, self.acting = Counters(), Latencies()
+        self.diagnostics = Diagnostics(self, self.health)
         apply_changes(self, PARAMS, self.apply_parameter)
+
+    def health(self):
+        """Commands sent, invalid sub-goals, and the actor's latency per command (p99 against the 40 ms step)."""
+        latency = self.acting.summary("actor")
+        slow = latency.get("actor p99 ms", 0.0) > 1000 * CONTROL_DT
+        message = f"{self.counters['commands']} commands, actor p99 {latency.get('actor p99 ms', '-')} ms"
+        return (WARN if slow else OK), message, {"mode": self.mode, "sub-goal": self.subgoal_key[1] if self.subgoal_key else "",
+                                                 **self.counters, **latency}
 
     def apply_parameter(self, name: str, value) -> None:
         """A change made while running: the realtime command rate, or mean / sampled actions."""
@@ -97,6 +110,7 @@ class PolicyNode(Node):
         except VocabularyError as error:
             self.controller.set_subgoal([])
             self.get_logger().warn(f"holding still: sub-goal {msg.action!r} is not valid here: {error}")
+            self.counters["invalid sub-goals"] += 1
             return
         text = msg.action if literals else f"(none: {msg.status or 'no plan'})"
         self.get_logger().info(f"sub-goal {text}")
@@ -110,7 +124,9 @@ class PolicyNode(Node):
         if self.latest is None:
             return
         if self.mode == Mode.REALTIME:
-            self.publish_command(self.latest, self.decide_realtime(self.latest))
+            with self.acting.time():
+                action = self.decide_realtime(self.latest)
+            self.publish_command(self.latest, action)
         elif time.monotonic() - self.answered_at > 1.0:
             self.answered = None  # lockstep: the command for this step may have been lost; send it again
             self.answer_lockstep()
@@ -132,13 +148,16 @@ class PolicyNode(Node):
         if decision is None:
             return
         self.follow(decision)  # a settling decision: no goal, the actor's command is to hold still
-        self.publish_command(msg, self.controller.act(msg.observation, (msg.seed, msg.step)))
+        with self.acting.time():
+            action = self.controller.act(msg.observation, (msg.seed, msg.step))
+        self.publish_command(msg, action)
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))
         command.header.stamp = self.get_clock().now().to_msg()
         command.displacement.x, command.displacement.y, command.displacement.z = (float(v) for v in action[:3])
         self.publisher.publish(command)
+        self.counters["commands"] += 1
         self.answered, self.answered_at = (msg.episode, msg.step), time.monotonic()
 
 

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 NAMESPACE = "/semgoal"
+CLOCK = "/clock"
 JOINT_STATES = "/joint_states"
 WORLD_STATE = f"{NAMESPACE}/world_state"
 SEMANTIC_STATE = f"{NAMESPACE}/semantic_state"
@@ -23,6 +24,7 @@ PLAN = f"{NAMESPACE}/plan"
 SUBGOAL = f"{NAMESPACE}/subgoal"
 ARM_COMMAND = f"{NAMESPACE}/arm_command"
 MARKERS = f"{NAMESPACE}/markers"
+PLAN_MARKERS = f"{NAMESPACE}/plan_markers"
 CAMERA_IMAGE = f"{NAMESPACE}/camera/image_raw"
 RESET_WORLD = f"{NAMESPACE}/reset_world"
 MOVE_BLOCK = f"{NAMESPACE}/move_block"
@@ -65,6 +67,11 @@ RECORDING = QoSProfile(
 )
 """A reader that must see every step of an episode (the demo's GIF): a client that falls behind while four
 busy nodes share two cores would keep only the last ten steps of a depth-10 stream reader."""
+
+CLOCK_QOS = QoSProfile(depth=1, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
+                       durability=DurabilityPolicy.VOLATILE)
+"""The sim clock: only the newest tick matters (rclpy's own /clock reader is best effort, which a reliable
+writer serves)."""
 
 CAMERA = QoSProfile(
     depth=1,

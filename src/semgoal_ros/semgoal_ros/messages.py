@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from semgoal_core.geometry import TABLE_TOP
-from semgoal_core.names import PlanStatus
+from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_core.settling import moving_blocks
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, fallen_blocks
 from semgoal_msgs.msg import Plan, Predicate, SemanticState, WorldState
@@ -49,6 +49,35 @@ def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
                         for (name, args), v in zip(layout.atoms, vector, strict=True)]
     return state
+
+
+PLAN_TEXT_ORIGIN = (0.6, 1.0, 1.2)
+"""Where RViz shows the plan (m, world frame): beside the table, above it."""
+PLAN_LINE_SPACING = 0.05
+
+
+def plan_markers(plan: Plan):
+    """The plan as RViz text, a line per step (action, status, assignee; the active one larger and green,
+    done ones grey) under a line with the goal and status, after a DELETEALL so a shorter plan leaves none."""
+    from visualization_msgs.msg import Marker, MarkerArray
+
+    lines = [(f"goal: {plan.goal or '(none)'} [{plan.status}, revision {plan.revision}]", (1.0, 1.0, 1.0), 0.04)]
+    for step in plan.steps:
+        active = step.index == plan.current and plan.status == PlanStatus.EXECUTING
+        colour = (0.2, 1.0, 0.2) if active else (0.6, 0.6, 0.6) if step.status == StepStatus.DONE else (1.0, 1.0, 1.0)
+        lines.append((f"{'> ' if active else ''}{step.index}. {step.action} {step.status} {step.assignee}", colour,
+                      0.04 if active else 0.03))
+    items = [Marker(action=Marker.DELETEALL)]
+    for i, (text, colour, height) in enumerate(lines):
+        marker = Marker(ns="plan", id=i, type=Marker.TEXT_VIEW_FACING, action=Marker.ADD, text=text)
+        marker.header.frame_id = "world"
+        marker.pose.position.x, marker.pose.position.y = PLAN_TEXT_ORIGIN[:2]
+        marker.pose.position.z = PLAN_TEXT_ORIGIN[2] - i * PLAN_LINE_SPACING
+        marker.pose.orientation.w = 1.0
+        marker.scale.z = height
+        marker.color.r, marker.color.g, marker.color.b, marker.color.a = (*colour, 1.0)
+        items.append(marker)
+    return MarkerArray(markers=items)
 
 
 def format_plan(plan: Plan) -> str:

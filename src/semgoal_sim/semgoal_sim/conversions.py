@@ -4,6 +4,7 @@ expert's view of a world state. What every node reads from a world state is in `
 from __future__ import annotations
 
 import numpy as np
+from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Point, Vector3
 from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import Marker, MarkerArray
@@ -16,11 +17,18 @@ from semgoal_sim.expert import WorldView
 from semgoal_sim.world import FetchWorld, Snapshot
 
 
-def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, seed: int = 0) -> WorldState:
+def stamp(seconds: float) -> Time:
+    """A builtin_interfaces/Time of ``seconds`` (whole nanoseconds, so 0.04 s steps stay exact)."""
+    nanoseconds = round(seconds * 1e9)
+    return Time(sec=nanoseconds // 1_000_000_000, nanosec=nanoseconds % 1_000_000_000)
+
+
+def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, seed: int = 0,
+                clock_s: float | None = None) -> WorldState:
+    """``clock_s``: the sim clock for the stamp (:attr:`SimCore.clock_s`); else the episode's own time."""
     msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode, seed=seed)
     msg.header.frame_id = "world"
-    seconds = snapshot.time
-    msg.header.stamp.sec, msg.header.stamp.nanosec = int(seconds), int((seconds % 1) * 1e9)
+    msg.header.stamp = stamp(snapshot.time if clock_s is None else clock_s)
     for name, pos, quat, vel in zip(world.blocks, snapshot.block_positions, snapshot.block_quaternions,
                                     snapshot.block_velocities, strict=True):
         block = BlockState(name=name)
@@ -51,15 +59,15 @@ def world_view(msg: WorldState) -> WorldView:
                      np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions)), scene.bin)
 
 
-def joint_state(world: FetchWorld, snapshot: Snapshot) -> JointState:
+def joint_state(world: FetchWorld, snapshot: Snapshot, clock_s: float | None = None) -> JointState:
     positions, velocities = world.robot_joint_state()
     msg = JointState(name=world.robot_joint_names, position=positions.tolist(), velocity=velocities.tolist())
-    msg.header.stamp.sec, msg.header.stamp.nanosec = int(snapshot.time), int((snapshot.time % 1) * 1e9)
+    msg.header.stamp = stamp(snapshot.time if clock_s is None else clock_s)
     return msg
 
 
-def _cube(marker_id: int, ns: str, position, size, rgba) -> Marker:
-    marker = Marker(ns=ns, id=marker_id, type=Marker.CUBE, action=Marker.ADD)
+def _cube(marker_id: int, ns: str, position, size, rgba, shape: int = Marker.CUBE) -> Marker:
+    marker = Marker(ns=ns, id=marker_id, type=shape, action=Marker.ADD)
     marker.header.frame_id = "world"
     marker.pose.position = Point(x=float(position[0]), y=float(position[1]), z=float(position[2]))
     marker.pose.orientation.w = 1.0
@@ -68,11 +76,15 @@ def _cube(marker_id: int, ns: str, position, size, rgba) -> Marker:
     return marker
 
 
+GRIPPER_COLOUR = (0.2, 0.2, 0.25, 0.8)
+
+
 def markers(msg: WorldState) -> MarkerArray:
-    """Table, bin (with its backboard) and blocks as RViz cubes."""
+    """Table, bin (with its backboard), blocks and the gripper for RViz, after a DELETEALL: a world reset to
+    fewer blocks leaves none behind."""
     table = _cube(0, "table", (*TABLE_CENTER, TABLE_TOP / 2), (2 * TABLE_HALF_SIZE[0], 2 * TABLE_HALF_SIZE[1],
                                                                   TABLE_TOP), (0.9, 0.9, 0.9, 1.0))
-    items = [table]
+    items = [Marker(action=Marker.DELETEALL), table]
     scene = SCENES[msg.scene]
     if scene.bin is not None:
         b, colour = scene.bin, (0.45, 0.33, 0.22, 0.6)
@@ -84,6 +96,8 @@ def markers(msg: WorldState) -> MarkerArray:
     for i, block in enumerate(msg.blocks):
         p = block.pose.position
         items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
+    g, opening = msg.gripper_position, float(sum(msg.finger_positions))
+    items.append(_cube(0, "gripper", (g.x, g.y, g.z), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
     return MarkerArray(markers=items)
 
 

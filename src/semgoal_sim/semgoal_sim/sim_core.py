@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.layout import CONTROL_DT
 from semgoal_core.tasks import TASKS, get_task
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES
 from semgoal_sim.world import FetchWorld, Snapshot
@@ -49,6 +50,8 @@ class SimCore:
         self.scene = scene
         self.task = ""
         self.episode = 0
+        self.ticks = 0
+        """Control steps and resets since start: the sim clock (:attr:`clock_s`) runs on them, never backwards."""
         self._next_seed = seed
         self._worlds: dict[int, FetchWorld] = {}
         default_task = task or next(name for name, t in TASKS.items() if t.scene == scene)
@@ -79,6 +82,7 @@ class SimCore:
         self.world.reset(positions)
         self.task, self.seed = task.name, seed
         self.episode += 1
+        self.ticks += 1
         return True, f"reset to {task.name} with seed {seed}"
 
     def step(self, values: list[float] | np.ndarray) -> CommandCheck:
@@ -86,7 +90,14 @@ class SimCore:
         check = check_command(values)
         if check.action is not None:
             self.world.step(check.action)
+            self.ticks += 1
         return check
+
+    @property
+    def clock_s(self) -> float:
+        """Sim time (s) for /clock and the message stamps: 0.04 s per control step (a reset counts one), across
+        episodes, so it never runs backwards as an episode's own time does at a reset."""
+        return self.ticks * CONTROL_DT
 
     def move_block(self, block: str, position: np.ndarray) -> tuple[bool, str]:
         """Operator intervention: put ``block`` at ``position`` (x, y; z is set to rest on the table, or on the

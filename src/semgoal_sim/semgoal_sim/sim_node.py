@@ -7,8 +7,13 @@ published advances one control step (as fast as the graph goes); in ``realtime``
 is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``.
 """
 
+import time
+
 import numpy as np
+from rclpy.clock import Clock as TimerClock
+from rclpy.clock import ClockType
 from rclpy.node import Node
+from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Image, JointState
 from visualization_msgs.msg import MarkerArray
 
@@ -19,6 +24,7 @@ from semgoal_msgs.msg import ArmCommand, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
+from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics
 from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, declare
 from semgoal_sim import conversions
 from semgoal_sim.sim_core import SimCore, check_command
@@ -58,15 +64,21 @@ class SimNode(Node):
         self.create_subscription(ArmCommand, topics.ARM_COMMAND, self.command_callback, topics.STREAM)
         self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
         self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
+        self.clock_pub = self.create_publisher(Clock, topics.CLOCK, topics.CLOCK_QOS)
         self.renderer = None
+        steady = TimerClock(clock_type=ClockType.STEADY_TIME)  # the sim's own timers never wait on its /clock
         if values["render"]:
             self.image_pub = self.create_publisher(Image, topics.CAMERA_IMAGE, topics.CAMERA)
-            self.create_timer(1.0 / values["render_hz"], self.publish_image)
+            self.create_timer(1.0 / values["render_hz"], self.publish_image, clock=steady)
         self.timer = None
         if self.mode == Mode.REALTIME:
-            self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step)
+            self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step, clock=steady)
         elif values["heartbeat_hz"] > 0:  # lockstep: a late joiner (or a lost command) would otherwise wait forever
-            self.create_timer(1.0 / values["heartbeat_hz"], self.heartbeat)
+            self.create_timer(1.0 / values["heartbeat_hz"], self.heartbeat, clock=steady)
+        self.counters = Counters()
+        self.last_step_at: float | None = None
+        self.reported_ticks = (self.core.ticks, time.monotonic())
+        self.diagnostics = Diagnostics(self, self.health)
         self.heartbeat_step = -1
         apply_changes(self, PARAMS, self.apply_parameter)
         self.publish_state()
@@ -81,11 +93,25 @@ class SimNode(Node):
             if self.timer is not None:
                 self.timer.timer_period_ns = int(1e9 / value)
 
+    def health(self):
+        """Steps per second since the last report, late realtime steps, dropped and clamped commands."""
+        ticks, at = self.core.ticks, time.monotonic()
+        rate = (ticks - self.reported_ticks[0]) / max(at - self.reported_ticks[1], 1e-9)
+        late_share = self.counters["late steps"] / max(self.counters["realtime steps"], 1)
+        self.reported_ticks = (ticks, at)
+        level = WARN if self.mode == Mode.REALTIME and late_share > 0.1 else OK
+        message = f"{rate:.1f} steps/s in {self.mode} mode" + (f", {late_share:.0%} of steps late" if level == WARN else "")
+        return level, message, {"steps per second": round(rate, 1), "control step": self.core.world.step_count,
+                                "episode": self.core.episode, "sim time s": round(self.core.clock_s, 2), **self.counters}
+
     def publish_state(self) -> WorldState:
         snapshot = self.core.snapshot()
-        msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode, self.core.seed)
+        clock_s = self.core.clock_s
+        msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode, self.core.seed,
+                                      clock_s)
+        self.clock_pub.publish(Clock(clock=msg.header.stamp))
         self.world_pub.publish(msg)
-        self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot))
+        self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot, clock_s))
         if snapshot.step % max(1, self.markers_every) == 0:
             self.marker_pub.publish(conversions.markers(msg))
         return msg
@@ -105,10 +131,12 @@ class SimNode(Node):
         if self.mode == Mode.LOCKSTEP and msg.step != self.core.world.step_count:
             self.get_logger().warn(f"dropped a stale command for step {msg.step} (now at {self.core.world.step_count})",
                                    throttle_duration_sec=1.0)
+            self.counters["stale commands dropped"] += 1
             return
         check = check_command(values)
         if check.warning:
             self.get_logger().warn(check.warning, throttle_duration_sec=1.0)
+            self.counters["bad commands dropped" if check.action is None else "commands clamped"] += 1
         if check.action is None:
             return
         if self.mode == Mode.REALTIME:
@@ -124,6 +152,12 @@ class SimNode(Node):
         self.heartbeat_step = self.core.world.step_count
 
     def realtime_step(self) -> None:
+        """One step on the timer; a step more than half a period after its time counts as late."""
+        now = time.monotonic()
+        if self.last_step_at is not None and now - self.last_step_at > 1.5 / self.rate_hz:
+            self.counters["late steps"] += 1
+        self.last_step_at = now
+        self.counters["realtime steps"] += 1
         self.core.step(self.held_command)
         self.publish_state()
 

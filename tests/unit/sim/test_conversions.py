@@ -25,3 +25,31 @@ def test_markers_draw_the_bin_with_its_backboard_as_the_physics_has_it() -> None
     assert backboard.scale.z > bin_parts[0].scale.z  # taller than the rim
     assert abs(backboard.pose.position.y - world.data.geom(far_wall.id).xpos[1]) < 1e-6
     assert abs(2 * far_wall.size[2] - backboard.scale.z) < 1e-6
+
+
+def test_markers_start_with_a_deleteall_and_draw_every_block_and_the_gripper() -> None:
+    from visualization_msgs.msg import Marker
+
+    world = desk_with_a_fallen_block()
+    msg = conversions.world_state(world, world.snapshot(), "DC-3", episode=1)
+    drawn = conversions.markers(msg).markers
+    assert drawn[0].action == Marker.DELETEALL  # a reset to fewer blocks leaves none behind
+    assert sorted(m.id for m in drawn if m.ns == "blocks") == list(range(len(msg.blocks)))
+    gripper = [m for m in drawn if m.ns == "gripper"]
+    assert len(gripper) == 1 and abs(gripper[0].pose.position.z - msg.gripper_position.z) < 1e-9
+
+
+def test_the_plan_is_drawn_as_text_with_the_active_step_highlighted() -> None:
+    from semgoal_core.names import Assignee, PlanStatus, StepStatus
+    from semgoal_msgs.msg import Plan, SubGoal
+
+    steps = [SubGoal(index=0, action="pick(red)", status=StepStatus.DONE, assignee=Assignee.ROBOT),
+             SubGoal(index=1, action="put_in_bin(red)", status=StepStatus.ACTIVE, assignee=Assignee.ROBOT),
+             SubGoal(index=2, action="pick(green)", status=StepStatus.PENDING, assignee=Assignee.HUMAN)]
+    plan = Plan(goal="in_bin(red) & in_bin(green)", steps=steps, current=1, status=PlanStatus.EXECUTING, revision=3)
+    drawn = messages.plan_markers(plan).markers
+    texts = [m.text for m in drawn[1:]]
+    assert drawn[0].action == drawn[0].DELETEALL and len(texts) == 4
+    assert texts[0].startswith("goal: in_bin(red) & in_bin(green) [executing, revision 3]")
+    assert texts[2] == "> 1. put_in_bin(red) active robot" and texts[3] == "2. pick(green) pending human"
+    assert drawn[3].color.g == 1.0 and drawn[3].color.r < 1.0  # the active step in green

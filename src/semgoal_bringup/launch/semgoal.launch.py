@@ -1,0 +1,31 @@
+"""The four semgoal nodes, natively: ``ros2 launch semgoal_bringup semgoal.launch.py task:=DC-3 seed:=6``.
+
+Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false);
+``ros2 launch semgoal_bringup semgoal.launch.py --show-args`` lists them. The nodes and their parameters come
+from ``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file.
+"""
+
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, params_file, rviz_config, scene_task
+
+
+def generate_launch_description() -> LaunchDescription:
+    arguments = [DeclareLaunchArgument(name, default_value=default, description=text)
+                 for name, default, text in LAUNCH_ARGUMENTS]
+    return LaunchDescription([*arguments, OpaqueFunction(function=launch_nodes)])
+
+
+def launch_nodes(context) -> list[Node]:
+    """The nodes for the arguments given (a task of another scene than ``scene`` stops the launch with why)."""
+    value = {name: LaunchConfiguration(name).perform(context) for name, _, _ in LAUNCH_ARGUMENTS}
+    task = scene_task(value["scene"], value["task"])
+    nodes = [Node(package=package, executable=executable, output="screen",
+                  parameters=[str(params_file()), params])
+             for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"])]
+    if value["rviz"].lower() in ("true", "1", "yes"):
+        nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
+    return nodes

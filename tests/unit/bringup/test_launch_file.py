@@ -1,0 +1,88 @@
+"""The launch file starts what `./semgoal up` starts. ``ros2 launch`` is not installable here, so stand-in
+``launch`` / ``launch_ros`` modules record its calls; the installed file is read through the ament index."""
+
+import importlib.util
+import sys
+import types
+from dataclasses import dataclass, field
+
+import pytest
+import yaml
+
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, params_file, rviz_config
+from semgoal_ros import interfaces as topics
+from semgoal_ros.package_data import share_path
+
+
+@dataclass
+class Recorded:
+    """Any launch action: its positional and keyword arguments."""
+
+    args: tuple = ()
+    kwargs: dict = field(default_factory=dict)
+
+    def __init__(self, *args, **kwargs) -> None:
+        self.args, self.kwargs = args, kwargs
+
+
+class LaunchConfiguration:
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def perform(self, context: dict) -> str:
+        return context[self.name]
+
+
+@pytest.fixture
+def launch_file(monkeypatch):
+    """The installed launch file, imported with stand-ins for launch and launch_ros."""
+    modules = {name: types.ModuleType(name) for name in
+               ("launch", "launch.actions", "launch.substitutions", "launch_ros", "launch_ros.actions")}
+    modules["launch"].LaunchDescription = Recorded
+    modules["launch.actions"].DeclareLaunchArgument = type("DeclareLaunchArgument", (Recorded,), {})
+    modules["launch.actions"].OpaqueFunction = type("OpaqueFunction", (Recorded,), {})
+    modules["launch.substitutions"].LaunchConfiguration = LaunchConfiguration
+    modules["launch_ros.actions"].Node = type("Node", (Recorded,), {})
+    for name, module in modules.items():
+        monkeypatch.setitem(sys.modules, name, module)
+    path = share_path("semgoal_bringup", "launch", "semgoal.launch.py")
+    spec = importlib.util.spec_from_file_location("semgoal_launch", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _launched(launch_file, **given) -> list[Recorded]:
+    description = launch_file.generate_launch_description()
+    actions = description.args[0]
+    declared = {a.args[0]: a.kwargs["default_value"] for a in actions if type(a).__name__ == "DeclareLaunchArgument"}
+    assert declared == {name: default for name, default, _ in LAUNCH_ARGUMENTS}
+    opaque = [a for a in actions if type(a).__name__ == "OpaqueFunction"]
+    return opaque[0].kwargs["function"]({**declared, **given})
+
+
+@pytest.mark.parametrize("given, task, seed, mode", [
+    ({}, "DC-3", 0, "realtime"),
+    ({"task": "MC-3", "seed": "7", "mode": "lockstep"}, "MC-3", 7, "lockstep"),
+    ({"scene": "two_blocks", "task": ""}, "MC-2", 0, "realtime"),
+])
+def test_the_launch_file_starts_the_graph_that_up_starts(launch_file, given, task, seed, mode) -> None:
+    launched = _launched(launch_file, **given)
+    expected = graph_nodes(task, seed, mode)
+    assert [(n.kwargs["package"], n.kwargs["executable"]) for n in launched] == [(p, e) for p, e, _ in expected]
+    for node, (_, _, params) in zip(launched, expected, strict=True):
+        assert node.kwargs["parameters"] == [str(params_file()), params]
+
+
+def test_rviz_joins_on_request_and_a_task_of_another_scene_is_refused(launch_file) -> None:
+    launched = _launched(launch_file, rviz="true")
+    assert launched[-1].kwargs["executable"] == "rviz2" and launched[-1].kwargs["arguments"] == ["-d", str(rviz_config())]
+    with pytest.raises(ValueError, match="runs in scene desk_cleanup, not two_blocks"):
+        _launched(launch_file, scene="two_blocks", task="DC-3")
+
+
+def test_the_rviz_file_shows_topics_the_graph_has() -> None:
+    view = yaml.safe_load(rviz_config().read_text())
+    shown = {d["Topic"]["Value"] for d in view["Visualization Manager"]["Displays"] if "Topic" in d}
+    assert shown == {topics.MARKERS, topics.PLAN_MARKERS, topics.CAMERA_IMAGE}
+    assert view["Visualization Manager"]["Global Options"]["Fixed Frame"] == "world"

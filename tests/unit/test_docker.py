@@ -30,3 +30,10 @@ def test_the_image_builds_plainly_and_sources_with_a_double_dash() -> None:
         assert package in DOCKERFILE
     entrypoint = (ROOT / "docker" / "entrypoint.sh").read_text()
     assert all(line.rstrip().endswith("--") for line in entrypoint.splitlines() if line.startswith("source "))
+
+
+def test_the_dockerfile_is_hadolint_clean() -> None:
+    import subprocess
+
+    result = subprocess.run(["hadolint", str(ROOT / "docker" / "Dockerfile")], capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr

@@ -1,6 +1,7 @@
 """The four semgoal nodes, natively: ``ros2 launch semgoal_bringup semgoal.launch.py task:=DC-3 seed:=6``.
 
-Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false);
+Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
+``record`` (an MCAP file);
 ``ros2 launch semgoal_bringup semgoal.launch.py --show-args`` lists them. The nodes and their parameters come
 from ``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file.
 """
@@ -25,7 +26,8 @@ def launch_nodes(context) -> list[Node]:
     task = scene_task(value["scene"], value["task"])
     nodes = [Node(package=package, executable=executable, output="screen",
                   parameters=[str(params_file()), params])
-             for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"])]
+             for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
+                                                            value["record"])]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
     return nodes

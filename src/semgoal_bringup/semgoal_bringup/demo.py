@@ -1,10 +1,11 @@
-"""`./semgoal demo [--task T] [--seed S] [--max-steps N] [--gif FILE]`: the whole node graph solving a task.
+"""`./semgoal demo [--task T] [--seed S] [--max-steps N] [--gif FILE] [--record FILE]`: the whole node graph
+solving a task.
 
 Starts sim (lockstep), predicates, planner and policy as separate processes in a fresh ROS domain,
 resets the world to the task, sends the goal through the planner's ExecuteGoal action, and prints as
-it happens the plan, each sub-goal starting and finishing, re-plans and the result. It writes a GIF
-of the episode with the active sub-goal on every frame. The last line says ``success`` when the
-task's goal holds.
+it happens the plan, each sub-goal starting and finishing, re-plans and the result. The episode is
+recorded as MCAP (``results/demo-TASK.mcap``, ``./semgoal replay``), and its GIF, with the active sub-goal
+on every frame, is rendered from that record. The last line says ``success`` when the task's goal holds.
 """
 
 from __future__ import annotations
@@ -33,6 +34,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped ones")
     parser.add_argument("--gif", type=Path, help="where to write the episode GIF (default results/demo-TASK.gif)")
     parser.add_argument("--no-gif", action="store_true")
+    parser.add_argument("--record", type=Path, help="where to record the episode as MCAP (default results/demo-TASK.mcap)")
+    parser.add_argument("--no-record", action="store_true")
     args = parser.parse_args(argv)
     if args.max_steps < 0:
         parser.error("--max-steps must be 0 (no limit) or a number of control steps")
@@ -46,9 +49,10 @@ def main(argv: list[str]) -> int:
     except KeyError as error:
         parser.error(str(error.args[0]))
     gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
+    record = None if args.no_record else args.record or Path("results") / f"demo-{task.name}.mcap"  # None: a scratch file
     processes = start_graph(task.name, args.seed, models=args.models)
     try:
-        return Demo(task.name, args.seed).run(gif, args.max_steps)
+        return Demo(task.name, args.seed).run(gif, args.max_steps, record)
     finally:
         stop_graph(processes)
 
@@ -57,59 +61,14 @@ class Demo:
     """One episode through the graph, narrated: plan, steps started and done, re-plans, result, GIF."""
 
     def __init__(self, task_name: str, seed: int) -> None:
-        from sensor_msgs.msg import JointState
-
         from semgoal_core.tasks import get_task
-        from semgoal_msgs.msg import SubGoal, WorldState
-        from semgoal_ros import interfaces as topics
         from semgoal_ros.client import GraphClient
 
         self.task, self.seed = get_task(task_name), seed
         self.client = GraphClient("semgoal_demo")
-        self.worlds: list = []
-        """World states of even steps, the GIF's frames."""
-        self.joints: dict[tuple[int, int], dict[str, float]] = {}
-        """Arm joint positions by stamp (the sim stamps a step's joint and world states alike)."""
-        self.decisions: dict[tuple[int, int], SubGoal] = {}
-        """The planner's decisions by (episode, step): the caption is the sub-goal the policy followed."""
         self.seen_steps: dict[int, str] = {}
         self.replans_shown = -1
         """Re-plans of the plan last printed (-1: none printed yet); a step done changes the plan too."""
-        node = self.client.node  # the GIF's own readers
-        node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.RECORDING)
-        node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.RECORDING)
-        node.create_subscription(SubGoal, topics.SUBGOAL, self._on_decision, topics.RECORDING)
-
-    def _on_world(self, msg) -> None:
-        if msg.step % 2 == 0:
-            self.worlds.append(msg)
-
-    def _on_joints(self, msg) -> None:
-        self.joints[(msg.header.stamp.sec, msg.header.stamp.nanosec)] = dict(zip(msg.name, msg.position, strict=True))
-
-    def _on_decision(self, msg) -> None:
-        self.decisions[(msg.episode, msg.step)] = msg
-
-    def frames(self) -> list:
-        """The last episode's frames: each even step's world state, the arm's joints at that step and the
-        sub-goal the policy followed there (:func:`followed_decision`), or the planner's status."""
-        from semgoal_bringup.episode_gif import Frame
-        from semgoal_core.lockstep import followed_decision
-
-        episode = self.worlds[-1].episode if self.worlds else None
-        frames, seen = [], set()
-        for msg in self.worlds:
-            joints = self.joints.get((msg.header.stamp.sec, msg.header.stamp.nanosec))
-            if msg.episode != episode or joints is None or msg.step in seen:  # a heartbeat repeats a step
-                continue
-            seen.add(msg.step)
-            followed = followed_decision(self.decisions, episode, msg.step)
-            decision = self.decisions.get((episode, msg.step))
-            caption = followed.action if followed else f"({decision.status})" if decision else ""
-            poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
-                              b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
-            frames.append(Frame(int(msg.step), joints, poses, caption))
-        return frames
 
     def log(self, text: str) -> None:
         step = self.client.world.step if self.client.world else 0
@@ -127,30 +86,59 @@ class Demo:
                 verb = "started" if step.status == StepStatus.ACTIVE else "done   "
                 self.log(f"{verb} {step.index}. {step.action}")
 
-    def run(self, gif: Path | None, max_steps: int = TASK_STEP_BUDGET) -> int:
-        client = self.client
-        try:
-            if not client.wait_ready():
-                print("the four nodes did not come up in time: failure", file=sys.stderr)
-                return 1
-            ok, message = client.reset(self.task.name, self.seed)
-            if not ok:
-                print(f"reset failed: {message}", file=sys.stderr)
-                return 1
-            print(f"[demo] {self.task.name} ({self.task.description}), seed {self.seed}, "
-                  f"ROS domain {os.environ['ROS_DOMAIN_ID']}", flush=True)
-            result = client.execute(self.task.name, self.feedback, max_steps=max_steps)
-            self.log(f"result: {result.message} ({result.replans} re-plans)")
-            print(f"[demo] {result.control_steps} control steps ({result.sim_time:.1f} s sim time) in "
-                  f"{result.wall_s:.1f} s wall: {result.control_steps / max(result.wall_s, 1e-9):.0f} steps/s "
-                  "through the graph", flush=True)
-            frames = self.frames() if gif is not None else []
-            if frames:
-                from semgoal_bringup.episode_gif import write_gif
+    def run(self, gif: Path | None, max_steps: int = TASK_STEP_BUDGET, record: Path | None = None) -> int:
+        """The episode, recorded to ``record`` (a temporary file when None); the GIF is rendered from the record."""
+        import tempfile
 
-                write_gif(self.task.scene, self.task.n_blocks, frames, gif)
-                print(f"[demo] episode GIF: {gif} ({len(frames)} frames)", flush=True)
-            print(f"{self.task.name}: {'success' if result.success else 'failure'}")
-            return 0 if result.success else 1
-        finally:
-            client.close()
+        from semgoal_ros.recording import Recorder
+
+        client = self.client
+        with tempfile.TemporaryDirectory() as scratch:
+            path = record or Path(scratch) / "episode.mcap"
+            try:
+                if not client.wait_ready():
+                    print("the four nodes did not come up in time: failure", file=sys.stderr)
+                    return 1
+                recorder = Recorder(client.node, path)
+                if not client.spin_until(recorder.matched, 10.0):
+                    print("[demo] the recorder did not match every publisher in 10 s: the record may miss the start")
+                try:
+                    result = self.episode(max_steps)
+                    client.spin_until(lambda: False, 0.5)  # the last states and the final plan, still on their way
+                finally:
+                    counts = recorder.close()
+            finally:
+                client.close()
+            if result is None:
+                return 1
+            if record is not None:
+                print(f"[demo] recorded {sum(counts.values())} messages on {sum(map(bool, counts.values()))} topics: "
+                      f"{record} (./semgoal replay {record} --summary)", flush=True)
+            if gif is not None:
+                self.write_gif(path, gif)
+        print(f"{self.task.name}: {'success' if result.success else 'failure'}")
+        return 0 if result.success else 1
+
+    def episode(self, max_steps: int):
+        """Reset, execute with the plan narrated; the result, or None when the reset failed."""
+        ok, message = self.client.reset(self.task.name, self.seed)
+        if not ok:
+            print(f"reset failed: {message}", file=sys.stderr)
+            return None
+        print(f"[demo] {self.task.name} ({self.task.description}), seed {self.seed}, "
+              f"ROS domain {os.environ['ROS_DOMAIN_ID']}", flush=True)
+        result = self.client.execute(self.task.name, self.feedback, max_steps=max_steps)
+        self.log(f"result: {result.message} ({result.replans} re-plans)")
+        print(f"[demo] {result.control_steps} control steps ({result.sim_time:.1f} s sim time) in "
+              f"{result.wall_s:.1f} s wall: {result.control_steps / max(result.wall_s, 1e-9):.0f} steps/s "
+              "through the graph", flush=True)
+        return result
+
+    def write_gif(self, record: Path, gif: Path) -> None:
+        """The episode GIF, rendered from the recorded world and joint states (``./semgoal replay --gif``)."""
+        from semgoal_bringup.episode_gif import write_gif
+        from semgoal_bringup.replay import episode_frames, read
+
+        frames = episode_frames(read(record))
+        write_gif(self.task.scene, self.task.n_blocks, frames, gif)
+        print(f"[demo] episode GIF: {gif} ({len(frames)} frames)", flush=True)

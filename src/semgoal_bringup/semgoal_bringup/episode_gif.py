@@ -22,6 +22,31 @@ class Frame:
     caption: str
 
 
+def frames_from(worlds, joints: dict[tuple[int, int], dict[str, float]], decisions: dict[tuple[int, int], object],
+                every: int = 2) -> list[Frame]:
+    """Frames of the last episode among ``worlds`` (WorldState messages), one per ``every`` steps: the arm's
+    joints at the same stamp (``joints``: joint name -> position by (sec, nanosec)), the blocks' poses, and
+    as caption the sub-goal the policy followed there (``decisions``: SubGoal by (episode, step),
+    :func:`semgoal_core.lockstep.followed_decision`), or the planner's status."""
+    from semgoal_core.lockstep import followed_decision
+
+    worlds = list(worlds)
+    episode = worlds[-1].episode if worlds else None
+    frames, seen = [], set()
+    for msg in worlds:
+        arm = joints.get((msg.header.stamp.sec, msg.header.stamp.nanosec))
+        if msg.episode != episode or arm is None or msg.step in seen or msg.step % every:  # a heartbeat repeats a step
+            continue
+        seen.add(msg.step)
+        followed = followed_decision(decisions, episode, msg.step)
+        decision = decisions.get((episode, msg.step))
+        caption = followed.action if followed else f"({decision.status})" if decision else ""
+        poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
+                          b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
+        frames.append(Frame(int(msg.step), arm, poses, caption))
+    return frames
+
+
 def write_gif(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps: float = 12.5) -> Path:
     import imageio.v3 as iio
     from PIL import Image, ImageDraw

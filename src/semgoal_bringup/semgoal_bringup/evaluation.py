@@ -222,7 +222,7 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
     return merge(parts)
 
 
-def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
+def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None) -> Row:
     from tqdm import tqdm
 
     from semgoal_bringup.graph_eval import run_via_ros
@@ -230,7 +230,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int) -> Row:
 
     row = Row(VIA_ROS)
     started = time.perf_counter()
-    outcomes = run_via_ros(task_names, episodes, seed)
+    outcomes = run_via_ros(task_names, episodes, seed, record=record)
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
         row.add("shipped", outcome, first_step_observed=False)  # the graph runs the shipped actors
     for task_name in task_names:
@@ -382,6 +382,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--agents", default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
     parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
+    parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
@@ -391,6 +392,8 @@ def main(argv: list[str]) -> int:
         tasks = parse_tasks(args.tasks)
     except KeyError as error:
         parser.error(str(error.args[0]))
+    if args.record and not args.via_ros:
+        parser.error("--record writes the episodes run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]
     unknown = [a for a in agents if a not in AGENT_NAMES]
     if unknown or not agents or not tasks or args.episodes < 1:
@@ -406,7 +409,7 @@ def main(argv: list[str]) -> int:
     failed = False
     if args.via_ros:
         try:
-            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed))
+            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record))
         except RuntimeError as error:  # the in-process rows are still written
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True

@@ -24,6 +24,7 @@ LAUNCH_ARGUMENTS = (
     ("mode", "realtime", "realtime: the sim steps on its clock | lockstep: one step per command"),
     ("models", "", "a folder of exported actors (SCENE/actor.pt); empty: the shipped ones"),
     ("rviz", "false", "also start RViz with share/semgoal_bringup/rviz/semgoal.rviz"),
+    ("record", "", "an MCAP file to record every topic into until the graph stops (empty: no recording)"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -46,10 +47,13 @@ def scene_task(scene: str, task_name: str):
     return task
 
 
-def graph_nodes(task_name: str, seed: int, mode: str, models: str = "") -> list[tuple[str, str, dict[str, object]]]:
-    """(package, executable, parameters on top of :func:`params_file`) of every node, in start order."""
+def graph_nodes(task_name: str, seed: int, mode: str, models: str = "",
+                record: str = "") -> list[tuple[str, str, dict[str, object]]]:
+    """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
+    ``record``, a recorder first, so that it hears the graph from its first message."""
     params = node_params(task_name, seed, mode, models)
-    return [(package, executable, params[executable]) for package, executable in NODES]
+    recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
+    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES)]
 
 
 def rviz_config() -> Path:
@@ -90,10 +94,12 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 
 
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
-                skip: tuple[str, ...] = (), models: str = "") -> dict[str, subprocess.Popen]:
-    """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones."""
+                skip: tuple[str, ...] = (), models: str = "", record: str = "") -> dict[str, subprocess.Popen]:
+    """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
+    ``record``: an MCAP file that a recorder node writes everything into."""
     return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-            for package, executable, params in graph_nodes(task_name, seed, mode, models) if executable not in skip}
+            for package, executable, params in graph_nodes(task_name, seed, mode, models, record)
+            if executable not in skip}
 
 
 def stop_graph(processes: dict[str, subprocess.Popen]) -> None:

@@ -1,20 +1,24 @@
 """Task episodes through the real node graph (``./semgoal eval --via-ros``): the hierarchical agent as
 deployed. One graph per scene (sim in lockstep, predicates, planner, policy: four processes on a fresh
 ROS domain) serves every episode of that scene's tasks: reset to the task's seeded start, send the task
-through ExecuteGoal, read the result; the planner fails an episode that spends its step budget.
+through ExecuteGoal, read the result; the planner fails an episode that spends its step budget. With
+``record``, each episode is also written to ``record/<task>-<seed>.mcap`` (``./semgoal replay``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 
 from semgoal_bringup.episodes import Outcome
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 
-def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "") -> Iterator[Outcome]:
+def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "",
+                record: Path | None = None) -> Iterator[Outcome]:
     """Yield one :class:`Outcome` per episode, task by task, starting each scene's graph once."""
     from semgoal_bringup.graph import running_graph
+    from semgoal_ros.recording import Recorder
 
     by_scene: dict[str, list[str]] = {}
     for name in task_names:
@@ -24,6 +28,12 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
                            watch=False) as client:
             for task_name in scene_tasks:
                 for i in range(episodes):
+                    recorder = Recorder(client.node, record / f"{task_name}-{seed + i}.mcap") if record else None
+                    if recorder is not None and not client.spin_until(recorder.matched, 10.0):
+                        raise RuntimeError("the recorder did not match the graph's publishers within 10 s")
                     client.must_reset(task_name, seed + i)
                     result = client.execute(task_name, max_steps=TASK_STEP_BUDGET)
+                    if recorder is not None:
+                        client.spin_until(lambda: False, 0.2)  # the last states, still on their way
+                        recorder.close()
                     yield Outcome(task_name, seed + i, result.success, result.control_steps, result.replans)

@@ -1,4 +1,5 @@
-"""`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]`: start
+"""`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]
+[--record FILE]`: start
 the four nodes and stay up; the options are the launch file's arguments (``ros2 launch semgoal_bringup
 semgoal.launch.py``), read from the same definition.
 
@@ -35,7 +36,7 @@ def main(argv: list[str]) -> int:
     rviz = args.rviz.lower() in ("true", "1", "yes")
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
-    processes = start_graph(task.name, int(args.seed), args.mode, args.log_level, models=args.models)
+    processes = start_graph(task.name, int(args.seed), args.mode, args.log_level, models=args.models, record=args.record)
     if rviz:
         processes["rviz2"] = subprocess.Popen(["rviz2", "-d", str(rviz_config())])
     print(f"[up] {', '.join(processes)} running (ROS_DOMAIN_ID={os.environ.get('ROS_DOMAIN_ID')}); "

@@ -3,6 +3,7 @@
     ./semgoal goal DC-3                        publish a goal (the planner plans and executes it)
     ./semgoal goal "in_bin(red) & in_bin(green)" --wait   execute it through the action, print progress
     ./semgoal goal DC-3 --wait --max-steps 600             ... and let it fail after 600 control steps
+    ./semgoal goal DC-3 --wait --record run.mcap           ... recording the graph meanwhile (./semgoal replay)
     ./semgoal plan show
     ./semgoal plan insert 2 "pick(red)" | remove 2 | move 3 1 | replace 2 "put_in_bin(red)"
     ./semgoal plan remove 2 --revision 7       ... only if the plan is still at revision 7 (as plan show printed it)
@@ -33,15 +34,18 @@ def goal_main(argv: list[str]) -> int:
     parser.add_argument("--max-steps", type=int, default=0,
                         help="with --wait: control steps the goal may take before it fails (default 0: no limit)")
     parser.add_argument("--timeout", type=float, default=300.0)
+    parser.add_argument("--record", help="with --wait: record the graph while the goal runs into this MCAP file")
     args = parser.parse_args(argv)
     if args.max_steps < 0:
         parser.error(f"--max-steps must be 0 (no limit) or more, got {args.max_steps}")
     if args.max_steps and not args.wait:
         parser.error("--max-steps needs --wait: the budget travels with the ExecuteGoal action, not the goal topic")
+    if args.record and not args.wait:
+        parser.error("--record needs --wait: it records while the goal runs")
     client = _client()
     try:
         if args.wait:
-            return _execute(client, args.goal, args.timeout, args.max_steps)
+            return _execute(client, args.goal, args.timeout, args.max_steps, args.record)
         refusal = _refusal(client, args.goal)
         if refusal:  # the topic has no answer: a goal the planner would refuse is not sent
             print(f"semgoal goal: refused: {refusal}", file=sys.stderr)
@@ -76,7 +80,22 @@ def _refusal(client: GraphClient, text: str) -> str:
     return ""
 
 
-def _execute(client: GraphClient, text: str, timeout: float, max_steps: int) -> int:
+def _execute(client: GraphClient, text: str, timeout: float, max_steps: int, record: str | None = None) -> int:
+    from semgoal_ros.recording import Recorder
+
+    recorder = Recorder(client.node, record) if record else None
+    if recorder is not None:
+        client.spin_until(recorder.matched, 10.0)
+    try:
+        return _follow(client, text, timeout, max_steps)
+    finally:
+        if recorder is not None:
+            client.spin_until(lambda: False, 0.3)  # the last states, still on their way
+            counts = recorder.close()
+            print(f"recorded {sum(counts.values())} messages to {record}")
+
+
+def _follow(client: GraphClient, text: str, timeout: float, max_steps: int) -> int:
     last = [None]
 
     def on_feedback(message) -> None:

@@ -74,9 +74,11 @@ def test_the_launch_file_starts_the_graph_that_up_starts(launch_file, given, tas
         assert node.kwargs["parameters"] == [str(params_file()), params]
 
 
-def test_rviz_joins_on_request_and_a_task_of_another_scene_is_refused(launch_file) -> None:
-    launched = _launched(launch_file, rviz="true")
+def test_rviz_and_a_recorder_join_on_request_and_a_task_of_another_scene_is_refused(launch_file, tmp_path) -> None:
+    launched = _launched(launch_file, rviz="true", record=str(tmp_path / "run.mcap"))
     assert launched[-1].kwargs["executable"] == "rviz2" and launched[-1].kwargs["arguments"] == ["-d", str(rviz_config())]
+    assert launched[0].kwargs["executable"] == "record_node"
+    assert launched[0].kwargs["parameters"][1] == {"path": str(tmp_path / "run.mcap")}
     with pytest.raises(ValueError, match="runs in scene desk_cleanup, not two_blocks"):
         _launched(launch_file, scene="two_blocks", task="DC-3")
 

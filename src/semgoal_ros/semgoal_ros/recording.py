@@ -1,0 +1,132 @@
+"""Every topic of the graph into an MCAP file that `ros2 bag info` / `ros2 bag play` and Foxglove open: CDR
+payloads exactly as rclpy serialised them (raw subscriptions: nothing is decoded or re-encoded here) and a
+``ros2msg`` schema per type, built from the installed ``.msg`` files. Written with the ``mcap`` library.
+
+A :class:`Recorder` rides on a client's node (the demo's, the evaluation's), so it spins with it; spin until
+:meth:`Recorder.matched` before the episode starts.
+"""
+
+from __future__ import annotations
+
+import importlib
+import re
+import time
+from pathlib import Path
+
+from mcap.writer import CompressionType, Writer
+from rclpy.qos import DurabilityPolicy, QoSProfile
+
+from semgoal_ros import interfaces as topics
+from semgoal_ros.package_data import share_path
+
+SEPARATOR = "=" * 80
+PRIMITIVES = {"bool", "byte", "char", "float32", "float64", "int8", "uint8", "int16", "uint16", "int32", "uint32",
+              "int64", "uint64", "string", "wstring"}
+
+
+ALWAYS_PUBLISHED = (topics.WORLD_STATE, topics.JOINT_STATES, topics.SEMANTIC_STATE, topics.SUBGOAL, topics.PLAN,
+                    topics.ARM_COMMAND, topics.CLOCK)
+"""Topics the four nodes publish in every episode (the camera, goals and markers come and go)."""
+
+
+def recorded_topics() -> list[tuple[str, str, QoSProfile]]:
+    """(topic, type name, QoS of the recording reader) of everything the graph says."""
+    latched = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    return [
+        (topics.WORLD_STATE, "semgoal_msgs/msg/WorldState", topics.RECORDING),
+        (topics.JOINT_STATES, "sensor_msgs/msg/JointState", topics.RECORDING),
+        (topics.SEMANTIC_STATE, "semgoal_msgs/msg/SemanticState", latched),
+        (topics.SUBGOAL, "semgoal_msgs/msg/SubGoal", latched),
+        (topics.PLAN, "semgoal_msgs/msg/Plan", latched),
+        (topics.ARM_COMMAND, "semgoal_msgs/msg/ArmCommand", topics.RECORDING),
+        (topics.GOAL, "semgoal_msgs/msg/GoalRequest", topics.RECORDING),
+        (topics.MARKERS, "visualization_msgs/msg/MarkerArray", latched),
+        (topics.PLAN_MARKERS, "visualization_msgs/msg/MarkerArray", latched),
+        (topics.CLOCK, "rosgraph_msgs/msg/Clock", topics.RECORDING),
+        (topics.CAMERA_IMAGE, "sensor_msgs/msg/Image", topics.CAMERA),
+        ("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", topics.RECORDING),
+    ]
+
+
+def message_definition(type_name: str) -> str:
+    """The ``ros2msg`` schema text of ``pkg/msg/Type``: its .msg file, then every type it uses, each after a
+    separator line and ``MSG: pkg/Type`` (the layout rosbag2 writes)."""
+    package, _, name = type_name.split("/")
+    text = _msg_file(package, name)
+    seen, parts, queue = {f"{package}/{name}"}, [], _used_types(text, package)
+    while queue:
+        used = queue.pop(0)
+        if used in seen:
+            continue
+        seen.add(used)
+        used_package, used_name = used.split("/")
+        used_text = _msg_file(used_package, used_name)
+        parts.append(f"{SEPARATOR}\nMSG: {used}\n{used_text}")
+        queue += _used_types(used_text, used_package)
+    return "\n".join([text, *parts])
+
+
+def message_type(type_name: str) -> type:
+    """The Python class of ``pkg/msg/Type``."""
+    package, kind, name = type_name.split("/")
+    return getattr(importlib.import_module(f"{package}.{kind}"), name)
+
+
+def _msg_file(package: str, name: str) -> str:
+    return share_path(package, "msg", f"{name}.msg").read_text().rstrip("\n")
+
+
+def _used_types(text: str, package: str) -> list[str]:
+    """``pkg/Type`` of every non-primitive field of a .msg text (a bare ``Type`` is of the same package)."""
+    used = []
+    for line in text.splitlines():
+        tokens = line.split("#", 1)[0].split()
+        if len(tokens) < 2 or "=" in tokens[1]:  # blank, or a constant (always a primitive)
+            continue
+        base = re.sub(r"(\[.*\]|<=\d+)$", "", tokens[0])
+        if base not in PRIMITIVES:
+            used.append(base if "/" in base else f"{package}/{base}")
+    return used
+
+
+class Recorder:
+    """Writes every message of :func:`recorded_topics` that ``node`` receives to ``path`` until :meth:`close`."""
+
+    def __init__(self, node, path: Path | str) -> None:
+        self.path = Path(path)
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.file = self.path.open("wb")
+        self.writer = Writer(self.file, compression=CompressionType.ZSTD)
+        self.writer.start(profile="ros2", library="semgoal")
+        self.counts: dict[str, int] = {}
+        self.subscriptions = []
+        schemas: dict[str, int] = {}
+        for topic, type_name, qos in recorded_topics():
+            if type_name not in schemas:
+                schemas[type_name] = self.writer.register_schema(type_name, "ros2msg", message_definition(type_name).encode())
+            channel = self.writer.register_channel(topic, "cdr", schemas[type_name])
+            self.counts[topic] = 0
+            self.subscriptions.append(node.create_subscription(
+                message_type(type_name), topic, lambda data, c=channel, t=topic: self._write(c, t, data), qos, raw=True))
+        self.node = node
+
+    def matched(self) -> bool:
+        """Whether every publisher the graph knows on a recorded topic, and at least one on each topic that a
+        running graph always publishes (:data:`ALWAYS_PUBLISHED`), has matched its recording reader: a reader
+        created just before an episode would otherwise miss its first messages while discovery runs."""
+        return all(sub.get_publisher_count() >= max(int(sub.topic_name in ALWAYS_PUBLISHED),
+                                                     self.node.count_publishers(sub.topic_name))
+                   for sub in self.subscriptions)
+
+    def _write(self, channel: int, topic: str, data: bytes) -> None:
+        now = time.time_ns()
+        self.writer.add_message(channel, log_time=now, data=data, publish_time=now, sequence=self.counts[topic])
+        self.counts[topic] += 1
+
+    def close(self) -> dict[str, int]:
+        """Finish the file; the messages written per topic."""
+        for subscription in self.subscriptions:
+            self.node.destroy_subscription(subscription)
+        self.writer.finish()
+        self.file.close()
+        return self.counts

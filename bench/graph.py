@@ -2,7 +2,8 @@
 
 Lockstep: control steps per second of wall time, end to end (sim -> predicates -> planner -> policy ->
 sim, over DDS), over N episodes of the task, beside the same episodes in one process (no ROS) as the
-peer: the ratio is what the graph costs. Realtime: the sim steps at 25 Hz on its timer; the client
+peer: the ratio is what the graph costs; and the same episodes again, each recorded as MCAP.
+Realtime: the sim steps at 25 Hz on its timer; the client
 records when each world state arrives (:func:`arrival_timing`: the rate, and the steps late by more
 than half a period). Figures are medians over episodes; the last line is JSON with ``--json``.
 """
@@ -21,15 +22,26 @@ from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 REALTIME_HZ = 25.0
 
 
-def lockstep(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
-    """(control steps, wall seconds) per episode through the graph."""
+def lockstep(task: str, episodes: int, seed: int, record: bool = False) -> list[tuple[int, float]]:
+    """(control steps, wall seconds) per episode through the graph; ``record``: each episode recorded as MCAP
+    (into a scratch folder), as ``eval --via-ros --record`` does."""
+    import tempfile
+    from pathlib import Path
+
     from semgoal_bringup.graph import running_graph
+    from semgoal_ros.recording import Recorder
 
     runs = []
-    with running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
+    with tempfile.TemporaryDirectory() as scratch, \
+            running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
         for i in range(episodes):
+            recorder = Recorder(client.node, Path(scratch) / f"{i}.mcap") if record else None
+            if recorder is not None:
+                client.spin_until(recorder.matched, 10.0)
             client.must_reset(task, seed + i)
             result = client.execute(task, max_steps=TASK_STEP_BUDGET)
+            if recorder is not None:
+                recorder.close()
             runs.append((result.control_steps, result.wall_s))
     return runs
 
@@ -84,17 +96,21 @@ def main(argv: list[str]) -> int:
     torch.set_num_threads(1)
     task = get_task(args.task).name
     graph = lockstep(task, args.episodes, args.seed)
+    recorded = lockstep(task, args.episodes, args.seed, record=True)
     local = in_process(task, args.episodes, args.seed)
     rate = lambda runs: statistics.median(steps / wall for steps, wall in runs if wall > 0)  # noqa: E731
     result = {"task": task, "episodes": args.episodes,
               "lockstep_graph_steps_per_s": round(rate(graph), 1),
               "in_process_steps_per_s": round(rate(local), 1),
               "graph_over_in_process": round(rate(graph) / rate(local), 3),
+              "lockstep_recorded_steps_per_s": round(rate(recorded), 1),
+              "recorded_over_unrecorded": round(rate(recorded) / rate(graph), 3),
               "graph_steps": [s for s, _ in graph], "in_process_steps": [s for s, _ in local],
               "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
     print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
           f"{args.episodes}); in one process: {result['in_process_steps_per_s']} steps/s; "
-          f"ratio {result['graph_over_in_process']}")
+          f"ratio {result['graph_over_in_process']}; recording every topic: {result['lockstep_recorded_steps_per_s']} "
+          f"steps/s ({result['recorded_over_unrecorded']} of unrecorded)")
     rt = result["realtime"]
     print(f"realtime at {REALTIME_HZ:.0f} Hz: {rt['steps']} steps at {rt['rate_hz']:.2f} Hz, "
           f"{100 * rt['late_fraction']:.2f} % late (> 1.5 periods after the step before), "

@@ -96,7 +96,7 @@ class Recorder:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.file = self.path.open("wb")
-        self.writer = Writer(self.file, compression=CompressionType.ZSTD)
+        self.writer = Writer(self.file, compression=CompressionType.LZ4)
         self.writer.start(profile="ros2", library="semgoal")
         self.counts: dict[str, int] = {}
         self.subscriptions = []

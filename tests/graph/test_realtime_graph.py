@@ -27,3 +27,25 @@ def test_realtime_graph_resets_and_solves_mc2(nodes: NodeProcesses) -> None:
     assert result.success, result.message
     assert 0 < result.control_steps < TASK_STEP_BUDGET
     assert abs(result.sim_time - result.control_steps * CONTROL_DT) < 1e-6
+
+
+def test_the_arm_stops_when_commands_stop_coming(nodes: NodeProcesses, probe) -> None:
+    """A policy that dies mid-motion: the realtime sim applies its last command for a few periods, then holds."""
+    from semgoal_msgs.msg import ArmCommand, WorldState
+    from semgoal_ros import interfaces as topics
+    from semgoal_sim.sim_node import WATCHDOG_PERIODS
+
+    nodes.start("semgoal_sim", "sim_node", params={"scene": "two_blocks", "task": TASK, "seed": SEED, "mode": "realtime"})
+    worlds: list[WorldState] = []
+    probe.node.create_subscription(WorldState, topics.WORLD_STATE, worlds.append, topics.STREAM)
+    commands = probe.node.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
+    probe.spin_until(lambda: worlds and commands.get_subscription_count() > 0, 30, "the realtime sim")
+    start = worlds[-1].gripper_position.y
+    command = ArmCommand(gripper=0.0)
+    command.displacement.y = 0.2  # 1 cm per control step, sent once
+    commands.publish(command)
+    probe.spin_until(lambda: worlds[-1].gripper_position.y - start > 0.005, 5, "the arm to move")
+    probe.spin_for(WATCHDOG_PERIODS * CONTROL_DT + 1.5)  # the watchdog's periods, then time to come to rest
+    y = [w.gripper_position.y for w in worlds[-10:]]
+    assert max(y) - min(y) < 0.002, y  # still: no longer driven by the stale command
+    assert y[-1] - start < 0.01 * (WATCHDOG_PERIODS + 6), y[-1] - start  # it stopped within a few periods

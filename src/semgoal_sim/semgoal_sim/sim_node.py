@@ -29,6 +29,9 @@ from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, de
 from semgoal_sim import conversions
 from semgoal_sim.sim_core import SimCore, check_command
 
+WATCHDOG_PERIODS = 5
+"""Realtime: control periods without an arm command after which the arm stops moving (0.2 s at 25 Hz)."""
+
 PARAMS = (
     Param("scene", "two_blocks", "the scene to simulate", choices=tuple(SCENES)),
     Param("task", "", f"the task whose start the world takes: {', '.join(TASKS)} (empty: the scene's first)"),
@@ -58,6 +61,8 @@ class SimNode(Node):
         except ValueError as error:
             raise ParameterValueError(f"sim: {error}") from None
         self.held_command = np.zeros(4)
+        self.command_at = time.monotonic()
+        """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""
         self.world_pub = self.create_publisher(WorldState, topics.WORLD_STATE, topics.STREAM)
         self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
         self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED)
@@ -140,7 +145,7 @@ class SimNode(Node):
         if check.action is None:
             return
         if self.mode == Mode.REALTIME:
-            self.held_command = check.action
+            self.held_command, self.command_at = check.action, time.monotonic()
             return
         self.core.step(check.action)
         self.publish_state()
@@ -158,6 +163,12 @@ class SimNode(Node):
             self.counters["late steps"] += 1
         self.last_step_at = now
         self.counters["realtime steps"] += 1
+        if now - self.command_at > WATCHDOG_PERIODS / self.rate_hz and self.held_command[:3].any():
+            # no command for a while (the policy died or stalls): stop moving, keep the fingers' command so
+            # that a held block stays held
+            self.held_command = np.array([0.0, 0.0, 0.0, self.held_command[3]])
+            self.counters["watchdog stops"] += 1
+            self.get_logger().warn(f"no arm command for {WATCHDOG_PERIODS} periods: holding the arm still")
         self.core.step(self.held_command)
         self.publish_state()
 
@@ -171,6 +182,8 @@ class SimNode(Node):
         response.success, response.message = self.core.reset(request.task, request.seed)
         self.report(response.success, response.message)
         self.held_command = np.zeros(4)
+        self.command_at = time.monotonic()
+        """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""
         response.world = self.publish_state()
         response.state = messages.semantic_state(response.world, messages.semantic_vector(response.world))
         return response

@@ -1,9 +1,9 @@
 """The four semgoal nodes, natively: ``ros2 launch semgoal_bringup semgoal.launch.py task:=DC-3 seed:=6``.
 
 Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
-``record`` (an MCAP file);
-``ros2 launch semgoal_bringup semgoal.launch.py --show-args`` lists them. The nodes and their parameters come
-from ``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file.
+``record`` (an MCAP file); ``--show-args`` lists them. The nodes and their parameters come from
+``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file; a
+node that dies is started again, as under `./semgoal up`.
 """
 
 from launch import LaunchDescription
@@ -24,7 +24,7 @@ def launch_nodes(context) -> list[Node]:
     """The nodes for the arguments given (a task of another scene than ``scene`` stops the launch with why)."""
     value = {name: LaunchConfiguration(name).perform(context) for name, _, _ in LAUNCH_ARGUMENTS}
     task = scene_task(value["scene"], value["task"])
-    nodes = [Node(package=package, executable=executable, output="screen",
+    nodes = [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
                   parameters=[str(params_file()), params])
              for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
                                                             value["record"])]

@@ -4,7 +4,8 @@ the four nodes and stay up; the options are the launch file's arguments (``ros2 
 semgoal.launch.py``), read from the same definition.
 
 The operator then drives it from another shell with the same ROS_DOMAIN_ID: `./semgoal goal DC-3`,
-`./semgoal plan show`, `./semgoal plan pause` ... Ctrl-C stops every node.
+`./semgoal plan show`, `./semgoal plan pause` ... A node that dies is started again (after 1, 2, 4 ... s;
+at most 5 times a minute) while the others run on; Ctrl-C stops every node.
 """
 
 from __future__ import annotations
@@ -15,8 +16,11 @@ import shutil
 import subprocess
 import time
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, rviz_config, scene_task, start_graph, stop_graph
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
+
+MAX_RESTARTS = 5
+RESTART_WINDOW_S = 60.0
 
 
 def main(argv: list[str]) -> int:
@@ -36,18 +40,52 @@ def main(argv: list[str]) -> int:
     rviz = args.rviz.lower() in ("true", "1", "yes")
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
-    processes = start_graph(task.name, int(args.seed), args.mode, args.log_level, models=args.models, record=args.record)
+    nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record)
+    processes = {executable: start_node(package, executable, params, args.log_level)
+                 for package, executable, params in nodes}
     if rviz:
         processes["rviz2"] = subprocess.Popen(["rviz2", "-d", str(rviz_config())])
     print(f"[up] {', '.join(processes)} running (ROS_DOMAIN_ID={os.environ.get('ROS_DOMAIN_ID')}); "
           f"send a goal with ./semgoal goal {task.name}; Ctrl-C stops", flush=True)
+    restarts = {executable: Restarts() for executable in processes}
     try:
-        while all(p.poll() is None for p in processes.values()):
-            time.sleep(0.5)
-        dead = [name for name, p in processes.items() if p.poll() is not None]
-        print(f"[up] {', '.join(dead)} exited; stopping the rest")
-        return 1
+        while True:
+            time.sleep(0.2)
+            for package, executable, params in nodes:
+                process = processes[executable]
+                if process.poll() is None:
+                    continue
+                delay = restarts[executable].next_delay()
+                if delay is None:
+                    print(f"[up] {executable} keeps dying ({MAX_RESTARTS} restarts within {RESTART_WINDOW_S:.0f} s); "
+                          "stopping the graph", flush=True)
+                    return 1
+                print(f"[up] {executable} exited with {process.returncode}; restarting it in {delay:.0f} s", flush=True)
+                time.sleep(delay)
+                processes[executable] = start_node(package, executable, params, args.log_level)
     except KeyboardInterrupt:
         return 0
     finally:
         stop_graph(processes)
+
+
+def start_node(package: str, executable: str, params: dict, log_level: str) -> subprocess.Popen:
+    process = subprocess.Popen(node_command(package, executable, params, log_level))
+    print(f"[up] started {executable} (pid {process.pid})", flush=True)
+    return process
+
+
+class Restarts:
+    """Back-off for a node that dies: 1, 2, 4 ... s, and no more than :data:`MAX_RESTARTS` within
+    :data:`RESTART_WINDOW_S` (then something is wrong that restarting will not fix)."""
+
+    def __init__(self) -> None:
+        self.times: list[float] = []
+
+    def next_delay(self) -> float | None:
+        now = time.monotonic()
+        self.times = [t for t in self.times if now - t < RESTART_WINDOW_S]
+        if len(self.times) >= MAX_RESTARTS:
+            return None
+        self.times.append(now)
+        return float(2 ** (len(self.times) - 1))

@@ -72,6 +72,7 @@ def test_the_launch_file_starts_the_graph_that_up_starts(launch_file, given, tas
     assert [(n.kwargs["package"], n.kwargs["executable"]) for n in launched] == [(p, e) for p, e, _ in expected]
     for node, (_, _, params) in zip(launched, expected, strict=True):
         assert node.kwargs["parameters"] == [str(params_file()), params]
+        assert node.kwargs["respawn"] is True  # a node that dies is started again, as ./semgoal up does
 
 
 def test_rviz_and_a_recorder_join_on_request_and_a_task_of_another_scene_is_refused(launch_file, tmp_path) -> None:

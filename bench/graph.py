@@ -29,19 +29,14 @@ def lockstep(task: str, episodes: int, seed: int, record: bool = False) -> list[
     from pathlib import Path
 
     from semgoal_bringup.graph import running_graph
-    from semgoal_ros.recording import Recorder
 
     runs = []
     with tempfile.TemporaryDirectory() as scratch, \
             running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
         for i in range(episodes):
-            recorder = Recorder(client.node, Path(scratch) / f"{i}.mcap") if record else None
-            if recorder is not None:
-                client.spin_until(recorder.matched, 10.0)
-            client.must_reset(task, seed + i)
-            result = client.execute(task, max_steps=TASK_STEP_BUDGET)
-            if recorder is not None:
-                recorder.close()
+            with client.recording(Path(scratch) / f"{i}.mcap" if record else None):
+                client.must_reset(task, seed + i)
+                result = client.execute(task, max_steps=TASK_STEP_BUDGET)
             runs.append((result.control_steps, result.wall_s))
     return runs
 

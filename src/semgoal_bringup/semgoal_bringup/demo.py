@@ -90,8 +90,6 @@ class Demo:
         """The episode, recorded to ``record`` (a temporary file when None); the GIF is rendered from the record."""
         import tempfile
 
-        from semgoal_ros.recording import Recorder
-
         client = self.client
         with tempfile.TemporaryDirectory() as scratch:
             path = record or Path(scratch) / "episode.mcap"
@@ -99,14 +97,9 @@ class Demo:
                 if not client.wait_ready():
                     print("the four nodes did not come up in time: failure", file=sys.stderr)
                     return 1
-                recorder = Recorder(client.node, path)
-                if not client.spin_until(recorder.matched, 10.0):
-                    print("[demo] the recorder did not match every publisher in 10 s: the record may miss the start")
-                try:
+                with client.recording(path) as recorder:
                     result = self.episode(max_steps)
-                    client.spin_until(lambda: False, 0.5)  # the last states and the final plan, still on their way
-                finally:
-                    counts = recorder.close()
+                counts = recorder.counts
             finally:
                 client.close()
             if result is None:

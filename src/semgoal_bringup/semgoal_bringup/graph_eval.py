@@ -18,7 +18,6 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
                 record: Path | None = None) -> Iterator[Outcome]:
     """Yield one :class:`Outcome` per episode, task by task, starting each scene's graph once."""
     from semgoal_bringup.graph import running_graph
-    from semgoal_ros.recording import Recorder
 
     by_scene: dict[str, list[str]] = {}
     for name in task_names:
@@ -28,12 +27,7 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
                            watch=False) as client:
             for task_name in scene_tasks:
                 for i in range(episodes):
-                    recorder = Recorder(client.node, record / f"{task_name}-{seed + i}.mcap") if record else None
-                    if recorder is not None and not client.spin_until(recorder.matched, 10.0):
-                        raise RuntimeError("the recorder did not match the graph's publishers within 10 s")
-                    client.must_reset(task_name, seed + i)
-                    result = client.execute(task_name, max_steps=TASK_STEP_BUDGET)
-                    if recorder is not None:
-                        client.spin_until(lambda: False, 0.2)  # the last states, still on their way
-                        recorder.close()
+                    with client.recording(record / f"{task_name}-{seed + i}.mcap" if record else None):
+                        client.must_reset(task_name, seed + i)
+                        result = client.execute(task_name, max_steps=TASK_STEP_BUDGET)
                     yield Outcome(task_name, seed + i, result.success, result.control_steps, result.replans)

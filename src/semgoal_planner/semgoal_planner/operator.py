@@ -81,18 +81,11 @@ def _refusal(client: GraphClient, text: str) -> str:
 
 
 def _execute(client: GraphClient, text: str, timeout: float, max_steps: int, record: str | None = None) -> int:
-    from semgoal_ros.recording import Recorder
-
-    recorder = Recorder(client.node, record) if record else None
+    with client.recording(record) as recorder:
+        code = _follow(client, text, timeout, max_steps)
     if recorder is not None:
-        client.spin_until(recorder.matched, 10.0)
-    try:
-        return _follow(client, text, timeout, max_steps)
-    finally:
-        if recorder is not None:
-            client.spin_until(lambda: False, 0.3)  # the last states, still on their way
-            counts = recorder.close()
-            print(f"recorded {sum(counts.values())} messages to {record}")
+        print(f"recorded {sum(recorder.counts.values())} messages to {record}")
+    return code
 
 
 def _follow(client: GraphClient, text: str, timeout: float, max_steps: int) -> int:

@@ -18,8 +18,10 @@ from __future__ import annotations
 import os
 import time
 import uuid
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 from semgoal_ros import interfaces as topics
 
@@ -28,6 +30,8 @@ EPISODE_TIMEOUT_S = 300.0
 RESET_TIMEOUT_S = 5.0
 SERVICE_WAIT_S = 10.0
 POLL_S = 0.005
+RECORDER_MATCH_S = 10.0
+RECORDER_SETTLE_S = 0.5
 
 
 class GraphUnavailableError(TimeoutError):
@@ -261,6 +265,26 @@ class GraphClient:
             handle = future.result() if future.done() else None
             if handle is not None and handle.accepted:
                 self.spin_until(handle.cancel_goal_async().done, SERVICE_WAIT_S)
+
+    @contextmanager
+    def recording(self, path: Path | str | None) -> Iterator:
+        """Record the graph into ``path`` (MCAP, :class:`~semgoal_ros.recording.Recorder`) while the block runs:
+        from once every publisher has matched the recorder until the last messages have come in. Yields the
+        recorder (its ``counts`` per topic are final after the block), or None when ``path`` is None."""
+        from semgoal_ros.recording import Recorder
+
+        if path is None:
+            yield None
+            return
+        recorder = Recorder(self.node, path)
+        if not self.spin_until(recorder.matched, RECORDER_MATCH_S):
+            self.node.get_logger().warn(f"the recorder did not match every publisher in {RECORDER_MATCH_S:.0f} s: "
+                                        "the record may miss the start")
+        try:
+            yield recorder
+            self.spin_until(lambda: False, RECORDER_SETTLE_S)  # the last states, still on their way
+        finally:
+            recorder.close()
 
     def close(self) -> None:
         self.node.destroy_node()

@@ -3,7 +3,7 @@ payloads exactly as rclpy serialised them (raw subscriptions: nothing is decoded
 ``ros2msg`` schema per type, built from the installed ``.msg`` files. Written with the ``mcap`` library.
 
 A :class:`Recorder` rides on a client's node (the demo's, the evaluation's), so it spins with it; spin until
-:meth:`Recorder.matched` before the episode starts.
+:meth:`Recorder.matched` before the episode starts (``GraphClient.recording`` does both).
 """
 
 from __future__ import annotations
@@ -124,9 +124,10 @@ class Recorder:
         self.counts[topic] += 1
 
     def close(self) -> dict[str, int]:
-        """Finish the file; the messages written per topic."""
-        for subscription in self.subscriptions:
-            self.node.destroy_subscription(subscription)
-        self.writer.finish()
-        self.file.close()
+        """Finish the file (once); the messages written per topic."""
+        if not self.file.closed:
+            for subscription in self.subscriptions:
+                self.node.destroy_subscription(subscription)
+            self.writer.finish()
+            self.file.close()
         return self.counts

@@ -18,8 +18,9 @@ def main(domain: str, problem: str, search: str, heuristic: str, repeats: str) -
         result = solve_pddl(Path(domain).read_text(), Path(problem).read_text(), search, heuristic)
         times.append(time.perf_counter() - start)
         front.append(times[-1] - result.seconds)  # result.seconds: the heuristic's set-up and the search
-    length = None if result.plan is None else len(result.plan)
-    print(json.dumps({"length": length, "seconds": times, "front_seconds": front}))
+    plan = None if result.plan is None else [f"({' '.join((op.name, *op.args))})" for op in result.plan]
+    print(json.dumps({"length": None if plan is None else len(plan), "plan": plan, "seconds": times,
+                      "front_seconds": front}))
 
 
 if __name__ == "__main__":

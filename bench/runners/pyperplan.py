@@ -22,7 +22,9 @@ def main(domain: str, problem: str, search: str, heuristic_name: str, repeats: s
         front.append(time.perf_counter() - start)
         plan = _search(task, SEARCHES[search], heuristic and heuristic(task))
         times.append(time.perf_counter() - start)
-    print(json.dumps({"length": None if plan is None else len(plan), "seconds": times, "front_seconds": front}))
+    steps = None if plan is None else [op.name for op in plan]
+    print(json.dumps({"length": None if plan is None else len(plan), "plan": steps, "seconds": times,
+                      "front_seconds": front}))
 
 
 if __name__ == "__main__":

@@ -1,0 +1,44 @@
+"""`./semgoal bench-planner --suite DIR`: a folder of PDDL domains in the IPC layout, every plan validated."""
+
+import shutil
+from pathlib import Path
+
+from bench.planner import run_suite, suite_problems, validity
+
+FIXTURES = Path(__file__).parents[1] / "planner" / "fixtures"
+
+
+def _suite(tmp_path: Path) -> Path:
+    for domain, problems in (("blocksworld", ["blocksworld-sussman"]), ("gripper", ["gripper-4balls"]),
+                             ("logistics", ["logistics-p1"])):
+        folder = tmp_path / domain
+        folder.mkdir()
+        shutil.copy(FIXTURES / f"{domain}-domain.pddl", folder / "domain.pddl")
+        for i, name in enumerate(problems, 1):
+            shutil.copy(FIXTURES / f"{name}.pddl", folder / f"p{i:02d}.pddl")
+    own = tmp_path / "own-domains"  # the other IPC layout: a domain file per problem
+    own.mkdir()
+    shutil.copy(FIXTURES / "gripper-domain.pddl", own / "domain_p01.pddl")
+    shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p01.pddl")
+    return tmp_path
+
+
+def test_the_suite_layout_pairs_each_problem_with_its_domain(tmp_path) -> None:
+    found = suite_problems(_suite(tmp_path), per_domain=6)
+    assert [(d, dom.name, p.name) for d, dom, p in found] == [
+        ("blocksworld", "domain.pddl", "p01.pddl"), ("gripper", "domain.pddl", "p01.pddl"),
+        ("logistics", "domain.pddl", "p01.pddl"), ("own-domains", "domain_p01.pddl", "p01.pddl")]
+
+
+def test_every_problem_is_solved_and_every_plan_validated(tmp_path) -> None:
+    result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search="gbfs", heuristic="hff")
+    assert result["problems"] == 4 and result["coverage"] == {"ours": 4} and result["invalid_plans"] == {"ours": 0}
+    assert all(row["ours"]["median_ms"] > 0 for row in result["domains"].values())
+
+
+def test_an_invalid_plan_is_named(tmp_path) -> None:
+    domain, problem = FIXTURES / "blocksworld-domain.pddl", FIXTURES / "blocksworld-sussman.pddl"
+    assert validity(domain, problem, None) == ""
+    assert validity(domain, problem, ["(fly a)"]) == "step 1 (fly a): no such action with 1 arguments"
+    assert validity(domain, problem, ["(pickup a)"]).startswith("step 1 (pickup a): precondition")  # c lies on a
+    assert validity(domain, problem, []).startswith("the goal")

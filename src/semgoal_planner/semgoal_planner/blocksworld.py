@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import itertools
 import random
-from pathlib import Path
 
-DOMAIN_PATH = Path(__file__).resolve().parent / "domains" / "blocksworld.pddl"
+from semgoal_ros.package_data import share_path
+
+DOMAIN_PATH = share_path("semgoal_planner", "domains", "blocksworld.pddl")
 
 
 def _random_towers(rng: random.Random, blocks: list[str]) -> list[list[str]]:

@@ -18,8 +18,12 @@ from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_planner.grounding import Operator, Task, ground
 from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
 from semgoal_planner.planner import solve_task
+from semgoal_ros.package_data import share_path
 
-DOMAIN_DIR = Path(__file__).resolve().parent / "domains"
+
+def domain_dir() -> Path:
+    """The scenes' PDDL domains as installed: share/semgoal_planner/domains."""
+    return share_path("semgoal_planner", "domains")
 HAND_EMPTY = "hand-empty"
 ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
     # PDDL action -> (sub-goal type, how many leading arguments the sub-goal keeps)
@@ -40,9 +44,9 @@ class PlanningError(ValueError):
 
 @functools.cache
 def load_domain(scene: str) -> Domain:
-    path = DOMAIN_DIR / f"{scene}.pddl"
+    path = domain_dir() / f"{scene}.pddl"
     if not path.exists():
-        raise PlanningError(f"no PDDL domain for scene {scene!r} in {DOMAIN_DIR}")
+        raise PlanningError(f"no PDDL domain for scene {scene!r} in {domain_dir()}")
     return parse_domain(path.read_text())
 
 

@@ -36,7 +36,7 @@ def test_operator_commands_drive_the_graph(nodes: NodeProcesses, probe: GraphPro
     # a goal sent before the world is up waits for its first state, then runs (into a tiny budget)
     early = subprocess.Popen(semgoal_command("goal", TASK, "--wait", "--max-steps", "3"),
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    assert probe.poll(lambda: "waits up to 60 s for a first semantic state" in nodes.logs(), timeout=60), nodes.logs()
+    assert probe.poll(lambda: "waits up to 60 s for a semantic state" in nodes.logs(), timeout=60), nodes.logs()
     for package, exe in world_nodes:
         nodes.start(package, exe, params=params[exe])
     out, _ = early.communicate(timeout=120)

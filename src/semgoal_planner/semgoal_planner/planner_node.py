@@ -69,6 +69,8 @@ class PlannerNode(Node):
         self.state_wait_s = float(values["state_wait_s"])
         apply_changes(self, PARAMS, self.apply_parameter)
         self.state_waiters: list[Future] = []
+        self.min_episode = 0
+        """The world episode the current ExecuteGoal asked for: older semantic states are ignored."""
         """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
@@ -106,6 +108,7 @@ class PlannerNode(Node):
 
     # -- inputs --------------------------------------------------------------------------------------
     def goal_callback(self, msg: GoalRequest) -> None:
+        self.min_episode = 0
         self.start_goal(msg)
 
     def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
@@ -124,6 +127,10 @@ class PlannerNode(Node):
     def semantic_callback(self, msg: SemanticState) -> None:
         if msg.scene != self.executive.planner.scene:
             self.get_logger().warn(f"ignored a semantic state of scene {msg.scene!r}", throttle_duration_sec=5.0)
+            return
+        if msg.episode < self.min_episode:  # a state of the world before the reset the goal was sent for
+            self.get_logger().warn(f"ignored a semantic state of episode {msg.episode} (the goal is for "
+                                   f"episode {self.min_episode})", throttle_duration_sec=5.0)
             return
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
         self.last_state = msg
@@ -169,9 +176,17 @@ class PlannerNode(Node):
         """Start the goal, then wait (without a thread: the callbacks go on) until it ends; feedback
         goes out with every change of the plan (:meth:`publish`)."""
         result = ExecuteGoal.Result()
-        if self.last_state is None and self.stateable(handle.request.goal):
-            await self.first_state(self.state_wait_s)
-        ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
+        episode = int(handle.request.episode)
+        if self.stateable(handle.request.goal) and not self.has_state(episode):
+            await self.state_of(episode, self.state_wait_s)
+        if episode and not self.has_state(episode):
+            ok, message = False, (f"no semantic state of world episode {episode} within {self.state_wait_s:g} s "
+                                  f"(the latest is of episode {self.last_state.episode if self.last_state else '-'})")
+            self.report(False, f"goal refused: {message}")
+        else:
+            self.min_episode = episode
+            ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
+        result.episode = self.last_state.episode if self.last_state else 0
         # a refused goal ran no steps: its result must not carry the previous goal's figures (issue 57)
         start_step = self.executive.goal_started if ok else self.observed_step()
         end_step = self.observed_step()
@@ -181,6 +196,7 @@ class PlannerNode(Node):
             self.publish_feedback()
             # ``ended`` carries the step the goal ended on: states that arrive before this resumes come later
             message, end_step = await ended
+        self.min_episode = 0  # only while this goal runs: a sim restarted later counts episodes from 1 again
         if handle.is_cancel_requested:
             handle.canceled()
             result.message = "cancelled"
@@ -198,17 +214,26 @@ class PlannerNode(Node):
             return False
         return True
 
-    async def first_state(self, timeout_s: float) -> None:
-        """Wait up to ``timeout_s`` for a semantic state, so a goal sent right after the nodes start is
-        planned rather than refused; after that the executive says what is missing."""
+    def has_state(self, episode: int) -> bool:
+        """Whether a semantic state has come (of world ``episode`` or a later one, when it is not 0)."""
+        return self.last_state is not None and self.last_state.episode >= episode
+
+    async def state_of(self, episode: int, timeout_s: float) -> None:
+        """Wait up to ``timeout_s`` for a semantic state (of ``episode`` or later, when not 0), so that a goal
+        sent right after the nodes start, or right after a reset, is planned on that world rather than refused
+        or decided on the one before; after that the executive says what is missing."""
         if timeout_s <= 0:
             return
-        self.get_logger().info(f"goal waits up to {timeout_s:g} s for a first semantic state")
-        seen = Future(executor=self.executor)
-        self.state_waiters.append(seen)
-        timer = self.create_timer(timeout_s, lambda: seen.done() or seen.set_result(False))
-        await seen
-        self.destroy_timer(timer)
+        self.get_logger().info(f"goal waits up to {timeout_s:g} s for a semantic state"
+                               + (f" of world episode {episode}" if episode else ""))
+        while not self.has_state(episode):
+            seen = Future(executor=self.executor)
+            self.state_waiters.append(seen)
+            timer = self.create_timer(timeout_s, lambda seen=seen: seen.done() or seen.set_result(False))
+            arrived = await seen
+            self.destroy_timer(timer)
+            if not arrived:
+                return
 
     def cancel_callback(self, handle: ServerGoalHandle) -> CancelResponse:
         if self.action_goal is not None and self.action_goal[0] is handle:

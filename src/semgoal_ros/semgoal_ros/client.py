@@ -85,6 +85,8 @@ class GraphClient:
         self.subgoal: SubGoal | None = None
         self.world_listeners: list[Callable] = []
         self.watch, self.lockstep = watch, lockstep
+        self.episode = 0
+        """The world episode of this client's last reset: its goals are planned on that world, never an older one."""
         if watch:
             node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.STREAM)
             node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self._on_semantic, topics.LATCHED)
@@ -156,6 +158,7 @@ class GraphClient:
                 return False, str(error)
             if not reply.success:
                 return False, reply.message
+            self.episode = int(reply.world.episode)
             state = self.planner_state(reply.world.episode)
             if state is None:
                 message = f"the planner saw no state of episode {reply.world.episode} ({reply.message})"
@@ -213,7 +216,7 @@ class GraphClient:
     def send(self, text: str, max_steps: int = 0, feedback: Callable | None = None, sent: list | None = None):
         """Send a goal through ExecuteGoal; its goal handle (None when never answered). Every goal sent, the
         resends included, is appended to ``sent`` so a caller can cancel all of them."""
-        goal = self.ExecuteGoal.Goal(goal=goal_request(text), max_steps=max_steps)
+        goal = self.ExecuteGoal.Goal(goal=goal_request(text), max_steps=max_steps, episode=self.episode)
         if not self.action.wait_for_server(timeout_sec=SERVICE_WAIT_S):
             raise GraphUnavailableError(f"no {topics.EXECUTE_GOAL} action: is planner_node running?")
         sent = [] if sent is None else sent

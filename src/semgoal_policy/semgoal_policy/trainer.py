@@ -90,6 +90,18 @@ class TrainConfig:
     command: str = ""
 
 
+def recorded_config(config: TrainConfig) -> dict:
+    """The configuration as a run records it (config.json, actor.json): plain JSON values, folders inside the
+    checkout relative to it, so that the record reads the same on every machine."""
+
+    def portable(value):
+        if isinstance(value, Path):
+            return str(value.relative_to(PROJECT_ROOT)) if value.is_relative_to(PROJECT_ROOT) else str(value)
+        return value
+
+    return json.loads(json.dumps({k: portable(v) for k, v in asdict(config).items()}, default=str))
+
+
 class Curriculum:
     """Recent training success per kind (moving average); kinds are drawn more the less they succeed."""
 
@@ -244,7 +256,7 @@ class Trainer:
         elif not resume and self.checkpoint_path.exists():
             raise FileExistsError(f"{self.run_dir} holds a checkpoint: pass --resume to continue it, or remove the folder")
         self.run_dir.mkdir(parents=True, exist_ok=True)
-        (self.run_dir / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
+        (self.run_dir / "config.json").write_text(json.dumps(recorded_config(cfg), indent=2) + "\n")
         csv_path = self.run_dir / "progress.csv"
         bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
@@ -303,6 +315,6 @@ class Trainer:
                 "command": cfg.command or shlex.join(sys.argv), "kinds": list(self.kinds),
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
-                "first_reached_95": curve, "config": json.loads(json.dumps(asdict(cfg), default=str))}
+                "first_reached_95": curve, "config": recorded_config(cfg)}
         self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_core.layout import CONTROL_DT
+
 POSITION_TOLERANCE = 1e-9
 """Metres: the simulator is deterministic, so a replayed state matches the recorded one to float precision."""
 
@@ -93,7 +95,7 @@ def summary(episode: Episode) -> str:
             current = label
     final = episode.plans[-1] if episode.plans else None
     lines.append(f"outcome: {final.status if final else 'no plan'} at step {last.step} "
-                 f"({last.step * 0.04:.1f} s sim time), {final.replans if final else 0} re-plans")
+                 f"({last.step * CONTROL_DT:.1f} s sim time), {final.replans if final else 0} re-plans")
     lines.append("topics: " + ", ".join(f"{t} {n}" for t, n in sorted(episode.topics.items())))
     return "\n".join(lines)
 

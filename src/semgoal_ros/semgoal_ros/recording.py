@@ -8,6 +8,7 @@ A :class:`Recorder` rides on a client's node (the demo's, the evaluation's), so 
 
 from __future__ import annotations
 
+import functools
 import importlib
 import re
 import time
@@ -48,9 +49,11 @@ def recorded_topics() -> list[tuple[str, str, QoSProfile]]:
     ]
 
 
+@functools.cache
 def message_definition(type_name: str) -> str:
     """The ``ros2msg`` schema text of ``pkg/msg/Type``: its .msg file, then every type it uses, each after a
-    separator line and ``MSG: pkg/Type`` (the layout rosbag2 writes)."""
+    separator line and ``MSG: pkg/Type`` (the layout rosbag2 writes). Read once per process: a recorder per
+    episode (``eval --via-ros --record``) reuses it."""
     package, _, name = type_name.split("/")
     text = _msg_file(package, name)
     seen, parts, queue = {f"{package}/{name}"}, [], _used_types(text, package)

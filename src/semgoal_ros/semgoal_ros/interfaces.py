@@ -82,15 +82,13 @@ CAMERA = QoSProfile(
 """Rendered frames: only the newest matters, a dropped one is no loss (ROS's sensor-data profile)."""
 
 
-def spin_node_until(node, condition: Callable[[], bool], timeout: float) -> bool:
-    """Spin ``node`` until ``condition()`` holds; False after ``timeout`` seconds."""
-    import rclpy
-
+def spin_executor_until(executor, condition: Callable[[], bool], timeout: float) -> bool:
+    """Spin ``executor`` until ``condition()`` holds; False after ``timeout`` seconds."""
     deadline = time.monotonic() + timeout
     while not condition():
         if time.monotonic() > deadline:
             return False
-        rclpy.spin_once(node, timeout_sec=0.05)
+        executor.spin_once(timeout_sec=0.05)
     return True
 
 

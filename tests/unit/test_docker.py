@@ -16,7 +16,8 @@ def test_the_image_pins_every_runtime_package_as_the_lock_file_does() -> None:
     lock = _pins((ROOT / "requirements" / "lock.txt").read_text())
     pip_lines = " ".join(line for line in DOCKERFILE.splitlines() if "==" in line)
     image = _pins(pip_lines)
-    for needed in ("torch", "mujoco", "gymnasium", "gymnasium-robotics", "lark-parser", "matplotlib", "imageio", "tqdm"):
+    for needed in ("torch", "mujoco", "gymnasium", "gymnasium-robotics", "lark-parser", "matplotlib", "imageio", "tqdm",
+                   "mcap", "mcap-ros2-support", "foxglove-sdk"):
         assert needed in image, f"the image does not install {needed}"
     for name, version in image.items():
         assert lock.get(name) == version or (name == "torch" and lock.get(name, "").startswith(version)), \

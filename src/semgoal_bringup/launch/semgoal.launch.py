@@ -1,7 +1,7 @@
 """The four semgoal nodes, natively: ``ros2 launch semgoal_bringup semgoal.launch.py task:=DC-3 seed:=6``.
 
 Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
-``record`` (an MCAP file); ``--show-args`` lists them. The nodes and their parameters come from
+``record`` (an MCAP file), ``foxglove`` (a port for the live view); ``--show-args`` lists them. The nodes and their parameters come from
 ``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file; a
 node that dies is started again, as under `./semgoal up`.
 """
@@ -27,7 +27,7 @@ def launch_nodes(context) -> list[Node]:
     nodes = [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
                   parameters=[str(params_file()), params])
              for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
-                                                            value["record"])]
+                                                            value["record"], value["foxglove"])]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
     return nodes

@@ -25,6 +25,7 @@ LAUNCH_ARGUMENTS = (
     ("models", "", "a folder of exported actors (SCENE/actor.pt); empty: the shipped ones"),
     ("rviz", "false", "also start RViz with share/semgoal_bringup/rviz/semgoal.rviz"),
     ("record", "", "an MCAP file to record every topic into until the graph stops (empty: no recording)"),
+    ("foxglove", "", "a port to serve the Foxglove live view on, at 127.0.0.1 (empty: none)"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -47,13 +48,17 @@ def scene_task(scene: str, task_name: str):
     return task
 
 
-def graph_nodes(task_name: str, seed: int, mode: str, models: str = "",
-                record: str = "") -> list[tuple[str, str, dict[str, object]]]:
+def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
+                foxglove: str = "") -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
-    ``record``, a recorder first, so that it hears the graph from its first message."""
+    ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` (a
+    port), the live view last. ValueError for a port that is not a number."""
     params = node_params(task_name, seed, mode, models)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
-    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES)]
+    if foxglove and not foxglove.isdigit():
+        raise ValueError(f"foxglove must be a port number, got {foxglove!r}")
+    viewer = [("semgoal_bringup", "foxglove_node", {"port": int(foxglove)})] if foxglove else []
+    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES), *viewer]
 
 
 def rviz_config() -> Path:
@@ -94,11 +99,12 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 
 
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
-                skip: tuple[str, ...] = (), models: str = "", record: str = "") -> dict[str, subprocess.Popen]:
+                skip: tuple[str, ...] = (), models: str = "", record: str = "",
+                foxglove: str = "") -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
-    ``record``: an MCAP file that a recorder node writes everything into."""
+    ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``: a port for the live view."""
     return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-            for package, executable, params in graph_nodes(task_name, seed, mode, models, record)
+            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove)
             if executable not in skip}
 
 

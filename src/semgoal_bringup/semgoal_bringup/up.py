@@ -1,5 +1,5 @@
 """`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]
-[--record FILE]`: start
+[--record FILE] [--foxglove [PORT]]`: start
 the four nodes and stay up; the options are the launch file's arguments (``ros2 launch semgoal_bringup
 semgoal.launch.py``), read from the same definition.
 
@@ -19,6 +19,7 @@ import time
 from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
 
+FOXGLOVE_PORT = 8765
 MAX_RESTARTS = 5
 RESTART_WINDOW_S = 60.0
 
@@ -26,7 +27,10 @@ RESTART_WINDOW_S = 60.0
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal up", description=__doc__.splitlines()[0])
     for name, default, text in LAUNCH_ARGUMENTS:
-        parser.add_argument(f"--{name}", default=default, help=text)
+        if name == "foxglove":  # `--foxglove` alone: the Foxglove app's default port
+            parser.add_argument(f"--{name}", default=default, nargs="?", const=str(FOXGLOVE_PORT), help=text)
+        else:
+            parser.add_argument(f"--{name}", default=default, help=text)
     parser.add_argument("--log-level", default="info")
     args = parser.parse_args(argv)
     if args.mode not in list(Mode):
@@ -40,7 +44,10 @@ def main(argv: list[str]) -> int:
     rviz = args.rviz.lower() in ("true", "1", "yes")
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
-    nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record)
+    try:
+        nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove)
+    except ValueError as error:
+        parser.error(str(error))
     processes = {executable: start_node(package, executable, params, args.log_level)
                  for package, executable, params in nodes}
     if rviz:

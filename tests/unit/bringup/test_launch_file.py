@@ -2,6 +2,7 @@
 ``launch`` / ``launch_ros`` modules record its calls; the installed file is read through the ament index."""
 
 import importlib.util
+import json
 import sys
 import types
 from dataclasses import dataclass, field
@@ -82,6 +83,30 @@ def test_rviz_and_a_recorder_join_on_request_and_a_task_of_another_scene_is_refu
     assert launched[0].kwargs["parameters"][1] == {"path": str(tmp_path / "run.mcap")}
     with pytest.raises(ValueError, match="runs in scene desk_cleanup, not two_blocks"):
         _launched(launch_file, scene="two_blocks", task="DC-3")
+
+
+def test_the_foxglove_live_view_joins_on_request_with_its_port(launch_file) -> None:
+    launched = _launched(launch_file, foxglove="9001")
+    assert (launched[-1].kwargs["executable"], launched[-1].kwargs["parameters"][1]) == ("foxglove_node", {"port": 9001})
+    assert "foxglove_node" not in [n.kwargs["executable"] for n in _launched(launch_file)]
+    with pytest.raises(ValueError, match="port number"):
+        _launched(launch_file, foxglove="eighty")
+
+
+def test_the_foxglove_layout_shows_what_the_live_view_serves() -> None:
+    from semgoal_bringup.foxglove_node import SCENE_TOPIC
+
+    layout = json.loads(share_path("semgoal_bringup", "foxglove", "semgoal.json").read_text())
+    panels = layout["configById"]
+    assert panels["3D!scene"]["topics"] == {SCENE_TOPIC: {"visible": True}}
+    assert panels["Image!camera"]["imageMode"]["imageTopic"] == topics.CAMERA_IMAGE
+    assert {p["topicPath"].split(".")[0] for k, p in panels.items() if k.startswith("RawMessages!")} == \
+        {topics.PLAN, topics.SEMANTIC_STATE}
+    assert {p["serviceName"] for k, p in panels.items() if k.startswith("CallService!")} == {topics.EDIT_PLAN, topics.GET_PLAN}
+
+    def leaves(node):
+        return [node] if isinstance(node, str) else leaves(node["first"]) + leaves(node["second"])
+    assert sorted(leaves(layout["layout"])) == sorted(panels)  # every panel placed, none missing
 
 
 def test_the_rviz_file_shows_topics_the_graph_has() -> None:

@@ -14,6 +14,7 @@ NODE_MODULES = {
     "predicates": "semgoal_sim.predicate_node",
     "planner": "semgoal_planner.planner_node",
     "policy": "semgoal_policy.policy_node",
+    "foxglove": "semgoal_bringup.foxglove_node",
 }
 
 

@@ -5,6 +5,7 @@ topic of the graph present, the final state the in-process episode's, and `./sem
 import subprocess
 from pathlib import Path
 
+import av
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
@@ -48,6 +49,14 @@ def test_a_recorded_episode_reads_back_whole_and_replays_step_for_step(ros_domai
     verified = semgoal("replay", str(record), "--verify", "--summary")
     assert verified.returncode == 0 and "verified: all" in verified.stdout, verified.stdout + verified.stderr
     assert f"{TASK} in desk_cleanup, seed {SEED}" in verified.stdout
+
+    video = tmp_path / "episode.mp4"  # the episode as a video, from the record alone
+    rendered = semgoal("replay", str(record), "--mp4", str(video))
+    assert rendered.returncode == 0, rendered.stdout + rendered.stderr
+    with av.open(str(video)) as container:
+        stream = container.streams.video[0]
+        decoded_frames = sum(1 for _ in container.decode(stream))
+    assert stream.codec_context.name == "h264" and decoded_frames == int(rendered.stdout.split("(")[1].split()[0])
 
 
 def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:

@@ -129,9 +129,9 @@ class Demo:
 
     def write_gif(self, record: Path, gif: Path) -> None:
         """The episode GIF, rendered from the recorded world and joint states (``./semgoal replay --gif``)."""
-        from semgoal_bringup.episode_gif import write_gif
+        from semgoal_bringup.episode_video import write_video
         from semgoal_bringup.replay import episode_frames, read
 
         frames = episode_frames(read(record))
-        write_gif(self.task.scene, self.task.n_blocks, frames, gif)
+        write_video(self.task.scene, self.task.n_blocks, frames, gif)
         print(f"[demo] episode GIF: {gif} ({len(frames)} frames)", flush=True)

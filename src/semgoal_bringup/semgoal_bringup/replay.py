@@ -1,10 +1,10 @@
-"""`./semgoal replay FILE [--summary] [--verify] [--gif OUT]`: an episode recorded as MCAP (``make demo``,
+"""`./semgoal replay FILE [--summary] [--verify] [--gif OUT] [--mp4 OUT]`: an episode recorded as MCAP (``make demo``,
 ``eval --via-ros --record``), read back with the ``mcap`` reader and ``mcap-ros2-support``'s decoder.
 
 ``--summary`` prints the episode: task and seed, each plan (a re-plan starts a new one), the sub-goal
 timeline and the outcome. ``--verify`` runs the recorded start and the recorded arm commands through the
 simulator again and checks that every recorded world state is reproduced, step for step (lockstep
-episodes: one command per step). ``--gif`` renders the episode from the recorded states.
+episodes: one command per step). ``--gif`` / ``--mp4`` render the episode from the recorded states.
 """
 
 from __future__ import annotations
@@ -70,7 +70,7 @@ def read(path: Path) -> Episode:
 
 def episode_frames(episode: Episode) -> list:
     """The GIF frames of a recorded episode, every second step, captioned with the sub-goal followed."""
-    from semgoal_bringup.episode_gif import frames_from
+    from semgoal_bringup.episode_video import frames_from
 
     return frames_from([episode.worlds[s] for s in sorted(episode.worlds)], episode.joints, episode.subgoals)
 
@@ -129,7 +129,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("file", type=Path)
     parser.add_argument("--summary", action="store_true", help="print the plans, the sub-goal timeline and the outcome")
     parser.add_argument("--verify", action="store_true", help="re-run the recorded commands and compare the states")
-    parser.add_argument("--gif", type=Path, help="render the episode from the recorded states")
+    parser.add_argument("--gif", type=Path, help="render the episode from the recorded states as an animated GIF")
+    parser.add_argument("--mp4", type=Path, help="render the episode from the recorded states as MP4 (H.264)")
     args = parser.parse_args(argv)
     if not args.file.is_file():
         parser.error(f"no such file: {args.file}")
@@ -138,16 +139,17 @@ def main(argv: list[str]) -> int:
     except ValueError as error:
         print(f"semgoal replay: {error}", file=sys.stderr)
         return 2
-    if args.summary or not (args.verify or args.gif):
+    if args.summary or not (args.verify or args.gif or args.mp4):
         print(summary(episode))
-    if args.gif:
-        from semgoal_bringup.episode_gif import write_gif
-        from semgoal_core.tasks import get_task
+    for video in (args.gif, args.mp4.with_suffix(".mp4") if args.mp4 else None):
+        if video:
+            from semgoal_bringup.episode_video import write_video
+            from semgoal_core.tasks import get_task
 
-        frames = episode_frames(episode)
-        task = get_task(episode.first.task)
-        write_gif(task.scene, task.n_blocks, frames, args.gif)
-        print(f"episode GIF: {args.gif} ({len(frames)} frames)")
+            frames = episode_frames(episode)
+            task = get_task(episode.first.task)
+            write_video(task.scene, task.n_blocks, frames, video)
+            print(f"episode video: {video} ({len(frames)} frames)")
     if args.verify:
         ok, message = verify(episode)
         print(("verified: " if ok else "NOT reproduced: ") + message)

@@ -1,5 +1,6 @@
-"""An animated GIF of an episode seen over ROS: joint states and block poses replayed into a local
-MuJoCo model and rendered offscreen, with the active sub-goal written on every frame."""
+"""A video of an episode seen over ROS (an animated GIF, or MP4 / H.264 through PyAV): joint states and block
+poses replayed into a local MuJoCo model and rendered offscreen, with the active sub-goal written on every
+frame."""
 
 from __future__ import annotations
 
@@ -47,8 +48,21 @@ def frames_from(worlds, joints: dict[tuple[int, int], dict[str, float]], decisio
     return frames
 
 
-def write_gif(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps: float = 12.5) -> Path:
-    import imageio.v3 as iio
+def write_video(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps: float = 12.5) -> Path:
+    """``path`` as an animated GIF, or as MP4 when it ends in ``.mp4``."""
+    images = render(scene, n_blocks, frames)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.suffix.lower() == ".mp4":
+        _write_mp4(images, path, fps)
+    else:
+        import imageio.v3 as iio
+
+        iio.imwrite(path, np.stack(images), duration=1000.0 / fps, loop=0)
+    return path
+
+
+def render(scene: str, n_blocks: int, frames: list[Frame]) -> list[np.ndarray]:
+    """An RGB image per frame, captioned with its step and sub-goal."""
     from PIL import Image, ImageDraw
 
     world = FetchWorld(scene, n_blocks)
@@ -71,6 +85,19 @@ def write_gif(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps: f
             images.append(np.asarray(image))
     finally:
         renderer.close()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    iio.imwrite(path, np.stack(images), duration=1000.0 / fps, loop=0)
-    return path
+    return images
+
+
+def _write_mp4(images: list[np.ndarray], path: Path, fps: float) -> None:
+    """H.264 in yuv420p (what browsers and players take), at ``fps``."""
+    from fractions import Fraction
+
+    import av
+
+    height, width = images[0].shape[:2]
+    with av.open(str(path), "w") as container:
+        stream = container.add_stream("libx264", rate=Fraction(fps).limit_denominator(1000))
+        stream.width, stream.height, stream.pix_fmt = width, height, "yuv420p"
+        for image in images:
+            container.mux(stream.encode(av.VideoFrame.from_ndarray(image, format="rgb24")))
+        container.mux(stream.encode())

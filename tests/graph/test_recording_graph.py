@@ -75,9 +75,14 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
                 break
             time.sleep(3)
         assert ran.returncode == 0 and "recorded" in ran.stdout, ran.stdout + ran.stderr
+        refused = semgoal("plan", "remove", "99")  # an edit the planner refuses: on record with its reason
+        assert refused.returncode != 0, refused.stdout
     finally:
         up.send_signal(signal.SIGINT)
         output = up.communicate(timeout=30)[0]
     for record in (goal_record, session):
         summary = semgoal("replay", str(record), "--summary")
         assert summary.returncode == 0 and "outcome: succeeded" in summary.stdout, (record, summary.stdout, output[-2000:])
+        assert f"operator goal '{TASK}': accepted" in summary.stdout, summary.stdout
+    edit = [line for line in summary.stdout.splitlines() if line.startswith("operator edit 'remove index=99'")]
+    assert edit and "refused, no plan to edit" in edit[0], summary.stdout

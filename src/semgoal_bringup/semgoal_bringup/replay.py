@@ -32,6 +32,8 @@ class Episode:
     plans: list = field(default_factory=list)
     subgoals: dict[tuple[int, int], object] = field(default_factory=dict)
     """The planner's decisions by (episode, step)."""
+    operator: list = field(default_factory=list)
+    """Every goal and plan edit the planner answered during the recording, with its answer, in order."""
     topics: dict[str, int] = field(default_factory=dict)
 
     @property
@@ -65,6 +67,8 @@ def read(path: Path) -> Episode:
             episode.plans.append(msg)
         elif topic.endswith("/subgoal") and msg.episode == last:
             episode.subgoals[(msg.episode, int(msg.step))] = msg
+        elif topic.endswith("/operator_events"):
+            episode.operator.append(msg)
     return episode
 
 
@@ -80,6 +84,9 @@ def summary(episode: Episode) -> str:
     first, last = episode.first, episode.worlds[max(episode.worlds)]
     lines = [f"{first.task} in {first.scene}, seed {first.seed}, episode {first.episode}: "
              f"{len(episode.worlds)} world states, steps {min(episode.worlds)}-{max(episode.worlds)}"]
+    for event in episode.operator:
+        lines.append(f"operator {event.kind} {event.request!r}: {'accepted' if event.accepted else 'refused'}, "
+                     f"{event.answer.splitlines()[0] if event.answer else ''} (plan revision {event.revision})")
     shown = set()
     for plan in episode.plans:
         key = (plan.goal, tuple(s.action for s in plan.steps), plan.replans)

@@ -19,7 +19,7 @@ from semgoal_core.layout import CONTROL_DT
 from semgoal_core.names import Assignee, PlanStatus, StepStatus
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
+from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
@@ -40,6 +40,18 @@ def goal_text(msg: GoalRequest) -> str:
     if sum(given) != 1:
         raise ValueError("give exactly one of a task, literals or a sentence (text)")
     return msg.task.strip() or " & ".join(msg.literals) or msg.text.strip()
+
+
+def goal_as_given(msg: GoalRequest) -> str:
+    """A GoalRequest as the operator gave it, malformed ones too (each part there is, joined by ' | ')."""
+    return " | ".join(part for part in (msg.task.strip(), " & ".join(msg.literals), msg.text.strip()) if part)
+
+
+def edit_text(request: EditPlan.Request) -> str:
+    """An edit as the operator gave it: the op and each field set (``remove index=2``, ``assign index=1 action=human``)."""
+    fields = {"index": request.index, "to_index": request.to_index, "action": request.action,
+              "revision": request.revision}
+    return " ".join([request.op, *(f"{name}={value}" for name, value in fields.items() if value)])
 
 
 PARAMS = (
@@ -75,6 +87,7 @@ class PlannerNode(Node):
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
+        self.events_pub = self.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
@@ -122,6 +135,7 @@ class PlannerNode(Node):
         if ok:
             self.end_action_goal("superseded by a new goal")
         self.publish()
+        self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(msg), ok, message)
         return ok, message
 
     def semantic_callback(self, msg: SemanticState) -> None:
@@ -160,6 +174,7 @@ class PlannerNode(Node):
             answered = self.edit_answers.get(request.request_id, asked)
         except topics.ReusedRequestIdError as error:  # refused, the plan as it is
             response.success, response.message, response.plan = False, str(error), self.plan_message()
+            self.operator_event(OperatorEvent.KIND_EDIT, edit_text(request), False, response.message, request.request_id)
             return response
         if answered is not None:  # sent again because our answer was lost: it was applied once already
             response.success, response.message, response.plan = answered
@@ -169,6 +184,8 @@ class PlannerNode(Node):
         self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
         self.publish()
         response.plan = self.plan_message()
+        self.operator_event(OperatorEvent.KIND_EDIT, edit_text(request), response.success, response.message,
+                            request.request_id)
         self.edit_answers.remember(request.request_id, (response.success, response.message, response.plan), asked)
         return response
 
@@ -183,6 +200,7 @@ class PlannerNode(Node):
             ok, message = False, (f"no semantic state of world episode {episode} within {self.state_wait_s:g} s "
                                   f"(the latest is of episode {self.last_state.episode if self.last_state else '-'})")
             self.report(False, f"goal refused: {message}")
+            self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(handle.request.goal), False, message)
         else:
             self.min_episode = episode
             ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
@@ -272,6 +290,12 @@ class PlannerNode(Node):
             self.get_logger().warn(text)
 
     # -- outputs -------------------------------------------------------------------------------------
+    def operator_event(self, kind: str, request: str, accepted: bool, answer: str, request_id: str = "") -> None:
+        event = OperatorEvent(kind=kind, request=request, request_id=request_id, accepted=accepted, answer=answer,
+                              revision=self.executive.revision)
+        event.header.stamp = self.get_clock().now().to_msg()
+        self.events_pub.publish(event)
+
     def plan_message(self) -> Plan:
         ex = self.executive
         msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans)

@@ -31,6 +31,7 @@ MOVE_BLOCK = f"{NAMESPACE}/move_block"
 GET_PLAN = f"{NAMESPACE}/get_plan"
 EDIT_PLAN = f"{NAMESPACE}/edit_plan"
 EXECUTE_GOAL = f"{NAMESPACE}/execute_goal"
+OPERATOR_EVENTS = f"{NAMESPACE}/operator_events"
 
 LATCHED = QoSProfile(
     depth=1,
@@ -67,6 +68,10 @@ RECORDING = QoSProfile(
 )
 """A reader that must see every step of an episode (the demo's GIF): a client that falls behind while four
 busy nodes share two cores would keep only the last ten steps of a depth-10 stream reader."""
+
+EVENTS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
+                    durability=DurabilityPolicy.VOLATILE)
+"""Operator events: every one matters to a recorder, none to a reader that joins later."""
 
 CLOCK_QOS = QoSProfile(depth=1, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
                        durability=DurabilityPolicy.VOLATILE)

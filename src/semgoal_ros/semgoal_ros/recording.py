@@ -41,6 +41,7 @@ def recorded_topics() -> list[tuple[str, str, QoSProfile]]:
         (topics.PLAN, "semgoal_msgs/msg/Plan", latched),
         (topics.ARM_COMMAND, "semgoal_msgs/msg/ArmCommand", topics.RECORDING),
         (topics.GOAL, "semgoal_msgs/msg/GoalRequest", topics.RECORDING),
+        (topics.OPERATOR_EVENTS, "semgoal_msgs/msg/OperatorEvent", topics.RECORDING),
         (topics.MARKERS, "visualization_msgs/msg/MarkerArray", latched),
         (topics.PLAN_MARKERS, "visualization_msgs/msg/MarkerArray", latched),
         (topics.CLOCK, "rosgraph_msgs/msg/Clock", topics.RECORDING),

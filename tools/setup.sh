@@ -21,11 +21,17 @@ if [ "${1:-}" = "--check" ]; then  # used by `./semgoal doctor`
   exit 0
 fi
 
-# 1. System packages: OSMesa for offscreen MuJoCo rendering.
-if ! dpkg -s libosmesa6 >/dev/null 2>&1; then
-  step "installing libosmesa6 (offscreen rendering)"
+# 1. System packages: OSMesa for offscreen MuJoCo rendering; Chromium and its driver for the console's
+#    browser test (Debian's, never a test tool's own browser download).
+system_packages=(libosmesa6 chromium chromium-driver)
+missing=()
+for package in "${system_packages[@]}"; do
+  dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  step "installing ${missing[*]} (offscreen rendering, the console's browser test)"
   SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
-  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq libosmesa6 >/dev/null
+  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 
 # 2. The venv, pinned by requirements/lock.txt.

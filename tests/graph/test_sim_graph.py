@@ -43,11 +43,12 @@ class Graph:
         return self.probe.spin_future(client.call_async(request), 30, name)
 
     def step(self, values) -> WorldState:
-        """Send one command for the latest step and wait for the next world state."""
+        """Send one command for the latest step and wait for the next step's world state (not a heartbeat,
+        which repeats the latest step while the world waits)."""
         latest = self.worlds[-1]
-        count = len(self.worlds)
         self.commands.publish(command(latest.step, values))
-        self.probe.spin_until(lambda: len(self.worlds) > count, 10, f"world state after step {latest.step}")
+        self.probe.spin_until(lambda: self.worlds[-1].episode != latest.episode or self.worlds[-1].step > latest.step,
+                              10, f"world state after step {latest.step}")
         return self.worlds[-1]
 
     def true_literals(self) -> set[str]:

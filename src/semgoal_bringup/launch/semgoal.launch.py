@@ -1,9 +1,10 @@
 """The four semgoal nodes, natively: ``ros2 launch semgoal_bringup semgoal.launch.py task:=DC-3 seed:=6``.
 
 Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
-``record`` (an MCAP file), ``foxglove`` (a port for the live view); ``--show-args`` lists them. The nodes and their parameters come from
-``semgoal_bringup.graph``, the definition `./semgoal up` starts from, over the installed parameter file; a
-node that dies is started again, as under `./semgoal up`.
+``record`` (an MCAP file), ``foxglove`` and ``console`` (ports for the live view and the console);
+``--show-args`` lists them. The nodes and their parameters come from ``semgoal_bringup.graph``, the
+definition `./semgoal up` starts from, over the installed parameter file; a node that dies is started
+again, as under `./semgoal up`.
 """
 
 from launch import LaunchDescription
@@ -27,7 +28,7 @@ def launch_nodes(context) -> list[Node]:
     nodes = [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
                   parameters=[str(params_file()), params])
              for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
-                                                            value["record"], value["foxglove"])]
+                                                            value["record"], value["foxglove"], value["console"])]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
     return nodes

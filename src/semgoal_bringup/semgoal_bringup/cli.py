@@ -11,6 +11,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "doctor": ("semgoal_bringup.doctor", "versions, workspace state and DDS settings in force"),
     "demo": ("semgoal_bringup.demo", "start the node graph and solve a task (make demo)"),
     "replay": ("semgoal_bringup.replay", "an episode recorded as MCAP: summary, re-run check (--verify), GIF"),
+    "console": ("semgoal_bringup.console", "the collaboration console: a web page to set goals, edit the plan and do steps"),
     "up": ("semgoal_bringup.up", "start sim, predicates, planner and policy and stay up for an operator"),
     "expert": ("semgoal_sim.cli:expert_main", "run the scripted expert on a task: success rate, steps"),
     "render": ("semgoal_sim.render", "a PNG of a task's start state (offscreen)"),

@@ -63,29 +63,40 @@ def write_video(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps:
 
 def render(scene: str, n_blocks: int, frames: list[Frame]) -> list[np.ndarray]:
     """An RGB image per frame, captioned with its step and sub-goal."""
-    from PIL import Image, ImageDraw
-
-    world = FetchWorld(scene, n_blocks)
-    model, data = world.model, world.data
-    renderer = FrameRenderer(world, width=400, height=300)
-    images = []
+    painter = FramePainter(scene, n_blocks)
     try:
-        for frame in frames:
-            for name, value in frame.joints.items():
-                joint = model.joint(name)
-                data.qpos[joint.qposadr[0]] = value
-            for name, pose in frame.block_poses.items():
-                if name in world.blocks:
-                    world.set_block_pose(name, pose[:3], pose[3:])
-            mujoco.mj_forward(model, data)
-            image = Image.fromarray(renderer.frame())
-            draw = ImageDraw.Draw(image)
-            draw.rectangle((0, 0, image.width, 22), fill=(0, 0, 0))
-            draw.text((6, 5), f"step {frame.step:4d}  {frame.caption}", fill=(255, 255, 255))
-            images.append(np.asarray(image))
+        return [painter.image(frame) for frame in frames]
     finally:
-        renderer.close()
-    return images
+        painter.close()
+
+
+class FramePainter:
+    """One scene's world and offscreen renderer, for many frames (an episode's, the console's live view)."""
+
+    def __init__(self, scene: str, n_blocks: int, width: int = 400, height: int = 300) -> None:
+        self.world = FetchWorld(scene, n_blocks)
+        self.renderer = FrameRenderer(self.world, width=width, height=height)
+
+    def image(self, frame: Frame) -> np.ndarray:
+        """``frame`` rendered, its step and caption on a black band at the top."""
+        from PIL import Image, ImageDraw
+
+        world = self.world
+        model, data = world.model, world.data
+        for name, value in frame.joints.items():
+            data.qpos[model.joint(name).qposadr[0]] = value
+        for name, pose in frame.block_poses.items():
+            if name in world.blocks:
+                world.set_block_pose(name, pose[:3], pose[3:])
+        mujoco.mj_forward(model, data)
+        image = Image.fromarray(self.renderer.frame())
+        draw = ImageDraw.Draw(image)
+        draw.rectangle((0, 0, image.width, 22), fill=(0, 0, 0))
+        draw.text((6, 5), f"step {frame.step:4d}  {frame.caption}", fill=(255, 255, 255))
+        return np.asarray(image)
+
+    def close(self) -> None:
+        self.renderer.close()
 
 
 def _write_mp4(images: list[np.ndarray], path: Path, fps: float) -> None:

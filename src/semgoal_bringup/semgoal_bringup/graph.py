@@ -26,6 +26,7 @@ LAUNCH_ARGUMENTS = (
     ("rviz", "false", "also start RViz with share/semgoal_bringup/rviz/semgoal.rviz"),
     ("record", "", "an MCAP file to record every topic into until the graph stops (empty: no recording)"),
     ("foxglove", "", "a port to serve the Foxglove live view on, at 127.0.0.1 (empty: none)"),
+    ("console", "", "a port to serve the collaboration console on, at 127.0.0.1 (empty: none)"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -49,16 +50,18 @@ def scene_task(scene: str, task_name: str):
 
 
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
-                foxglove: str = "") -> list[tuple[str, str, dict[str, object]]]:
+                foxglove: str = "", console: str = "") -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
-    ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` (a
-    port), the live view last. ValueError for a port that is not a number."""
+    ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` or
+    ``console`` (a port each), the live view and the console last. ValueError for a port that is not a number."""
     params = node_params(task_name, seed, mode, models)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
-    if foxglove and not foxglove.isdigit():
-        raise ValueError(f"foxglove must be a port number, got {foxglove!r}")
-    viewer = [("semgoal_bringup", "foxglove_node", {"port": int(foxglove)})] if foxglove else []
-    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES), *viewer]
+    views = []
+    for name, port, executable in (("foxglove", foxglove, "foxglove_node"), ("console", console, "console_node")):
+        if port and not port.isdigit():
+            raise ValueError(f"{name} must be a port number, got {port!r}")
+        views += [("semgoal_bringup", executable, {"port": int(port)})] if port else []
+    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES), *views]
 
 
 def rviz_config() -> Path:
@@ -100,11 +103,12 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "", record: str = "",
-                foxglove: str = "") -> dict[str, subprocess.Popen]:
+                foxglove: str = "", console: str = "") -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
-    ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``: a port for the live view."""
+    ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``, ``console``: ports for the
+    live view and the console."""
     return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove)
+            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove, console)
             if executable not in skip}
 
 

@@ -1,5 +1,5 @@
 """`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]
-[--record FILE] [--foxglove [PORT]]`: start
+[--record FILE] [--foxglove [PORT]] [--console [PORT]]`: start
 the four nodes and stay up; the options are the launch file's arguments (``ros2 launch semgoal_bringup
 semgoal.launch.py``), read from the same definition.
 
@@ -19,7 +19,8 @@ import time
 from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
 
-FOXGLOVE_PORT = 8765
+DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
+"""The Foxglove app's default port; the console's."""
 MAX_RESTARTS = 5
 RESTART_WINDOW_S = 60.0
 
@@ -27,8 +28,8 @@ RESTART_WINDOW_S = 60.0
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal up", description=__doc__.splitlines()[0])
     for name, default, text in LAUNCH_ARGUMENTS:
-        if name == "foxglove":  # `--foxglove` alone: the Foxglove app's default port
-            parser.add_argument(f"--{name}", default=default, nargs="?", const=str(FOXGLOVE_PORT), help=text)
+        if name in DEFAULT_PORTS:  # `--foxglove` / `--console` alone: the default port
+            parser.add_argument(f"--{name}", default=default, nargs="?", const=str(DEFAULT_PORTS[name]), help=text)
         else:
             parser.add_argument(f"--{name}", default=default, help=text)
     parser.add_argument("--log-level", default="info")
@@ -45,7 +46,7 @@ def main(argv: list[str]) -> int:
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
     try:
-        nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove)
+        nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console)
     except ValueError as error:
         parser.error(str(error))
     processes = {executable: start_node(package, executable, params, args.log_level)

@@ -232,9 +232,14 @@ class Executive:
         return done
 
     def _check_consistency(self) -> None:
+        """The rest of the plan still runs from the observed state; a step whose literals already hold (still
+        settling or being confirmed) is as good as done: the steps after it are checked from here."""
         obs = self.observation
+        first = self.current
+        if first < len(self.steps) and obs.holds(self.steps[first].subgoal.literals()):
+            first += 1
         try:
-            self._simulate([s.subgoal for s in self.steps[self.current:]])
+            self._simulate([s.subgoal for s in self.steps[first:]])
             self.contradicted_since = None
         except PlanningError as error:
             if self.contradicted_since is None:

@@ -85,12 +85,14 @@ def test_rviz_and_a_recorder_join_on_request_and_a_task_of_another_scene_is_refu
         _launched(launch_file, scene="two_blocks", task="DC-3")
 
 
-def test_the_foxglove_live_view_joins_on_request_with_its_port(launch_file) -> None:
-    launched = _launched(launch_file, foxglove="9001")
-    assert (launched[-1].kwargs["executable"], launched[-1].kwargs["parameters"][1]) == ("foxglove_node", {"port": 9001})
-    assert "foxglove_node" not in [n.kwargs["executable"] for n in _launched(launch_file)]
-    with pytest.raises(ValueError, match="port number"):
-        _launched(launch_file, foxglove="eighty")
+def test_the_live_view_and_the_console_join_on_request_with_their_ports(launch_file) -> None:
+    launched = _launched(launch_file, foxglove="9001", console="9002")
+    assert [(n.kwargs["executable"], n.kwargs["parameters"][1]) for n in launched[-2:]] == \
+        [("foxglove_node", {"port": 9001}), ("console_node", {"port": 9002})]
+    assert not {"foxglove_node", "console_node"} & {n.kwargs["executable"] for n in _launched(launch_file)}
+    for name in ("foxglove", "console"):
+        with pytest.raises(ValueError, match=f"{name} must be a port number"):
+            _launched(launch_file, **{name: "eighty"})
 
 
 def test_the_foxglove_layout_shows_what_the_live_view_serves() -> None:

@@ -15,6 +15,7 @@ NODE_MODULES = {
     "planner": "semgoal_planner.planner_node",
     "policy": "semgoal_policy.policy_node",
     "foxglove": "semgoal_bringup.foxglove_node",
+    "console": "semgoal_bringup.console",
 }
 
 

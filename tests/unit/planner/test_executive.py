@@ -273,3 +273,18 @@ def test_a_persons_step_has_a_time_limit_and_a_pick_is_never_theirs() -> None:
         ex.tick(step)
         ex.observe(Observation(blocks, held, step))
     assert ex.status == "failed" and "was a person's and was not done within 40 control steps" in ex.message
+
+
+def test_a_step_still_being_confirmed_is_no_contradiction() -> None:
+    """A pick whose block is held but not yet confirmed (lifting, so not at rest) makes the next step's
+    precondition true and the pick's false: that is the step working, not the world contradicting the plan."""
+    ex = executive(settle_steps=30, contradiction_steps=10)
+    ex.set_goal("in_bin(red)")
+    for step in range(20, 45):  # 25 steps of holding(red), longer than the contradiction debounce
+        ex.observe(observe(["holding(red)"], step))
+        ex.tick(step)
+    assert ex.replans == 0 and ex.contradicted_since is None and ex.current == 0
+    for step in range(45, 60):
+        ex.observe(observe(["holding(red)"], step))
+        ex.tick(step)
+    assert ex.current == 1 and ex.replans == 0

@@ -1,0 +1,182 @@
+"""The collaboration console in a real browser (Debian's Chromium, headless, through Selenium) on real nodes:
+a person sends DC-3, sees an invalid edit refused with the planner's reason, gives step 3 to themselves,
+approves, does that step in the page when it comes (the block goes into the bin), and sees the robot finish.
+The study log holds every action in order. And a console started with a token, as for other machines,
+refuses a request without it, changing nothing."""
+
+import asyncio
+import csv
+import os
+import socket
+import subprocess
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+import websockets
+from selenium import webdriver
+from selenium.common.exceptions import StaleElementReferenceException, TimeoutException
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support import expected_conditions
+from selenium.webdriver.support.ui import WebDriverWait
+from websockets.exceptions import InvalidStatus
+
+from conftest import ROOT, GraphProbe, NodeProcesses
+
+TOKEN = "study-token-7"
+CHROMIUM, CHROMEDRIVER = Path("/usr/bin/chromium"), Path("/usr/bin/chromedriver")
+SCREENSHOTS = ROOT / "docs" / "console"
+"""Where the screenshots go when SEMGOAL_SCREENSHOTS=1 (the README shows them); else the test's folder."""
+
+
+def free_port() -> int:
+    with socket.socket() as probe_socket:
+        probe_socket.bind(("127.0.0.1", 0))
+        return probe_socket.getsockname()[1]
+
+
+def start_console(nodes: NodeProcesses, port: int, log_dir: Path):
+    from semgoal_bringup.graph import node_command
+
+    command = [*node_command("semgoal_bringup", "console_node", {"port": port, "log_dir": str(log_dir)}),
+               "--token", TOKEN]
+    log = open(log_dir.parent / "console.log", "w")  # noqa: SIM115
+    nodes.processes.append(("console_node", subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)))
+    for _ in range(150):
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=1)
+            return
+        except (urllib.error.URLError, ConnectionError):
+            time.sleep(0.2)
+    pytest.fail("the console did not start:\n" + (log_dir.parent / "console.log").read_text()[-3000:])
+
+
+@pytest.fixture
+def browser():
+    if not (CHROMIUM.exists() and CHROMEDRIVER.exists()):
+        pytest.fail("Debian's chromium and chromium-driver are needed (make setup installs them)")
+    options = webdriver.ChromeOptions()
+    options.binary_location = str(CHROMIUM)
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 "--disable-dev-shm-usage", "--window-size=1280,720"):
+        options.add_argument(flag)
+    driver = webdriver.Chrome(service=Service(str(CHROMEDRIVER)), options=options)
+    yield driver
+    driver.quit()
+
+
+def start_desk(nodes: NodeProcesses) -> None:
+    nodes.start("semgoal_sim", "sim_node", params={"scene": "desk_cleanup", "task": "DC-3", "seed": 6, "mode": "realtime"})
+    nodes.start("semgoal_sim", "predicate_node")
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup", "require_approval": True})
+    nodes.start("semgoal_policy", "policy_node", params={"scene": "desk_cleanup", "mode": "realtime"})
+
+
+def test_a_person_shares_dc3_with_the_robot_in_the_page(nodes: NodeProcesses, browser, tmp_path: Path) -> None:
+    port = free_port()
+    start_desk(nodes)
+    start_console(nodes, port, tmp_path / "logs")
+    shots = SCREENSHOTS if os.environ.get("SEMGOAL_SCREENSHOTS") == "1" else tmp_path
+    shots.mkdir(parents=True, exist_ok=True)
+    wait = WebDriverWait(browser, 60)
+    browser.get(f"http://127.0.0.1:{port}/?token={TOKEN}")
+    wait.until(expected_conditions.text_to_be_present_in_element((By.ID, "status"), "desk_cleanup DC-3"))
+    wait.until(lambda b: b.find_element(By.ID, "holds").text == "nothing holds")  # DC-3 seed 6: blocks apart
+
+    browser.find_element(By.ID, "goal-text").send_keys("DC-3")
+    browser.find_element(By.ID, "goal-preview").click()
+    wait.until(expected_conditions.text_to_be_present_in_element((By.ID, "goal-literals"), "in_bin(red)"))
+    browser.find_element(By.ID, "goal-send").click()
+    wait.until(lambda b: len(b.find_elements(By.CSS_SELECTOR, "#plan-steps li")) == 6 and "awaiting_approval" in
+               b.find_element(By.ID, "status").text)
+    steps = browser.execute_script("return [...document.querySelectorAll('#plan-steps .step-text')].map(e => e.textContent)")
+    assert steps[2].startswith("pick(") and steps[3].startswith("put_in_bin("), steps
+
+    def click(selector: str) -> None:
+        """Click what ``selector`` finds now (the page redraws a part when its state changes)."""
+        for _ in range(20):
+            try:
+                browser.find_element(By.CSS_SELECTOR, selector).click()
+                return
+            except StaleElementReferenceException:
+                time.sleep(0.1)
+        pytest.fail(f"{selector} kept being redrawn")
+
+    def step_button(index: int, kind: str) -> str:
+        return f"#plan-steps li[data-index='{index}'] button.{kind}"
+
+    click(step_button(0, "assign"))  # a pick is the robot's hand's: refused with the planner's reason
+    wait.until(expected_conditions.text_to_be_present_in_element((By.ID, "message"), "a person cannot do"))
+    assert "refused" in browser.find_element(By.ID, "message").get_attribute("class")
+    browser.save_screenshot(str(shots / "refused-edit.png"))
+
+    click(step_button(3, "assign"))
+    wait.until(lambda b: b.find_element(By.CSS_SELECTOR, "#plan-steps li[data-index='3'] .who").text == "person")
+    browser.find_element(By.ID, "approve").click()
+    wait = WebDriverWait(browser, 120)
+    try:
+        wait.until(expected_conditions.visibility_of_element_located((By.ID, "human")))
+    except TimeoutException:
+        pytest.fail("the person's step never came; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    block = steps[3][len("put_in_bin("):].split(")")[0]
+    assert browser.find_element(By.ID, "human-action").text == f"put_in_bin({block})"
+    chosen = browser.find_element(By.CSS_SELECTOR, f"#human-blocks button[data-block='{block}']")
+    assert chosen.get_attribute("aria-pressed") == "true"  # the step's block is chosen for the person
+    time.sleep(1.0)  # a camera frame of the robot waiting, holding the block
+    browser.save_screenshot(str(shots / "human-step.png"))
+    click("#human-places button[data-place='bin']")
+    wait.until(lambda b: f"{block} is in the bin" in b.find_element(By.ID, "holds").text)
+    wait.until(lambda b: "plan succeeded" in b.find_element(By.ID, "status").text)
+    holds = browser.find_element(By.ID, "holds").text
+    assert all(f"{b} is in the bin" in holds for b in ("red", "green", "blue")), holds
+    time.sleep(1.0)
+    browser.save_screenshot(str(shots / "succeeded.png"))
+
+    log = next((tmp_path / "logs").glob("console-*.csv"))
+    rows = list(csv.DictReader(log.open()))
+    person = [(r["event"], r["detail"], r["outcome"].split(":")[0]) for r in rows if r["who"] == "person"]
+    kinds = [(event, outcome) for event, _, outcome in person]
+    assert kinds == [("parse", "ok"), ("goal", "ok"), ("edit", "refused"), ("edit", "ok"), ("edit", "ok"),
+                     ("move", "ok")], person
+    assert '"edit": "assign"' in person[3][1] and '"index": 3' in person[3][1] and '"place": "bin"' in person[5][1]
+    plans = [r for r in rows if r["who"] == "planner"]
+    statuses = [r["outcome"] for r in plans]
+    assert [s for i, s in enumerate(statuses) if i == 0 or s != statuses[i - 1]] == \
+        ["empty", "awaiting_approval", "executing", "succeeded"], statuses
+    assert any("(human, active)" in r["detail"] for r in plans)
+    times = [float(r["wall_time"]) for r in rows]
+    assert times == sorted(times) and float(rows[-1]["sim_time"]) > float(rows[1]["sim_time"]) > 0
+
+
+def test_a_request_without_the_token_is_refused_and_changes_nothing(nodes: NodeProcesses, probe: GraphProbe,
+                                                                    tmp_path: Path) -> None:
+    from semgoal_msgs.srv import GetPlan
+    from semgoal_ros import interfaces as topics
+
+    port = free_port()
+    start_desk(nodes)
+    start_console(nodes, port, tmp_path / "logs")
+    for path in ("/", "/?token=wrong", "/camera.jpg", f"/camera.jpg?token={TOKEN}x"):
+        with pytest.raises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}{path}", timeout=5)
+        assert refused.value.code == 403, path
+
+    async def try_without_token() -> None:
+        for query in ("", "?token=wrong"):
+            with pytest.raises(InvalidStatus):
+                async with websockets.connect(f"ws://127.0.0.1:{port}/ws{query}") as socket_connection:
+                    await socket_connection.send('{"id": 1, "op": "goal", "text": "DC-3"}')
+                    await socket_connection.recv()
+    asyncio.run(try_without_token())
+
+    client = probe.node.create_client(GetPlan, topics.GET_PLAN)
+    probe.spin_until(client.service_is_ready, 30, "the planner")
+    time.sleep(1.0)  # a goal, had one got through, would be planned by now
+    plan = probe.spin_future(client.call_async(GetPlan.Request()), 10, "GetPlan").plan
+    assert plan.status == "empty" and not plan.steps
+    rows = list(csv.DictReader(next((tmp_path / "logs").glob("console-*.csv")).open()))
+    assert not [r for r in rows if r["who"] == "person"]  # nothing of the refused requests reached the graph

@@ -77,6 +77,13 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
         assert ran.returncode == 0 and "recorded" in ran.stdout, ran.stdout + ran.stderr
         refused = semgoal("plan", "remove", "99")  # an edit the planner refuses: on record with its reason
         assert refused.returncode != 0, refused.stdout
+        from semgoal_ros.client import GraphClient
+
+        hand = GraphClient("semgoal_test_hand", watch=False)  # a person's move (MoveBlock), as the console makes
+        try:
+            assert hand.move_block("red", 1.2, 0.6, 0.425)[0]
+        finally:
+            hand.close()
     finally:
         up.send_signal(signal.SIGINT)
         output = up.communicate(timeout=30)[0]
@@ -86,3 +93,4 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
         assert f"operator goal '{TASK}': accepted" in summary.stdout, summary.stdout
     edit = [line for line in summary.stdout.splitlines() if line.startswith("operator edit 'remove index=99'")]
     assert edit and "refused, no plan to edit" in edit[0], summary.stdout
+    assert "operator move 'red to (1.200, 0.600, 0.425)': accepted" in summary.stdout, summary.stdout

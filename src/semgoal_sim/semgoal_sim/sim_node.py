@@ -20,7 +20,7 @@ from visualization_msgs.msg import MarkerArray
 from semgoal_core.names import Mode
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import SCENES
-from semgoal_msgs.msg import ArmCommand, WorldState
+from semgoal_msgs.msg import ArmCommand, OperatorEvent, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
@@ -70,6 +70,7 @@ class SimNode(Node):
         self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
         self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
         self.clock_pub = self.create_publisher(Clock, topics.CLOCK, topics.CLOCK_QOS)
+        self.events_pub = self.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS)
         self.renderer = None
         steady = TimerClock(clock_type=ClockType.STEADY_TIME)  # the sim's own timers never wait on its /clock
         if values["render"]:
@@ -172,15 +173,19 @@ class SimNode(Node):
         self.core.step(self.held_command)
         self.publish_state()
 
-    def report(self, success: bool, message: str) -> None:
+    def report(self, kind: str, request: str, success: bool, message: str) -> None:
+        """Log the answer to an operator's request and put it on the operator events (a recording keeps it)."""
         if success:
             self.get_logger().info(message)
         else:
             self.get_logger().warning(message)
+        event = OperatorEvent(kind=kind, request=request, accepted=success, answer=message)
+        event.header.stamp = conversions.stamp(self.core.clock_s)
+        self.events_pub.publish(event)
 
     def reset_callback(self, request: ResetWorld.Request, response: ResetWorld.Response) -> ResetWorld.Response:
         response.success, response.message = self.core.reset(request.task, request.seed)
-        self.report(response.success, response.message)
+        self.report(OperatorEvent.KIND_RESET, f"{request.task} seed {request.seed}", response.success, response.message)
         self.held_command = np.zeros(4)
         self.command_at = time.monotonic()
         """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""
@@ -191,7 +196,8 @@ class SimNode(Node):
     def move_block_callback(self, request: MoveBlock.Request, response: MoveBlock.Response) -> MoveBlock.Response:
         p = request.position
         response.success, response.message = self.core.move_block(request.block, np.array([p.x, p.y, p.z]))
-        self.report(response.success, response.message)
+        self.report(OperatorEvent.KIND_MOVE, f"{request.block} to ({p.x:.3f}, {p.y:.3f}, {p.z:.3f})",
+                    response.success, response.message)
         response.world = self.publish_state()
         return response
 

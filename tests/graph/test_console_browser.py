@@ -7,7 +7,6 @@ refuses a request without it, changing nothing."""
 import asyncio
 import csv
 import os
-import socket
 import subprocess
 import time
 import urllib.error
@@ -24,18 +23,12 @@ from selenium.webdriver.support import expected_conditions
 from selenium.webdriver.support.ui import WebDriverWait
 from websockets.exceptions import InvalidStatus
 
-from conftest import ROOT, GraphProbe, NodeProcesses
+from conftest import ROOT, GraphProbe, NodeProcesses, free_port
 
 TOKEN = "study-token-7"
 CHROMIUM, CHROMEDRIVER = Path("/usr/bin/chromium"), Path("/usr/bin/chromedriver")
 SCREENSHOTS = ROOT / "docs" / "console"
 """Where the screenshots go when SEMGOAL_SCREENSHOTS=1 (the README shows them); else the test's folder."""
-
-
-def free_port() -> int:
-    with socket.socket() as probe_socket:
-        probe_socket.bind(("127.0.0.1", 0))
-        return probe_socket.getsockname()[1]
 
 
 def start_console(nodes: NodeProcesses, port: int, log_dir: Path):

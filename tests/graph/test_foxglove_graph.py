@@ -5,25 +5,18 @@ reason, a malformed request failed with the field named)."""
 
 import asyncio
 import json
-import socket
 import struct
 
 import pytest
 import websockets
 
-from conftest import GraphProbe, NodeProcesses
+from conftest import GraphProbe, NodeProcesses, free_port
 from semgoal_msgs.msg import GoalRequest, Plan
 from semgoal_ros import interfaces as topics
 
 SUBPROTOCOL = "foxglove.sdk.v1"
 MESSAGE_DATA, SERVICE_CALL_REQUEST, SERVICE_CALL_RESPONSE, FETCH_ASSET_RESPONSE = 1, 2, 3, 4
 """Binary opcodes of the Foxglove WebSocket protocol (first byte of a binary frame)."""
-
-
-def free_port() -> int:
-    with socket.socket() as probe_socket:
-        probe_socket.bind(("127.0.0.1", 0))
-        return probe_socket.getsockname()[1]
 
 
 class FoxgloveClient:

@@ -16,6 +16,9 @@ from semgoal_core.tasks import TASK_STEP_BUDGET
 ROOT = Path(__file__).parents[2]
 VENV = Path(os.environ["VIRTUAL_ENV"])
 TASK, SEED = "DC-3", 6
+pytestmark = pytest.mark.timeout(1200)
+"""A whole plain build (the messages' C and C++ type support included) takes minutes on two busy cores: the
+suite's 300 s per test was not enough beside two training runs."""
 PATH_VARIABLES = ("PATH", "PYTHONPATH", "AMENT_PREFIX_PATH", "CMAKE_PREFIX_PATH", "COLCON_PREFIX_PATH", "LD_LIBRARY_PATH")
 
 

@@ -27,6 +27,8 @@ import time
 from pathlib import Path
 
 from semgoal_bringup.console_core import PLACES, StudyLog, place_position, sentences
+from semgoal_core.vocabulary import SCENES, Literal
+from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
 from semgoal_ros.package_data import share_path
 from semgoal_ros.parameters import Param
@@ -45,6 +47,8 @@ class Console:
     """The graph seen and driven for the page: the latest states, the requests, the study log."""
 
     def __init__(self) -> None:
+        from sensor_msgs.msg import JointState
+
         from semgoal_msgs.msg import OperatorEvent, Plan
         from semgoal_ros import interfaces as topics
         from semgoal_ros.client import GraphClient
@@ -58,8 +62,6 @@ class Console:
         self.client.node.create_subscription(Plan, topics.PLAN, self._on_plan, topics.LATCHED)
         self.client.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self._on_event, topics.EVENTS)
         self.client.world_listeners.append(lambda _: self._changed())
-        from sensor_msgs.msg import JointState
-
         self.client.node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.STREAM)
         self.log: StudyLog | None = None
         self._painter = None
@@ -167,13 +169,9 @@ class Console:
         return answer
 
     def _literals(self, text: str) -> list[str]:
-        from semgoal_planner.goals import parse_goal
-
         world, semantic = self.client.world, self.client.semantic
         if world is None:
             raise ValueError("no world yet: is the sim running?")
-        from semgoal_core.vocabulary import Literal
-
         state = [Literal(p.name, tuple(p.args), bool(p.value)) for p in semantic.predicates] if semantic else []
         return [str(literal) for literal in parse_goal(text, world.scene, tuple(b.name for b in world.blocks), state)]
 
@@ -208,8 +206,6 @@ class Console:
         if world is None:
             return {"ok": False, "message": "no world yet: is the sim running?"}
         blocks = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z) for b in world.blocks}
-        from semgoal_core.vocabulary import SCENES
-
         place = str(request["place"])
         if place not in PLACES:
             return {"ok": False, "message": f"unknown place {place!r}: one of {', '.join(PLACES)}"}

@@ -6,6 +6,9 @@ import subprocess
 
 from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
+from semgoal_core import names
+from semgoal_msgs.msg import Plan
+from semgoal_ros import interfaces as topics
 
 TASK, SEED = "MC-2", 3_000_000
 
@@ -54,6 +57,22 @@ def test_operator_commands_drive_the_graph(nodes: NodeProcesses, probe: GraphPro
 
     refused = semgoal("plan", "remove", "0")
     assert refused.returncode == 1 and refused.stdout.startswith("refused: "), refused.stdout
+
+
+def test_a_goal_on_the_topic_before_the_world_is_up_waits_for_it(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    """`ros2 topic pub` of a goal as the nodes start: planned once the first semantic state comes, not refused."""
+    params = node_params(TASK, SEED, "lockstep")
+    params["planner_node"]["state_wait_s"] = 60.0
+    nodes.start("semgoal_planner", "planner_node", params=params["planner_node"])
+    plans: list[Plan] = []
+    probe.node.create_subscription(Plan, topics.PLAN, plans.append, topics.LATCHED)
+    sent = semgoal("goal", TASK)
+    assert sent.returncode == 0 and "published goal" in sent.stdout, sent.stdout + sent.stderr
+    assert probe.poll(lambda: "waits up to 60 s for a semantic state" in nodes.logs(), timeout=60), nodes.logs()
+    for exe in ("sim_node", "predicate_node"):
+        nodes.start("semgoal_sim", exe, params=params[exe])
+    probe.spin_until(lambda: plans and plans[-1].steps, 60, "the plan of the early goal")
+    assert plans[-1].status == names.PlanStatus.EXECUTING, nodes.logs()
 
 
 def test_max_steps_needs_the_action_and_a_count() -> None:

@@ -94,3 +94,21 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
     edit = [line for line in summary.stdout.splitlines() if line.startswith("operator edit 'remove index=99'")]
     assert edit and "refused, no plan to edit" in edit[0], summary.stdout
     assert "operator move 'red to (1.200, 0.600, 0.425)': accepted" in summary.stdout, summary.stdout
+
+
+def test_a_session_recorder_started_late_still_has_the_first_operator_event(nodes, probe, tmp_path) -> None:
+    """Discovery may match the session recorder to the planner after the operator's first request: the events
+    the planner keeps (QoS ``EVENTS``) reach it all the same."""
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup"})
+    refused = semgoal("plan", "remove", "3", timeout=120)  # an event: a refused edit, before any recorder runs
+    assert refused.returncode == 1, refused.stdout + refused.stderr
+    record = tmp_path / "session.mcap"
+    recorder = nodes.start("semgoal_bringup", "record_node", params={"path": str(record)})
+    assert probe.poll(lambda: "recording to" in nodes.logs(), timeout=60), nodes.logs()
+    probe.poll(lambda: False, 3)  # time for the recorder to match the planner and take its kept events
+    assert nodes.stop(recorder) == 0, nodes.logs()
+    with record.open("rb") as stream:
+        events = [message for _, channel, _, message
+                  in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()
+                  if channel.topic == topics.OPERATOR_EVENTS]
+    assert [(e.kind, e.request, e.accepted) for e in events] == [("edit", "remove index=3", False)], events

@@ -60,7 +60,7 @@ class Console:
         self.version = 0
         """Counts changes of what the page shows; the state goes out when it moves."""
         self.client.node.create_subscription(Plan, topics.PLAN, self._on_plan, topics.LATCHED)
-        self.client.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self._on_event, topics.EVENTS)
+        self.client.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self._on_event, topics.EVENTS_LIVE)
         self.client.world_listeners.append(lambda _: self._changed())
         self.client.node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.STREAM)
         self.log: StudyLog | None = None

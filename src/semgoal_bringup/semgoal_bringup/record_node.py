@@ -14,7 +14,7 @@ class RecordNode(Node):
     def __init__(self) -> None:
         super().__init__("recorder")
         self.path = declare(self, PARAMS)["path"]
-        self.recorder = Recorder(self, self.path)
+        self.recorder = Recorder(self, self.path, session=True)
         self.get_logger().info(f"recording to {self.path}")
 
     def destroy_node(self) -> None:

@@ -121,6 +121,17 @@ class PlannerNode(Node):
 
     # -- inputs --------------------------------------------------------------------------------------
     def goal_callback(self, msg: GoalRequest) -> None:
+        """A goal on the topic (``ros2 topic pub``), perhaps sent as the nodes start: like an action goal, it
+        waits up to ``state_wait_s`` for a first semantic state rather than being refused for want of one.
+        The wait is a task of its own: awaited here, it would hold the callback group the states come in on."""
+        if self.stateable(msg) and not self.has_state(0):
+            self.executor.create_task(self.start_goal_on_state(msg))
+        else:
+            self.min_episode = 0
+            self.start_goal(msg)
+
+    async def start_goal_on_state(self, msg: GoalRequest) -> None:
+        await self.state_of(0, self.state_wait_s)
         self.min_episode = 0
         self.start_goal(msg)
 

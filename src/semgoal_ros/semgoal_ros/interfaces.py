@@ -70,8 +70,14 @@ RECORDING = QoSProfile(
 busy nodes share two cores would keep only the last ten steps of a depth-10 stream reader."""
 
 EVENTS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
-                    durability=DurabilityPolicy.VOLATILE)
-"""Operator events: every one matters to a recorder, none to a reader that joins later."""
+                    durability=DurabilityPolicy.TRANSIENT_LOCAL)
+"""Operator events as published, the last hundred kept: a session recorder started with the graph may match the
+planner only after the operator's first goal (discovery takes seconds on a busy machine), and must still
+have it."""
+
+EVENTS_LIVE = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.VOLATILE)
+"""Operator events from the moment a reader joins: the console's study log, an episode's recording."""
 
 CLOCK_QOS = QoSProfile(depth=1, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
                        durability=DurabilityPolicy.VOLATILE)

@@ -30,8 +30,10 @@ ALWAYS_PUBLISHED = (topics.WORLD_STATE, topics.JOINT_STATES, topics.SEMANTIC_STA
 """Topics the four nodes publish in every episode (the camera, goals and markers come and go)."""
 
 
-def recorded_topics() -> list[tuple[str, str, QoSProfile]]:
-    """(topic, type name, QoS of the recording reader) of everything the graph says."""
+def recorded_topics(session: bool = False) -> list[tuple[str, str, QoSProfile]]:
+    """(topic, type name, QoS of the recording reader) of everything the graph says; a ``session`` recording
+    also takes the operator events the graph published before it matched (:data:`~semgoal_ros.interfaces.EVENTS`),
+    an episode's only those from its start."""
     latched = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL)
     return [
         (topics.WORLD_STATE, "semgoal_msgs/msg/WorldState", topics.RECORDING),
@@ -41,7 +43,7 @@ def recorded_topics() -> list[tuple[str, str, QoSProfile]]:
         (topics.PLAN, "semgoal_msgs/msg/Plan", latched),
         (topics.ARM_COMMAND, "semgoal_msgs/msg/ArmCommand", topics.RECORDING),
         (topics.GOAL, "semgoal_msgs/msg/GoalRequest", topics.RECORDING),
-        (topics.OPERATOR_EVENTS, "semgoal_msgs/msg/OperatorEvent", topics.RECORDING),
+        (topics.OPERATOR_EVENTS, "semgoal_msgs/msg/OperatorEvent", topics.EVENTS if session else topics.EVENTS_LIVE),
         (topics.MARKERS, "visualization_msgs/msg/MarkerArray", latched),
         (topics.PLAN_MARKERS, "visualization_msgs/msg/MarkerArray", latched),
         (topics.CLOCK, "rosgraph_msgs/msg/Clock", topics.RECORDING),
@@ -94,9 +96,10 @@ def _used_types(text: str, package: str) -> list[str]:
 
 
 class Recorder:
-    """Writes every message of :func:`recorded_topics` that ``node`` receives to ``path`` until :meth:`close`."""
+    """Writes every message of :func:`recorded_topics` that ``node`` receives to ``path`` until :meth:`close`
+    (``session``: the whole run of a graph, as ``record_node`` writes it)."""
 
-    def __init__(self, node, path: Path | str) -> None:
+    def __init__(self, node, path: Path | str, session: bool = False) -> None:
         self.path = Path(path)
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self.file = self.path.open("wb")
@@ -105,7 +108,7 @@ class Recorder:
         self.counts: dict[str, int] = {}
         self.subscriptions = []
         schemas: dict[str, int] = {}
-        for topic, type_name, qos in recorded_topics():
+        for topic, type_name, qos in recorded_topics(session):
             if type_name not in schemas:
                 schemas[type_name] = self.writer.register_schema(type_name, "ros2msg", message_definition(type_name).encode())
             channel = self.writer.register_channel(topic, "cdr", schemas[type_name])

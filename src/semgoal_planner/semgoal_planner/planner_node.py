@@ -9,6 +9,8 @@ policy in lockstep follows the decision on each step at the next (one step of de
 
 from __future__ import annotations
 
+import time
+
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
 from rclpy.node import Node
@@ -17,7 +19,7 @@ from visualization_msgs.msg import MarkerArray
 
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.names import Assignee, PlanStatus, StepStatus
-from semgoal_core.vocabulary import SCENES, Literal
+from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, VocabularyError
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
@@ -158,6 +160,11 @@ class PlannerNode(Node):
                                    f"episode {self.min_episode})", throttle_duration_sec=5.0)
             return
         literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
+        try:
+            LAYOUTS[msg.scene].check_state(tuple(msg.objects), literals, (*msg.fallen, *msg.moving))
+        except VocabularyError as error:
+            self.get_logger().warn(f"ignored a semantic state: {error}", throttle_duration_sec=5.0)
+            return
         self.last_state = msg
         for waiter in self.state_waiters:
             if not waiter.done():
@@ -255,14 +262,13 @@ class PlannerNode(Node):
             return
         self.get_logger().info(f"goal waits up to {timeout_s:g} s for a semantic state"
                                + (f" of world episode {episode}" if episode else ""))
-        while not self.has_state(episode):
+        deadline = time.monotonic() + timeout_s  # states of older episodes come meanwhile: the wait is one
+        while not self.has_state(episode) and (left := deadline - time.monotonic()) > 0:
             seen = Future(executor=self.executor)
             self.state_waiters.append(seen)
-            timer = self.create_timer(timeout_s, lambda seen=seen: seen.done() or seen.set_result(False))
-            arrived = await seen
+            timer = self.create_timer(left, lambda seen=seen: seen.done() or seen.set_result(False))
+            await seen
             self.destroy_timer(timer)
-            if not arrived:
-                return
 
     def cancel_callback(self, handle: ServerGoalHandle) -> CancelResponse:
         if self.action_goal is not None and self.action_goal[0] is handle:

@@ -143,3 +143,18 @@ def test_subgoal_literals_and_parsing() -> None:
         parse_subgoal("put_on(red)")
     with pytest.raises(VocabularyError, match="appears twice"):
         parse_subgoal("put_near(red,red)")
+
+
+def test_a_semantic_state_must_fit_its_scene() -> None:
+    layout = LAYOUTS["desk_cleanup"]
+    layout.check_state(("red", "green"), [Literal("in_bin", ("red",)), Literal("holding", ("green",), False)], ["green"])
+    for objects, literals, named, says in (
+        (("red", "red"), [], [], "distinct blocks"),
+        (("red",), [], [], "2 or 3 or 4"),
+        (("red", "purple"), [], [], "distinct blocks"),
+        (("red", "green"), [Literal("in_bin", ("blue",))], [], "unknown object 'blue'"),
+        (("red", "green"), [Literal("above", ("red", "green"))], [], "not used in scene"),
+        (("red", "green"), [], ["blue"], "'blue' is named"),
+    ):
+        with pytest.raises(VocabularyError, match=says):
+            layout.check_state(objects, literals, named)

@@ -239,14 +239,15 @@ class SemanticLayout:
 
     def check_state(self, objects: Sequence[str], literals: Iterable[Literal], named: Iterable[str] = ()) -> None:
         """Raise :class:`VocabularyError` unless a semantic state could be one of this scene's: its objects
-        distinct blocks of the scene, as many as it is built with, every literal valid on them and every block
-        it names (fallen, moving) among them. A state that fails is not planned on."""
+        distinct blocks of the scene, as many as it is built with, every literal valid in the scene (the vector
+        covers absent blocks too, as false), every one that holds and every block named (fallen, moving) among
+        the objects. A state that fails is not planned on."""
         counts = self.scene.block_counts or (len(self.objects),)
         if len(set(objects)) != len(objects) or not set(objects) <= set(self.objects) or len(objects) not in counts:
             raise VocabularyError(f"objects [{', '.join(objects)}]: scene {self.scene.name!r} has "
                                   f"{' or '.join(map(str, counts))} distinct blocks of {', '.join(self.objects)}")
         for literal in literals:
-            self.validate(literal, objects)
+            self.validate(literal, objects if literal.value else None)
         for name in named:
             if name not in objects:
                 raise VocabularyError(f"block {name!r} is named but not among the objects [{', '.join(objects)}]")

@@ -147,7 +147,7 @@ def test_subgoal_literals_and_parsing() -> None:
 
 def test_a_semantic_state_must_fit_its_scene() -> None:
     layout = LAYOUTS["desk_cleanup"]
-    layout.check_state(("red", "green"), [Literal("in_bin", ("red",)), Literal("holding", ("green",), False)], ["green"])
+    layout.check_state(("red", "green"), [Literal("in_bin", ("red",)), Literal("holding", ("blue",), False)], ["green"])
     for objects, literals, named, says in (
         (("red", "red"), [], [], "distinct blocks"),
         (("red",), [], [], "2 or 3 or 4"),

@@ -188,3 +188,27 @@ def test_ctrl_c_on_goal_wait_cancels_the_goal(nodes: NodeProcesses, probe: Graph
     _, err = waiting.communicate(timeout=30)
     assert waiting.returncode == 130 and "the goal was cancelled" in err, err
     probe.spin_until(lambda: op.plans[-1].status == "failed", 10, "goal cancelled")
+
+
+def test_a_world_gone_silent_or_started_again_fails_the_goal_with_the_reason(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    nodes.start("semgoal_planner", "planner_node", params={"scene": "desk_cleanup", "world_silence_s": 1.5})
+    op = Operator(probe)
+    action = ActionClient(probe.node, ExecuteGoal, topics.EXECUTE_GOAL)
+    probe.spin_until(lambda: op.states.get_subscription_count() > 0 and action.server_is_ready(), 30, "the planner")
+
+    def state_at(step: int, sim_time: float) -> SemanticState:
+        msg = semantic_state(set(), step)
+        msg.header.stamp.sec, msg.header.stamp.nanosec = int(sim_time), int(sim_time % 1 * 1e9)
+        return msg
+
+    op.states.publish(state_at(100, 4.0))
+    handle = probe.send_goal(action, ExecuteGoal.Goal(goal=GoalRequest(task="DC-3")))
+    op.states.publish(state_at(101, 4.04))
+    op.states.publish(state_at(1, 0.04))  # a new sim's clock: back at the start
+    result = probe.spin_future(handle.get_result_async(), 10, "the goal's end").result
+    assert not result.success and "the world started again (sim time 0.04 s after 4.04 s" in result.message, result.message
+
+    handle = probe.send_goal(action, ExecuteGoal.Goal(goal=GoalRequest(task="DC-3")))
+    op.states.publish(state_at(2, 0.08))  # then nothing: the sim (or the predicates) gone
+    result = probe.spin_future(handle.get_result_async(), 10, "the goal's end").result
+    assert not result.success and "no semantic state for 1." in result.message, result.message

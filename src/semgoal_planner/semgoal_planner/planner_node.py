@@ -13,12 +13,13 @@ import time
 
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
+from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
 from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
 from semgoal_core.layout import CONTROL_DT
-from semgoal_core.names import Assignee, PlanStatus, StepStatus
+from semgoal_core.names import UNDER_WAY, Assignee, PlanStatus, StepStatus
 from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, VocabularyError
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal
@@ -34,6 +35,7 @@ from semgoal_ros.messages import format_plan
 from semgoal_ros.parameters import Param, apply_changes, declare
 
 FINAL = (PlanStatus.SUCCEEDED, PlanStatus.FAILED)
+SILENCE_CHECK_S = 0.25
 
 
 def goal_text(msg: GoalRequest) -> str:
@@ -69,9 +71,16 @@ PARAMS = (
     Param("require_approval", False, "a new plan waits for the operator's approve", runtime=True),
     Param("state_wait_s", 5.0, "ExecuteGoal before any semantic state: wait this long for one",
           low=0.0, high=3600.0, runtime=True),
+    Param("world_silence_s", 3.0, "a goal under way fails once no semantic state has come for this long (the sim "
+          "or the predicates gone; the lockstep sim's heartbeat keeps a still world talking); 0: wait for ever",
+          low=0.0, high=3600.0, runtime=True),
 )
 EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval")
 """Parameters that are the executive's settings of the same name."""
+
+
+def sim_time(msg: SemanticState) -> float:
+    return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
 
 
 class PlannerNode(Node):
@@ -81,11 +90,15 @@ class PlannerNode(Node):
         self.executive = Executive(SemanticPlanner(values["scene"], values["search"]),
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
         self.state_wait_s = float(values["state_wait_s"])
+        self.world_silence_s = float(values["world_silence_s"])
         apply_changes(self, PARAMS, self.apply_parameter)
         self.state_waiters: list[Future] = []
+        """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
         self.min_episode = 0
         """The world episode the current ExecuteGoal asked for: older semantic states are ignored."""
-        """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
+        self.heard_at = time.monotonic()
+        """When the last semantic state came (or the goal started): the world's silence is counted from it."""
+        self.create_timer(SILENCE_CHECK_S, self.check_silence, clock=Clock(clock_type=ClockType.STEADY_TIME))
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
@@ -120,6 +133,8 @@ class PlannerNode(Node):
             setattr(self.executive, name, value)
         elif name == "state_wait_s":
             self.state_wait_s = float(value)
+        elif name == "world_silence_s":
+            self.world_silence_s = float(value)
 
     # -- inputs --------------------------------------------------------------------------------------
     def goal_callback(self, msg: GoalRequest) -> None:
@@ -146,6 +161,7 @@ class PlannerNode(Node):
         self.counters["goals planned" if ok else "goals refused"] += 1
         self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)} text={msg.text!r}: {message}")
         if ok:
+            self.heard_at = time.monotonic()  # a goal planned on a state from long ago gets its own time to hear one
             self.end_action_goal("superseded by a new goal")
         self.publish()
         self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(msg), ok, message)
@@ -155,6 +171,8 @@ class PlannerNode(Node):
         if msg.scene != self.executive.planner.scene:
             self.get_logger().warn(f"ignored a semantic state of scene {msg.scene!r}", throttle_duration_sec=5.0)
             return
+        if self.last_state is not None and sim_time(msg) < sim_time(self.last_state):  # one sim's clock never goes back
+            self.world_restarted(msg)
         if msg.episode < self.min_episode:  # a state of the world before the reset the goal was sent for
             self.get_logger().warn(f"ignored a semantic state of episode {msg.episode} (the goal is for "
                                    f"episode {self.min_episode})", throttle_duration_sec=5.0)
@@ -165,7 +183,7 @@ class PlannerNode(Node):
         except VocabularyError as error:
             self.get_logger().warn(f"ignored a semantic state: {error}", throttle_duration_sec=5.0)
             return
-        self.last_state = msg
+        self.last_state, self.heard_at = msg, time.monotonic()
         for waiter in self.state_waiters:
             if not waiter.done():
                 waiter.set_result(True)
@@ -177,6 +195,26 @@ class PlannerNode(Node):
                                                tuple(msg.moving)))
         self.counters["re-plans"] += max(0, self.executive.replans - replans)
         self.publish(decided=True)
+
+    def check_silence(self) -> None:
+        silent = time.monotonic() - self.heard_at
+        if self.world_silence_s <= 0 or self.executive.status not in UNDER_WAY or silent <= self.world_silence_s:
+            return
+        reason = (f"no semantic state for {silent:.1f} s (are sim_node and predicate_node running?): the goal cannot "
+                  "be followed; send it again once the world is back")
+        self.get_logger().warn(reason)
+        self.executive.cancel(reason)
+        self.publish()
+
+    def world_restarted(self, msg: SemanticState) -> None:
+        """A world whose clock went back (a sim started again: its clock and episodes count from the start): the
+        goal under way was for the world before, so it fails with the reason rather than waiting for ever."""
+        reason = (f"the world started again (sim time {sim_time(msg):.2f} s after {sim_time(self.last_state):.2f} s: "
+                  "was sim_node restarted?); the goal was for the world before: send it again")
+        self.get_logger().warn(reason)
+        self.min_episode = 0
+        self.executive.cancel(reason)
+        self.publish()
 
     def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
         response.plan = self.plan_message()

@@ -32,6 +32,11 @@ SERVICE_WAIT_S = 10.0
 POLL_S = 0.005
 RECORDER_MATCH_S = 10.0
 RECORDER_SETTLE_S = 0.5
+PLANNER_SILENCE_S = 3.0
+"""A planner that leaves GetPlan unanswered this long while a goal runs is taken for gone (killed, hung): the
+goal is reported failed with that reason instead of being waited on (a restarted planner has lost it)."""
+PLANNER_ASK_S = 1.0
+"""How often a running goal's client asks the planner whether it is still there."""
 
 
 class GraphUnavailableError(TimeoutError):
@@ -57,6 +62,21 @@ def goal_request(text: str):
     if form == "task":
         return GoalRequest(task=text.strip())
     return GoalRequest(literals=[text]) if form == "literals" else GoalRequest(text=text)
+
+
+class PlannerWatch:
+    """Asks the planner GetPlan every :data:`PLANNER_ASK_S` while a goal runs; :meth:`gone` once a question has
+    gone unanswered for :data:`PLANNER_SILENCE_S` (an action result never comes from a planner that died)."""
+
+    def __init__(self, client, request) -> None:
+        self.client, self.request = client, request
+        self.asked_at, self.answer = 0.0, None
+
+    def gone(self) -> bool:
+        now = time.monotonic()
+        if self.answer is None or (self.answer.done() and now - self.asked_at >= PLANNER_ASK_S):
+            self.asked_at, self.answer = now, self.client.call_async(self.request)
+        return not self.answer.done() and now - self.asked_at > PLANNER_SILENCE_S
 
 
 class GraphClient:
@@ -248,15 +268,20 @@ class GraphClient:
             if handle is None or not handle.accepted:
                 return GoalResult(False, "the planner did not accept the goal", 0, 0, 0.0, 0.0)
             result_future = handle.get_result_async()
+            planner = PlannerWatch(self.plan_client, self.GetPlan.Request())
 
             def done() -> bool:
                 if while_running is not None:
                     while_running()
-                return result_future.done()
+                return result_future.done() or planner.gone()
 
             if not self.spin_until(done, timeout):
                 self.cancel(sent)
                 return GoalResult(False, f"no result within {timeout:.0f} s; cancelled", 0, 0, 0.0,
+                                  time.perf_counter() - started)
+            if not result_future.done():
+                return GoalResult(False, f"planner_node left GetPlan unanswered for {PLANNER_SILENCE_S:.0f} s (killed or "
+                                  "hung?): the goal is lost with it; send it again once the planner is back", 0, 0, 0.0,
                                   time.perf_counter() - started)
         except GraphUnavailableError as error:
             return GoalResult(False, str(error), 0, 0, 0.0, 0.0)

@@ -35,7 +35,7 @@ RECORDER_SETTLE_S = 0.5
 PLANNER_SILENCE_S = 3.0
 """A planner that leaves GetPlan unanswered this long while a goal runs is taken for gone (killed, hung): the
 goal is reported failed with that reason instead of being waited on (a restarted planner has lost it)."""
-PLANNER_ASK_S = 1.0
+PLANNER_ASK_S = 0.5
 """How often a running goal's client asks the planner whether it is still there."""
 
 

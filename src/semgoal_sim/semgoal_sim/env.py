@@ -24,6 +24,7 @@ from semgoal_core import features, layout, tasks
 from semgoal_core.settling import MotionReward, info_motion
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal, rests_on
 from semgoal_sim.expert import clear_of, expert_action, move_to
+from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import run_subgoal, satisfied
 from semgoal_sim.world import FetchWorld
 
@@ -72,11 +73,12 @@ PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
 just above a block that was just put (in the bin, say), which no training pick had started from before."""
 
 
-class SubgoalEnv(gym.Env):
+class SubgoalEnv(RgbArrayRendering, gym.Env):
     """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
-                 max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0) -> None:
+                 max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
+                 render_mode: str | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
@@ -84,6 +86,7 @@ class SubgoalEnv(gym.Env):
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
+        self._set_render_mode(render_mode)
         self.spawn_margin = spawn_margin
         self.scene = SCENES[scene]
         self.derived = features.check(scene, derived)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 from pathlib import Path
+from typing import ClassVar
 
 import mujoco
 import numpy as np
@@ -34,6 +35,32 @@ class FrameRenderer:
 
     def close(self) -> None:
         self.renderer.close()
+
+
+class RgbArrayRendering:
+    """gymnasium's ``render_mode="rgb_array"`` for an env with a ``world``: :meth:`render` returns the frame
+    of the world as it is (height x width x 3, uint8), one renderer per world the env switches between."""
+
+    metadata: ClassVar[dict] = {"render_modes": ["rgb_array"], "render_fps": 25}
+    world: FetchWorld
+
+    def _set_render_mode(self, render_mode: str | None) -> None:
+        if render_mode not in (None, *self.metadata["render_modes"]):
+            raise ValueError(f"render_mode {render_mode!r}: this env renders {self.metadata['render_modes']} (or None)")
+        self.render_mode = render_mode
+        self._renderers: dict[int, FrameRenderer] = {}
+
+    def render(self) -> np.ndarray | None:
+        if self.render_mode is None:
+            return None
+        if id(self.world) not in self._renderers:
+            self._renderers[id(self.world)] = FrameRenderer(self.world)
+        return self._renderers[id(self.world)].frame()
+
+    def close(self) -> None:
+        for renderer in self._renderers.values():
+            renderer.close()
+        self._renderers.clear()
 
 
 def main(argv: list[str]) -> int:

@@ -26,6 +26,7 @@ from semgoal_core import layout, tasks
 from semgoal_core.settling import MotionReward, info_motion
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal
 from semgoal_sim.expert import expert_action
+from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import SUBGOAL_STEPS, expert_next_steps, satisfied
 from semgoal_sim.world import FetchWorld
 
@@ -51,10 +52,12 @@ def goal_configuration(task: tasks.Task, start: np.ndarray, rng: np.random.Gener
     return np.column_stack([slots, np.full(count, tasks.TABLE_TOP + bin_.floor_thickness + tasks.BLOCK_HALF_SIZE)])
 
 
-class TaskEnv(gym.Env):
+class TaskEnv(RgbArrayRendering, gym.Env):
     """Dict observation (observation / achieved_goal / desired_goal), 4-D action in [-1, 1]."""
 
-    def __init__(self, scene: str, goal: str = "semantic", max_steps: int | None = None) -> None:
+    def __init__(self, scene: str, goal: str = "semantic", max_steps: int | None = None,
+                 render_mode: str | None = None) -> None:
+        self._set_render_mode(render_mode)
         self.scene = SCENES[scene]
         self.goal_kind = goal
         self.task_names = tasks.scene_tasks(scene)

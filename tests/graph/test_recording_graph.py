@@ -28,6 +28,9 @@ def test_a_recorded_episode_reads_back_whole_and_replays_step_for_step(ros_domai
     with record.open("rb") as stream:
         decoded = [(channel.topic, message) for _, channel, _, message
                    in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    with record.open("rb") as stream:
+        metadata = {m.name: m.metadata for m in make_reader(stream).iter_metadata()}
+    assert len(metadata["provenance"]["commit"]) == 40 and "--via-ros" in metadata["provenance"]["command"], metadata
     seen = {topic for topic, _ in decoded}
     assert {topics.WORLD_STATE, topics.JOINT_STATES, topics.SEMANTIC_STATE, topics.PLAN, topics.SUBGOAL,
             topics.ARM_COMMAND, topics.MARKERS, topics.PLAN_MARKERS, topics.CLOCK} <= seen, seen

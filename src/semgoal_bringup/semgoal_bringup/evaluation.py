@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
 
@@ -252,17 +253,18 @@ def _seeds_text(row: Row, tasks: list[str]) -> str:
     return str(min(counts)) if len(counts) == 1 else f"{min(counts)}-{max(counts)}"
 
 
-def write_markdown(rows: list[Row], tasks: list[str], command: str, seed: int, path: Path) -> None:
+def write_markdown(rows: list[Row], tasks: list[str], record: dict, path: Path) -> None:
     header = "| Method | training seeds | training steps | episodes per task and seed | " + " | ".join(tasks) + " |"
     lines = [
         "# Table 1: task completion (%)",
         "",
-        f"Ours: task seeds from {seed} (episode i of every agent starts from the same state), at most "
+        f"Ours: task seeds from {record['seed']} (episode i of every agent starts from the same state), at most "
         f"{TASK_STEP_BUDGET} control steps each; success when the goal's literals hold with the world at rest "
         f"(every block slower than {REST_SPEED} m/s, none held unless asked) over {SETTLE_STEPS} control steps, "
         "the executive's rule; brackets hold the 95 % (Wilson) interval. "
         "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
-        f"Regenerate: `{command}`",
+        f"Regenerate: `{record['command']}`",
+        f"Produced by {describe(record)}.",
         "",
         header,
         "|" + "---|" * (4 + len(tasks)),
@@ -302,22 +304,24 @@ def _per_seed_lines(row: Row, tasks: list[str]) -> list[str]:
     return lines
 
 
-def write_csv(rows: list[Row], tasks: list[str], path: Path) -> None:
+def write_csv(rows: list[Row], tasks: list[str], record: dict, path: Path) -> None:
+    """A row per agent and task; ours carry the commit that produced them (the paper's: blank)."""
     with path.open("w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["agent", "source", "task", "success_rate", "episodes", "ci95_low", "ci95_high", "mean_steps",
-                         "training_seeds", "training_steps", "median_settled_steps", "first_step_rule_rate"])
+                         "training_seeds", "training_steps", "median_settled_steps", "first_step_rule_rate", "commit"])
         for agent in AGENT_NAMES:
             if any(r.agent.startswith(agent) for r in rows):
                 for t in tasks:
-                    writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000, "", ""])
+                    writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000, "", "",
+                                     ""])
         for row in rows:
             for t in tasks:
                 writer.writerow([row.agent, "ours", t, round(row.rate(t), 4), row.episodes(t),
                                  *(round(bound, 4) for bound in row.interval(t)),
                                  round(row.mean_steps(t), 1), row.training_seeds(t),
                                  "/".join(map(str, sorted(row.env_steps))), _blank(row.median_settled_steps(t)),
-                                 _blank(row.first_step_rate(t))])
+                                 _blank(row.first_step_rate(t)), record["commit"]])
 
 
 def _blank(value: float | None) -> str | float:
@@ -418,10 +422,13 @@ def main(argv: list[str]) -> int:
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
-        write_markdown(rows, tasks, shlex.join(["./semgoal", "eval", *argv]), args.seed, args.out / "table1.md")
-        write_csv(rows, tasks, args.out / "table1.csv")
+        record = provenance(shlex.join(["./semgoal", "eval", *argv]), args.seed)
+        write_markdown(rows, tasks, record, args.out / "table1.md")
+        write_csv(rows, tasks, record, args.out / "table1.csv")
         write_chart(rows, tasks, args.out / "table1.png")
-        print(f"wrote {args.out}/table1.md, table1.csv, table1.png", file=sys.stderr)
+        (args.out / "table1.json").write_text(json.dumps({"provenance": record, "tasks": {t: summary(rows, t) for t in tasks}},
+                                                         indent=2) + "\n")
+        print(f"wrote {args.out}/table1.md, table1.csv, table1.json, table1.png", file=sys.stderr)
     if args.json:
         print(json.dumps({t: summary(rows, t) for t in tasks}))
     return 1 if failed else 0

@@ -26,10 +26,12 @@ import numpy as np
 import torch
 from tqdm import tqdm
 
+from semgoal_core.provenance import provenance
 from semgoal_core.vocabulary import SCENES
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import AGENTS, AgentSpec
 from semgoal_policy.evaluate import EVAL_SEED_BASE, run_episodes, success_by_kind
+from semgoal_policy.model_card import write_card
 from semgoal_policy.replay import EpisodeReplay
 from semgoal_policy.sac import SacAgent, SacConfig
 
@@ -311,10 +313,12 @@ class Trainer:
         cfg = self.config
         curve = learning_curve(self.run_dir / "progress.csv", self.export_dir / "learning_curve.png",
                                f"{cfg.scene} / {cfg.agent} (seed {cfg.seed})")
+        command = cfg.command or shlex.join(sys.argv)
         info = {"agent": cfg.agent, "seed": cfg.seed, "env_steps": self.env_steps, "wall_s": round(self.wall_s, 1),
-                "command": cfg.command or shlex.join(sys.argv), "kinds": list(self.kinds),
+                "command": command, "provenance": provenance(command, cfg.seed), "kinds": list(self.kinds),
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
                 "first_reached_95": curve, "config": recorded_config(cfg)}
         self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())
+        write_card(self.export_dir)

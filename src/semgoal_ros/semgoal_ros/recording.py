@@ -10,13 +10,17 @@ from __future__ import annotations
 
 import functools
 import importlib
+import json
 import re
+import shlex
+import sys
 import time
 from pathlib import Path
 
 from mcap.writer import CompressionType, Writer
 from rclpy.qos import DurabilityPolicy, QoSProfile
 
+from semgoal_core.provenance import provenance
 from semgoal_ros import interfaces as topics
 from semgoal_ros.package_data import share_path
 
@@ -105,6 +109,9 @@ class Recorder:
         self.file = self.path.open("wb")
         self.writer = Writer(self.file, compression=CompressionType.LZ4)
         self.writer.start(profile="ros2", library="semgoal")
+        record = provenance(shlex.join(sys.argv))
+        self.writer.add_metadata("provenance", {key: json.dumps(value) if isinstance(value, dict) else str(value)
+                                                for key, value in record.items()})
         self.counts: dict[str, int] = {}
         self.subscriptions = []
         schemas: dict[str, int] = {}

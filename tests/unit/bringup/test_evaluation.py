@@ -2,12 +2,16 @@
 
 import csv
 import json
+import subprocess
+from pathlib import Path
 
 import pytest
 
 from semgoal_bringup import evaluation
 from semgoal_bringup.episodes import make_agent
 from semgoal_core.tasks import TASK_STEP_BUDGET
+
+ROOT = Path(__file__).parents[3]
 
 
 def test_hierarchical_episode_is_reproducible_and_bounded() -> None:
@@ -35,6 +39,19 @@ def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
     rows = list(csv.DictReader((tmp_path / "table1.csv").open()))
     assert {(r["source"], r["task"]) for r in rows} == {("paper", "MA-2"), ("ours", "MA-2")}
     assert (tmp_path / "table1.png").stat().st_size > 5000
+
+
+def test_every_figure_of_a_results_file_traces_to_a_commit(tmp_path) -> None:
+    """The table's JSON, CSV and markdown name the commit that produced them: this checkout's HEAD."""
+    assert evaluation.main(["--tasks", "MC-2", "--episodes", "1", "--seeds", "1", "--out", str(tmp_path)]) == 0
+    head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+    record = json.loads((tmp_path / "table1.json").read_text())["provenance"]
+    assert record["commit"] == head and record["seed"] == evaluation.DEFAULT_SEED
+    assert set(record["versions"]) >= {"mujoco", "torch", "numpy"} and "--tasks MC-2" in record["command"]
+    ours = [r for r in csv.DictReader((tmp_path / "table1.csv").open()) if r["source"] == "ours"]
+    assert ours and {r["commit"] for r in ours} == {head}
+    assert f"Produced by commit {head[:12]} (" in (tmp_path / "table1.md").read_text()
+    assert subprocess.run(["git", "-C", str(ROOT), "cat-file", "-e", f"{head}^{{commit}}"]).returncode == 0
 
 
 def test_extra_training_seeds_follow_the_shipped_actor(tmp_path) -> None:

@@ -1,0 +1,66 @@
+"""A model card per exported actor (``MODEL_CARD.md`` beside ``actor.json``), written from ``actor.json`` alone
+so that it cannot drift from it: intended use, training budget and recipe, its evaluation, provenance, limits.
+``./semgoal model-card DIR...`` (re)writes the cards; every export writes its own."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from semgoal_core.provenance import describe
+
+LIMITS = {
+    "hierarchical": "It executes one sub-goal (a pick, a put) at a time; whole tasks need the planner, which "
+                    "sequences the sub-goals and checks each at rest. Trained and measured in simulation only.",
+    "flat-semantic": "A flat baseline of the paper's Table 1: one network for a whole task from a semantic goal, "
+                     "no planner. It is weak by design (the paper's point); do not use it to do tasks.",
+    "flat-continuous": "A flat baseline of the paper's Table 1: one network for a whole task from goal block "
+                       "positions, no planner. It is weak by design (the paper's point); do not use it to do tasks.",
+}
+
+
+def model_card(directory: Path) -> str:
+    """The card of the actor exported in ``directory``."""
+    meta = json.loads((directory / "actor.json").read_text())
+    scene, agent = meta["layout"]["scene"], meta.get("agent", "hierarchical")
+    final = meta.get("final_eval", {})
+    rates = ", ".join(f"{kind} {100 * rate:.0f} %" for kind, rate in final.get("per_kind", {}).items())
+    derived = ", ".join(name for name, _ in meta["layout"].get("derived_features") or []) or "none"
+    record = meta.get("provenance")
+    lines = [
+        f"# {scene} · {agent} actor (seed {meta.get('seed')})",
+        "",
+        f"**Intended use.** The {agent} agent's policy for the simulated Fetch in the `{scene}` scene of semgoal: "
+        f"SAC+HER, goal-conditioned ({meta['layout'].get('goal', 'semantic')} goals), 4-D end-effector and gripper "
+        "commands at 25 Hz. Research and teaching in simulation; not a controller for a real robot.",
+        "",
+        f"**Training.** {meta.get('env_steps', 0):,} env steps, {meta.get('wall_s', 0) / 60:.0f} min wall, seed "
+        f"{meta.get('seed')}; derived observation features: {derived}. Command: `{meta.get('command', 'not recorded')}`.",
+        "",
+        f"**Evaluation** (at the end of training, {final.get('episodes_per_kind', '?')} episodes per kind from "
+        f"seed {final.get('seed', '?')}, seeds never used in training, success at rest): {rates or 'not recorded'}. "
+        "Task-level figures: `results/table1.md`.",
+        "",
+        f"**Provenance.** {describe(record) if record else 'not recorded (exported before provenance was kept)'}.",
+        "",
+        f"**Limits.** {LIMITS.get(agent, LIMITS['hierarchical'])}",
+        "",
+        "Files: `actor.pt` (weights), `actor.json` (layout, recipe, figures), `learning_curve.png`, `progress.csv`.",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def write_card(directory: Path) -> Path:
+    path = directory / "MODEL_CARD.md"
+    path.write_text(model_card(directory))
+    return path
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal model-card", description=__doc__.splitlines()[0])
+    parser.add_argument("dirs", nargs="+", type=Path, help="folders with an exported actor (actor.json)")
+    args = parser.parse_args(argv)
+    for directory in args.dirs:
+        print(f"wrote {write_card(directory)}")
+    return 0

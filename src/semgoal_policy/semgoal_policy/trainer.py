@@ -80,6 +80,9 @@ class TrainConfig:
     snapshots: bool = False
     """Also export the actor at every eval point (``run_dir/snapshots/<env steps>``, 350 KB each), so a
     checkpoint can be chosen on held-out task starts: per-type rates at 20 episodes are too noisy."""
+    tensorboard: bool = False
+    """Also write every progress row as TensorBoard scalars, same keys, x = env steps (``run_dir/tensorboard``:
+    ``tensorboard --logdir runs``)."""
     max_wall_s: float = 2 * 3600
     """Stop (and export) after this much wall time across resumes."""
     torch_threads: int = 1
@@ -304,8 +307,18 @@ class Trainer:
             if new:
                 writer.writeheader()
             writer.writerow(row)
+        if self.config.tensorboard:
+            self._tensorboard_row(row)
         print(f"[{self.env_steps} steps, {self.wall_s / 60:.1f} min] "
               + " ".join(f"{k}={v:.2f}" for k, v in rates.items()), file=sys.stderr, flush=True)
+
+    def _tensorboard_row(self, row: dict[str, float]) -> None:
+        from torch.utils.tensorboard import SummaryWriter  # only when asked: it loads the tensorboard package
+
+        with SummaryWriter(self.run_dir / "tensorboard") as writer:
+            for key, value in row.items():
+                if key != "env_steps":
+                    writer.add_scalar(key, value, self.env_steps)
 
     def _export(self, final: dict[str, float]) -> None:
         from semgoal_policy.plots import learning_curve

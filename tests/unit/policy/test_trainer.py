@@ -36,6 +36,21 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     assert load(tmp_path / "run" / "snapshots" / "800", "two_blocks")[1]["env_steps"] == 800
 
 
+def test_tensorboard_gets_the_progress_rows_keys_across_a_resume(tmp_path) -> None:
+    from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
+
+    trainer_for(replace(config(tmp_path, 400), tensorboard=True)).run()
+    trainer_for(replace(config(tmp_path, 800), tensorboard=True)).run(resume=True)
+    rows = list(csv.DictReader((tmp_path / "run" / "progress.csv").open()))
+    events = EventAccumulator(str(tmp_path / "run" / "tensorboard"))
+    events.Reload()
+    assert set(events.Tags()["scalars"]) == set(rows[0]) - {"env_steps"}
+    overall = events.Scalars("eval/success/overall")
+    assert [(e.step, round(e.value, 4)) for e in overall] == [(int(r["env_steps"]), round(float(r["eval/success/overall"]), 4))
+                                                               for r in rows]
+    assert (tmp_path / "export" / "MODEL_CARD.md").read_text().startswith("# two_blocks · hierarchical actor")
+
+
 def test_averaged_runs_snapshot_the_live_actor_beside_the_averaged_one(tmp_path) -> None:
     trainer_for(replace(config(tmp_path, 400), snapshots=True, sac=SacConfig(actor_average_rate=0.25))).run()
     snapshots = tmp_path / "run" / "snapshots"

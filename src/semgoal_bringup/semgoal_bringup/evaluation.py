@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from semgoal_bringup.executors import check_executor, run_jobs
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
@@ -62,6 +63,13 @@ class Tally:
     """Episodes whose goal literals held at some step, at rest or not (None: not observed, via ROS)."""
     settled_steps: list[int] = field(default_factory=list)
     """Control steps to success at rest, one per successful episode."""
+
+    def add(self, other: Tally) -> None:
+        """Count ``other``'s episodes too (the same seed and task, other episodes: another job's chunk)."""
+        self.wins, self.episodes, self.steps = self.wins + other.wins, self.episodes + other.episodes, self.steps + other.steps
+        self.first_step_wins = (None if self.first_step_wins is None or other.first_step_wins is None
+                                else self.first_step_wins + other.first_step_wins)
+        self.settled_steps += other.settled_steps
 
 
 @dataclass
@@ -166,8 +174,9 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
     return dirs[:seeds]
 
 
-def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: int, models_dir: Path) -> Row:
-    """In-process episodes of one agent on one task, for every available training seed (one job)."""
+def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds: int, models_dir: Path) -> Row:
+    """In-process episodes (their indices: episode i starts from task seed ``seed + i``) of one agent on one task,
+    for every available training seed (one job)."""
     import torch
 
     from semgoal_bringup.episodes import make_agent
@@ -184,43 +193,33 @@ def evaluate_task(agent: str, task_name: str, episodes: int, seed: int, seeds: i
         label = "shipped" if directory.parent == models_dir else directory.name
         row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
-        for i in range(episodes):
+        for i in episodes:
             row.add(label, runner.run(task_name, seed + i))
     row.wall_s = time.perf_counter() - started
     return row
 
 
 def merge(rows: list[Row]) -> list[Row]:
-    """One row per agent from per-task rows, in first-seen order."""
+    """One row per agent from per-job rows (tasks, chunks of episodes), in first-seen order."""
     merged: dict[str, Row] = {}
     for part in rows:
         row = merged.setdefault(part.agent, Row(part.agent))
         for label, results in part.per_seed.items():
-            row.per_seed.setdefault(label, {}).update(results)
+            for task, tally in results.items():
+                row.per_seed.setdefault(label, {}).setdefault(task, Tally()).add(tally)
             row.seed_steps.setdefault(label, set()).update(part.seed_steps[label])
         row.wall_s += part.wall_s
     return list(merged.values())
 
 
 def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
-                        jobs: int) -> list[Row]:
-    """Every (agent, task) as a job on ``jobs`` worker processes (each job is seeded: results do not depend on it).
-    Workers are spawned, not forked: a forked copy of a process that runs DDS threads can die at start."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    from tqdm import tqdm
-
-    work = [(agent, task) for agent in agents for task in tasks]
-    spawn = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=spawn) as pool, \
-            tqdm(total=len(work), unit="task", desc="eval", file=sys.stderr) as progress:
-        futures = [pool.submit(evaluate_task, agent, task, episodes, seed, seeds, models_dir) for agent, task in work]
-        parts = []
-        for future in futures:
-            parts.append(future.result())
-            progress.update(1)
-    return merge(parts)
+                        jobs: int, executor: str = "local", chunk: int = 0) -> list[Row]:
+    """Every (agent, task, chunk of ``chunk`` episodes; 0: all) as a job on ``executor`` with ``jobs`` workers.
+    Each job is seeded by its episodes' indices: the rows do not depend on the executor, the workers or the chunks."""
+    size = chunk or episodes
+    work = [(agent, task, range(first, min(first + size, episodes)), seed, seeds, models_dir)
+            for agent in agents for task in tasks for first in range(0, episodes, size)]
+    return merge(run_jobs(evaluate_task, work, executor, jobs, what="eval job"))
 
 
 def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None) -> Row:
@@ -391,6 +390,10 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
+    parser.add_argument("--executor", default="local", type=check_executor,
+                        help="local (a process pool), dask (a Dask LocalCluster on 127.0.0.1) or dask:ADDRESS (a running "
+                             "Dask scheduler)")
+    parser.add_argument("--chunk", type=int, default=10, help="episodes per job (per agent and task; 0: all in one)")
     args = parser.parse_args(argv)
     try:
         tasks = parse_tasks(args.tasks)
@@ -406,7 +409,8 @@ def main(argv: list[str]) -> int:
 
     models_dir = args.models or actor_io.models_dir()
     try:
-        rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs)
+        rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs,
+                                   args.executor, args.chunk)
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2

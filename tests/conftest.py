@@ -1,7 +1,6 @@
 """Shared fixtures: a private ROS domain per test, real node processes, an in-test rclpy node."""
 
 import os
-import random
 import signal
 import subprocess
 import sys
@@ -31,12 +30,17 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
 
 @pytest.fixture
-def ros_domain(monkeypatch: pytest.MonkeyPatch) -> int:
-    """A random ROS_DOMAIN_ID for this test only, DDS kept on localhost, set for child processes too."""
-    domain = random.Random(time.time_ns() ^ os.getpid()).randint(1, 100)
+def ros_domain(monkeypatch: pytest.MonkeyPatch) -> Iterator[int]:
+    """A ROS_DOMAIN_ID held for this test only (:mod:`semgoal_ros.domains`: no graph on this host has it), DDS
+    kept on localhost, set for child processes too."""
+    from semgoal_ros.domains import lease
+
+    current = os.environ.get("ROS_DOMAIN_ID", "")
+    domain, handle = lease({int(current)} if current.isdigit() else set())
     monkeypatch.setenv("ROS_DOMAIN_ID", str(domain))
     monkeypatch.setenv("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-    return domain
+    yield domain
+    handle.close()
 
 
 class NodeProcesses:

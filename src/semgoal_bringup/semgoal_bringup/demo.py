@@ -39,10 +39,9 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     if args.max_steps < 0:
         parser.error("--max-steps must be 0 (no limit) or a number of control steps")
-    from semgoal_bringup.graph import fresh_domain, start_graph, stop_graph
+    from semgoal_bringup.graph import start_graph, stop_graph
     from semgoal_core.tasks import get_task
-
-    fresh_domain()  # per-run domain: parallel demos never meet
+    from semgoal_ros.domains import domain_for_this_process
 
     try:
         task = get_task(args.task)
@@ -50,11 +49,12 @@ def main(argv: list[str]) -> int:
         parser.error(str(error.args[0]))
     gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
     record = None if args.no_record else args.record or Path("results") / f"demo-{task.name}.mcap"  # None: a scratch file
-    processes = start_graph(task.name, args.seed, models=args.models)
-    try:
-        return Demo(task.name, args.seed).run(gif, args.max_steps, record)
-    finally:
-        stop_graph(processes)
+    with domain_for_this_process():  # a domain of its own: parallel demos never meet
+        processes = start_graph(task.name, args.seed, models=args.models)
+        try:
+            return Demo(task.name, args.seed).run(gif, args.max_steps, record)
+        finally:
+            stop_graph(processes)
 
 
 class Demo:

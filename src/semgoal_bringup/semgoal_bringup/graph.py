@@ -5,13 +5,13 @@ PyPI: here every node goes through `./semgoal run`)."""
 from __future__ import annotations
 
 import os
-import random
 import subprocess
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
 from semgoal_core.tasks import get_task
+from semgoal_ros.domains import domain_for_this_process
 
 NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
          ("semgoal_planner", "planner_node"), ("semgoal_policy", "policy_node"))
@@ -122,29 +122,23 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
             process.kill()
 
 
-def fresh_domain() -> None:
-    """Move this process to a random ROS domain other than the current one, so a graph started next
-    meets neither a graph run in parallel nor the participants of the last one still being torn down."""
-    current = os.environ.get("ROS_DOMAIN_ID")
-    os.environ["ROS_DOMAIN_ID"] = random.choice([str(d) for d in range(1, 101) if str(d) != current])
-
-
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
                   models: str = "", watch: bool = True) -> Iterator:
-    """The four nodes and a :class:`GraphClient` on a fresh ROS domain, ready; all stopped on exit.
-    ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do not come up."""
+    """The four nodes and a :class:`GraphClient` on a ROS domain of their own (:mod:`semgoal_ros.domains`), ready;
+    all stopped on exit. ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do
+    not come up."""
     from semgoal_ros.client import GraphClient
 
-    fresh_domain()
-    processes = start_graph(task_name, seed, mode=mode, models=models)
-    client = None
-    try:
-        client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")
-        if not client.wait_ready():
-            raise RuntimeError(f"the node graph for {task_name} did not come up")
-        yield client
-    finally:
-        if client is not None:
-            client.close()
-        stop_graph(processes)
+    with domain_for_this_process():
+        processes = start_graph(task_name, seed, mode=mode, models=models)
+        client = None
+        try:
+            client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")
+            if not client.wait_ready():
+                raise RuntimeError(f"the node graph for {task_name} did not come up")
+            yield client
+        finally:
+            if client is not None:
+                client.close()
+            stop_graph(processes)

@@ -7,6 +7,8 @@ through ExecuteGoal, read the result; the planner fails an episode that spends i
 
 from __future__ import annotations
 
+import os
+import sys
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -25,6 +27,8 @@ def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "
     for scene_tasks in by_scene.values():
         with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models,
                            watch=False) as client:
+            print(f"eval via ROS: the {get_task(scene_tasks[0]).scene} graph on ROS domain {os.environ['ROS_DOMAIN_ID']}",
+                  file=sys.stderr, flush=True)
             for task_name in scene_tasks:
                 for i in range(episodes):
                     with client.recording(record / f"{task_name}-{seed + i}.mcap" if record else None):

@@ -22,6 +22,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
     "bench-planner": ("bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
     "train": ("semgoal_bringup.training:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
+    "sweep": ("semgoal_bringup.sweep", "train a recipe on many seeds, each a job (local or Dask), resumed if it dies"),
     "model-card": ("semgoal_policy.model_card:main", "write MODEL_CARD.md beside exported actors (from actor.json)"),
     "eval": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
     "bench-graph": ("bench.graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),

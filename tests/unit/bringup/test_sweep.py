@@ -1,0 +1,46 @@
+"""`./semgoal sweep`: seeds as jobs; a seed whose training process is killed mid-run is resumed from its
+checkpoint (its progress goes on from the last evaluation, none repeated), not restarted."""
+
+import json
+import os
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+from semgoal_bringup.sweep import parse_seeds
+
+ROOT = Path(__file__).parents[3]
+
+
+def test_seeds_are_read_as_ranges_and_lists() -> None:
+    assert parse_seeds("81-83") == [81, 82, 83] and parse_seeds("5, 9-10") == [5, 9, 10]
+    for bad in ("", "90-81", "a-b", "5,5", "-3"):
+        with pytest.raises(ValueError, match="81"):
+            parse_seeds(bad)
+
+
+@pytest.mark.timeout(600)
+def test_a_seed_killed_mid_training_is_resumed_from_its_checkpoint(tmp_path: Path) -> None:
+    sweep = subprocess.Popen([str(ROOT / "semgoal"), "sweep", "--recipe", "two_blocks", "--seeds", "5", "--workers", "1",
+                              "--runs-dir", str(tmp_path), "--steps", "1200", "--eval-every", "400", "--eval-episodes", "1",
+                              "--final-eval-episodes", "1", "--learning-starts", "200"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    progress = tmp_path / "seed5" / "progress.csv"
+    deadline = time.monotonic() + 300
+    while not (progress.exists() and len(progress.read_text().splitlines()) >= 2 and (tmp_path / "seed5" / "checkpoint.pt").exists()):
+        assert time.monotonic() < deadline and sweep.poll() is None, sweep.communicate()[1][-3000:]
+        time.sleep(0.5)
+    training = subprocess.run(["pgrep", "-f", f"train --recipe two_blocks --seed 5 --resume .*{tmp_path}"],
+                              capture_output=True, text=True).stdout.split()
+    assert len(training) == 1, training
+    os.kill(int(training[0]), signal.SIGKILL)
+    out, err = sweep.communicate(timeout=400)
+    assert sweep.returncode == 0, err[-3000:]
+    result = json.loads(out.strip().splitlines()[-1])
+    assert result["seed"] == 5 and result["attempts"] == 2 and result["env_steps"] >= 1200, result
+    assert "resuming from its checkpoint" in err
+    steps = [int(line.split(",")[0]) for line in progress.read_text().splitlines()[1:]]
+    assert steps == sorted(set(steps)) and steps[-1] >= 1200, steps  # none repeated: resumed, not restarted

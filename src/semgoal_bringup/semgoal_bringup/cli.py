@@ -29,6 +29,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "ablation": ("semgoal_bringup.ablation", "train the recipe's variants side by side: what expert supervision buys"),
     "bench-policy": ("bench.policy", "training steps/s and actor latency beside SB3 SAC+HER"),
     "bench-eval": ("bench.eval", "evaluation episodes/s on the local pool and on Dask, 1 and 2 workers"),
+    "eval-goals": ("semgoal_bringup.goal_eval", "the hierarchical agent on goal families beyond the benchmark"),
     "eval-subgoals": ("semgoal_bringup.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }
 

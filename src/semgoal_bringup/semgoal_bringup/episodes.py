@@ -61,22 +61,30 @@ def observe(world: FetchWorld) -> Observation:
 
 
 class HierarchicalAgent:
-    """Planner executive + one scene's sub-goal actor; one world per task kept between episodes."""
+    """Planner executive + one scene's sub-goal actor, on the benchmark's tasks or on any goal."""
 
     def __init__(self, scene: str, actor_dir: Path) -> None:
         self.scene = scene
         self.controller = SubgoalController(scene, actor_dir)
-        self._worlds: dict[str, FetchWorld] = {}
+        self._worlds: dict[tuple[str, int], FetchWorld] = {}
+        """One world per task (or family) and block count, kept between its episodes."""
 
     def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
         task = _scene_task(task_name, self.scene)
-        if task.name not in self._worlds:
-            self._worlds[task.name] = FetchWorld(task.scene, task.n_blocks)
-        world = self._worlds[task.name]
-        world.reset(task.initial_state(seed)[0])
-        executive = Executive(SemanticPlanner(task.scene))
+        return self.run_goal(task.initial_state(seed)[0], task.name, seed, budget, label=task.name)
+
+    def run_goal(self, positions: np.ndarray, goal: str, seed: int, budget: int = TASK_STEP_BUDGET,
+                 label: str = "") -> Outcome:
+        """An episode from blocks at ``positions`` (the scene's first ``len(positions)`` objects) to ``goal`` (a
+        task, literals or a sentence), as the planner node runs it; a goal the planner refuses fails at step 0."""
+        key = (label, len(positions))
+        if key not in self._worlds:
+            self._worlds[key] = FetchWorld(self.scene, len(positions))
+        world = self._worlds[key]
+        world.reset(positions)
+        executive = Executive(SemanticPlanner(self.scene))
         executive.observe(observe(world))
-        planned, _ = executive.set_goal(task.name, step_budget=budget)
+        planned, _ = executive.set_goal(goal, step_budget=budget)
         steps, decided_before, first_held = 0, None, None
         while planned and executive.status == PlanStatus.EXECUTING:
             decided_now = executive.active.subgoal.literals() if executive.active else ([] if executive.settling else None)
@@ -90,7 +98,7 @@ class HierarchicalAgent:
             executive.observe(observe(world))
             if first_held is None and executive.observation.holds(executive.goal):
                 first_held = steps
-        return Outcome(task.name, seed, executive.status == "succeeded", steps, executive.replans, first_held)
+        return Outcome(label or goal, seed, executive.status == "succeeded", steps, executive.replans, first_held)
 
 
 class FlatAgent:

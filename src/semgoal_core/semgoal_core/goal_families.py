@@ -18,7 +18,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from semgoal_core import tasks
-from semgoal_core.vocabulary import SCENES
+from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, parse_literal
+
+AWAY = (1.3, 0.75, 0.9)
+"""Where the gripper is taken to be when a start is judged: open, well above the blocks."""
 
 
 @dataclass(frozen=True)
@@ -75,10 +78,24 @@ FAMILIES: dict[str, dict[str, Draw]] = {
 
 
 def goal_cases(scene: str, family: str, episodes: int, seed: int) -> list[GoalCase]:
-    """``episodes`` draws of ``family`` in ``scene``; case i depends only on ``seed + i``."""
+    """``episodes`` draws of ``family`` in ``scene``, none whose goal already holds at its start (drawn again);
+    case i depends only on ``seed + i``."""
     draw = FAMILIES[scene][family]
     cases = []
     for i in range(episodes):
-        positions, goal = draw(np.random.default_rng(seed + i), scene, seed + i)
+        for again in itertools.count():
+            positions, goal = draw(np.random.default_rng([seed + i, again]), scene, seed + i + again * 7919)
+            if not holds_at_start(scene, positions, goal):
+                break
         cases.append(GoalCase(family, seed + i, positions, goal))
     return cases
+
+
+def holds_at_start(scene: str, positions: np.ndarray, goal: str) -> bool:
+    """Whether every literal of ``goal`` holds on blocks at ``positions``, the gripper open and away."""
+    layout = LAYOUTS[scene]
+    padded, present = np.zeros((layout.scene.max_blocks, 3)), np.arange(layout.scene.max_blocks) < len(positions)
+    padded[: len(positions)] = positions
+    true = set(layout.true_literals(evaluate(layout, padded, np.array(AWAY), 0.1, tasks.TABLE_TOP, present)))
+    return all((literal in true) if literal.value else (literal.negated() not in true)
+               for literal in map(parse_literal, goal.split(" & ")))

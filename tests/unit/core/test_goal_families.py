@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from semgoal_core.goal_families import FAMILIES, goal_cases
+from semgoal_core.goal_families import FAMILIES, holds_at_start, goal_cases
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, parse_literal
 
@@ -19,6 +19,7 @@ def test_cases_are_seeded_and_speak_the_scene(scene: str, family: str) -> None:
         for text in case.goal.split(" & "):
             LAYOUTS[scene].validate(parse_literal(text), objects)
     assert len({c.goal for c in cases}) > 1  # a family, not one goal
+    assert not any(holds_at_start(scene, c.positions, c.goal) for c in cases)  # none solved before it starts
 
 
 def test_desk_starts_may_have_blocks_in_the_bin() -> None:

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from semgoal_core.goal_families import FAMILIES, holds_at_start, goal_cases
+from semgoal_core.goal_families import FAMILIES, goal_cases, holds_at_start
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, parse_literal
 

@@ -24,8 +24,8 @@ from semgoal_policy.sac import SacConfig
 from semgoal_policy.trainer import TrainConfig
 from semgoal_ros.package_data import share_path
 
-RUN_FIELDS = ("seed", "run_dir", "export_dir", "command")
-"""A run's own settings: never part of a recipe."""
+RUN_FIELDS = ("seed", "run_dir", "export_dir", "command", "tensorboard")
+"""A run's own settings (who it is, where it writes): never part of a recipe."""
 FLAG_NAMES = {"n_envs": "--envs", "derived_features": "--derive"}
 """Flags whose names are shorter than their fields'."""
 

@@ -1,5 +1,5 @@
 """`./semgoal bench-planner [--json] [--suite DIR]`: our planner beside pyperplan on blocksworld and the project's
-tasks, or on a whole folder of PDDL benchmarks (``--suite``: coverage, every plan validated).
+tasks, or on a whole folder of PDDL benchmarks beside pyperplan and Fast Downward (``--suite``, bench/planner_suite.py).
 
 pyperplan (GPL) is installed by this benchmark into a throwaway venv (``.bench/pyperplan``), never
 imported by the product. Each (planner, problem, search) runs in its own subprocess under a time limit
@@ -21,10 +21,9 @@ import tempfile
 import time
 from pathlib import Path
 
+from bench.planner_suite import PLANNERS, bench_python, run_suite, table
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
-PYPERPLAN = "pyperplan==2.1"
-VENV = Path(__file__).resolve().parents[1] / ".bench" / "pyperplan"
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
 SIZES = (4, 6, 8, 10, 12)
 PHASES = ("parse_ground", "search")
@@ -33,13 +32,6 @@ RUNNERS = Path(__file__).resolve().parent / "runners"
 OURS_RUNNER = RUNNERS / "ours.py"
 PYPERPLAN_RUNNER = RUNNERS / "pyperplan.py"
 
-
-def ensure_pyperplan() -> Path:
-    python = VENV / "bin" / "python"
-    if not python.exists():
-        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-        subprocess.run([str(python), "-m", "pip", "install", "-q", PYPERPLAN], check=True)
-    return python
 
 
 def run_one(python: str, runner: Path, domain: Path, prob: Path, search: str, heuristic: str, repeats: int,
@@ -86,93 +78,37 @@ def project_tasks(repeats: int) -> dict[str, dict]:
     return rows
 
 
-def suite_problems(folder: Path, per_domain: int) -> list[tuple[str, Path, Path]]:
-    """(domain name, domain file, problem file) of a benchmark folder in the IPC layout: a folder per domain,
-    each problem beside ``domain.pddl`` or its own ``domain_<problem>.pddl``; the first ``per_domain`` problems."""
-    found = []
-    for domain_dir in sorted(d for d in folder.iterdir() if d.is_dir()):
-        problems = sorted(p for p in domain_dir.glob("*.pddl") if not p.name.startswith("domain"))[:per_domain]
-        for problem_path in problems:
-            own = domain_dir / f"domain_{problem_path.name}"
-            domain_path = own if own.exists() else domain_dir / "domain.pddl"
-            if domain_path.exists():
-                found.append((domain_dir.name, domain_path, problem_path))
-    return found
-
-
-@functools.cache
-def _parsed(domain_path: Path, problem_path: Path):
-    """A problem and its domain, parsed once however many planners' plans are checked against them."""
-    from semgoal_planner.pddl import parse_domain, parse_problem
-
-    domain = parse_domain(domain_path.read_text())
-    return domain, parse_problem(problem_path.read_text(), domain)
-
-
-def validity(domain_path: Path, problem_path: Path, plan: list[str] | None) -> str:
-    """"" for a valid plan (or none), else why not: the plan is run on the lifted actions (validate_plan.py)."""
-    from bench.validate_plan import invalid_step, read_plan
-
-    if plan is None:
-        return ""
-    return invalid_step(*_parsed(domain_path, problem_path), read_plan("\n".join(plan))) or ""
-
-
-def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float, search: str, heuristic: str) -> dict:
-    """Every planner on every problem of the suite (one run each, whole process under ``timeout``), every plan
-    validated: per domain the problems solved, the invalid plans and the median time ratio to ours."""
-    pythons = {"ours": (sys.executable, OURS_RUNNER)}
-    if "pyperplan" in planners:
-        pythons["pyperplan"] = (str(ensure_pyperplan()), PYPERPLAN_RUNNER)
-    domains: dict[str, dict] = {}
-    for name, domain_path, problem_path in suite_problems(folder, per_domain):
-        row = domains.setdefault(name, {"problems": 0, **{p: {"solved": 0, "invalid": [], "ms": []} for p in pythons}})
-        row["problems"] += 1
-        for planner, (python, runner) in pythons.items():
-            result = run_one(python, runner, domain_path, problem_path, search, heuristic, 1, timeout)
-            if result["status"] != "ok" or result["length"] is None:
-                continue
-            reason = validity(domain_path, problem_path, result["plan"])
-            if reason:
-                row[planner]["invalid"].append(f"{problem_path.name}: {reason}")
-                continue
-            row[planner]["solved"] += 1
-            row[planner]["ms"].append(result["median_ms"])
-    for row in domains.values():
-        for planner in pythons:
-            times = row[planner].pop("ms")
-            row[planner]["median_ms"] = round(statistics.median(times), 2) if times else None
-    coverage = {p: sum(row[p]["solved"] for row in domains.values()) for p in pythons}
-    invalid = {p: sum(len(row[p]["invalid"]) for row in domains.values()) for p in pythons}
-    return {"search": f"{search}/{heuristic}", "timeout_s": timeout, "domains": domains,
-            "problems": sum(row["problems"] for row in domains.values()), "coverage": coverage, "invalid_plans": invalid}
-
-
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench-planner", description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--repeats", type=int, help="runs per measurement, the median kept (default: 3; 1 with --suite)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner, problem and search")
     parser.add_argument("--sizes", default=",".join(map(str, SIZES)))
-    parser.add_argument("--suite", type=Path, help="a folder of PDDL domains in the IPC layout: coverage and "
-                        "validity instead of the blocksworld series")
+    parser.add_argument("--suite", type=Path, help="a folder of PDDL domains in the IPC layout: coverage, validity "
+                        "and whole-process times instead of the blocksworld series")
     parser.add_argument("--per-domain", type=int, default=6, help="with --suite: the first N problems of each domain")
-    parser.add_argument("--planners", default="ours,pyperplan", help="with --suite: ours, pyperplan")
+    parser.add_argument("--domains", help="with --suite: only these comma-separated domain folders")
+    parser.add_argument("--planners", default="ours,pyperplan,fast-downward",
+                        help=f"with --suite: any of {', '.join(PLANNERS)}")
     parser.add_argument("--search", default="gbfs/hff", help="with --suite: SEARCH/HEURISTIC")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     if args.suite:
-        if not args.suite.is_dir():
-            parser.error(f"--suite {args.suite}: not a folder")
+        planners = args.planners.split(",")
+        if not args.suite.is_dir() or set(planners) - set(PLANNERS):
+            parser.error(f"--suite {args.suite}: not a folder" if not args.suite.is_dir() else
+                         f"--planners: unknown {', '.join(sorted(set(planners) - set(PLANNERS)))}")
         search, _, heuristic = args.search.partition("/")
-        result = run_suite(args.suite, args.planners.split(","), args.per_domain, args.timeout, search, heuristic or "blind")
+        progress = None if args.json else functools.partial(print, flush=True)
+        result = run_suite(args.suite, planners, args.per_domain, args.timeout, search, heuristic or "blind",
+                           repeats=args.repeats or 1, domains=set(args.domains.split(",")) if args.domains else None,
+                           progress=progress)
         if not args.json:
-            for name, row in result["domains"].items():
-                cells = "  ".join(f"{p} {row[p]['solved']}/{row['problems']} ({len(row[p]['invalid'])} invalid)"
-                                  for p in row if p != "problems")
-                print(f"{name:24s} {cells}")
-        print(json.dumps(result) if args.json else json.dumps({k: result[k] for k in ("problems", "coverage", "invalid_plans")}))
+            print(table(result))
+        keys = ("search", "problems", "coverage", "invalid_plans", "errors", "median_ratio_to_ours", "left_out")
+        print(json.dumps(result if args.json else {k: result[k] for k in keys}))
         return 0
-    pyperplan = str(ensure_pyperplan())
+    args.repeats = args.repeats or 3
+    pyperplan = str(bench_python("pyperplan"))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for n in map(int, args.sizes.split(",")):

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
 from semgoal_planner.heuristics import HEURISTICS
 from semgoal_planner.search import SEARCHES
@@ -17,14 +16,14 @@ def plan_pddl_main(argv: list[str]) -> int:
     from semgoal_planner.planner import solve_pddl
 
     parser = argparse.ArgumentParser(prog="semgoal plan-pddl", description=plan_pddl_main.__doc__)
-    parser.add_argument("domain", type=Path)
-    parser.add_argument("problem", type=Path)
+    parser.add_argument("domain")
+    parser.add_argument("problem")
     parser.add_argument("--search", choices=list(SEARCHES), default="bfs")
     parser.add_argument("--heuristic", choices=list(HEURISTICS), help="default: blind (bfs), lmcut (astar), hff (gbfs)")
     parser.add_argument("--stats", action="store_true", help="print expanded states and time to stderr")
     args = parser.parse_args(argv)
     try:
-        result = solve_pddl(args.domain.read_text(), args.problem.read_text(), args.search, args.heuristic)
+        result = solve_pddl(_read(args.domain), _read(args.problem), args.search, args.heuristic)
     except OSError as error:
         print(f"semgoal plan-pddl: {error}", file=sys.stderr)
         return 2
@@ -45,6 +44,11 @@ def plan_pddl_main(argv: list[str]) -> int:
     for op in result.plan:
         print(op)
     return 0
+
+
+def _read(path: str) -> str:
+    with open(path, encoding="utf-8") as file:
+        return file.read()
 
 
 def parse_goal_main(argv: list[str]) -> int:
@@ -79,3 +83,7 @@ def parse_goal_main(argv: list[str]) -> int:
         else:
             print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
     return 2 if failed else 0
+
+
+if __name__ == "__main__":  # ./semgoal plan-pddl starts here, without ROS (see ./semgoal)
+    sys.exit(plan_pddl_main(sys.argv[1:]))

@@ -1,12 +1,11 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
 1. Objects and fluent predicates (those some action changes) are numbered in sorted name order.
-2. Every action's parameters are bound one at a time over the objects of their types, and each static
-   precondition (a predicate no action changes, or equality) is checked as soon as its last variable is
-   bound, so bindings that can never apply are cut early. Static atoms never enter the state.
-3. The C module ``_ground`` instantiates the fluent atoms of every binding, keeps the atoms and operators
-   that a relaxed exploration from the initial state reaches (delete effects and negative preconditions
-   ignored), numbers the facts in sorted order and builds the operators' masks.
+2. A relaxed exploration (:mod:`semgoal_planner.exploration`) finds every action's bindings whose positive
+   preconditions, static ones included, can ever hold together, by joining them over the atoms reached from
+   the initial state; no binding is enumerated that a precondition rules out. Static atoms never enter the state.
+3. The C module ``_ground`` instantiates the fluent atoms of those bindings, numbers the facts in sorted order,
+   builds the operators' masks and finds goal atoms no operator reaches.
 """
 
 from __future__ import annotations
@@ -14,10 +13,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
-from operator import itemgetter
 from typing import NamedTuple
 
 from semgoal_planner import _core, _ground
+from semgoal_planner.exploration import Exploration, Schema
 from semgoal_planner.pddl import Action, Atom, Condition, Domain, Problem
 
 
@@ -64,10 +63,6 @@ class Task:
         return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg)
 
 
-StaticCheck = tuple[Callable[[tuple], tuple], bool]
-"""(a function from a padded binding to the atom, e.g. ("on", 3, 5); whether it must hold)."""
-
-
 class _Grounder:
     def __init__(self, domain: Domain, problem: Problem) -> None:
         self.domain, self.problem = domain, problem
@@ -77,12 +72,7 @@ class _Grounder:
         self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
         self.index = {name: i for i, name in enumerate(self.objects)}
         self.static = {self._key(a, name=True) for a in problem.init if a.predicate not in self.predicate_index}
-        constants = sorted(domain.constants)
-        # a binding padded with these holds every name a static atom needs, so one itemgetter builds it
-        self.pad_names = (*constants, "=", *domain.predicates)
-        self.pad = (*map(self.index.__getitem__, constants), "=", *domain.predicates)
-        self.by_type = {kind: [(i,) for i, name in enumerate(self.objects)
-                               if domain.is_subtype(problem.objects[name], kind)] for kind in domain.types}
+        self._types: dict[str, frozenset[int] | None] = {}
 
     def _key(self, atom: Atom, name: bool = False) -> tuple:
         """The atom over object indices: (predicate index, *objects), or (predicate name, *objects)."""
@@ -93,44 +83,50 @@ class _Grounder:
         truth = atom[1] == atom[2] if atom[0] == "=" else atom in self.static
         return truth == positive
 
-    def _action(self, action: Action) -> tuple:
-        """The action as :func:`_ground.ground` takes it: its name, parameter count, bindings and the
-        templates of its fluent preconditions and effects."""
-        params = [v for v, _ in action.parameters]
-        position = {v: i for i, v in enumerate(params)}
-        slot_of = {**position, **{name: len(params) + i for i, name in enumerate(self.pad_names)}}
-        checks: list[list[StaticCheck]] = [[] for _ in range(len(params) + 1)]
-        pre: list[tuple[int, ...]] = []
-        pre_neg: list[tuple[int, ...]] = []
+    def _objects_of(self, kind: str) -> frozenset[int] | None:
+        """The objects of a type, or None when every object is one (nothing to check)."""
+        if kind not in self._types:
+            members = frozenset(i for i, name in enumerate(self.objects)
+                                if self.domain.is_subtype(self.problem.objects[name], kind))
+            self._types[kind] = None if len(members) == len(self.objects) else members
+        return self._types[kind]
+
+    def _schema(self, action: Action) -> Schema:
+        """The action as the relaxed exploration reads it."""
+        position = {v: i for i, (v, _) in enumerate(action.parameters)}
+        joined, filters = [], []
         for cond in action.precondition:
             atom = cond.atom
-            if atom.predicate in self.predicate_index:
-                (pre if cond.positive else pre_neg).append(self._template(atom, position))
-            else:  # checked once its last parameter is bound
-                depth = max((position[a] + 1 for a in atom.args if a in position), default=0)
-                checks[depth].append((_getter(slot_of[atom.predicate], *map(slot_of.__getitem__, atom.args)),
-                                      cond.positive))
-        return (action.name, len(params), self._bindings(action, checks), pre, pre_neg,
+            args = tuple(position[a] if a in position else ~self.index[a] for a in atom.args)
+            if cond.positive and atom.predicate != "=":
+                joined.append((atom.predicate, args))
+            elif atom.predicate == "=" or atom.predicate not in self.predicate_index:
+                filters.append((frozenset(a for a in args if a >= 0), self._static_check(atom.predicate, args, cond.positive)))
+        adds = [(a.predicate, tuple(position[x] if x in position else ~self.index[x] for x in a.args)) for a in action.add]
+        return Schema(action.name, tuple(self._objects_of(kind) for _, kind in action.parameters), tuple(joined),
+                      tuple(filters), tuple(adds))
+
+    def _static_check(self, predicate: str, args: tuple[int, ...], positive: bool) -> Callable[[list], bool]:
+        """A check of an equality or a negative static precondition on a binding (a list of object indices)."""
+        def atom(values: list) -> tuple:
+            return (predicate, *(values[a] if a >= 0 else ~a for a in args))
+        return lambda values: self._static_holds(atom(values), positive)
+
+    def _action(self, action: Action, bindings: list[tuple[int, ...]]) -> tuple:
+        """The action as :func:`_ground.ground` takes it: its name, parameter count, bindings and the
+        templates of its fluent preconditions and effects."""
+        position = {v: i for i, (v, _) in enumerate(action.parameters)}
+        pre = [self._template(c.atom, position) for c in action.precondition
+               if c.positive and c.atom.predicate in self.predicate_index]
+        pre_neg = [self._template(c.atom, position) for c in action.precondition
+                   if not c.positive and c.atom.predicate in self.predicate_index]
+        return (action.name, len(position), bindings, pre, pre_neg,
                 [self._template(a, position) for a in action.add], [self._template(a, position) for a in action.delete])
 
     def _template(self, atom: Atom, position: dict[str, int]) -> tuple[int, ...]:
         """(predicate index, *arguments): a parameter's position, or ~object for a constant."""
         return (self.predicate_index[atom.predicate],
                 *(position[a] if a in position else ~self.index[a] for a in atom.args))
-
-    def _bindings(self, action: Action, checks: list[list[StaticCheck]]) -> list[tuple[int, ...]]:
-        """Every binding (object indices) whose static preconditions hold, bound one parameter at a time."""
-        params = action.parameters
-        partial: list[tuple] = [()]
-        for depth in range(len(params) + 1):
-            if checks[depth]:
-                pad = (0,) * (len(params) - depth) + self.pad
-                partial = [b for b in partial
-                           if all(self._static_holds(atom(b + pad), positive) for atom, positive in checks[depth])]
-            if depth < len(params):
-                objects = self.by_type.get(params[depth][1], [])
-                partial = [b + o for b in partial for o in objects]
-        return partial
 
     def ground(self) -> Task:
         fluent = [c for c in self.problem.goal if c.atom.predicate in self.predicate_index]
@@ -139,8 +135,12 @@ class _Grounder:
             self.predicates, self.objects, 1 + max(map(len, self.domain.predicates.values()), default=0),
             [self._key(a) for a in self.problem.init if a.predicate in self.predicate_index],
             [self._key(c.atom) for c in positive], [self._key(c.atom) for c in fluent if not c.positive],
-            list(map(self._action, self.domain.actions)), Atom, Operator)
+            list(map(self._action, self.domain.actions, self._reachable_bindings())), Atom, Operator)
         return Task(tuple(facts), init, goal, goal_neg, tuple(operators), self._unsolvable_reason({positive[i] for i in unreached}))
+
+    def _reachable_bindings(self) -> list[list[tuple[int, ...]]]:
+        init = [(a.predicate, tuple(map(self.index.__getitem__, a.args))) for a in self.problem.init]
+        return Exploration(map(self._schema, self.domain.actions), init, len(self.objects)).run()
 
     def _unsolvable_reason(self, unreached: set[Condition]) -> str:
         """Why the goal can never hold: its first literal that is static and false, or not reachable."""
@@ -151,14 +151,6 @@ class _Grounder:
                                                                                           cond.positive):
                 return f"goal {'' if cond.positive else 'not '}{cond.atom} can never hold (static)"
         return ""
-
-
-def _getter(*slots: int) -> Callable[[tuple], tuple]:
-    """A function from a padded binding to the tuple of its items at ``slots``: ``itemgetter``, which
-    returns a bare item, not a 1-tuple, when given one slot."""
-    if len(slots) == 1:
-        return lambda padded: (padded[slots[0]],)
-    return itemgetter(*slots)
 
 
 def ground(domain: Domain, problem: Problem) -> Task:

@@ -1,9 +1,9 @@
-"""`./semgoal bench-planner --suite DIR`: a folder of PDDL domains in the IPC layout, every plan validated."""
+"""`./semgoal bench-planner --suite DIR`: a folder of PDDL domains in the IPC layout, whole processes, every plan validated."""
 
 import shutil
 from pathlib import Path
 
-from bench.planner import run_suite, suite_problems, validity
+from bench.planner_suite import install, run, run_suite, suite_problems, validity
 
 FIXTURES = Path(__file__).parents[1] / "planner" / "fixtures"
 
@@ -16,10 +16,12 @@ def _suite(tmp_path: Path) -> Path:
         shutil.copy(FIXTURES / f"{domain}-domain.pddl", folder / "domain.pddl")
         for i, name in enumerate(problems, 1):
             shutil.copy(FIXTURES / f"{name}.pddl", folder / f"p{i:02d}.pddl")
-    own = tmp_path / "own-domains"  # the other IPC layout: a domain file per problem
+    own = tmp_path / "own-domains"  # the other IPC layouts: a domain file per problem
     own.mkdir()
     shutil.copy(FIXTURES / "gripper-domain.pddl", own / "domain_p01.pddl")
     shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p01.pddl")
+    shutil.copy(FIXTURES / "gripper-domain.pddl", own / "p02-domain.pddl")  # airport's
+    shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p02-gripper-4.pddl")
     return tmp_path
 
 
@@ -27,13 +29,26 @@ def test_the_suite_layout_pairs_each_problem_with_its_domain(tmp_path) -> None:
     found = suite_problems(_suite(tmp_path), per_domain=6)
     assert [(d, dom.name, p.name) for d, dom, p in found] == [
         ("blocksworld", "domain.pddl", "p01.pddl"), ("gripper", "domain.pddl", "p01.pddl"),
-        ("logistics", "domain.pddl", "p01.pddl"), ("own-domains", "domain_p01.pddl", "p01.pddl")]
+        ("logistics", "domain.pddl", "p01.pddl"), ("own-domains", "domain_p01.pddl", "p01.pddl"),
+        ("own-domains", "p02-domain.pddl", "p02-gripper-4.pddl")]
 
 
 def test_every_problem_is_solved_and_every_plan_validated(tmp_path) -> None:
     result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search="gbfs", heuristic="hff")
-    assert result["problems"] == 4 and result["coverage"] == {"ours": 4} and result["invalid_plans"] == {"ours": 0}
-    assert all(row["ours"]["median_ms"] > 0 for row in result["domains"].values())
+    assert result["problems"] == 5 and result["coverage"] == {"ours": 5} and result["invalid_plans"] == {"ours": 0}
+    assert result["errors"] == {"ours": 0}
+    assert all(row["ours"]["median_s"] > 0 for row in result["domains"].values())
+
+
+def test_a_plan_an_unsolvable_task_and_a_refusal_are_told_apart(tmp_path) -> None:
+    domain, problem = FIXTURES / "blocksworld-domain.pddl", FIXTURES / "blocksworld-sussman.pddl"
+    ours = install("ours")
+    solved = run(ours, domain, problem, "astar", "lmcut", 60)
+    assert solved.status == "solved" and len(solved.plan) == 6 and solved.seconds > 0
+    unsolvable = tmp_path / "unsolvable.pddl"
+    unsolvable.write_text(problem.read_text().replace("(:goal (and", "(:goal (and (on a a)"))
+    assert run(ours, domain, unsolvable, "gbfs", "hff", 60).status == "unsolvable"
+    assert run(ours, domain, FIXTURES / "gripper-4balls.pddl", "gbfs", "hff", 60).status.startswith("error: ")
 
 
 def test_an_invalid_plan_is_named(tmp_path) -> None:

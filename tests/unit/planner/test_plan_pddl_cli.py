@@ -1,6 +1,7 @@
 """The `./semgoal plan-pddl` contract: a plan line per action and exit 0, `unsolvable` and exit 1, exit 2
 with a message on bad PDDL or a missing file."""
 
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -102,3 +103,17 @@ def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) ->
     domain = parse_domain(EITHER_DOMAIN)
     assert len(plan) == 2 and invalid_step(domain, parse_problem(EITHER_PROBLEM, domain), plan) is None
     assert invalid_step(domain, parse_problem(EITHER_PROBLEM, domain), [("shift", "a", "b", "d")]) is not None
+
+
+def test_the_command_starts_without_ros_or_numpy(tmp_path: Path) -> None:
+    """`./semgoal plan-pddl` runs a bare interpreter on the planner's sources (about 0.05 s to start instead of
+    0.25 s): it needs no sourced environment, and the planner loads neither ROS nor numpy."""
+    (tmp_path / "d.pddl").write_text(TOKENS_DOMAIN)
+    (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
+    root = Path(__file__).resolve().parents[3]
+    done = subprocess.run([str(root / "semgoal"), "plan-pddl", str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")],
+                          env={"PATH": "/usr/bin:/bin", "PYTHONPROFILEIMPORTTIME": "1"}, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["(hop a b)", "(hop b c)"]
+    imported = {line.split("|")[-1].strip().split(".")[0] for line in done.stderr.splitlines() if "|" in line}
+    assert "semgoal_planner" in imported and not imported & {"numpy", "rclpy", "semgoal_ros", "site"}

@@ -2,14 +2,18 @@
 train one run per seed, each a job on the executor (:mod:`semgoal_bringup.executors`).
 
 A job runs `./semgoal train --recipe R --seed S --resume ...` as a process of its own and, when that process dies
-(killed, out of memory, a lost machine's worker), runs it again: ``--resume`` continues from the run's last
-checkpoint, so a seed is resumed, never restarted. The seed rule is written before the runs (runs/README.md)."""
+(killed, out of memory), runs it again; when the job's worker dies instead (a Dask worker killed or its machine
+lost), the training process dies with it and the scheduler runs the job again on another worker. Either way
+``--resume`` continues from the run's last checkpoint, so a seed is resumed, never restarted. The seed rule is
+written before the runs (runs/README.md)."""
 
 from __future__ import annotations
 
 import argparse
+import ctypes
 import json
 import os
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -33,6 +37,15 @@ def parse_seeds(text: str) -> list[int]:
     return seeds
 
 
+PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent() -> None:
+    """In the training process before it starts: SIGKILL it when the job's process dies (Linux's
+    PR_SET_PDEATHSIG), so a job run again never trains beside an orphan of its earlier run."""
+    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+
+
 def train_seed(recipe: str, seed: int, settings: list[str], runs_dir: str | None) -> dict:
     """One seed's run to its end, resumed from its checkpoint after a death: the train command's JSON line,
     with the attempts it took."""
@@ -42,7 +55,7 @@ def train_seed(recipe: str, seed: int, settings: list[str], runs_dir: str | None
         run_dir = Path(runs_dir) / f"seed{seed}"
         command += ["--run-dir", str(run_dir), "--export-dir", str(run_dir / "export")]
     for attempt in range(1, ATTEMPTS + 1):
-        done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
+        done = subprocess.run(command, stdout=subprocess.PIPE, text=True, preexec_fn=_die_with_parent)
         if done.returncode == 0:
             return {"seed": seed, "attempts": attempt, **json.loads(done.stdout.strip().splitlines()[-1])}
         print(f"[sweep] seed {seed}: training exited with {done.returncode} (attempt {attempt} of {ATTEMPTS}); "

@@ -57,3 +57,14 @@ def test_an_invalid_plan_is_named(tmp_path) -> None:
     assert validity(domain, problem, ["(fly a)"]) == "step 1 (fly a): no such action with 1 arguments"
     assert validity(domain, problem, ["(pickup a)"]).startswith("step 1 (pickup a): precondition")  # c lies on a
     assert validity(domain, problem, []).startswith("the goal")
+
+
+def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked(tmp_path) -> None:
+    """The two reference planners install into .bench/ (pinned) and run as whole processes; on this small suite
+    each solves everything with a valid plan, and their times are set beside ours."""
+    result = run_suite(_suite(tmp_path), ["ours", "pyperplan", "fast-downward"], per_domain=6, timeout=60,
+                       search="astar", heuristic="lmcut")
+    assert result["left_out"] == {}
+    assert result["coverage"] == {"ours": 5, "pyperplan": 5, "fast-downward": 5}
+    assert result["invalid_plans"] == {"ours": 0, "pyperplan": 0, "fast-downward": 0}
+    assert set(result["median_ratio_to_ours"]) == {"pyperplan", "fast-downward"}

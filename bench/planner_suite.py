@@ -12,6 +12,7 @@ Searches are named as ours are. Fast Downward runs ``astar/H`` as ``astar(H())``
 
 from __future__ import annotations
 
+import re
 import shutil
 import statistics
 import subprocess
@@ -133,16 +134,20 @@ def run(planner: Planner, domain: Path, problem: Path, search: str, heuristic: s
 def suite_problems(folder: Path, per_domain: int, domains: set[str] | None = None) -> list[tuple[str, Path, Path]]:
     """(domain name, domain file, problem file) of a benchmark folder in the IPC layout: a folder per domain, each
     problem beside ``domain.pddl``, its own ``domain_<problem>.pddl`` or ``<pNN>-domain.pddl``; the first
-    ``per_domain`` problems of each."""
+    ``per_domain`` problems of each, in natural order (``probBLOCKS-4-0`` before ``probBLOCKS-10-0``)."""
     found = []
     for domain_dir in sorted(d for d in folder.iterdir() if d.is_dir() and (domains is None or d.name in domains)):
-        problems = sorted(p for p in domain_dir.glob("*.pddl") if "domain" not in p.name)[:per_domain]
+        problems = sorted((p for p in domain_dir.glob("*.pddl") if "domain" not in p.name), key=_natural)[:per_domain]
         for problem_path in problems:
             for candidate in (f"domain_{problem_path.name}", f"{problem_path.name.split('-')[0]}-domain.pddl", "domain.pddl"):
                 if (domain_dir / candidate).exists():
                     found.append((domain_dir.name, domain_dir / candidate, problem_path))
                     break
     return found
+
+
+def _natural(path: Path) -> list:
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.name)]
 
 
 def validity(domain_path: Path, problem_path: Path, plan: tuple[str, ...] | None) -> str:

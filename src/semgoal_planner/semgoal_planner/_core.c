@@ -503,10 +503,9 @@ static int run_bfs(TaskObject *t, Store *st, word *child, int *ops, Outcome *out
     return 0;
 }
 
-/* A* (f = g + h, ties to the larger g, then first in) and greedy best-first (h, then first in). A* reopens
-   a state reached with a smaller g; greedy best-first never revisits one. Goal test on expansion. */
-static int run_best_first(TaskObject *t, Store *st, SearchKind kind, int heuristic, word *child, int *ops,
-                          Outcome *out) {
+/* A*: f = g + h, ties to the larger g, then first in; a state reached with a smaller g is reopened. Goal test
+   on expansion. */
+static int run_astar(TaskObject *t, Store *st, int heuristic, word *child, int *ops, Outcome *out) {
     Heap open = {0};
     int added, status = -1;
     int64_t counter = 0;
@@ -517,12 +516,12 @@ static int run_best_first(TaskObject *t, Store *st, SearchKind kind, int heurist
         status = 0;
         goto done;
     }
-    /* A* entries: key f, tie -g * 2^32 + counter; greedy: key h, tie counter */
+    /* entries: key f, tie -g * 2^40 + counter */
     if (heap_push(&open, h0, 0, 0)) goto oom;
     while (open.n) {
         Entry e = heap_pop(&open);
         long s = e.item;
-        if (kind == S_ASTAR && e.key - st->h[s] > st->g[s]) continue; /* reached more cheaply since */
+        if (e.key - st->h[s] > st->g[s]) continue; /* reached more cheaply since */
         const word *state = st->states + (size_t)s * (size_t)st->nwords;
         if (goal_reached(t, state)) {
             out->goal_state = s;
@@ -536,7 +535,7 @@ static int run_best_first(TaskObject *t, Store *st, SearchKind kind, int heurist
             long c = meet(st, child, s, ops[k], g + 1, &added);
             if (c < 0) goto done;
             if (!added) {
-                if (kind == S_GBFS || g + 1 >= st->g[c]) continue;
+                if (g + 1 >= st->g[c]) continue;
                 st->parent[c] = (int)s;
                 st->op[c] = ops[k];
                 st->g[c] = g + 1;
@@ -549,9 +548,8 @@ static int run_best_first(TaskObject *t, Store *st, SearchKind kind, int heurist
             out->generated++;
             if (st->h[c] == COST_INF) continue;
             counter++;
-            int key = kind == S_ASTAR ? g + 1 + st->h[c] : st->h[c];
-            int64_t tie = kind == S_ASTAR ? -(int64_t)(g + 1) * ((int64_t)1 << 40) + counter : counter;
-            if (heap_push(&open, key, tie, (int)c)) goto oom;
+            int64_t tie = -(int64_t)(g + 1) * ((int64_t)1 << 40) + counter;
+            if (heap_push(&open, g + 1 + st->h[c], tie, (int)c)) goto oom;
         }
     }
     status = 0;
@@ -560,6 +558,82 @@ oom:
     PyErr_NoMemory();
 done:
     free(open.a);
+    return status;
+}
+
+/* Greedy best-first: h, then first in; a state is evaluated when it is first reached and expanded once. Goal
+   test on expansion. With hFF, the states reached by a helpful operator (one of the relaxed plan's from the
+   state expanded; Hoffmann & Nebel 2001) also wait in a second open list; the two take turns, the helpful
+   list given 1000 turns ahead whenever a better h is found (boosted preferred operators, as in Fast
+   Downward; Richter & Helmert 2009). */
+static int run_greedy(TaskObject *t, Store *st, int heuristic, word *child, int *ops, Outcome *out) {
+    enum { BOOST = 1000 };
+    Heap open[2] = {{0}, {0}}; /* every state reached; those reached by a helpful operator */
+    int added, status = -1, turns[2] = {0, 0};
+    int64_t counter = 0;
+    char *helpful = calloc((size_t)(t->nops ? t->nops : 1), 1), *closed = NULL;
+    size_t nclosed = 0;
+    if (!helpful) goto oom;
+    int best_h = evaluate(t, heuristic, st->states);
+    if (best_h < 0) goto done;
+    st->h[0] = best_h;
+    if (best_h == COST_INF) {
+        status = 0;
+        goto done;
+    }
+    if (heap_push(&open[0], best_h, 0, 0)) goto oom;
+    while (open[0].n || open[1].n) {
+        int q = open[1].n && (!open[0].n || turns[1] <= turns[0]);
+        turns[q]++;
+        long s = heap_pop(&open[q]).item;
+        if ((size_t)s >= nclosed) {
+            if (grow((void **)&closed, st->cap)) goto oom;
+            memset(closed + nclosed, 0, st->cap - nclosed);
+            nclosed = st->cap;
+        }
+        if (closed[s]) continue; /* it waited in both lists */
+        closed[s] = 1;
+        const word *state = st->states + (size_t)s * (size_t)st->nwords;
+        if (goal_reached(t, state)) {
+            out->goal_state = s;
+            status = 0;
+            goto done;
+        }
+        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) goto done;
+        int g = st->g[s], nops = applicable_ops(t, state, ops);
+        if (heuristic == H_HFF) { /* hFF again, for the operators of its relaxed plan from this state */
+            int h = h_hff(t, state);
+            if (h < 0) goto oom;
+            for (int k = 0; k < nops; k++) helpful[k] = h != COST_INF && t->op_mark[ops[k]] == t->epoch;
+        }
+        for (int k = 0; k < nops; k++) {
+            apply_op(t, st->states + (size_t)s * (size_t)st->nwords, ops[k], child);
+            long c = meet(st, child, s, ops[k], g + 1, &added);
+            if (c < 0) goto done;
+            if (!added) continue;
+            int h = evaluate(t, heuristic, child);
+            if (h < 0) goto done;
+            st->h[c] = h;
+            out->generated++;
+            if (h == COST_INF) continue;
+            counter++;
+            if (heap_push(&open[0], h, counter, (int)c)) goto oom;
+            if (helpful[k] && heap_push(&open[1], h, counter, (int)c)) goto oom;
+            if (h < best_h) {
+                best_h = h;
+                turns[1] -= BOOST;
+            }
+        }
+    }
+    status = 0;
+    goto done;
+oom:
+    PyErr_NoMemory();
+done:
+    free(open[0].a);
+    free(open[1].a);
+    free(helpful);
+    free(closed);
     return status;
 }
 
@@ -599,7 +673,8 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
     } else if (kind == S_BFS) {
         status = run_bfs(t, &st, child, ops, &out);
     } else {
-        status = run_best_first(t, &st, kind, heuristic, child, ops, &out);
+        status = kind == S_ASTAR ? run_astar(t, &st, heuristic, child, ops, &out)
+                                 : run_greedy(t, &st, heuristic, child, ops, &out);
     }
     if (status) goto done;
     PyObject *plan = Py_None;

@@ -1,54 +1,8 @@
-"""Planner subcommands of ./semgoal: `plan-pddl` (any STRIPS domain) and `parse-goal` (a sentence to literals)."""
+"""`./semgoal parse-goal`: a plain-English goal to the scene's literals (`plan-pddl` lives in plan_pddl.py)."""
 
 from __future__ import annotations
 
 import argparse
-import sys
-
-from semgoal_planner.heuristics import HEURISTICS
-from semgoal_planner.search import SEARCHES
-
-
-def plan_pddl_main(argv: list[str]) -> int:
-    """`./semgoal plan-pddl DOMAIN PROBLEM --search S [--heuristic H]`: exit 0 plan, 1 unsolvable, 2 bad PDDL or
-    an unreadable file, 3 valid PDDL outside the supported STRIPS fragment (the message names the construct)."""
-    from semgoal_planner.pddl import PddlError, PddlUnsupportedError
-    from semgoal_planner.planner import solve_pddl
-
-    parser = argparse.ArgumentParser(prog="semgoal plan-pddl", description=plan_pddl_main.__doc__)
-    parser.add_argument("domain")
-    parser.add_argument("problem")
-    parser.add_argument("--search", choices=list(SEARCHES), default="bfs")
-    parser.add_argument("--heuristic", choices=list(HEURISTICS), help="default: blind (bfs), lmcut (astar), hff (gbfs)")
-    parser.add_argument("--stats", action="store_true", help="print expanded states and time to stderr")
-    args = parser.parse_args(argv)
-    try:
-        result = solve_pddl(_read(args.domain), _read(args.problem), args.search, args.heuristic)
-    except OSError as error:
-        print(f"semgoal plan-pddl: {error}", file=sys.stderr)
-        return 2
-    except PddlUnsupportedError as error:
-        print(f"semgoal plan-pddl: unsupported PDDL: {error}", file=sys.stderr)
-        return 3
-    except PddlError as error:
-        print(f"semgoal plan-pddl: bad PDDL: {error}", file=sys.stderr)
-        return 2
-    if args.stats:
-        print(f"expanded {result.stats.expanded}, generated {result.stats.generated}, "
-              f"{result.seconds * 1000:.2f} ms", file=sys.stderr)
-    if result.plan is None:
-        print("unsolvable")
-        if result.reason:
-            print(result.reason, file=sys.stderr)
-        return 1
-    for op in result.plan:
-        print(op)
-    return 0
-
-
-def _read(path: str) -> str:
-    with open(path, encoding="utf-8") as file:
-        return file.read()
 
 
 def parse_goal_main(argv: list[str]) -> int:
@@ -84,6 +38,3 @@ def parse_goal_main(argv: list[str]) -> int:
             print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
     return 2 if failed else 0
 
-
-if __name__ == "__main__":  # ./semgoal plan-pddl starts here, without ROS (see ./semgoal)
-    sys.exit(plan_pddl_main(sys.argv[1:]))

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
 
 Row = tuple[int, ...]
 Template = tuple[int, ...]
@@ -48,47 +47,53 @@ class Relation:
         return index
 
 
-@dataclass(frozen=True)
 class Schema:
     """An action as the exploration needs it."""
 
-    name: str
-    types: tuple[frozenset[int] | None, ...]
-    """Per parameter, the objects it may take (None: any)."""
-    joined: tuple[tuple[str, Template], ...]
-    """Positive preconditions, fluent or static: (predicate, arguments)."""
-    filters: tuple[tuple[frozenset[int], Filter], ...] = ()
-    """(parameters a check reads, the check on the binding so far): equality and negative static atoms."""
-    adds: tuple[tuple[str, Template], ...] = ()
+    __slots__ = ("adds", "filters", "joined", "name", "types")
+
+    def __init__(self, name: str, types: tuple[frozenset[int] | None, ...], joined: tuple[tuple[str, Template], ...],
+                 filters: tuple[tuple[frozenset[int], Filter], ...] = (), adds: tuple[tuple[str, Template], ...] = ()) -> None:
+        self.name = name
+        self.types = types
+        """Per parameter, the objects it may take (None: any)."""
+        self.joined = joined
+        """Positive preconditions, fluent or static: (predicate, arguments)."""
+        self.filters = filters
+        """(parameters a check reads, the check on the binding so far): equality and negative static atoms."""
+        self.adds = adds
 
 
-@dataclass
 class _Step:
     """One step of a join: look a precondition's atoms up by its bound arguments, or (``relation`` None) range
     a parameter that no positive precondition mentions over its type."""
 
-    relation: Relation | None
-    index: dict[Row, list[Row]]
-    key: Template
-    """The bound arguments (parameters or ~constants) whose objects are the index's key."""
-    binds: tuple[tuple[int, int], ...]
-    """(row position, parameter) for parameters this step binds first."""
-    same: tuple[tuple[int, int], ...]
-    """(row position, row position) that must agree (a parameter repeated in one atom)."""
-    earlier: int
-    """1: only atoms that arrived before the seed; 0: the seed itself too (a precondition listed before it)."""
-    filters: list[Filter] = field(default_factory=list)
+    __slots__ = ("binds", "earlier", "filters", "index", "key", "relation", "same")
+
+    def __init__(self, relation: Relation | None, index: dict[Row, list[Row]], key: Template,
+                 binds: tuple[tuple[int, int], ...], same: tuple[tuple[int, int], ...], earlier: int,
+                 filters: list[Filter]) -> None:
+        self.relation, self.index = relation, index
+        self.key = key
+        """The bound arguments (parameters or ~constants) whose objects are the index's key."""
+        self.binds = binds
+        """(row position, parameter) for parameters this step binds first."""
+        self.same = same
+        """(row position, row position) that must agree (a parameter repeated in one atom)."""
+        self.earlier = earlier
+        """1: only atoms that arrived before the seed; 0: the seed itself too (a precondition listed before it)."""
+        self.filters = filters
 
 
-@dataclass
 class _Seeding:
     """How an arriving atom seeds one precondition of one schema."""
 
-    schema: int
-    args: Template
-    filters: list[Filter]
-    """Checks whose parameters the seed alone binds."""
-    steps: list[_Step]
+    __slots__ = ("args", "filters", "schema", "steps")
+
+    def __init__(self, schema: int, args: Template, filters: list[Filter], steps: list[_Step]) -> None:
+        self.schema, self.args, self.steps = schema, args, steps
+        self.filters = filters
+        """Checks whose parameters the seed alone binds."""
 
 
 class Exploration:

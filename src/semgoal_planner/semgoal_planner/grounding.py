@@ -11,7 +11,6 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from functools import cached_property
 from typing import NamedTuple
 
@@ -40,16 +39,16 @@ class Operator(NamedTuple):
         return f"({' '.join((self.name, *self.args))})"
 
 
-@dataclass(frozen=True)
 class Task:
-    facts: tuple[Atom, ...]
-    """Bit i of a state is ``facts[i]``."""
-    init: int
-    goal: int
-    goal_neg: int
-    operators: tuple[Operator, ...]
-    unsolvable_reason: str = ""
-    """Set when grounding alone proves the goal unreachable (a static or unreachable goal atom)."""
+    """A grounded task: facts, initial state, goal and operators over int bitsets."""
+
+    def __init__(self, facts: tuple[Atom, ...], init: int, goal: int, goal_neg: int, operators: tuple[Operator, ...],
+                 unsolvable_reason: str = "") -> None:
+        self.facts = facts
+        """Bit i of a state is ``facts[i]``."""
+        self.init, self.goal, self.goal_neg, self.operators = init, goal, goal_neg, operators
+        self.unsolvable_reason = unsolvable_reason
+        """Set when grounding alone proves the goal unreachable (a static or unreachable goal atom)."""
 
     def goal_reached(self, state: int) -> bool:
         return state & self.goal == self.goal and not state & self.goal_neg

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import NamedTuple, TypeVar
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
@@ -148,8 +147,7 @@ class Condition(NamedTuple):
     positive: bool = True
 
 
-@dataclass(frozen=True)
-class Action:
+class Action(NamedTuple):
     name: str
     parameters: tuple[tuple[str, str], ...]
     """(variable, type) pairs."""
@@ -158,16 +156,18 @@ class Action:
     delete: tuple[Atom, ...]
 
 
-@dataclass
 class Domain:
-    name: str
-    requirements: set[str] = field(default_factory=set)
-    types: dict[str, str] = field(default_factory=lambda: {ROOT_TYPE: ""})
-    """type -> parent type (``object`` is the root)."""
-    constants: dict[str, str] = field(default_factory=dict)
-    predicates: dict[str, tuple[str, ...]] = field(default_factory=dict)
-    """name -> parameter types."""
-    actions: list[Action] = field(default_factory=list)
+    """A domain as it is read: filled in section by section."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.requirements: set[str] = set()
+        self.types: dict[str, str] = {ROOT_TYPE: ""}
+        """type -> parent type (``object`` is the root)."""
+        self.constants: dict[str, str] = {}
+        self.predicates: dict[str, tuple[str, ...]] = {}
+        """name -> parameter types."""
+        self.actions: list[Action] = []
 
     def is_subtype(self, sub: str, sup: str) -> bool:
         """Whether every object of type ``sub`` is one of type ``sup`` (``either`` types: unions)."""
@@ -182,13 +182,12 @@ class Domain:
         return False
 
 
-@dataclass
 class Problem:
-    name: str
-    domain_name: str
-    objects: dict[str, str]
-    init: set[Atom]
-    goal: tuple[Condition, ...]
+    """A problem as it is read, or as the scene planner states one."""
+
+    def __init__(self, name: str, domain_name: str, objects: dict[str, str], init: set[Atom],
+                 goal: tuple[Condition, ...]) -> None:
+        self.name, self.domain_name, self.objects, self.init, self.goal = name, domain_name, objects, init, goal
 
 
 # -- readers ---------------------------------------------------------------------------------------------

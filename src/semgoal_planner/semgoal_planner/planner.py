@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 
 from semgoal_planner.grounding import Operator, Task, ground
 from semgoal_planner.heuristics import HEURISTICS
@@ -11,13 +10,12 @@ from semgoal_planner.pddl import parse_domain, parse_problem
 from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
 
 
-@dataclass
 class PlanResult:
-    plan: list[Operator] | None
-    """None: no plan exists."""
-    reason: str = ""
-    stats: SearchStats = field(default_factory=SearchStats)
-    seconds: float = 0.0
+    def __init__(self, plan: list[Operator] | None, reason: str = "", stats: SearchStats | None = None,
+                 seconds: float = 0.0) -> None:
+        self.plan = plan
+        """None: no plan exists."""
+        self.reason, self.stats, self.seconds = reason, stats or SearchStats(), seconds
 
 
 def check_choice(search: str, heuristic: str | None) -> str:

@@ -8,18 +8,17 @@ so a search returns the same plan every time.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from semgoal_planner.grounding import Operator, Task
 
 SEARCHES = ("bfs", "astar", "gbfs")
 DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff"}
 
 
-@dataclass
 class SearchStats:
-    expanded: int = 0
-    generated: int = 0
+    __slots__ = ("expanded", "generated")
+
+    def __init__(self, expanded: int = 0, generated: int = 0) -> None:
+        self.expanded, self.generated = expanded, generated
 
 
 def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = None) -> list[Operator] | None:

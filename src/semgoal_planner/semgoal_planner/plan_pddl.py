@@ -1,0 +1,100 @@
+"""`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--stats]`: our planner on any STRIPS PDDL.
+
+Exit 0 with the plan (one action a line), 1 unsolvable, 2 bad PDDL, an unreadable file or a bad command line,
+3 valid PDDL outside the supported fragment (the message names the construct).
+
+The command starts in a bare interpreter (see ./semgoal), and it reads its few arguments by hand: argparse,
+with the gettext, locale and shutil it loads, would be about a tenth of its whole start-up.
+"""
+
+from __future__ import annotations
+
+import sys
+
+from semgoal_planner.heuristics import HEURISTICS
+from semgoal_planner.pddl import PddlError, PddlUnsupportedError
+from semgoal_planner.planner import check_choice, solve_pddl
+from semgoal_planner.search import SEARCHES
+
+USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHES)}}}] "
+         f"[--heuristic {{{','.join(HEURISTICS)}}}] [--stats]")
+HELP = f"""{USAGE}
+
+Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality, constants, either types).
+
+options:
+  --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),
+                  gbfs (greedy best-first: fast, not shortest)
+  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs)
+  --stats         print expanded and generated states and the search time to stderr
+
+exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL"""
+
+
+class UsageError(ValueError):
+    """A command line that names no task or an unknown option; the message says which."""
+
+
+def parse_arguments(argv: list[str]) -> tuple[str, str, str, str | None, bool]:
+    """(domain, problem, search, heuristic or None for the search's default, stats) from the command line."""
+    files: list[str] = []
+    options: dict[str, str | None] = {"--search": "bfs", "--heuristic": None}
+    stats = False
+    arguments = iter(argv)
+    for argument in arguments:
+        name, equals, value = argument.partition("=")
+        if argument == "--stats":
+            stats = True
+        elif name in options:
+            value = value if equals else next(arguments, None)
+            if value is None:
+                raise UsageError(f"{name} needs a value")
+            options[name] = value
+        elif argument.startswith("-") and argument != "-":
+            raise UsageError(f"unknown option {argument!r}")
+        else:
+            files.append(argument)
+    if len(files) != 2:
+        raise UsageError(f"give a DOMAIN and a PROBLEM file, not {len(files)} file(s)")
+    try:
+        check_choice(options["--search"], options["--heuristic"])
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    return files[0], files[1], options["--search"], options["--heuristic"], stats
+
+
+def main(argv: list[str]) -> int:
+    if "-h" in argv or "--help" in argv:
+        print(HELP)
+        return 0
+    try:
+        domain, problem, search, heuristic, stats = parse_arguments(argv)
+    except UsageError as error:
+        print(f"{USAGE}\nsemgoal plan-pddl: {error}", file=sys.stderr)
+        return 2
+    try:
+        result = solve_pddl(_read(domain), _read(problem), search, heuristic)
+    except OSError as error:
+        print(f"semgoal plan-pddl: {error}", file=sys.stderr)
+        return 2
+    except PddlUnsupportedError as error:
+        print(f"semgoal plan-pddl: unsupported PDDL: {error}", file=sys.stderr)
+        return 3
+    except PddlError as error:
+        print(f"semgoal plan-pddl: bad PDDL: {error}", file=sys.stderr)
+        return 2
+    if stats:
+        print(f"expanded {result.stats.expanded}, generated {result.stats.generated}, "
+              f"{result.seconds * 1000:.2f} ms", file=sys.stderr)
+    if result.plan is None:
+        print("unsolvable")
+        if result.reason:
+            print(result.reason, file=sys.stderr)
+        return 1
+    print("\n".join(map(str, result.plan)))
+    return 0
+
+
+def _read(path: str) -> str:
+    with open(path, encoding="utf-8") as file:
+        return file.read()

@@ -29,8 +29,8 @@ SIZES = (4, 6, 8, 10, 12)
 PHASES = ("parse_ground", "search")
 
 RUNNERS = Path(__file__).resolve().parent / "runners"
-OURS_RUNNER = RUNNERS / "ours.py"
-PYPERPLAN_RUNNER = RUNNERS / "pyperplan.py"
+OURS_RUNNER = RUNNERS / "time_ours.py"
+PYPERPLAN_RUNNER = RUNNERS / "time_pyperplan.py"  # not pyperplan.py: the script's folder comes first on sys.path
 
 
 

@@ -165,7 +165,7 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
               repeats: int = 1, domains: set[str] | None = None, progress: Callable[[str], None] | None = None) -> dict:
     """Every planner on every problem (whole processes, the median wall time of ``repeats`` runs), every plan
     validated: per domain the problems solved, the invalid plans, median seconds, and each other planner's
-    time over ours on the problems both solved."""
+    time over ours on the problems both solved; every run as a row of ``runs``."""
     installed: dict[str, Planner] = {}
     left_out: dict[str, str] = {}
     for name in planners:
@@ -174,6 +174,7 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
         except (RuntimeError, StopIteration) as error:
             left_out[name] = str(error) or "its driver was not found in the installed package"
     rows: dict[str, dict] = {}
+    records: list[dict] = []
     ratios: dict[str, list[float]] = {p: [] for p in installed if p != "ours"}
     for domain_name, domain_path, problem_path in suite_problems(folder, per_domain, domains):
         row = rows.setdefault(domain_name, {"problems": 0, **{p: {"solved": 0, "invalid": [], "seconds": [],
@@ -193,6 +194,8 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
                 results[name] = result.seconds
             elif result.status.startswith("error"):
                 cell["failed"].append(f"{problem_path.name}: {result.status}")
+            records.append({"domain": domain_name, "problem": problem_path.name, "planner": name, "status": result.status,
+                            "seconds": round(result.seconds, 4), "invalid": reason})
             if progress:
                 progress(f"{domain_name}/{problem_path.name} {name}: {result.status} {result.seconds:.3f} s"
                          + (f" INVALID {reason}" if reason else ""))
@@ -206,7 +209,7 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
             row[name]["median_s"] = round(statistics.median(times), 3) if times else None
         row["ratio_to_ours"] = {n: round(statistics.median(r), 2) for n, r in row.get("ratio_to_ours", {}).items()}
     return {"search": f"{search}/{heuristic}", "timeout_s": timeout, "repeats": repeats, "left_out": left_out,
-            "domains": rows, "problems": sum(row["problems"] for row in rows.values()),
+            "domains": rows, "runs": records, "problems": sum(row["problems"] for row in rows.values()),
             "coverage": {p: sum(row[p]["solved"] for row in rows.values()) for p in installed},
             "invalid_plans": {p: sum(len(row[p]["invalid"]) for row in rows.values()) for p in installed},
             "errors": {p: sum(len(row[p]["failed"]) for row in rows.values()) for p in installed},

@@ -1,6 +1,6 @@
 """Times our planner on one PDDL task in this process; bench/planner.py runs it once per (problem, search).
 
-    python bench/runners/ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
+    python bench/runners/time_ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
 """
 
 import json

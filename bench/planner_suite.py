@@ -195,7 +195,8 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
             elif result.status.startswith("error"):
                 cell["failed"].append(f"{problem_path.name}: {result.status}")
             records.append({"domain": domain_name, "problem": problem_path.name, "planner": name, "status": result.status,
-                            "seconds": round(result.seconds, 4), "invalid": reason})
+                            "seconds": round(result.seconds, 4), "length": None if result.plan is None else len(result.plan),
+                            "invalid": reason})
             if progress:
                 progress(f"{domain_name}/{problem_path.name} {name}: {result.status} {result.seconds:.3f} s"
                          + (f" INVALID {reason}" if reason else ""))

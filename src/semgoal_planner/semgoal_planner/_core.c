@@ -276,11 +276,11 @@ static int lower_costs(TaskObject *t, int ncut) {
         for (int k = t->consumers.start[e.item]; k < t->consumers.start[e.item + 1]; k++) {
             int o = t->consumers.items[k];
             if (t->supporter[o] != e.item) continue;
-            /* the costliest precondition fell: find the new one (the first of the costliest) */
-            int best = -1;
+            /* the costliest precondition fell: find the new one */
+            int best = e.item; /* ties keep it: a change of supporter on a tie weakens the cuts */
             for (int j = t->rpre.start[o]; j < t->rpre.start[o + 1]; j++) {
                 int p = t->rpre.items[j];
-                if (best < 0 || t->fact_cost[p] > t->fact_cost[best]) best = p;
+                if (t->fact_cost[p] > t->fact_cost[best]) best = p;
             }
             t->supporter[o] = best;
             if (t->fact_cost[best] < t->op_max[o]) {
@@ -290,6 +290,25 @@ static int lower_costs(TaskObject *t, int ncut) {
         }
     }
     return 0;
+}
+
+/* A zero-cost operator met while the goal zone grows: among its costliest preconditions, take as its supporter
+   one that no zero-cost operator achieves (the zone's border) or one already in the zone, where there is such
+   a tie. Any costliest precondition keeps LM-cut admissible; these give larger cuts (Fast Downward breaks
+   the same ties this way). */
+static void break_ties(TaskObject *t, int o, int zone) {
+    int cost = t->fact_cost[t->supporter[o]];
+    for (int j = t->rpre.start[o]; j < t->rpre.start[o + 1]; j++) {
+        int p = t->rpre.items[j];
+        if (t->fact_cost[p] != cost) continue;
+        int border = 1;
+        for (int k = t->achievers.start[p]; k < t->achievers.start[p + 1] && border; k++)
+            border = t->cost[t->achievers.items[k]] != 0;
+        if (border || t->in_zone[p] == zone) {
+            t->supporter[o] = p;
+            return;
+        }
+    }
 }
 
 /* LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts. */
@@ -307,8 +326,11 @@ static int h_lmcut(TaskObject *t, const word *s) {
         while (top) {
             int f = t->stack[--top];
             for (int k = t->achievers.start[f]; k < t->achievers.start[f + 1]; k++) {
-                int o = t->achievers.items[k], p = t->supporter[o];
-                if (t->cost[o] == 0 && p >= 0 && t->in_zone[p] != zone) {
+                int o = t->achievers.items[k];
+                if (t->cost[o] != 0 || t->supporter[o] < 0) continue;
+                break_ties(t, o, zone);
+                int p = t->supporter[o];
+                if (t->in_zone[p] != zone) {
                     t->in_zone[p] = zone;
                     t->stack[top++] = p;
                 }

@@ -213,3 +213,20 @@ def test_the_c_grounder_builds_masks_and_constants() -> None:
     assert facts == [("on", ("a", "a")), ("on", ("a", "b")), ("on", ("b", "b"))]
     assert (init, goal, goal_neg, unreached) == (0b110, 0b100, 0, [0])  # (on b a) is never reached
     assert operators == [("toggle", ("a",), 0b010, 0, 0b001, 0b010), ("toggle", ("b",), 0b100, 0, 0b100, 0)]
+
+
+@settings(max_examples=150, deadline=None)
+@given(random_tasks())
+def test_lmcut_stays_admissible_on_random_domains(texts: tuple[str, str]) -> None:
+    """Whatever ties LM-cut breaks among costliest preconditions, A* with it finds plans as short as
+    breadth-first search, and its estimate at the start never exceeds that length."""
+    from semgoal_planner.heuristics import heuristic
+    from semgoal_planner.planner import solve_task
+
+    task, _ = grounded(*texts)
+    shortest = solve_task(task, "bfs").plan
+    astar = solve_task(task, "astar", "lmcut").plan
+    assert (shortest is None) == (astar is None)
+    if shortest is not None:
+        assert len(astar) == len(shortest)
+        assert heuristic(task, "lmcut")(task.init) <= len(shortest)

@@ -51,9 +51,37 @@ def provenance(command: str, seed: int | None = None, root: Path | None = None) 
             "created": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")}
 
 
+LOCK_FILE = "requirements/lock.txt"
+
+
+def traced(path: Path, command: str, seed: int | None, root: Path | None = None) -> dict | None:
+    """The record of a file made before records were kept, traced in git history: the first commit that held
+    exactly its content (what made it ran on that code or earlier), the library versions pinned in that
+    commit's lock file, and that commit's date; None when git does not know the content."""
+    root = root or source_root()
+    try:
+        blob = subprocess.run(["git", "-C", str(root), "hash-object", str(path)], capture_output=True, text=True,
+                              check=True, timeout=30).stdout.strip()
+        commits = subprocess.run(["git", "-C", str(root), "log", "--all", "--reverse", "--format=%H %cI",
+                                  f"--find-object={blob}"], capture_output=True, text=True, check=True,
+                                 timeout=120).stdout.split("\n")
+        commit, created = commits[0].split()
+        lock = subprocess.run(["git", "-C", str(root), "show", f"{commit}:{LOCK_FILE}"], capture_output=True,
+                              text=True, timeout=30).stdout
+    except (OSError, subprocess.SubprocessError, ValueError):
+        return None
+    pinned = dict(line.split("==", 1) for line in lock.splitlines() if "==" in line and not line.startswith("#"))
+    return {"commit": commit, "dirty": None, "versions": {name: pinned.get(name, UNKNOWN) for name in LIBRARIES},
+            "command": command, "seed": seed, "created": created,
+            "traced": "from git history: the first commit that held this file; it was made with that code or "
+                      "earlier, and the versions are those pinned there"}
+
+
 def describe(record: dict) -> str:
     """One line for a results page: ``commit 1a2b3c4d5e6f (clean tree), mujoco 3.3.0, ..., seed 3000000``."""
     tree = {True: "with uncommitted changes", False: "clean tree", None: "no git checkout"}[record["dirty"]]
+    if record.get("traced"):
+        tree = "traced in git history: the first commit that held this file"
     libraries = ", ".join(f"{name} {version}" for name, version in record["versions"].items())
     seed = "" if record["seed"] is None else f", seed {record['seed']}"
     return f"commit {record['commit'][:12]} ({tree}), {libraries}{seed}, {record['created']}"

@@ -1,6 +1,7 @@
 """A model card per exported actor (``MODEL_CARD.md`` beside ``actor.json``), written from ``actor.json`` alone
 so that it cannot drift from it: intended use, training budget and recipe, its evaluation, provenance, limits.
-``./semgoal model-card DIR...`` (re)writes the cards; every export writes its own."""
+``./semgoal model-card DIR...`` (re)writes the cards; every export writes its own. An actor exported before
+provenance was kept gets it traced in git history first (``--trace``): the first commit that held its weights."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import argparse
 import json
 from pathlib import Path
 
-from semgoal_core.provenance import describe
+from semgoal_core.provenance import describe, traced
 
 LIMITS = {
     "hierarchical": "It executes one sub-goal (a pick, a put) at a time; whole tasks need the planner, which "
@@ -57,10 +58,28 @@ def write_card(directory: Path) -> Path:
     return path
 
 
+def trace_provenance(directory: Path) -> bool:
+    """Give an actor exported without provenance the one git history traces for its weights; whether it did."""
+    path = directory / "actor.json"
+    meta = json.loads(path.read_text())
+    if meta.get("provenance"):
+        return False
+    record = traced(directory / "actor.pt", meta.get("command", "not recorded"), meta.get("seed"))
+    if record is None:
+        return False
+    meta["provenance"] = record
+    path.write_text(json.dumps(meta, indent=2) + "\n")
+    return True
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal model-card", description=__doc__.splitlines()[0])
     parser.add_argument("dirs", nargs="+", type=Path, help="folders with an exported actor (actor.json)")
+    parser.add_argument("--trace", action="store_true",
+                        help="first give actors without provenance the one traced in git history")
     args = parser.parse_args(argv)
     for directory in args.dirs:
+        if args.trace and trace_provenance(directory):
+            print(f"traced the provenance of {directory / 'actor.json'} in git history")
         print(f"wrote {write_card(directory)}")
     return 0

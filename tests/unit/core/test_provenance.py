@@ -3,7 +3,7 @@
 import subprocess
 from pathlib import Path
 
-from semgoal_core.provenance import LIBRARIES, UNKNOWN, describe, git_state, provenance
+from semgoal_core.provenance import LIBRARIES, UNKNOWN, describe, git_state, provenance, traced
 
 ROOT = Path(__file__).parents[3]
 
@@ -21,3 +21,41 @@ def test_the_record_names_this_checkout_and_the_versions() -> None:
 def test_outside_a_checkout_the_commit_is_unknown(tmp_path: Path) -> None:
     assert git_state(tmp_path) == (UNKNOWN, None)
     assert "no git checkout" in describe(provenance("x", root=tmp_path))
+
+
+def _git(repo: Path, *args: str) -> str:
+    return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout.strip()
+
+
+def test_a_file_made_before_records_were_kept_is_traced_to_the_first_commit_that_held_it(tmp_path: Path) -> None:
+    _git(tmp_path, "init", "-q")
+    _git(tmp_path, "config", "user.email", "t@example.org")
+    _git(tmp_path, "config", "user.name", "t")
+    (tmp_path / "requirements").mkdir()
+    (tmp_path / "requirements" / "lock.txt").write_text("# pins\nnumpy==1.2.3\ntorch==9.9\n")
+    (tmp_path / "actor.pt").write_bytes(b"weights")
+    _git(tmp_path, "add", ".")
+    _git(tmp_path, "commit", "-qm", "ship")
+    first = _git(tmp_path, "rev-parse", "HEAD")
+    (tmp_path / "requirements" / "lock.txt").write_text("numpy==2.0\n")
+    (tmp_path / "moved").mkdir()
+    _git(tmp_path, "mv", "actor.pt", "moved/actor.pt")
+    _git(tmp_path, "commit", "-qam", "move and bump")
+    record = traced(tmp_path / "moved" / "actor.pt", "./semgoal train --seed 5", 5, root=tmp_path)
+    assert record["commit"] == first and record["dirty"] is None and record["seed"] == 5
+    assert record["versions"]["numpy"] == "1.2.3" and record["versions"]["torch"] == "9.9"
+    assert record["versions"]["mujoco"] == UNKNOWN
+    assert "traced in git history" in describe(record)
+    (tmp_path / "new.pt").write_bytes(b"never committed")
+    assert traced(tmp_path / "new.pt", "x", None, root=tmp_path) is None
+
+
+def test_every_shipped_actor_names_its_commit_and_versions() -> None:
+    import json
+
+    actors = sorted((ROOT / "src" / "semgoal_policy" / "models").rglob("actor.json"))
+    assert len(actors) >= 9
+    for path in actors:
+        record = json.loads(path.read_text()).get("provenance")
+        assert record, f"{path}: no provenance (./semgoal model-card --trace {path.parent})"
+        assert len(record["commit"]) == 40 and all(record["versions"][name] != UNKNOWN for name in LIBRARIES), path

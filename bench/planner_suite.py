@@ -12,8 +12,10 @@ Searches are named as ours are. Fast Downward runs ``astar/H`` as ``astar(H())``
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -117,11 +119,18 @@ def run(planner: Planner, domain: Path, problem: Path, search: str, heuristic: s
         work = Path(folder)
         command = planner.command(domain, problem, search, heuristic, work)
         start = time.perf_counter()
+        # a session of its own, so that a time-out kills the planner's children too (Fast Downward's driver
+        # runs its search as a child, which would otherwise go on using a core)
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=work,
+                                   start_new_session=True)
         try:
-            done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, cwd=work)
+            stdout, stderr = process.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
             return Run("timeout", timeout)
         seconds = time.perf_counter() - start
+        done = subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
         plan = planner.plan(done, problem, work)
     if plan is not None:
         return Run("solved", seconds, plan)

@@ -1,9 +1,10 @@
 """`./semgoal bench-planner --suite DIR`: a folder of PDDL domains in the IPC layout, whole processes, every plan validated."""
 
 import shutil
+import time
 from pathlib import Path
 
-from bench.planner_suite import install, run, run_suite, suite_problems, validity
+from bench.planner_suite import Planner, install, run, run_suite, suite_problems, validity
 
 FIXTURES = Path(__file__).parents[1] / "planner" / "fixtures"
 
@@ -68,3 +69,18 @@ def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked
     assert result["coverage"] == {"ours": 5, "pyperplan": 5, "fast-downward": 5}
     assert result["invalid_plans"] == {"ours": 0, "pyperplan": 0, "fast-downward": 0}
     assert set(result["median_ratio_to_ours"]) == {"pyperplan", "fast-downward"}
+
+
+def test_a_time_out_ends_the_planner_and_its_children(tmp_path) -> None:
+    """Fast Downward's driver runs its search as a child; a time-out must end both, or the search goes on
+    using a core and skews every later time."""
+    marker = tmp_path / "child.pid"
+    spawner = Planner("spawner", lambda *_: ["bash", "-c", f"sleep 300 & echo $! > {marker}; wait"],
+                      lambda *_: None)
+    domain, problem = FIXTURES / "blocksworld-domain.pddl", FIXTURES / "blocksworld-sussman.pddl"
+    assert run(spawner, domain, problem, "gbfs", "hff", 1).status == "timeout"
+    child = int(marker.read_text())
+    deadline = time.monotonic() + 5
+    while Path(f"/proc/{child}").exists() and "Z" not in Path(f"/proc/{child}/stat").read_text().rsplit(")", 1)[1][:3]:
+        assert time.monotonic() < deadline, "the planner's child outlived the time-out"
+        time.sleep(0.05)

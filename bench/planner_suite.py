@@ -12,6 +12,7 @@ Searches are named as ours are. Fast Downward runs ``astar/H`` as ``astar(H())``
 
 from __future__ import annotations
 
+import functools
 import os
 import re
 import shutil
@@ -159,15 +160,22 @@ def _natural(path: Path) -> list:
     return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", path.name)]
 
 
+@functools.cache
+def _parsed(domain_path: Path, problem_path: Path) -> tuple:
+    """A problem and its domain, parsed once however many planners' plans are checked against them."""
+    from semgoal_planner.pddl import parse_domain, parse_problem
+
+    domain = parse_domain(domain_path.read_text())
+    return domain, parse_problem(problem_path.read_text(), domain)
+
+
 def validity(domain_path: Path, problem_path: Path, plan: tuple[str, ...] | None) -> str:
     """"" for a valid plan (or none), else why not: the plan is run on the lifted actions (validate_plan.py)."""
     from bench.validate_plan import invalid_step, read_plan
-    from semgoal_planner.pddl import parse_domain, parse_problem
 
     if plan is None:
         return ""
-    domain = parse_domain(domain_path.read_text())
-    return invalid_step(domain, parse_problem(problem_path.read_text(), domain), read_plan("\n".join(plan))) or ""
+    return invalid_step(*_parsed(domain_path, problem_path), read_plan("\n".join(plan))) or ""
 
 
 def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float, search: str, heuristic: str,

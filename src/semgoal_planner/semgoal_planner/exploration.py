@@ -66,7 +66,7 @@ class Schema:
 
 class _Step:
     """One step of a join: look a precondition's atoms up by its bound arguments, or (``relation`` None) range
-    a parameter that no positive precondition mentions over its type."""
+    a parameter that no positive precondition mentions over its type (an index holding its objects under ``()``)."""
 
     __slots__ = ("binds", "earlier", "filters", "index", "key", "relation", "same")
 
@@ -187,7 +187,9 @@ class Exploration:
         for a in range(len(schema.types)):
             if a not in bound:
                 bound.add(a)
-                steps.append(_Step(None, {}, (), ((0, a),), (), 0, self._take(pending, bound)))
+                allowed = schema.types[a]
+                choices = self.everything if allowed is None else tuple((obj,) for obj in sorted(allowed))
+                steps.append(_Step(None, {(): choices}, (), ((0, a),), (), 0, self._take(pending, bound)))
         return now, steps
 
     @staticmethod
@@ -204,13 +206,8 @@ class Exploration:
             return
         step = steps[k]
         types = self.schemas[s].types
-        if step.relation is None:
-            allowed = types[step.binds[0][1]]
-            rows: Iterable[Row] = self.everything if allowed is None else tuple((obj,) for obj in sorted(allowed))
-            arrivals, last = None, 0
-        else:
-            rows = step.index.get(tuple(values[a] if a >= 0 else ~a for a in step.key), ())
-            arrivals, last = step.relation.rows, seed_arrival - step.earlier
+        rows = step.index.get(tuple(values[a] if a >= 0 else ~a for a in step.key), ())
+        arrivals, last = (None, 0) if step.relation is None else (step.relation.rows, seed_arrival - step.earlier)
         for row in rows:
             if arrivals is not None and arrivals[row] > last:
                 break  # the index lists atoms in arrival order

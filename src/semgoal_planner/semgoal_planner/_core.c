@@ -525,6 +525,16 @@ static int run_bfs(TaskObject *t, Store *st, word *child, int *ops, Outcome *out
     return 0;
 }
 
+/* The searches' goal test on expansion: 1 when state `s` satisfies the goal (recorded in `out`), -1 when a
+   signal stops the search (Ctrl-C, an alarm), else 0 (and the expansion is counted). */
+static int expanding(const TaskObject *t, const word *state, long s, Outcome *out) {
+    if (goal_reached(t, state)) {
+        out->goal_state = s;
+        return 1;
+    }
+    return !(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals() ? -1 : 0;
+}
+
 /* A*: f = g + h, ties to the larger g, then first in; a state reached with a smaller g is reopened. Goal test
    on expansion. */
 static int run_astar(TaskObject *t, Store *st, int heuristic, word *child, int *ops, Outcome *out) {
@@ -545,12 +555,11 @@ static int run_astar(TaskObject *t, Store *st, int heuristic, word *child, int *
         long s = e.item;
         if (e.key - st->h[s] > st->g[s]) continue; /* reached more cheaply since */
         const word *state = st->states + (size_t)s * (size_t)st->nwords;
-        if (goal_reached(t, state)) {
-            out->goal_state = s;
-            status = 0;
+        int stop = expanding(t, state, s, out);
+        if (stop) {
+            status = stop > 0 ? 0 : -1;
             goto done;
         }
-        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) goto done;
         int g = st->g[s], nops = applicable_ops(t, state, ops);
         for (int k = 0; k < nops; k++) {
             apply_op(t, st->states + (size_t)s * (size_t)st->nwords, ops[k], child);
@@ -616,12 +625,11 @@ static int run_greedy(TaskObject *t, Store *st, int heuristic, word *child, int 
         if (closed[s]) continue; /* it waited in both lists */
         closed[s] = 1;
         const word *state = st->states + (size_t)s * (size_t)st->nwords;
-        if (goal_reached(t, state)) {
-            out->goal_state = s;
-            status = 0;
+        int stop = expanding(t, state, s, out);
+        if (stop) {
+            status = stop > 0 ? 0 : -1;
             goto done;
         }
-        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) goto done;
         int g = st->g[s], nops = applicable_ops(t, state, ops);
         if (heuristic == H_HFF) { /* hFF again, for the operators of its relaxed plan from this state */
             int h = h_hff(t, state);

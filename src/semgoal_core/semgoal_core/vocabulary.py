@@ -357,13 +357,20 @@ SUBGOAL_ARITY: dict[str, tuple[int, int]] = {
 
 @dataclass(frozen=True)
 class SubGoal:
-    """A sub-goal: a typed symbolic action such as put_near(red,green)."""
+    """A sub-goal: a typed symbolic action such as put_near(red,green).
+
+    ``apart`` (put_near only): blocks the moved block must end up not close to, as the planned step
+    promises: ``put_near(red,green,not blue)`` is close(red,green) & not close(red,blue). The actor is sent
+    a step's whole effect, so that a put near one block does not land near another the plan counts on
+    staying away (issue 51).
+    """
 
     kind: str
     args: tuple[str, ...]
+    apart: tuple[str, ...] = ()
 
     def __str__(self) -> str:
-        return f"{self.kind}({','.join(self.args)})"
+        return f"{self.kind}({','.join([*self.args, *(f'not {a}' for a in self.apart)])})"
 
     @property
     def block(self) -> str:
@@ -381,7 +388,8 @@ class SubGoal:
         if self.kind == "pick":
             return [Literal("holding", (x,))]
         if self.kind == "put_near":
-            return [*(Literal("close", (x, y)) for y in refs), released]
+            return [*(Literal("close", (x, y)) for y in refs), *(Literal("close", (x, a), False) for a in self.apart),
+                    released]
         if self.kind == "put_away":
             return [*(Literal("close", (x, y), False) for y in refs), released]
         if self.kind == "put_on":
@@ -392,25 +400,31 @@ class SubGoal:
 
 
 def parse_subgoal(text: str, scene: Scene | None = None) -> SubGoal:
-    """Read ``put_near(red,green)``; check the type, the arity and (given a scene) type and objects."""
+    """Read ``put_near(red,green)`` or ``put_near(red,green,not blue)``; check the type, the arity and (given a
+    scene) type and objects."""
     match = _LITERAL.match(text)
     if not match or match["neg"]:
         raise VocabularyError(f"cannot read action {text!r}: expected e.g. 'pick(red)' or 'put_near(red,green)'")
     kind = match["name"].lower()
-    args = tuple(arg.strip().lower() for arg in match["args"].split(",")) if match["args"].strip() else ()
+    words = [" ".join(arg.lower().split()) for arg in match["args"].split(",")] if match["args"].strip() else []
+    apart = tuple(word[4:] for word in words if word.startswith("not "))
+    args = tuple(word for word in words if not word.startswith("not "))
     if kind not in SUBGOAL_ARITY:
         raise VocabularyError(f"unknown action {kind!r}: known are {', '.join(SUBGOAL_ARITY)}")
+    if apart and (kind != "put_near" or words[len(args):] != [f"not {a}" for a in apart]):
+        raise VocabularyError(f"{text.strip()}: only put_near takes blocks to keep apart from, after its references "
+                              f"(e.g. 'put_near(red,green,not blue)')")
     low, high = SUBGOAL_ARITY[kind]
     if not low <= len(args) <= high:
         expected = str(low) if low == high else f"{low} to {high}"
         raise VocabularyError(f"{text.strip()}: {kind} takes {expected} argument(s), got {len(args)}")
-    if len(set(args)) != len(args):
+    if len(set(args + apart)) != len(args) + len(apart):
         raise VocabularyError(f"{text.strip()}: a block appears twice")
     if scene is not None:
         if kind not in scene.subgoal_types:
             raise VocabularyError(f"action {kind!r} is not available in scene {scene.name!r} "
                                   f"(it has {', '.join(scene.subgoal_types)})")
-        for arg in args:
+        for arg in args + apart:
             if arg not in scene.objects:
                 raise VocabularyError(f"unknown object {arg!r} in {text.strip()}: objects are {', '.join(scene.objects)}")
-    return SubGoal(kind, args)
+    return SubGoal(kind, args, apart)

@@ -26,7 +26,7 @@ def domain_dir() -> Path:
     return share_path("semgoal_planner", "domains")
 HAND_EMPTY = "hand-empty"
 ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
-    # PDDL action -> (sub-goal type, how many leading arguments the sub-goal keeps)
+    # PDDL action -> (sub-goal type, how many leading arguments the sub-goal keeps as its block and references)
     "pick": ("pick", 1),
     "put_near": ("put_near", 2),
     "put_near_both": ("put_near", 3),
@@ -36,6 +36,10 @@ ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
     "put_on_table": ("put_on_table", 1),
     "put_in_bin": ("put_in_bin", 1),
 }
+KEEPS_APART = frozenset({"put_near"})
+"""Actions whose arguments after the kept ones are blocks the moved block ends up not close to (the
+three-block ``put_near(x, y, z)``: close to y, not to z): the sub-goal's ``apart``, so the actor is sent the
+step's whole effect."""
 
 
 class PlanningError(ValueError):
@@ -51,9 +55,20 @@ def load_domain(scene: str) -> Domain:
 
 
 def plan2goal(op: Operator) -> SubGoal:
-    """Plan2Goals for one action: ``(put_near_both red green blue)`` -> ``put_near(red,green,blue)``."""
+    """Plan2Goals for one action: ``(put_near_both red green blue)`` -> ``put_near(red,green,blue)``,
+    ``(put_near red green blue)`` -> ``put_near(red,green,not blue)``."""
     kind, keep = ACTION_SUBGOALS[op.name]
-    return SubGoal(kind, op.args[:keep])
+    return SubGoal(kind, op.args[:keep], op.args[keep:] if op.name in KEEPS_APART else ())
+
+
+def _operators_for(task: Task, step: SubGoal) -> list[Operator]:
+    """The actions that achieve what ``step`` asks, those that promise least first: a step typed without the
+    blocks to keep apart from (``put_away(red,green)`` in three_blocks) runs as an action that promises more."""
+    asked = set(step.literals())
+    promised = {op: plan2goal(op) for op in task.operators}
+    matching = [op for op, goal in promised.items()
+                if goal.kind == step.kind and goal.block == step.block and asked <= set(goal.literals())]
+    return sorted(matching, key=lambda op: len(promised[op].literals()))
 
 
 def _atoms(literal: Literal) -> list[Atom]:
@@ -115,7 +130,7 @@ class SemanticPlanner:
         task = self.task(objects, state, goal)
         current = task.init
         for number, step in enumerate(steps, start=first_index):
-            candidates = [op for op in task.operators if plan2goal(op) == step]
+            candidates = _operators_for(task, step)
             if not candidates:
                 raise PlanningError(f"step {number} {step}: not an action of scene {self.scene} with these objects")
             runnable = next((op for op in candidates if op.applicable(current)), None)

@@ -54,6 +54,10 @@ AWAY_DROP_DISTANCE = THRESHOLDS.close_distance + 0.02
 """Centre distance (m) from every other block at which put_away lets go: 2 cm beyond ``close``, as the reward
 has it, not :data:`AWAY_DISTANCE` (the spot it heads for): with the latter, actors hovered between the two,
 holding the block."""
+BYSTANDER_CLEARANCE = THRESHOLDS.close_distance + 0.03
+"""Minimum distance (m) of a put's spot from blocks it must not end up close to (put_away: every other
+block; put_near: those the step keeps apart from), 1 cm beyond :data:`AWAY_DROP_DISTANCE`, so the block
+may be let go on the way to it."""
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
@@ -134,11 +138,12 @@ def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tupl
             d = np.linalg.norm(points - others[ref][:2], axis=1)
             ok &= (d >= NEAR_RANGE[0]) & (d <= NEAR_RANGE[1])
             spread += d
+        ok &= clear_of(points, [others[block] for block in subgoal.apart], BYSTANDER_CLEARANCE)
     elif subgoal.kind == "put_away":
         for ref in subgoal.references:
             ok &= np.linalg.norm(points - others[ref][:2], axis=1) >= AWAY_DISTANCE
         # far from every other block too, so moving x makes nothing else close by accident
-        ok &= clear_of(points, list(others.values()), THRESHOLDS.close_distance + 0.03)
+        ok &= clear_of(points, list(others.values()), BYSTANDER_CLEARANCE)
     return ok, spread
 
 
@@ -212,9 +217,11 @@ def _let_go_or_lower(x: str, world: WorldView, spot: np.ndarray | None) -> np.nd
 
 
 def _within_drop_reach(subgoal: SubGoal, world: WorldView) -> bool:
-    """put_near: every reference is within :data:`DROP_REACH`, so letting go here achieves it."""
+    """put_near: every reference is within :data:`DROP_REACH` and every block to keep apart from beyond
+    :data:`AWAY_DROP_DISTANCE`, so letting go here achieves it."""
     x, others = world.positions[subgoal.block], world.others(subgoal.block)
-    return all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
+    return (all(np.linalg.norm(x[:2] - others[ref][:2]) <= DROP_REACH for ref in subgoal.references)
+            and all(np.linalg.norm(x[:2] - others[block][:2]) >= AWAY_DROP_DISTANCE for block in subgoal.apart))
 
 
 def _away_drop_holds(subgoal: SubGoal, world: WorldView) -> bool:

@@ -145,6 +145,22 @@ def test_subgoal_literals_and_parsing() -> None:
         parse_subgoal("put_near(red,red)")
 
 
+@pytest.mark.parametrize("text", ["put_near(red,green,not blue)", "put_near(red, green, NOT  blue)"])
+def test_a_put_near_names_the_blocks_it_keeps_apart_from(text: str) -> None:
+    subgoal = parse_subgoal(text, LAYOUTS["three_blocks"].scene)
+    assert subgoal == SubGoal("put_near", ("red", "green"), apart=("blue",))
+    assert parse_subgoal(str(subgoal)) == subgoal
+    assert Literal("close", ("red", "blue"), False) in subgoal.literals()
+
+
+@pytest.mark.parametrize(("text", "error"), [
+    ("put_away(red,green,not blue)", "only put_near"), ("put_near(red,not blue,green)", "after its references"),
+    ("put_near(red,green,not green)", "appears twice"), ("put_near(red,green,not purple)", "unknown object 'purple'")])
+def test_blocks_to_keep_apart_from_are_checked(text: str, error: str) -> None:
+    with pytest.raises(VocabularyError, match=error):
+        parse_subgoal(text, LAYOUTS["three_blocks"].scene)
+
+
 def test_a_semantic_state_must_fit_its_scene() -> None:
     layout = LAYOUTS["desk_cleanup"]
     layout.check_state(("red", "green"), [Literal("in_bin", ("red",)), Literal("holding", ("blue",), False)], ["green"])

@@ -22,7 +22,11 @@ OPTIMAL = {"MC-2": 2, "MA-2": 2, "Swap-2": 4, "MC-3": 4, "MA-3": 4, "DC-2": 4, "
 def test_plan2goal_maps_every_action_to_its_subgoal() -> None:
     op = Operator("put_near_both", ("red", "green", "blue"), 0, 0, 0, 0)
     assert plan2goal(op) == SubGoal("put_near", ("red", "green", "blue"))
-    assert plan2goal(Operator("put_near", ("red", "green", "blue"), 0, 0, 0, 0)) == SubGoal("put_near", ("red", "green"))
+    near_not = plan2goal(Operator("put_near", ("red", "green", "blue"), 0, 0, 0, 0))
+    assert near_not == SubGoal("put_near", ("red", "green"), apart=("blue",))
+    assert str(near_not) == "put_near(red,green,not blue)"
+    assert near_not.literals() == [Literal("close", ("red", "green")), Literal("close", ("red", "blue"), False),
+                                   Literal("holding", ("red",), False)]
     assert plan2goal(Operator("pick", ("red", "green"), 0, 0, 0, 0)).literals() == [Literal("holding", ("red",))]
 
 
@@ -77,3 +81,26 @@ def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: 
     objects = ("red", "green")
     with pytest.raises(PlanningError, match=re.escape(named)):
         SemanticPlanner(scene).plan(objects, [], parse_goal(goal, scene, objects, []))
+
+
+def test_every_three_block_put_says_where_the_block_ends_up_with_respect_to_both_others() -> None:
+    """No put leaves the moved block's closeness to a bystander to the frame (issue 51)."""
+    planner = SemanticPlanner("three_blocks")
+    blocks = ("red", "green", "blue")
+    start = [Literal("close", ("red", "green")), Literal("close", ("red", "blue"))]
+    for goal in ([Literal("close", ("red", "green"), False)],
+                 [Literal("close", ("red", "blue")), Literal("close", ("red", "green"), False)]):
+        puts = [step for step in planner.plan(blocks, start, goal) if step.kind != "pick"]
+        for put in puts:
+            assert len(put.references) + len(put.apart) == 2, put
+
+
+def test_a_step_typed_without_its_whole_effect_runs_as_the_action_that_promises_it() -> None:
+    planner = SemanticPlanner("three_blocks")
+    blocks, start = ("red", "green", "blue"), [Literal("close", ("red", "green"))]
+    goal = [Literal("close", ("red", "green"), False)]
+    planner.simulate(blocks, start, goal, [SubGoal("pick", ("red",)), SubGoal("put_away", ("red", "green"))])
+    near = [Literal("close", ("red", "blue"))]
+    planner.simulate(blocks, [], near, [SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "blue"))])
+    with pytest.raises(PlanningError, match="does not reach the goal"):  # kept apart from blue: not near it
+        planner.simulate(blocks, [], near, [SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "green"), ("blue",))])

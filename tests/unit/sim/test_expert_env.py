@@ -130,6 +130,30 @@ def test_near_two_references_is_only_asked_where_they_are_close() -> None:
             assert env._close(env.world.semantic_vector(), env.subgoal.references)
 
 
+def test_three_block_puts_mostly_say_where_the_block_ends_up_with_respect_to_every_other_block() -> None:
+    """As the planner's steps do (put_near(x,y,not z), put_away(x,y,z)); a few name one reference only."""
+    env = SubgoalEnv("three_blocks")
+    whole = 0
+    for seed in range(60):
+        env.reset(seed=seed, options={"kind": ("put_near", "put_away")[seed % 2]})
+        whole += len(env.subgoal.references) + len(env.subgoal.apart) == 2
+    assert 0.6 * 60 <= whole <= 0.95 * 60
+
+
+def test_the_expert_puts_a_block_near_one_and_apart_from_the_other() -> None:
+    env = SubgoalEnv("three_blocks")
+    done = tried = 0
+    for seed in range(40):
+        env.reset(seed=seed, options={"kind": "put_near"})
+        if not env.subgoal.apart:
+            continue
+        tried += 1
+        for _ in range(env.max_steps):
+            _, reward, _, _, _ = env.step(env.expert_action())
+        done += int(reward)  # close to the reference, not to the other, at rest at the end
+    assert tried >= 12 and done >= tried - 2
+
+
 def test_achieved_goal_keeps_only_the_masked_entries() -> None:
     """A relabelled goal must look like one the planner sends: zeros outside the mask."""
     env = SubgoalEnv("three_blocks")

@@ -71,6 +71,39 @@ def _operators_for(task: Task, step: SubGoal) -> list[Operator]:
     return sorted(matching, key=lambda op: len(promised[op].literals()))
 
 
+def _undoing(task: Task, made: Literal, broken: Literal) -> str:
+    """The domain's reason ``made`` never comes true while ``broken`` holds: every action that makes it true
+    undoes ``broken``, needs it false, or needs the free gripper that ``broken`` (a holding) takes; "" when
+    some action does none of these (the conflict lies deeper)."""
+    def bits(literal: Literal) -> int:
+        return sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
+
+    def sets(op: Operator, literal: Literal) -> bool:
+        return bool((op.add if literal.value else op.delete) & bits(literal))
+
+    def needs_false(op: Operator) -> bool:
+        return bool((op.pre_neg if broken.value else op.pre) & bits(broken))
+
+    free_gripper = bits(Literal(HAND_EMPTY, ())) if broken.name == "holding" and broken.value else 0
+    reasons = {}
+    for op in task.operators:
+        if sets(op, made):
+            reasons[str(plan2goal(op))] = (f"makes {_phrase(broken.negated())}" if sets(op, broken.negated()) else
+                                           f"needs {_phrase(broken.negated())}" if needs_false(op) else
+                                           f"needs the free gripper that {broken} takes" if op.pre & free_gripper else "")
+    if not reasons or not all(reasons.values()):
+        return ""
+    if len(reasons) == 1:
+        (action, why), = reasons.items()
+        return f"{action}, the only action that makes {_phrase(made)}, {why}"
+    return f"every action that makes {_phrase(made)} ({', '.join(reasons)}) {' or '.join(dict.fromkeys(reasons.values()))}"
+
+
+def _phrase(literal: Literal) -> str:
+    """``close(red,green) true`` / ``close(red,green) false``."""
+    return f"{literal.name}({','.join(literal.args)}) {'true' if literal.value else 'false'}"
+
+
 def _atoms(literal: Literal) -> list[Atom]:
     atom = Atom(literal.name, literal.args)
     return [atom, Atom(literal.name, literal.args[::-1])] if literal.name == "close" else [atom]
@@ -118,9 +151,13 @@ class SemanticPlanner:
         for literal in goal:
             if not reaches([literal]):
                 return f"{literal} cannot be reached in this scene"
-        for pair in itertools.combinations(goal, 2):
-            if not reaches(list(pair)):
-                return f"{pair[0]} and {pair[1]} cannot hold together (no action sequence of the scene's domain reaches both)"
+        for first, second in itertools.combinations(goal, 2):
+            if not reaches([first, second]):
+                task = self.task(objects, state, [])
+                reasons = [why for made, broken in ((first, second), (second, first))
+                           if (why := _undoing(task, made, broken))]
+                return (f"{first} and {second} cannot hold together: {'; '.join(reasons)}" if reasons else
+                        f"{first} and {second} cannot hold together (no action sequence of the scene's domain reaches both)")
         return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],

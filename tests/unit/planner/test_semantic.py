@@ -75,9 +75,18 @@ def test_unreachable_goal_is_reported() -> None:
     ("desk_cleanup", "holding(red) & in_bin(red)", "holding(red) and in_bin(red) cannot hold together"),
     ("desk_cleanup", "in_bin(green) & holding(red) & holding(green)", "in_bin(green) and holding(green) cannot hold together"),
     ("two_blocks", "above(red,green) & above(green,red)", "above(red,green) and above(green,red) cannot hold together"),
+    ("desk_cleanup", "holding(red) & in_bin(red)", "pick(red), the only action that makes holding(red) true, makes "
+     "in_bin(red) false; put_in_bin(red), the only action that makes in_bin(red) true, makes holding(red) false"),
+    ("two_blocks", "above(red,green) & not close(red,green)",
+     "put_on(red,green), the only action that makes above(red,green) true, makes close(red,green) true"),
+    ("two_blocks", "holding(red) & holding(green)",
+     "pick(red), the only action that makes holding(red) true, needs the free gripper that holding(green) takes"),
+    ("two_blocks", "holding(red) & above(green,red)",
+     "pick(red), the only action that makes holding(red) true, needs above(green,red) false"),
 ])
 def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: str, named: str) -> None:
-    """Issue 51: not only "no state reachable", but which of the goal's literals exclude each other."""
+    """Issue 51: not only "no state reachable", but which of the goal's literals exclude each other and, where
+    the actions that make one true show it, the domain's reason."""
     objects = ("red", "green")
     with pytest.raises(PlanningError, match=re.escape(named)):
         SemanticPlanner(scene).plan(objects, [], parse_goal(goal, scene, objects, []))

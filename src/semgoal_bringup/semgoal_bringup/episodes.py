@@ -15,6 +15,7 @@ all, the rule before issue 49, so the two can be compared on the same episodes.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -77,28 +78,41 @@ class HierarchicalAgent:
                  label: str = "") -> Outcome:
         """An episode from blocks at ``positions`` (the scene's first ``len(positions)`` objects) to ``goal`` (a
         task, literals or a sentence), as the planner node runs it; a goal the planner refuses fails at step 0."""
+        return self.run_goals(positions, (goal,), seed, budget, label)
+
+    def run_goals(self, positions: np.ndarray, goals: Sequence[str], seed: int, budget: int = TASK_STEP_BUDGET,
+                  label: str = "") -> Outcome:
+        """:meth:`run_goal` for goals one after the other, each from where the one before left the world and with
+        ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal."""
         key = (label, len(positions))
         if key not in self._worlds:
             self._worlds[key] = FetchWorld(self.scene, len(positions))
         world = self._worlds[key]
         world.reset(positions)
-        executive = Executive(SemanticPlanner(self.scene))
-        executive.observe(observe(world))
-        planned, _ = executive.set_goal(goal, step_budget=budget)
-        steps, decided_before, first_held = 0, None, None
-        while planned and executive.status == PlanStatus.EXECUTING:
-            decided_now = executive.active.subgoal.literals() if executive.active else ([] if executive.settling else None)
-            literals = lockstep_subgoal(decided_before, decided_now)
-            if literals is None:  # a human step: nobody acts in an evaluation
-                break
-            self.controller.set_subgoal(literals)
-            world.step(self.controller.act(world.observation(), (seed, steps)))
-            steps, decided_before = steps + 1, decided_now
-            executive.tick(steps)
+        success, replans, first_held = True, 0, None
+        for goal in goals:
+            executive = Executive(SemanticPlanner(self.scene))
             executive.observe(observe(world))
-            if first_held is None and executive.observation.holds(executive.goal):
-                first_held = steps
-        return Outcome(label or goal, seed, executive.status == "succeeded", steps, executive.replans, first_held)
+            planned, _ = executive.set_goal(goal, step_budget=budget)
+            decided_before, first_held = None, None
+            while planned and executive.status == PlanStatus.EXECUTING:
+                decided_now = (executive.active.subgoal.literals() if executive.active
+                               else ([] if executive.settling else None))
+                literals = lockstep_subgoal(decided_before, decided_now)
+                if literals is None:  # a human step: nobody acts in an evaluation
+                    break
+                self.controller.set_subgoal(literals)
+                world.step(self.controller.act(world.observation(), (seed, world.step_count)))
+                decided_before = decided_now
+                executive.tick(world.step_count)
+                executive.observe(observe(world))
+                if first_held is None and executive.observation.holds(executive.goal):
+                    first_held = world.step_count
+            replans += executive.replans
+            success = success and executive.status == "succeeded"
+            if not success:
+                break
+        return Outcome(label or " -> ".join(goals), seed, success, world.step_count, replans, first_held)
 
 
 class FlatAgent:

@@ -29,8 +29,8 @@ def run_family(scene: str, family: str, episodes: int, seed: int) -> list[tuple[
     agent = make_agent("hierarchical", scene)
     outcomes = []
     for case in goal_cases(scene, family, episodes, seed):
-        outcome = agent.run_goal(case.positions, case.goal, case.seed, label=family)
-        outcomes.append((case.goal, outcome.success, outcome.steps, outcome.replans))
+        outcome = agent.run_goals(case.positions, case.goals, case.seed, label=family)
+        outcomes.append((case.text, outcome.success, outcome.steps, outcome.replans))
     return outcomes
 
 

@@ -3,10 +3,14 @@ vocabulary, for `./semgoal eval-goals`. Starts come from every task sampler of t
 blocks in the bin already, so that goals must take them out again.
 
 - ``stack`` (two_blocks): ``above(x,y)`` either way round, from MC-2, MA-2 and Swap-2 starts.
+- ``arrange`` (two_blocks): every literal over the pair stated (one on the other either way, side by side, or
+  apart), from the same starts.
 - ``close-pattern`` (three_blocks): each pair close or not, any of the eight patterns, from MC-3 and MA-3 starts.
 - ``bin-subset`` (desk_cleanup): a subset of the blocks in the bin (perhaps none), the others explicitly out,
   from desks with 2-4 blocks and a random subset of them binned.
 - ``hold`` (every scene): hold a named block at the end, from any of the scene's task starts.
+- ``chain`` (every scene): two goals of the scene's other families in one episode, the second from where the
+  first left the world (a block in the hand, say); the second asks for something the first did not.
 """
 
 from __future__ import annotations
@@ -26,12 +30,18 @@ AWAY = (1.3, 0.75, 0.9)
 
 @dataclass(frozen=True)
 class GoalCase:
-    """One episode: the blocks' start (one row per block, the scene's first ``len(positions)`` objects) and the goal."""
+    """One episode: the blocks' start (one row per block, the scene's first ``len(positions)`` objects) and the
+    goals, achieved one after the other without a reset (one goal but in chains)."""
 
     family: str
     seed: int
     positions: np.ndarray
-    goal: str
+    goals: tuple[str, ...]
+
+    @property
+    def text(self) -> str:
+        """The goals as an operator reads them: ``above(red,green) -> holding(green)``."""
+        return " -> ".join(self.goals)
 
 
 def _task_start(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, tuple[str, ...]]:
@@ -64,30 +74,54 @@ def _bin_subset(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.nda
     return positions, " & ".join(f"{'' if block in wanted else 'not '}in_bin({block})" for block in blocks)
 
 
+def _arrange(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, str]:
+    """Every literal over the pair stated: one on the other (either way), side by side, or apart."""
+    positions, blocks = _task_start(rng, scene, seed)
+    a, b = rng.permutation(blocks)[:2]
+    patterns = (f"above({a},{b}) & not above({b},{a}) & close({a},{b})",
+                f"close({a},{b}) & not above({a},{b}) & not above({b},{a})",
+                f"not close({a},{b}) & not above({a},{b}) & not above({b},{a})")
+    return positions, patterns[rng.integers(len(patterns))]
+
+
 def _hold(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, str]:
     positions, blocks = _task_start(rng, scene, seed)
     return positions, f"holding({rng.choice(blocks)})"
 
 
-Draw = Callable[[np.random.Generator, str, int], tuple[np.ndarray, str]]
+def _chain(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, tuple[str, str]]:
+    """A start and goal of one family, then a goal of another (or the same) with a literal the first lacks."""
+    singles = [draw for name, draw in FAMILIES[scene].items() if name != "chain"]
+    positions, first = singles[rng.integers(len(singles))](rng, scene, seed)
+    present = set(SCENES[scene].objects[:len(positions)])
+    while True:
+        _, second = singles[rng.integers(len(singles))](rng, scene, seed)
+        literals = [parse_literal(text) for text in second.split(" & ")]
+        if (not set(second.split(" & ")) <= set(first.split(" & "))
+                and all(set(literal.args) <= present for literal in literals)):
+            return positions, (first, second)
+
+
+Draw = Callable[[np.random.Generator, str, int], tuple[np.ndarray, str | tuple[str, ...]]]
 FAMILIES: dict[str, dict[str, Draw]] = {
-    "two_blocks": {"stack": _stack, "hold": _hold},
-    "three_blocks": {"close-pattern": _close_pattern, "hold": _hold},
-    "desk_cleanup": {"bin-subset": _bin_subset, "hold": _hold},
+    "two_blocks": {"stack": _stack, "arrange": _arrange, "hold": _hold, "chain": _chain},
+    "three_blocks": {"close-pattern": _close_pattern, "hold": _hold, "chain": _chain},
+    "desk_cleanup": {"bin-subset": _bin_subset, "hold": _hold, "chain": _chain},
 }
 
 
 def goal_cases(scene: str, family: str, episodes: int, seed: int) -> list[GoalCase]:
-    """``episodes`` draws of ``family`` in ``scene``, none whose goal already holds at its start (drawn again);
+    """``episodes`` draws of ``family`` in ``scene``, none whose (first) goal already holds at its start (drawn again);
     case i depends only on ``seed + i``."""
     draw = FAMILIES[scene][family]
     cases = []
     for i in range(episodes):
         for again in itertools.count():
-            positions, goal = draw(np.random.default_rng([seed + i, again]), scene, seed + i + again * 7919)
-            if not holds_at_start(scene, positions, goal):
+            positions, goals = draw(np.random.default_rng([seed + i, again]), scene, seed + i + again * 7919)
+            goals = (goals,) if isinstance(goals, str) else goals
+            if not holds_at_start(scene, positions, goals[0]):
                 break
-        cases.append(GoalCase(family, seed + i, positions, goal))
+        cases.append(GoalCase(family, seed + i, positions, goals))
     return cases
 
 

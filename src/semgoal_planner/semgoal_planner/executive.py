@@ -19,7 +19,7 @@ import copy
 from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
-from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest
+from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
 from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
@@ -52,8 +52,15 @@ class Observation:
 
     def settled(self, literals: list[Literal]) -> bool:
         """The literals hold and the world is at rest for them (:func:`semgoal_core.settling.at_rest`)."""
-        held = [lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value]
-        return self.holds(literals) and at_rest(literals, self.moving, held)
+        return self.holds(literals) and at_rest(literals, self.moving, self.held)
+
+    def reached(self, literals: list[Literal]) -> bool:
+        """The literals hold and the hand holds no block they do not ask for: what is left is to wait for rest."""
+        return self.holds(literals) and not set(self.held) - held_blocks_asked(literals)
+
+    @property
+    def held(self) -> list[str]:
+        return [lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value]
 
     @property
     def true_literals(self) -> list[Literal]:
@@ -172,7 +179,7 @@ class Executive:
     def settling(self) -> bool:
         """The goal's literals hold and the plan waits for them to hold at rest: the arm holds still."""
         obs = self.observation
-        return self.status == PlanStatus.EXECUTING and obs is not None and obs.holds(self.goal)
+        return self.status == PlanStatus.EXECUTING and obs is not None and obs.reached(self.goal)
 
     @property
     def active(self) -> PlanStep | None:

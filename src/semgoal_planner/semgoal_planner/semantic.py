@@ -14,6 +14,7 @@ import itertools
 from dataclasses import dataclass
 from pathlib import Path
 
+from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_planner.grounding import Operator, Task, ground
 from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
@@ -130,6 +131,8 @@ class SemanticPlanner:
         if not any(lit.name == "holding" and lit.value for lit in state):
             init.add(Atom(HAND_EMPTY, ()))
         conditions = tuple(Condition(Atom(lit.name, lit.args), lit.value) for lit in goal)
+        if not held_blocks_asked(goal):  # a goal is achieved at rest: no block left in the hand it does not ask for
+            conditions += (Condition(Atom(HAND_EMPTY, ()), True),)
         return Problem(f"{self.scene}-now", self.domain.name, dict.fromkeys(objects, "block"), init, conditions)
 
     def task(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> Task:
@@ -176,7 +179,8 @@ class SemanticPlanner:
                 raise PlanningError(f"step {number} {step} cannot run: it needs {missing}, which does not hold by then")
             current = runnable.apply(current)
         if not task.goal_reached(current) or task.unsolvable_reason:
-            unmet = [str(_literal(c.atom, c.positive)) for c in self.problem(objects, state, goal).goal
+            unmet = ["an empty hand (the goal asks for no block held)" if c.atom.predicate == HAND_EMPTY
+                     else str(_literal(c.atom, c.positive)) for c in self.problem(objects, state, goal).goal
                      if not self._holds(task, c, current)]
             raise PlanningError(f"the plan does not reach the goal: after the last step {', '.join(unmet)} "
                                 f"{'does' if len(unmet) == 1 else 'do'} not hold")

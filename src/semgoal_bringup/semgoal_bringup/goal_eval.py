@@ -1,18 +1,24 @@
-"""`./semgoal eval-goals --scene S [--families F,G] --episodes N --seed S [--jobs J] [--json]`: the hierarchical
-agent on goal families beyond the benchmark (:mod:`semgoal_core.goal_families`), in process, by the executive's
-at-rest rule: per family the success rate with its 95 % Wilson interval, mean steps and re-plans; the last line
-is one JSON object ``{"<scene>/<family>": rate, ..., "overall": rate}``."""
+"""`./semgoal eval-goals --scene S [--families F,G] --episodes N --seed S [--jobs J] [--via-ros] [--json]`: the
+hierarchical agent on goal families beyond the benchmark (:mod:`semgoal_core.goal_families`), in process, by the
+executive's at-rest rule: per family the success rate with its 95 % Wilson interval, mean steps and re-plans; the
+last line is one JSON object ``{"<scene>/<family>": rate, ..., "overall": rate}``.
+
+``--via-ros`` also runs a sample of the same cases (``--ros-episodes`` per scene, spread over the families: the
+first cases of each) through the node graph, each from its very start (``ResetWorld`` with the positions), and
+says how many episodes end as they did in process (on stderr, and as a JSON object there)."""
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import statistics
 import sys
 
 from semgoal_bringup.evaluation import wilson_interval
 from semgoal_bringup.executors import check_executor, run_jobs
-from semgoal_core.goal_families import FAMILIES, goal_cases
+from semgoal_core import tasks
+from semgoal_core.goal_families import FAMILIES, GoalCase, goal_cases
 from semgoal_core.vocabulary import SCENES
 
 DEFAULT_SEED = 6_000_000
@@ -34,6 +40,30 @@ def run_family(scene: str, family: str, episodes: int, seed: int) -> list[tuple[
     return outcomes
 
 
+def run_via_ros(scene: str, cases: list[GoalCase]) -> list[bool]:
+    """Success of each case through the node graph: reset to its start, then its goals one after the other."""
+    from semgoal_bringup.graph import running_graph
+
+    def task_for(case: GoalCase) -> str:  # a task of the scene with the case's block count: the sim's world
+        return next(name for name in tasks.scene_tasks(scene) if tasks.TASKS[name].n_blocks == len(case.positions))
+
+    successes = []
+    with running_graph(task_for(cases[0]), cases[0].seed, client_name="semgoal_eval_goals", watch=False) as client:
+        for case in cases:
+            client.must_reset(task_for(case), case.seed, positions=case.positions.ravel())
+            success = True
+            for goal in case.goals:
+                success = success and client.execute(goal, max_steps=tasks.TASK_STEP_BUDGET).success
+            successes.append(success)
+    return successes
+
+
+def ros_sample(cases: dict[str, list[GoalCase]], episodes: int) -> list[GoalCase]:
+    """The first ``episodes`` cases taken in turns from each family (a family's first cases first)."""
+    turns = itertools.zip_longest(*cases.values())
+    return [case for case in itertools.chain.from_iterable(turns) if case is not None][:episodes]
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal eval-goals", description=__doc__.splitlines()[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
@@ -42,12 +72,14 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
     parser.add_argument("--jobs", type=int, default=1, help="families evaluated at once")
     parser.add_argument("--executor", default="local", type=check_executor, help="local, dask or dask:ADDRESS")
+    parser.add_argument("--via-ros", action="store_true", help="also run a sample of the cases through the node graph")
+    parser.add_argument("--ros-episodes", type=int, default=50, help="with --via-ros: cases run through the graph")
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
     args = parser.parse_args(argv)
     families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
-    if unknown or args.episodes < 1:
-        parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown}); episodes >= 1")
+    if unknown or args.episodes < 1 or args.ros_episodes < 1:
+        parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown}); episodes and ros-episodes >= 1")
     results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed) for f in families], args.executor,
                        args.jobs, what="family")
     table = sys.stderr if args.json else sys.stdout
@@ -63,5 +95,19 @@ def main(argv: list[str]) -> int:
                 print(f"    failed: {goal} ({steps} steps)", file=table)
         rates[f"{args.scene}/{family}"] = round(wins / n, 4)
         wins_all, n_all = wins_all + wins, n_all + n
+    if args.via_ros:
+        by_family = {f: goal_cases(args.scene, f, args.episodes, args.seed) for f in families}
+        in_process = {(f, case.seed): outcome[1] for f, outcomes in zip(families, results, strict=True)
+                      for case, outcome in zip(by_family[f], outcomes, strict=True)}
+        sample = ros_sample(by_family, args.ros_episodes)
+        graph = run_via_ros(args.scene, sample)
+        same = sum(in_process[(case.family, case.seed)] == success for case, success in zip(sample, graph, strict=True))
+        for case, success in zip(sample, graph, strict=True):
+            if in_process[(case.family, case.seed)] != success:
+                print(f"    via ROS {'succeeded' if success else 'failed'}, in process not: {case.text}", file=sys.stderr)
+        summary = {"episodes": len(sample), "success": round(sum(graph) / len(sample), 4), "same_as_in_process": same}
+        print(f"via ROS: {sum(graph)} of {len(sample)} succeeded; {same} of {len(sample)} ended as in process",
+              file=table)
+        print(json.dumps({"via_ros": summary}), file=sys.stderr)
     print(json.dumps({**rates, "overall": round(wins_all / n_all, 4)}))
     return 0

@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import time
 import uuid
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -169,9 +169,9 @@ class GraphClient:
         """The planner's GetPlan answer: the plan, and the semantic state it last decided on."""
         return self.call(self.plan_client, self.GetPlan.Request())
 
-    def reset(self, task: str, seed: int, attempts: int = 2) -> tuple[bool, str]:
-        """Reset the world to a task's start; returns once the planner has decided on the new world's
-        first state, so a goal sent next is planned from it.
+    def reset(self, task: str, seed: int, attempts: int = 2, positions: Sequence[float] = ()) -> tuple[bool, str]:
+        """Reset the world to a task's start (``positions``: the blocks' x, y, z instead of the seeded start);
+        returns once the planner has decided on the new world's first state, so a goal sent next is planned from it.
 
         In lockstep, should the new world have stepped first (a goal still under way when it was reset),
         the reset is made again; in realtime the world steps on the sim's clock from the start (the arm
@@ -179,7 +179,8 @@ class GraphClient:
         message = "reset_world did not answer"
         for _ in range(attempts):
             try:
-                reply = self.call(self.reset_client, self.ResetWorld.Request(task=task, seed=seed))
+                reply = self.call(self.reset_client, self.ResetWorld.Request(
+                    task=task, seed=seed, positions=[float(v) for v in positions]))
             except GraphUnavailableError as error:
                 return False, str(error)
             if not reply.success:
@@ -194,9 +195,9 @@ class GraphClient:
                 message = f"the world was at step {state.step} before a goal was sent ({reply.message})"
         return False, f"{message}; tried {attempts} resets"
 
-    def must_reset(self, task: str, seed: int) -> None:
+    def must_reset(self, task: str, seed: int, positions: Sequence[float] = ()) -> None:
         """:meth:`reset`, raising RuntimeError with the reason when it fails (for unattended runs)."""
-        ok, message = self.reset(task, seed)
+        ok, message = self.reset(task, seed, positions=positions)
         if not ok:
             raise RuntimeError(f"reset to {task} seed {seed} failed: {message}")
 

@@ -7,6 +7,7 @@ message for the node to log, and the world keeps its last good state.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -41,6 +42,33 @@ def check_command(values: list[float] | np.ndarray) -> CommandCheck:
     return CommandCheck(action)
 
 
+def _off_table(xy: np.ndarray) -> str:
+    """Why a block centred at ``xy`` is not over the table ("" when it is)."""
+    low = np.array(TABLE_CENTER) - np.array(TABLE_HALF_SIZE) + BLOCK_HALF_SIZE
+    high = np.array(TABLE_CENTER) + np.array(TABLE_HALF_SIZE) - BLOCK_HALF_SIZE
+    if np.any(xy < low) or np.any(xy > high):
+        return f"({xy[0]:.3f}, {xy[1]:.3f}) is off the table (x {low[0]:.2f}..{high[0]:.2f}, y {low[1]:.2f}..{high[1]:.2f})"
+    return ""
+
+
+MAX_START_HEIGHT = 0.3
+"""Highest a block may start above the table top (m): a stack of the scene's blocks, and room to spare."""
+
+
+def _bad_start(values: np.ndarray, blocks: int) -> str:
+    """Why ``values`` (x, y, z per block, flat) cannot be a start of ``blocks`` blocks ("" when they can)."""
+    if values.size != 3 * blocks:
+        return f"the task has {blocks} blocks, so {3 * blocks} numbers (x, y, z each) are needed; got {values.size}"
+    if not np.all(np.isfinite(values)):
+        return "every number must be finite"
+    for x, y, z in values.reshape(-1, 3):
+        if off := _off_table(np.array([x, y])):
+            return off
+        if not TABLE_TOP <= z <= TABLE_TOP + MAX_START_HEIGHT:
+            return f"z {z:.3f} is not between the table top {TABLE_TOP:.3f} and {MAX_START_HEIGHT} m above it"
+    return ""
+
+
 class SimCore:
     """One scene's world, reset to tasks by seed, stepped by checked commands."""
 
@@ -63,8 +91,10 @@ class SimCore:
     def world(self) -> FetchWorld:
         return self._worlds[self._blocks]
 
-    def reset(self, task_name: str, seed: int) -> tuple[bool, str]:
-        """Reset to a seeded start of ``task_name`` (same scene); a negative seed takes the next one."""
+    def reset(self, task_name: str, seed: int, positions: Sequence[float] = ()) -> tuple[bool, str]:
+        """Reset to a seeded start of ``task_name`` (same scene); a negative seed takes the next one.
+        ``positions``: x, y, z of each of the task's blocks, to start from instead of the seeded start (the
+        goal families' starts); refused, the world unchanged, unless 3 per block, finite and over the table."""
         try:
             task = get_task(task_name or self.task)
         except KeyError as error:
@@ -72,18 +102,21 @@ class SimCore:
         if task.scene != self.scene:
             scene_tasks = ", ".join(n for n, t in TASKS.items() if t.scene == self.scene)
             return False, f"task {task.name} runs in scene {task.scene}, this sim is {self.scene} (tasks here: {scene_tasks})"
+        given = np.asarray(positions, dtype=np.float64).reshape(-1)
+        if given.size and (problem := _bad_start(given, task.n_blocks)):
+            return False, f"positions refused: {problem}"
         if seed < 0:
             seed = self._next_seed
         self._next_seed = (seed + 1) % MAX_SEED  # WorldState.seed is an int64: the stream wraps, never overflows
         if task.n_blocks not in self._worlds:
             self._worlds[task.n_blocks] = FetchWorld(self.scene, task.n_blocks)
         self._blocks = task.n_blocks
-        positions, self.goal = task.initial_state(seed)
-        self.world.reset(positions)
+        start, self.goal = task.initial_state(seed)
+        self.world.reset(given.reshape(-1, 3) if given.size else start)
         self.task, self.seed = task.name, seed
         self.episode += 1
         self.ticks += 1
-        return True, f"reset to {task.name} with seed {seed}"
+        return True, f"reset to {task.name} with seed {seed}{' from the positions given' if given.size else ''}"
 
     def step(self, values: list[float] | np.ndarray) -> CommandCheck:
         """Check a command and, unless dropped, advance one control step."""
@@ -108,10 +141,8 @@ class SimCore:
         xy = np.asarray(position, dtype=np.float64)[:2]
         if not np.all(np.isfinite(xy)):
             return False, "position must be finite"
-        low = np.array(TABLE_CENTER) - np.array(TABLE_HALF_SIZE) + BLOCK_HALF_SIZE
-        high = np.array(TABLE_CENTER) + np.array(TABLE_HALF_SIZE) - BLOCK_HALF_SIZE
-        if np.any(xy < low) or np.any(xy > high):
-            return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is off the table (x {low[0]:.2f}..{high[0]:.2f}, y {low[1]:.2f}..{high[1]:.2f})"
+        if off := _off_table(xy):
+            return False, off
         snapshot = world.snapshot()
         for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
             if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:

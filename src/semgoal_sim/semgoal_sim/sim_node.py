@@ -184,8 +184,9 @@ class SimNode(Node):
         self.events_pub.publish(event)
 
     def reset_callback(self, request: ResetWorld.Request, response: ResetWorld.Response) -> ResetWorld.Response:
-        response.success, response.message = self.core.reset(request.task, request.seed)
-        self.report(OperatorEvent.KIND_RESET, f"{request.task} seed {request.seed}", response.success, response.message)
+        response.success, response.message = self.core.reset(request.task, request.seed, request.positions)
+        given = f" from {len(request.positions) // 3} positions" if len(request.positions) else ""
+        self.report(OperatorEvent.KIND_RESET, f"{request.task} seed {request.seed}{given}", response.success, response.message)
         self.held_command = np.zeros(4)
         self.command_at = time.monotonic()
         """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""

@@ -158,3 +158,18 @@ def test_move_block_sets_a_block_in_the_bin_and_refuses_the_walls() -> None:
         core.world.step(np.zeros(4))
     assert "in_bin(red)" in core.world.layout.readable(core.world.semantic_vector())
     assert not core.world.fallen_blocks()
+
+
+def test_a_reset_to_given_positions_starts_there_and_refuses_what_no_world_can_hold() -> None:
+    """The goal families' starts through ResetWorld.positions (issue 51): checked, the world unchanged on refusal."""
+    core = SimCore("three_blocks", "MC-3", seed=0)
+    start = np.array([[1.25, 0.70, TABLE_TOP + 0.025], [1.35, 0.70, TABLE_TOP + 0.025], [1.35, 0.70, TABLE_TOP + 0.076]])
+    ok, message = core.reset("MC-3", 7, start.ravel())
+    assert ok and message == "reset to MC-3 with seed 7 from the positions given"
+    np.testing.assert_allclose(core.snapshot().block_positions, start, atol=0.003)  # settled
+    for bad, why in [(start[:2].ravel(), "9 numbers"), (np.where(start == start[0, 0], np.nan, start).ravel(), "finite"),
+                     (start.ravel() + np.array([3.0, 0, 0] * 3), "off the table"),
+                     (start.ravel() - np.array([0, 0, 0.1] * 3), "not between the table top")]:
+        ok, message = core.reset("MC-3", 8, bad)
+        assert not ok and why in message, message
+        np.testing.assert_allclose(core.snapshot().block_positions, start, atol=0.003)  # settled

@@ -80,7 +80,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"everything|every|each|all of them|all of|all", "all"),
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining", "other"),
     (r"those|these|they|them", "them"),
-    (r"this|that|it", "it"),
+    (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
     (r"basket|box|container|tray|trash can|trash|bucket|crate|bin", "bin"),
     (r"tabletop|table top|table|desk|workspace|surface", "table"),
 )
@@ -408,7 +408,7 @@ class _Resolver:
                 return self.last
             if len(self.blocks) == 1:
                 return self.blocks
-            raise LanguageError(f"'it' is ambiguous: say which block ({', '.join(self.blocks)})")
+            raise LanguageError(f"'it' or 'the block' is ambiguous: say which block ({', '.join(self.blocks)})")
         if self.last_named:  # them
             return self.last_named
         raise LanguageError(f"'them' is ambiguous: say which blocks ({', '.join(self.blocks)})")

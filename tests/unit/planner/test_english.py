@@ -78,7 +78,9 @@ PHRASES = [
 ]
 
 REFUSALS = [
-    ("desk_cleanup", "put it in the bin", "'it' is ambiguous"),
+    ("desk_cleanup", "put it in the bin", "'it' or 'the block' is ambiguous"),
+    ("desk_cleanup", "put the block in the bin", "'it' or 'the block' is ambiguous"),
+    ("three_blocks", "move a cube next to green", "'it' or 'the block' is ambiguous"),
     ("desk_cleanup", "put purple in the bin", "unknown word 'purple'"),
     ("desk_cleanup", "swap the blocks", "unknown word 'swap'"),
     ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
@@ -166,7 +168,7 @@ def test_the_planner_plans_a_sentence_and_says_what_it_became() -> None:
     assert ok and "(the goal: in_bin(red))" in message
     assert [str(s.subgoal) for s in executive.steps] == ["pick(red)", "put_in_bin(red)"]
     refused, reason = executive.set_goal("put it in the bin")
-    assert not refused and "'it' is ambiguous" in reason and executive.goal_text == "in_bin(red)"
+    assert not refused and "'it' or 'the block' is ambiguous" in reason and executive.goal_text == "in_bin(red)"
 
 
 def test_parse_goal_cli_contract(capsys) -> None:

@@ -2,6 +2,7 @@
 
 import copy
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -305,3 +306,18 @@ def test_a_goal_that_holds_with_a_block_in_the_hand_it_does_not_ask_for_is_plann
     held = executive()
     held.observe(observe(["holding(green)"]))
     assert held.set_goal("holding(green) & not in_bin(red)")[0] and held.steps == [] and held.status == "succeeded"
+
+
+@pytest.mark.parametrize(("goal", "named"), [
+    ("holding(red) & in_bin(red)", "pick(red), the only action that makes holding(red) true, makes in_bin(red) false"),
+    ("holding(red) & holding(green)", "needs the free gripper that holding(green) takes"),
+    ("in_bin(purple)", "unknown object 'purple'"), ("in_bin(red) & not in_bin(red)", "contradictory goal"),
+    ("put the block in the bin", "ambiguous")])
+def test_an_ill_posed_goal_is_refused_with_its_reason_and_the_plan_under_way_stays(goal: str, named: str) -> None:
+    """Issue 51 item 3: the reason comes before anything moves, and the last good plan goes on."""
+    ex = executive()
+    assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
+    before, revision, status = copy.deepcopy(ex.steps), ex.revision, ex.status
+    ok, message = ex.set_goal(goal)
+    assert not ok and named in message, message
+    assert ex.steps == before and ex.revision == revision and ex.status == status and ex.active is not None

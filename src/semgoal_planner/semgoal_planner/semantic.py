@@ -72,6 +72,36 @@ def _operators_for(task: Task, step: SubGoal) -> list[Operator]:
     return sorted(matching, key=lambda op: len(promised[op].literals()))
 
 
+def _runs(task: Task, state: int, steps: list[SubGoal]) -> bool:
+    """Whether some choice of an action for each step (a step may run as several, :func:`_operators_for`) runs
+    them all from ``state`` and ends in the goal."""
+    if not steps:
+        return task.goal_reached(state) and not task.unsolvable_reason
+    return any(op.applicable(state) and _runs(task, op.apply(state), steps[1:]) for op in _operators_for(task, steps[0]))
+
+
+def _relied_upon(task: Task, plan: list[Operator], index: int) -> SubGoal:
+    """The sub-goal of ``plan[index]`` with the promises the rest of the plan and the goal rely on: a block to
+    keep apart from (or put away from) stays only if a later step needs that or the goal asks it before a step
+    sets it again. MC-3's ``put_near(a,b,c)`` keeps a from c only until c is put next to a, so the actor is
+    asked for close(a,b) alone; a promise nobody relies on would only narrow where the block may go."""
+    def relied(literal: Literal) -> bool:
+        bits = sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
+        for op in plan[index + 1:]:
+            if (op.pre if literal.value else op.pre_neg) & bits:
+                return True
+            if (op.add | op.delete) & bits:
+                return False
+        return bool((task.goal if literal.value else task.goal_neg) & bits)
+
+    step = plan2goal(plan[index])
+    apart = tuple(block for block in step.apart if relied(Literal("close", (step.block, block), False)))
+    if step.kind != "put_away":
+        return SubGoal(step.kind, step.args, apart)
+    away = tuple(block for block in step.references if relied(Literal("close", (step.block, block), False)))
+    return SubGoal(step.kind, (step.block, *(away or step.references)))
+
+
 def _undoing(task: Task, made: Literal, broken: Literal) -> str:
     """The domain's reason ``made`` never comes true while ``broken`` holds: every action that makes it true
     undoes ``broken``, needs it false, or needs the free gripper that ``broken`` (a holding) takes; "" when
@@ -145,7 +175,8 @@ class SemanticPlanner:
             goal_text = " & ".join(map(str, goal))
             raise PlanningError(f"no plan reaches {goal_text} from the current state: "
                                 f"{self.conflict(objects, state, goal) or result.reason}")
-        return [plan2goal(op) for op in result.plan]
+        task = self.task(objects, state, goal)
+        return [_relied_upon(task, result.plan, index) for index in range(len(result.plan))]
 
     def conflict(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> str:
         """Why no plan reaches ``goal``, in its own literals: one no plan reaches alone, or the first pair
@@ -168,7 +199,9 @@ class SemanticPlanner:
         """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError,
         naming a step by its index in the plan (``first_index`` for the first of ``steps``), as `plan show` does."""
         task = self.task(objects, state, goal)
-        current = task.init
+        if _runs(task, task.init, steps):
+            return
+        current = task.init  # no choice of actions runs the steps: say where the first choices fail
         for number, step in enumerate(steps, start=first_index):
             candidates = _operators_for(task, step)
             if not candidates:

@@ -5,7 +5,7 @@ import re
 import pytest
 
 from semgoal_core.tasks import TASKS
-from semgoal_core.vocabulary import SCENES, Literal, SubGoal
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal, parse_literal
 from semgoal_planner.goals import parse_goal
 from semgoal_planner.grounding import Operator
 from semgoal_planner.semantic import PlanningError, SemanticPlanner, plan2goal
@@ -93,15 +93,28 @@ def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: 
 
 
 def test_every_three_block_put_says_where_the_block_ends_up_with_respect_to_both_others() -> None:
-    """No put leaves the moved block's closeness to a bystander to the frame (issue 51)."""
-    planner = SemanticPlanner("three_blocks")
+    """No action leaves the moved block's closeness to a bystander to the frame (issue 51)."""
     blocks = ("red", "green", "blue")
-    start = [Literal("close", ("red", "green")), Literal("close", ("red", "blue"))]
-    for goal in ([Literal("close", ("red", "green"), False)],
-                 [Literal("close", ("red", "blue")), Literal("close", ("red", "green"), False)]):
-        puts = [step for step in planner.plan(blocks, start, goal) if step.kind != "pick"]
-        for put in puts:
-            assert len(put.references) + len(put.apart) == 2, put
+    task = SemanticPlanner("three_blocks").task(blocks, [], [Literal("close", ("red", "green"))])
+    puts = [plan2goal(op) for op in task.operators if op.name != "pick"]
+    assert puts and all(len(put.references) + len(put.apart) == 2 for put in puts)
+
+
+@pytest.mark.parametrize(("start", "goal", "puts"), [
+    # green is carried away from red: from blue too (no put promises less), but nothing relies on that
+    (["close(red,green)", "close(red,blue)"], "close(red,blue) & not close(red,green)", ["put_away(green,red)"]),
+    (["close(red,green)", "close(green,blue)"], "close(red,blue) & not close(red,green) & close(green,blue)",
+     ["put_near(red,blue,not green)"]),
+    ([], "MC-3", ["put_near(blue,green)", "put_near(red,blue,green)"]),  # apart from red only until red comes
+    ([], "not close(red,green) & close(red,blue) & close(green,blue)", ["put_near(blue,green)", "put_near(red,blue,not green)"]),
+])
+def test_a_step_sends_every_promise_the_plan_relies_on(start: list[str], goal: str, puts: list[str]) -> None:
+    planner, blocks = SemanticPlanner("three_blocks"), ("red", "green", "blue")
+    state = [parse_literal(text) for text in start]
+    goal_literals = parse_goal(goal, "three_blocks", blocks, state)
+    steps = planner.plan(blocks, state, goal_literals)
+    assert [str(step) for step in steps if step.kind != "pick"] == puts
+    planner.simulate(blocks, state, goal_literals, steps)
 
 
 def test_a_step_typed_without_its_whole_effect_runs_as_the_action_that_promises_it() -> None:

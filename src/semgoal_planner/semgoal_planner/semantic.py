@@ -39,8 +39,8 @@ ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
 }
 KEEPS_APART = frozenset({"put_near"})
 """Actions whose arguments after the kept ones are blocks the moved block ends up not close to (the
-three-block ``put_near(x, y, z)``: close to y, not to z): the sub-goal's ``apart``, so the actor is sent the
-step's whole effect."""
+three-block ``put_near(x, y, z)``: close to y, not to z): the sub-goal's ``apart``, sent to the actor where the
+plan relies on it (:func:`_relied_upon`)."""
 
 
 class PlanningError(ValueError):
@@ -86,7 +86,7 @@ def _relied_upon(task: Task, plan: list[Operator], index: int) -> SubGoal:
     sets it again. MC-3's ``put_near(a,b,c)`` keeps a from c only until c is put next to a, so the actor is
     asked for close(a,b) alone; a promise nobody relies on would only narrow where the block may go."""
     def relied(literal: Literal) -> bool:
-        bits = sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
+        bits = _bits(task, literal)
         for op in plan[index + 1:]:
             if (op.pre if literal.value else op.pre_neg) & bits:
                 return True
@@ -106,16 +106,13 @@ def _undoing(task: Task, made: Literal, broken: Literal) -> str:
     """The domain's reason ``made`` never comes true while ``broken`` holds: every action that makes it true
     undoes ``broken``, needs it false, or needs the free gripper that ``broken`` (a holding) takes; "" when
     some action does none of these (the conflict lies deeper)."""
-    def bits(literal: Literal) -> int:
-        return sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
-
     def sets(op: Operator, literal: Literal) -> bool:
-        return bool((op.add if literal.value else op.delete) & bits(literal))
+        return bool((op.add if literal.value else op.delete) & _bits(task, literal))
 
     def needs_false(op: Operator) -> bool:
-        return bool((op.pre_neg if broken.value else op.pre) & bits(broken))
+        return bool((op.pre_neg if broken.value else op.pre) & _bits(task, broken))
 
-    free_gripper = bits(Literal(HAND_EMPTY, ())) if broken.name == "holding" and broken.value else 0
+    free_gripper = _bits(task, Literal(HAND_EMPTY, ())) if broken.name == "holding" and broken.value else 0
     reasons = {}
     for op in task.operators:
         if sets(op, made):
@@ -128,6 +125,11 @@ def _undoing(task: Task, made: Literal, broken: Literal) -> str:
         (action, why), = reasons.items()
         return f"{action}, the only action that makes {_phrase(made)}, {why}"
     return f"every action that makes {_phrase(made)} ({', '.join(reasons)}) {' or '.join(dict.fromkeys(reasons.values()))}"
+
+
+def _bits(task: Task, literal: Literal) -> int:
+    """The task's facts that ``literal``'s atom is (close in both orders), as a bit mask."""
+    return sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
 
 
 def _phrase(literal: Literal) -> str:
@@ -169,13 +171,14 @@ class SemanticPlanner:
         return ground(self.domain, self.problem(objects, state, goal))
 
     def plan(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> list[SubGoal]:
-        """The sub-goals of a shortest plan (bfs) from ``state`` to ``goal``; PlanningError if none exists."""
-        result = solve_task(self.task(objects, state, goal), self.search, self.heuristic)
+        """The sub-goals of a shortest plan (bfs) from ``state`` to ``goal``, each with the promises the rest relies
+        on; PlanningError if none exists."""
+        task = self.task(objects, state, goal)
+        result = solve_task(task, self.search, self.heuristic)
         if result.plan is None:
             goal_text = " & ".join(map(str, goal))
             raise PlanningError(f"no plan reaches {goal_text} from the current state: "
                                 f"{self.conflict(objects, state, goal) or result.reason}")
-        task = self.task(objects, state, goal)
         return [_relied_upon(task, result.plan, index) for index in range(len(result.plan))]
 
     def conflict(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> str:

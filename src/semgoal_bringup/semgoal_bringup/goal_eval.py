@@ -14,6 +14,7 @@ import itertools
 import json
 import statistics
 import sys
+from pathlib import Path
 
 from semgoal_bringup.evaluation import wilson_interval
 from semgoal_bringup.executors import check_executor, run_jobs
@@ -25,14 +26,16 @@ DEFAULT_SEED = 6_000_000
 """Goal seeds from here: never used in training (training draws below 1e6, task evaluation from 3e6)."""
 
 
-def run_family(scene: str, family: str, episodes: int, seed: int) -> list[tuple[str, bool, int, int]]:
-    """(goal, success, steps, re-plans) of each episode of one family (one job)."""
+def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Path | None = None
+               ) -> list[tuple[str, bool, int, int]]:
+    """(goal, success, steps, re-plans) of each episode of one family (one job); ``model_dir``: an exported
+    actor instead of the shipped one."""
     import torch
 
     from semgoal_bringup.episodes import make_agent
 
     torch.set_num_threads(1)
-    agent = make_agent("hierarchical", scene)
+    agent = make_agent("hierarchical", scene, model_dir)
     outcomes = []
     for case in goal_cases(scene, family, episodes, seed):
         outcome = agent.run_goals(case.positions, case.goals, case.seed, label=family)
@@ -72,6 +75,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
     parser.add_argument("--jobs", type=int, default=1, help="families evaluated at once")
     parser.add_argument("--executor", default="local", type=check_executor, help="local, dask or dask:ADDRESS")
+    parser.add_argument("--model-dir", type=Path, help="an exported actor (default: the shipped one; in process only)")
     parser.add_argument("--via-ros", action="store_true", help="also run a sample of the cases through the node graph")
     parser.add_argument("--ros-episodes", type=int, default=50, help="with --via-ros: cases run through the graph")
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
@@ -80,7 +84,9 @@ def main(argv: list[str]) -> int:
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
     if unknown or args.episodes < 1 or args.ros_episodes < 1:
         parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown}); episodes and ros-episodes >= 1")
-    results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed) for f in families], args.executor,
+    if args.model_dir and args.via_ros:
+        parser.error("--via-ros runs the shipped actor (the policy node's); leave out --model-dir")
+    results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed, args.model_dir) for f in families], args.executor,
                        args.jobs, what="family")
     table = sys.stderr if args.json else sys.stdout
     rates, wins_all, n_all = {}, 0, 0

@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from semgoal_bringup import goal_eval
 
 
@@ -11,3 +13,14 @@ def test_eval_goals_prints_a_row_per_family_and_the_json_line(capsys) -> None:
     result = json.loads(captured.out.strip().splitlines()[-1])
     assert set(result) == {"two_blocks/hold", "overall"} and 0.0 <= result["overall"] <= 1.0
     assert "two_blocks/hold" in captured.err and "of 2" in captured.err
+
+
+def test_eval_goals_runs_another_actor_in_process_only(capsys) -> None:
+    from semgoal_policy.actor import models_dir
+
+    actor = str(models_dir() / "two_blocks")
+    assert goal_eval.main(["--scene", "two_blocks", "--families", "hold", "--episodes", "1", "--model-dir", actor,
+                           "--json"]) == 0
+    assert set(json.loads(capsys.readouterr().out.strip().splitlines()[-1])) == {"two_blocks/hold", "overall"}
+    with pytest.raises(SystemExit):
+        goal_eval.main(["--scene", "two_blocks", "--model-dir", actor, "--via-ros"])

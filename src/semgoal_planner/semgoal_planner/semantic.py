@@ -72,12 +72,12 @@ def _operators_for(task: Task, step: SubGoal) -> list[Operator]:
     return sorted(matching, key=lambda op: len(promised[op].literals()))
 
 
-def _runs(task: Task, state: int, steps: list[SubGoal]) -> bool:
-    """Whether some choice of an action for each step (a step may run as several, :func:`_operators_for`) runs
-    them all from ``state`` and ends in the goal."""
-    if not steps:
+def _runs(task: Task, state: int, choices: list[list[Operator]]) -> bool:
+    """Whether some choice of an action for each step (``choices``: each step's actions, a step may run as
+    several, :func:`_operators_for`) runs them all from ``state`` and ends in the goal."""
+    if not choices:
         return task.goal_reached(state) and not task.unsolvable_reason
-    return any(op.applicable(state) and _runs(task, op.apply(state), steps[1:]) for op in _operators_for(task, steps[0]))
+    return any(op.applicable(state) and _runs(task, op.apply(state), choices[1:]) for op in choices[0])
 
 
 def _relied_upon(task: Task, plan: list[Operator], index: int) -> SubGoal:
@@ -202,11 +202,11 @@ class SemanticPlanner:
         """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError,
         naming a step by its index in the plan (``first_index`` for the first of ``steps``), as `plan show` does."""
         task = self.task(objects, state, goal)
-        if _runs(task, task.init, steps):
+        choices = [_operators_for(task, step) for step in steps]
+        if _runs(task, task.init, choices):
             return
         current = task.init  # no choice of actions runs the steps: say where the first choices fail
-        for number, step in enumerate(steps, start=first_index):
-            candidates = _operators_for(task, step)
+        for number, (step, candidates) in enumerate(zip(steps, choices, strict=True), start=first_index):
             if not candidates:
                 raise PlanningError(f"step {number} {step}: not an action of scene {self.scene} with these objects")
             runnable = next((op for op in candidates if op.applicable(current)), None)

@@ -16,7 +16,7 @@ TASKS, SEED, CHUNK = ["MA-2", "DC-2"], 3_000_000, 2
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-eval", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench-eval", description=__doc__.split("\n\n")[0])
     parser.add_argument("--episodes", type=int, default=8, help="episodes per task")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)

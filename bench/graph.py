@@ -81,7 +81,7 @@ def arrival_timing(arrivals: list[tuple[int, float]], hz: float) -> dict[str, fl
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-graph", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench-graph", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default="MC-2")
     parser.add_argument("--episodes", type=int, default=5)
     parser.add_argument("--seed", type=int, default=3_000_000)

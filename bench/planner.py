@@ -79,7 +79,7 @@ def project_tasks(repeats: int) -> dict[str, dict]:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-planner", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench-planner", description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, help="runs per measurement, the median kept (default: 3; 1 with --suite)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner, problem and search")
     parser.add_argument("--sizes", default=",".join(map(str, SIZES)))

@@ -130,7 +130,7 @@ def _child(args: list[str]) -> str:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-policy", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench-policy", description=__doc__.split("\n\n")[0])
     parser.add_argument("--steps", type=int, default=2_000, help="env steps timed per training run")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--calls", type=int, default=5_000, help="single-observation actions timed")

@@ -81,7 +81,7 @@ def write_report(scene: str, steps: int, seed: int, results: dict[str, dict], do
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal ablation", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal ablation", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="two_blocks")
     parser.add_argument("--steps", type=int, default=50_000)
     parser.add_argument("--seed", type=int, default=1)

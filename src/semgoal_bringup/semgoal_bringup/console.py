@@ -322,7 +322,7 @@ def main(argv: list[str] | None = None) -> int:
 
     from semgoal_ros.parameters import ParameterValueError, declare
 
-    parser = argparse.ArgumentParser(prog="semgoal console", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal console", description=__doc__.split("\n\n")[0])
     parser.add_argument("--host", help="address to serve on (default 127.0.0.1: this machine only)")
     parser.add_argument("--port", type=int, help="default 8080")
     parser.add_argument("--token", default=os.environ.get("SEMGOAL_CONSOLE_TOKEN", ""),

@@ -26,7 +26,7 @@ TO_DO = (StepStatus.PENDING, StepStatus.ACTIVE)
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default=DEFAULT_TASK)
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="the task start (default %(default)s)")
     parser.add_argument("--max-steps", type=int, default=TASK_STEP_BUDGET,

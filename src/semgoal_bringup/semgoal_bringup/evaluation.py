@@ -377,7 +377,7 @@ def summary(rows: list[Row], task: str) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal eval", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal eval", description=__doc__.split("\n\n")[0])
     parser.add_argument("--tasks", default="all", help="comma-separated task names, or all")
     parser.add_argument("--episodes", type=int, default=50, help="episodes per task and training seed")
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (fixes every start)")

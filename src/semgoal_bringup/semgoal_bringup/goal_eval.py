@@ -68,9 +68,10 @@ def ros_sample(cases: dict[str, list[GoalCase]], episodes: int) -> list[GoalCase
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal eval-goals", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal eval-goals", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
-    parser.add_argument("--families", help=f"comma-separated (default: all of the scene's); {FAMILIES}")
+    parser.add_argument("--families", help="comma-separated (default: all of the scene's): "
+                        + "; ".join(f"{scene}: {', '.join(names)}" for scene, names in FAMILIES.items()))
     parser.add_argument("--episodes", type=int, default=50, help="episodes per family")
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
     parser.add_argument("--jobs", type=int, default=1, help="families evaluated at once")

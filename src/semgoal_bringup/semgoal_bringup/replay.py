@@ -132,7 +132,7 @@ def verify(episode: Episode) -> tuple[bool, str]:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal replay", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal replay", description=__doc__.split("\n\n")[0])
     parser.add_argument("file", type=Path)
     parser.add_argument("--summary", action="store_true", help="print the plans, the sub-goal timeline and the outcome")
     parser.add_argument("--verify", action="store_true", help="re-run the recorded commands and compare the states")

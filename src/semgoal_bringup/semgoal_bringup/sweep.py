@@ -64,7 +64,7 @@ def train_seed(recipe: str, seed: int, settings: list[str], runs_dir: str | None
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal sweep", description=__doc__.splitlines()[0],
+    parser = argparse.ArgumentParser(prog="semgoal sweep", description=__doc__.split("\n\n")[0],
                                      epilog="Other arguments go to every `./semgoal train` (e.g. --steps 300000).")
     parser.add_argument("--recipe", required=True, help="a shipped recipe (./semgoal train --help lists them)")
     parser.add_argument("--seeds", required=True, type=parse_seeds, help="e.g. 81-90 or 81,85,90")

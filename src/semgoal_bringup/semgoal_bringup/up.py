@@ -26,7 +26,7 @@ RESTART_WINDOW_S = 60.0
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal up", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal up", description=__doc__.split("\n\n")[0])
     for name, default, text in LAUNCH_ARGUMENTS:
         if name in DEFAULT_PORTS:  # `--foxglove` / `--console` alone: the default port
             parser.add_argument(f"--{name}", default=default, nargs="?", const=str(DEFAULT_PORTS[name]), help=text)

@@ -15,7 +15,7 @@ def parse_goal_main(argv: list[str]) -> int:
     from semgoal_core.vocabulary import SCENES
     from semgoal_planner.english import LanguageError, parse_english
 
-    parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
     parser.add_argument("--blocks", help="comma-separated blocks present (default: all of the scene's)")
     parser.add_argument("--json", action="store_true", help="one JSON object per TEXT")

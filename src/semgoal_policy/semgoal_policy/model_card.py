@@ -73,7 +73,7 @@ def trace_provenance(directory: Path) -> bool:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal model-card", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="semgoal model-card", description=__doc__.split("\n\n")[0])
     parser.add_argument("dirs", nargs="+", type=Path, help="folders with an exported actor (actor.json)")
     parser.add_argument("--trace", action="store_true",
                         help="first give actors without provenance the one traced in git history")

@@ -47,17 +47,19 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
+    (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"except for|except|other than|save for", "except"),
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
-    (r"close together|near each other|close to each other|next to each other|beside each other|"
-     r"together with", "near"),
-    (r"together|touching", "together"),
+    (r"together with", "near"),
+    (r"close together|near each other|close to each other|next to each other|beside each other|together|touching",
+     "together"),
     (r"far from each other|away from each other|apart from each other", "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated", "apart"),
-    (r"on top of|on to|onto|upon|atop|on", "on"),
-    (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with",
+    (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
+    (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with|"
+     r"in between|between",
      "near"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"out of|outside of|outside|out from", "out"),
@@ -90,7 +92,7 @@ FILLERS = frozenset({
     "please", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
-    "remain", "remains", "end", "ends", "so", "there", "here", "sure",
+    "remain", "remains", "end", "ends", "so", "there", "here", "sure", "make",
 })
 """Words that carry nothing for the goal."""
 
@@ -115,6 +117,7 @@ action: ("put" | "keep") refs dest          -> put
       | "put" refs                           -> release
       | ("put" refs "down" | "put" "down" refs | "release" refs) -> release
       | "stack" refs dest_on                 -> put
+      | "stack" refs                         -> stack_unsaid
       | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
       | "take" refs ("off" refs? | "from" refs) -> off
       | "take" refs dest_to                   -> put
@@ -122,14 +125,17 @@ action: ("put" | "keep") refs dest          -> put
       | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
       | "remove" refs ("from" | "off") refs   -> off
       | "pick" refs "up"?                     -> hold
+      | "pick" refs "up"? "off" refs          -> off
+      | "pick" refs "up"? "from" refs         -> hold
       | ("put" | "keep") refs "held"          -> hold
       | "clean" ("table" | "bin")?            -> clean_all
       | "clean" refs ("in" "bin" | "table")?  -> clean
+      | "bin" refs                            -> clean
       | "empty" "bin"                         -> empty
       | "empty" refs ("out" "bin"?)?          -> empty_refs
       | "group" refs? "together"?             -> together
       | "group" refs near                     -> group_near
-      | "separate" refs? "apart"?             -> apart
+      | "separate" refs? ("apart" | "out")?   -> apart
       | "separate" refs ("from" | "away") refs -> separate_from
       | "unstack" refs?                       -> unstack
       | "keep" refs                           -> keep
@@ -195,8 +201,8 @@ def normalise(text: str) -> list[str]:
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = re.sub(r"&+", " and ", text)
     for pattern, canonical in PHRASES:
-        text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", text)
-    words = [w for w in text.split() if w not in FILLERS]
+        text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
+    words = _joined([w for w in text.split() if w not in FILLERS])
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(BLOCK_COLOURS)}) "
@@ -209,6 +215,17 @@ def normalise(text: str) -> list[str]:
     if not words:
         raise LanguageError("the goal says nothing to do: e.g. 'put red in the bin'")
     return words
+
+
+def _joined(words: list[str]) -> list[str]:
+    """Runs of connectives as one ("red, and green" -> "red and green"; "and, then" -> "then")."""
+    joined: list[str] = []
+    for word in words:
+        if joined and word in ("and", "then") and joined[-1] in ("and", "then"):
+            joined[-1] = "then" if "then" in (word, joined[-1]) else "and"
+        else:
+            joined.append(word)
+    return joined
 
 
 @functools.cache
@@ -226,8 +243,9 @@ class _Clauses(lark.Transformer):
         return clauses
 
     def _ambig(self, alternatives: list) -> object:
-        # the reading with the fewest clauses: "put red and green in the bin" is one clause, not two
-        return min(alternatives, key=_clause_count)
+        # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
+        # longest exception ("all except red and blue" leaves out both)
+        return min(alternatives, key=lambda node: (_clause_count(node), -_excluded_count(node)))
 
     # -- clauses ------------------------------------------------------------------------------------
     def act(self, items: list) -> Clause:
@@ -293,6 +311,9 @@ class _Clauses(lark.Transformer):
 
     def group_near(self, items: list) -> Clause:
         return replace(items[1], subjects=items[0])
+
+    def stack_unsaid(self, _: list) -> Clause:
+        raise LanguageError("say which block goes on which: e.g. 'stack red on green'")
 
     def separate_from(self, items: list) -> Clause:
         return Clause("away", subjects=items[0], objects=items[1])
@@ -360,6 +381,16 @@ class _Clauses(lark.Transformer):
 def _refs_in(items: list) -> list:
     """The reference tuples (and clauses) among a rule's children, tokens left out."""
     return [i for i in items if not isinstance(i, lark.Token)]
+
+
+def _excluded_count(node: object) -> int:
+    if isinstance(node, Ref):
+        return len(node.excluded) + sum(_excluded_count(ref) for ref in node.excluded)
+    if isinstance(node, Clause):
+        return _excluded_count(node.subjects) + _excluded_count(node.objects)
+    if isinstance(node, (list, tuple)):
+        return sum(_excluded_count(n) for n in node)
+    return 0
 
 
 def _clause_count(node: object) -> int:
@@ -503,7 +534,12 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
         tree = _parser().parse(" ".join(words))
     except lark.exceptions.LarkError as error:
         raise LanguageError(_parse_error(words, error)) from None
-    conjunctions = _Clauses().transform(tree)
+    try:
+        conjunctions = _Clauses().transform(tree)
+    except lark.exceptions.VisitError as error:  # a rule that refused its reading ("red except green")
+        if isinstance(error.orig_exc, LanguageError):
+            raise error.orig_exc from None
+        raise
     resolver, goal, before = _Resolver(scene, blocks), {}, None
     for conjunction in conjunctions:
         resolved = []
@@ -538,7 +574,8 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
 def _a_means(hold: Clause, later: list[Clause], resolver: _Resolver) -> bool:
     """Whether a later clause of the same conjunction moves the block a hold clause picks up."""
     held = set(resolver.blocks_of(hold.subjects)) if hold.subjects else set(resolver.last)
-    return any(c.kind not in ("hold", "") and not c.negated and held & set(resolver.subjects_of(c)) for c in later)
+    return any(c.kind not in ("hold", "keep", "") and not c.negated and held & set(resolver.subjects_of(c))
+               for c in later)
 
 
 def _parse_error(words: list[str], error: lark.exceptions.LarkError) -> str:

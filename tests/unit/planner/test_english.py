@@ -1,6 +1,7 @@
 """Plain-English goals (issue 51): phrasings and the literals they become, refusals that name the problem,
 a round trip from random literal sets through sentences, and the `parse-goal` contract."""
 
+import contextlib
 import json
 import time
 
@@ -8,9 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, parse_literal
+from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
-from semgoal_planner.english import LanguageError, parse_english
+from semgoal_planner.english import CANONICAL, LanguageError, parse_english
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import SemanticPlanner
@@ -49,6 +50,16 @@ PHRASES = [
     ("desk_cleanup", "grab the green cube", "holding(green)"),
     ("desk_cleanup", "hold red", "holding(red)"),
     ("desk_cleanup", "let go of red", "not holding(red)"),
+    ("desk_cleanup", "put every block except red and blue in the bin",
+     "in_bin(green) & in_bin(yellow) & not in_bin(red) & not in_bin(blue)"),
+    ("desk_cleanup", "everything but red and green in the bin",
+     "in_bin(blue) & in_bin(yellow) & not in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "place all blocks into the bin, then take red out",
+     "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
+    ("desk_cleanup", "bin the red one", "in_bin(red)"),
+    ("desk_cleanup", "keep yellow out of the bin and put the rest in the box",
+     "not in_bin(yellow) & in_bin(red) & in_bin(green) & in_bin(blue)"),
+    ("desk_cleanup", "pick up blue and keep it", "holding(blue)"),
     ("three_blocks", "put red next to green", "close(red,green)"),
     ("three_blocks", "move the red cube close to the blue one", "close(red,blue)"),
     ("three_blocks", "put blue near red and green", "close(red,blue) & close(green,blue)"),
@@ -65,6 +76,14 @@ PHRASES = [
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "separate red from green", "not close(red,green)"),
     ("three_blocks", "put red near green then put blue near green", "close(red,green) & close(green,blue)"),
+    ("three_blocks", "put all the blocks close together", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "spread the blocks out", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "keep the blocks apart", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "group red and green, and keep blue far away from them",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "put red between green and blue", "close(red,green) & close(red,blue)"),
+    ("three_blocks", "make red and green close", "close(red,green)"),
+    ("three_blocks", "red and green close together", "close(red,green)"),
     ("two_blocks", "stack red on green", "above(red,green)"),
     ("two_blocks", "put green on top of red", "above(green,red)"),
     ("two_blocks", "place the red block onto the green one", "above(red,green)"),
@@ -95,6 +114,8 @@ REFUSALS = [
     ("three_blocks", "put red near", "cannot read the goal as a sentence"),
     ("two_blocks", "stack red on green and blue", "there is no blue block here"),
     ("three_blocks", "group red", "needs two or more blocks"),
+    ("desk_cleanup", "put red in the bin except green", "'except' follows 'all'"),
+    ("two_blocks", "stack the blocks", "say which block goes on which"),
 ]
 
 
@@ -158,6 +179,18 @@ def goals_and_sentences(draw) -> tuple[str, set[Literal], str]:
 def test_random_goals_said_in_english_parse_back_to_themselves(case: tuple[str, set[Literal], str]) -> None:
     scene, goal, sentence = case
     assert set(parse_english(sentence, scene)) == goal, sentence
+
+
+WORDS = sorted(CANONICAL | set(BLOCK_COLOURS) | {"the", "block", "please", ",", "next to", "out of", "don't"})
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.sampled_from(list(SCENES)), st.lists(st.sampled_from(WORDS), min_size=1, max_size=9))
+def test_any_words_become_literals_or_a_refusal_never_a_crash(scene: str, words: list[str]) -> None:
+    """Whatever the operator types out of the known words, the parser answers with literals or a
+    :class:`LanguageError`, the one error the planner node reports and survives."""
+    with contextlib.suppress(LanguageError):
+        parse_english(" ".join(words), scene)
 
 
 def test_the_planner_plans_a_sentence_and_says_what_it_became() -> None:

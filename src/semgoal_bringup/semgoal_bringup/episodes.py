@@ -90,11 +90,12 @@ class HierarchicalAgent:
         world = self._worlds[key]
         world.reset(positions)
         success, replans, first_held = True, 0, None
+        decided_before = None  # a goal's first step follows the decision before it, as the policy node does
         for goal in goals:
             executive = Executive(SemanticPlanner(self.scene))
             executive.observe(observe(world))
             planned, _ = executive.set_goal(goal, step_budget=budget)
-            decided_before, first_held = None, None
+            first_held = None
             while planned and executive.status == PlanStatus.EXECUTING:
                 decided_now = (executive.active.subgoal.literals() if executive.active
                                else ([] if executive.settling else None))

@@ -47,6 +47,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
+    (r"nothing|none( of them| of the (blocks|cubes))?|no (blocks?|cubes?|ones?)", "all not"),
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"except for|except|other than|save for", "except"),
     (r"but", "and"),
@@ -70,7 +71,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"far", "apart"),
     (r"pick up|pick|grab|grasp|lift up|lift|hold on to|hold onto|hold up|take hold of|hold|seize|raise", "pick"),
     (r"let go of|let go|release|set down|put down|lay down|drop off", "release"),
-    (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear", "clean"),
+    (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear|(throw|toss|chuck|put) away|dump|"
+     r"discard|dispose of|get rid of", "clean"),
     (r"empty out|empty", "empty"),
     (r"spread out|spread apart|spread|split up|split|scatter|pull apart|separate|space out", "separate"),
     (r"put together|bring together|push together|gather|group|cluster|bunch up|bunch|collect", "group"),
@@ -92,7 +94,8 @@ FILLERS = frozenset({
     "please", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
-    "remain", "remains", "end", "ends", "so", "there", "here", "sure", "make",
+    "remain", "remains", "end", "ends", "so", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
+    "alone", "untouched",
 })
 """Words that carry nothing for the goal."""
 
@@ -110,6 +113,7 @@ conj: clause ("and" clause)*
 clause: NOT? action              -> act
       | NOT? action "except" refs -> act_except
       | refs NOT? condition      -> state
+      | refs NOT? condition "except" refs -> state_except
       | NOT? condition           -> ellipsis_state
       | NOT? refs                -> ellipsis_refs
 
@@ -131,6 +135,7 @@ action: ("put" | "keep") refs dest          -> put
       | "clean" ("table" | "bin")?            -> clean_all
       | "clean" refs ("in" "bin" | "table")?  -> clean
       | "bin" refs                            -> clean
+      | "put" refs "off" "table"              -> clean
       | "empty" "bin"                         -> empty
       | "empty" refs ("out" "bin"?)?          -> empty_refs
       | "group" refs? "together"?             -> together
@@ -253,16 +258,14 @@ class _Clauses(lark.Transformer):
         return replace(items[-1], negated=negated)
 
     def act_except(self, items: list) -> Clause:
-        clause, excluded = items[-2], items[-1]
-        if not any(ref.kind == "all" for ref in clause.subjects):
-            raise LanguageError("'except' follows 'all' or 'every block': e.g. 'put all except red in the bin'")
-        subjects = tuple(replace(ref, excluded=ref.excluded + excluded) if ref.kind == "all" else ref
-                         for ref in clause.subjects)
-        return replace(clause, subjects=subjects, negated=len(items) == 3)
+        return replace(_excepting(items[-2], items[-1]), negated=len(items) == 3)
 
     def state(self, items: list) -> Clause:
         subjects, *rest = items
         return replace(rest[-1], subjects=subjects, negated=len(rest) == 2)
+
+    def state_except(self, items: list) -> Clause:  # "all in the bin except yellow"
+        return _excepting(self.state(items[:-1]), items[-1])
 
     def ellipsis_state(self, items: list) -> Clause:
         return replace(items[-1], negated=len(items) == 2, elliptic=True)
@@ -376,6 +379,15 @@ class _Clauses(lark.Transformer):
 
     def them(self, _: list) -> Ref:
         return Ref("them")
+
+
+def _excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:
+    """``clause`` with ``excluded`` left out of its ``all``; refused where it names no ``all``."""
+    if not any(ref.kind == "all" for ref in clause.subjects):
+        raise LanguageError("'except' follows 'all' or 'every block': e.g. 'put all except red in the bin'")
+    subjects = tuple(replace(ref, excluded=ref.excluded + excluded) if ref.kind == "all" else ref
+                     for ref in clause.subjects)
+    return replace(clause, subjects=subjects)
 
 
 def _refs_in(items: list) -> list:

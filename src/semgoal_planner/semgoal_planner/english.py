@@ -40,10 +40,11 @@ MAX_GOAL_CHARS = 2_000
 
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
-    (r"make sure( that)?|i (would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
+    (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
+    (r"to (be|end up|stay|remain|sit)", ""),  # "I'd like red to be next to blue"
     (r"as well as|as well|along with", "and"),
-    (r"and then|after that|afterwards|after this|once done|when done|followed by|;", "then"),
+    (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
@@ -55,13 +56,14 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"together with", "near"),
     (r"close together|near each other|close to each other|next to each other|beside each other|together|touching",
      "together"),
-    (r"far from each other|away from each other|apart from each other", "apart"),
+    (r"(far from|away from|apart from) (each other|one another)", "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated", "apart"),
+    (r"over to", "to"),
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
     (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with|"
-     r"in between|between",
-     "near"),
+     r"towards|toward|up to|in between|between", "near"),
+    (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"out of|outside of|outside|out from", "out"),
     (r"into|inside of|inside|within|in", "in"),
@@ -82,7 +84,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),
     (r"everything|every|each|all of them|all of|all", "all"),
-    (r"the others|others|the other|other|the rest|rest|remaining ones|remaining", "other"),
+    (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
     (r"basket|box|container|tray|trash can|trash|bucket|crate|bin", "bin"),
@@ -94,7 +96,8 @@ FILLERS = frozenset({
     "please", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
-    "remain", "remains", "end", "ends", "so", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
+    "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
+    "first", "firstly", "start", "begin",
     "alone", "untouched",
 })
 """Words that carry nothing for the goal."""
@@ -205,6 +208,8 @@ def normalise(text: str) -> list[str]:
     text = " " + re.sub(r"[,.!?:]+", lambda m: " and " if "," in m.group() else " ", text.lower()) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = re.sub(r"&+", " and ", text)
+    text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
+    text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
     words = _joined([w for w in text.split() if w not in FILLERS])

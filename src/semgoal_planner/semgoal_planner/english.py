@@ -48,6 +48,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
+    (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
+     r"empty[- ]handed|empty (hand|gripper))", "and release all"),
     (r"nothing|none( of them| of the (blocks|cubes))?|no (blocks?|cubes?|ones?)", "all not"),
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"except for|except|other than|save for", "except"),

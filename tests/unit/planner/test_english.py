@@ -121,6 +121,9 @@ PHRASES = [
     ("two_blocks", "place red next to green and keep it there", "close(red,green)"),
     ("two_blocks", "stack red on green and keep them close", "above(red,green) & close(red,green)"),
     ("two_blocks", "put red above green", "above(red,green)"),
+    ("two_blocks", "put the red block on the green block and keep holding nothing",
+     "above(red,green) & not holding(red) & not holding(green)"),
+    ("two_blocks", "stack red on green with an empty hand", "above(red,green) & not holding(red) & not holding(green)"),
     ("two_blocks", "lift green off of red", "not above(green,red)"),
     ("two_blocks", "pick up red from green", "holding(red)"),
 ]

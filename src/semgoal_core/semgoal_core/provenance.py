@@ -13,6 +13,9 @@ from pathlib import Path
 LIBRARIES = ("mujoco", "torch", "numpy", "gymnasium", "rclpy")
 """The libraries whose versions change results: physics, learning, arrays, the env API, the ROS client."""
 UNKNOWN = "unknown"
+OUTPUTS = ("runs", "results")
+"""Folders the commands write into (a run's progress, Table 1): a change there is a result, not a code change,
+so it does not make the checkout dirty (a training run rewrites its own tracked progress.csv as it goes)."""
 
 
 def source_root() -> Path:
@@ -21,12 +24,14 @@ def source_root() -> Path:
 
 
 def git_state(root: Path | None = None) -> tuple[str, bool | None]:
-    """(commit, dirty) of the checkout at ``root``; (:data:`UNKNOWN`, None) outside one (a plain install)."""
+    """(commit, dirty) of the checkout at ``root`` (dirty: tracked changes outside :data:`OUTPUTS`);
+    (:data:`UNKNOWN`, None) outside one (a plain install)."""
     root = root or source_root()
     try:
         commit = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True,
                                 check=True, timeout=10).stdout.strip()
-        changes = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+        changes = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no", "--", ".",
+                                  *(f":(exclude){folder}" for folder in OUTPUTS)],
                                  capture_output=True, text=True, check=True, timeout=30).stdout
     except (OSError, subprocess.SubprocessError):
         return UNKNOWN, None

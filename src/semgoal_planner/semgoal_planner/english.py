@@ -99,8 +99,7 @@ FILLERS = frozenset({
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
-    "first", "firstly", "start", "begin",
-    "alone", "untouched",
+    "first", "firstly", "start", "begin", "alone", "untouched",
 })
 """Words that carry nothing for the goal."""
 

@@ -256,7 +256,7 @@ class _Clauses(lark.Transformer):
     def _ambig(self, alternatives: list) -> object:
         # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
         # longest exception ("all except red and blue" leaves out both)
-        return min(alternatives, key=lambda node: (_clause_count(node), -_excluded_count(node)))
+        return min(alternatives, key=_reading_cost)
 
     # -- clauses ------------------------------------------------------------------------------------
     def act(self, items: list) -> Clause:
@@ -401,22 +401,17 @@ def _refs_in(items: list) -> list:
     return [i for i in items if not isinstance(i, lark.Token)]
 
 
-def _excluded_count(node: object) -> int:
+def _reading_cost(node: object) -> tuple[int, int]:
+    """How a reading ranks, lower first: its clauses, then minus the blocks its exceptions leave out."""
     if isinstance(node, Ref):
-        return len(node.excluded) + sum(_excluded_count(ref) for ref in node.excluded)
+        clauses, excluded = _reading_cost(node.excluded)
+        return clauses, excluded - len(node.excluded)
     if isinstance(node, Clause):
-        return _excluded_count(node.subjects) + _excluded_count(node.objects)
+        return 1, _reading_cost((node.subjects, node.objects))[1]
     if isinstance(node, (list, tuple)):
-        return sum(_excluded_count(n) for n in node)
-    return 0
-
-
-def _clause_count(node: object) -> int:
-    if isinstance(node, Clause):
-        return 1
-    if isinstance(node, (list, tuple)):
-        return sum(_clause_count(n) for n in node)
-    return 0
+        costs = [_reading_cost(n) for n in node]
+        return sum(c for c, _ in costs), sum(e for _, e in costs)
+    return 0, 0
 
 
 class _Resolver:

@@ -47,7 +47,8 @@ BIN_SLOT_JITTER = np.array([0.012, 0.008])
 """Largest offset (m, x and y) of a block started in the bin from its slot: slots are 8 cm apart, so binned
 blocks stay at least 5.6 cm apart, and a block in an end slot keeps 3 mm from the end wall."""
 NEAR_BOTH_SHARE = 0.3
-"""With three blocks: the share of put_near sub-goals next to two references (MC-3's last move)."""
+"""With three blocks: the share of put_near sub-goals next to two references (MC-3's last move). Where the two
+references are apart, the expert first puts one next to the other, as the plan's earlier put leaves them."""
 PARTIAL_PUT_SHARE = 0.2
 """With three blocks: the share of other puts that name one reference and nothing more, as an operator may
 type them. The rest promise what the planner's steps promise, where the block ends up with respect to every
@@ -228,20 +229,32 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             elif start == "after_put":
                 return self._put_another(subgoal.block)
             return True
+        near_both = subgoal.kind == "put_near" and len(subgoal.args) == 3
+        if near_both and not self._join(subgoal.args[1:], subgoal.block):
+            return False
         if rng.uniform() < PLACED_START_SHARE:
             self.world.place_in_gripper(subgoal.block)
             return True
         return self._pick_up(subgoal.block)
 
+    def _join(self, refs: tuple[str, ...], block: str) -> bool:
+        """Near both fits only where its references are close to each other (MC-3's last move): where they
+        are apart, the expert puts the first next to the second, as the plan's earlier put leaves them."""
+        if self._close(self.world.semantic_vector(), refs):
+            return True
+        return self._expert_put(SubGoal("put_near", refs), block)
+
     def _put_another(self, block: str) -> bool:
-        """The expert picks and puts some other block (a sampled put sub-goal) until the put is confirmed,
-        as the step before a pick of ``block`` leaves the world; False where that put failed or left
-        ``block`` under another."""
+        """The expert puts some other block (a sampled put sub-goal), as the step before a pick of ``block``
+        leaves the world."""
         kinds = [kind for kind in self.subgoal_types if kind != "pick"]
         other = self._sample_subgoal(str(self.np_random.choice(kinds)), exclude=block)
-        if other is None or not self._pick_up(other.block):
-            return False
-        if not run_subgoal(self.world, other, self._noisy_expert, EPISODE_STEPS)[0]:
+        return other is not None and self._expert_put(other, block)
+
+    def _expert_put(self, put: SubGoal, block: str) -> bool:
+        """The expert picks and puts as a plan's earlier step would, until the put is confirmed; False where
+        that failed or left ``block`` under another."""
+        if not self._pick_up(put.block) or not run_subgoal(self.world, put, self._noisy_expert, EPISODE_STEPS)[0]:
             return False
         return not self._under_another(block)
 
@@ -291,10 +304,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         if kind in ("put_near", "put_away") and len(others) >= 2:
             whole_effect = rng.uniform() >= PARTIAL_PUT_SHARE
             if kind == "put_near" and rng.uniform() < NEAR_BOTH_SHARE:
-                refs = tuple(others[:2])
-                if not self._close(vector, refs):
-                    return None  # near both only fits where the references are close to each other (MC-3)
-                return SubGoal(kind, (x, *refs))
+                return SubGoal(kind, (x, *others[:2]))
             if kind == "put_near":
                 subgoal = SubGoal(kind, (x, others[0]), tuple(others[1:]) if whole_effect else ())
                 # nowhere fits next to a reference stacked with a block to keep apart from: drawn again

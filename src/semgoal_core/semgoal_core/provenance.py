@@ -16,6 +16,9 @@ UNKNOWN = "unknown"
 OUTPUTS = ("runs", "results")
 """Folders the commands write into (a run's progress, Table 1): a change there is a result, not a code change,
 so it does not make the checkout dirty (a training run rewrites its own tracked progress.csv as it goes)."""
+PROSE = "**/*.md"
+"""Markdown (the README, docs/, model cards) cannot change a figure, so editing it does not make the checkout dirty
+either: the docs are written while the figures they report are measured."""
 
 
 def source_root() -> Path:
@@ -24,14 +27,14 @@ def source_root() -> Path:
 
 
 def git_state(root: Path | None = None) -> tuple[str, bool | None]:
-    """(commit, dirty) of the checkout at ``root`` (dirty: tracked changes outside :data:`OUTPUTS`);
+    """(commit, dirty) of the checkout at ``root`` (dirty: tracked changes outside :data:`OUTPUTS` and :data:`PROSE`);
     (:data:`UNKNOWN`, None) outside one (a plain install)."""
     root = root or source_root()
     try:
         commit = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True,
                                 check=True, timeout=10).stdout.strip()
         changes = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no", "--", ".",
-                                  *(f":(exclude){folder}" for folder in OUTPUTS)],
+                                  *(f":(exclude){folder}" for folder in OUTPUTS), f":(exclude,glob){PROSE}"],
                                  capture_output=True, text=True, check=True, timeout=30).stdout
     except (OSError, subprocess.SubprocessError):
         return UNKNOWN, None

@@ -27,17 +27,19 @@ def _git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout.strip()
 
 
-def test_results_written_into_runs_or_results_do_not_make_the_code_dirty(tmp_path: Path) -> None:
+def test_results_written_into_runs_or_results_and_prose_do_not_make_the_code_dirty(tmp_path: Path) -> None:
     _git(tmp_path, "init", "-q")
     _git(tmp_path, "config", "user.email", "t@example.org")
     _git(tmp_path, "config", "user.name", "t")
-    for path in ("runs/seed1/progress.csv", "results/table1.md", "src/code.py"):
+    for path in ("runs/seed1/progress.csv", "results/table1.md", "README.md", "docs/notes.md", "src/code.py"):
         (tmp_path / path).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / path).write_text("before\n")
     _git(tmp_path, "add", ".")
     _git(tmp_path, "commit", "-qm", "start")
     (tmp_path / "runs/seed1/progress.csv").write_text("a training row\n")
     (tmp_path / "results/table1.md").write_text("a new table\n")
+    (tmp_path / "README.md").write_text("the new figures\n")
+    (tmp_path / "docs/notes.md").write_text("what they mean\n")
     assert git_state(tmp_path)[1] is False
     (tmp_path / "src/code.py").write_text("changed\n")
     assert git_state(tmp_path)[1] is True

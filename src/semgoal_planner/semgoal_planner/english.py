@@ -202,8 +202,9 @@ class Clause:
     """Borrows what it lacks (the relation, or the subjects) from the clause before it."""
 
 
-def normalise(text: str) -> list[str]:
-    """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know."""
+def normalise(text: str, blocks: Sequence[str] = BLOCK_COLOURS) -> list[str]:
+    """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (and the
+    ``blocks`` present, by colour)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     text = " " + re.sub(r"[,.!?:]+", lambda m: " and " if "," in m.group() else " ", text.lower()) + " "
@@ -216,7 +217,7 @@ def normalise(text: str) -> list[str]:
     words = _joined([w for w in text.split() if w not in FILLERS])
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
-        raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(BLOCK_COLOURS)}) "
+        raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
                             "and say where they go, e.g. 'put red in the bin', 'stack green on red', "
                             "'keep blue away from red', 'pick up green'")
     while words and words[0] in ("and", "then"):
@@ -542,7 +543,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
     """
     layout = LAYOUTS[scene]
     blocks = tuple(blocks or layout.objects)
-    words = normalise(text)
+    words = normalise(text, blocks)
     try:
         tree = _parser().parse(" ".join(words))
     except lark.exceptions.LarkError as error:

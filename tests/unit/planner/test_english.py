@@ -172,6 +172,11 @@ def test_a_block_not_present_is_named() -> None:
         parse_english("put yellow in the bin", "desk_cleanup", ("red", "green", "blue"))
 
 
+def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() -> None:
+    with pytest.raises(LanguageError, match=r"unknown word 'purple': goals name blocks by colour \(red, green, blue\)"):
+        parse_english("put purple near red", "three_blocks")
+
+
 def test_a_megabyte_goal_is_refused_at_once() -> None:
     start = time.perf_counter()
     with pytest.raises(GoalError, match="characters long"):

@@ -69,6 +69,9 @@ class TrainConfig:
     spawn_margin: float = 0.0
     """How far (m, in x) training blocks may start beyond the tasks' spawn area (``SubgoalEnv``; hierarchical
     agent only). Evaluation during training keeps to the tasks' area."""
+    missed_put_share: float = 0.0
+    """Share of put_near episodes that start from a put that let go just out of reach (``SubgoalEnv``;
+    hierarchical agent only), so that actors pick the block again. Evaluation during training starts none."""
     curriculum: bool = True
     """Sample sub-goal types more often the lower their recent success (else uniformly)."""
     eval_every: int = 10_000
@@ -239,20 +242,22 @@ class Trainer:
         # evaluation reseeds the envs: without this, every window of training after an evaluation would
         # replay the same random starts
         training_rngs = [env.np_random.bit_generator.state for env in self.envs]
-        self._set_spawn_margin(0.0)
+        self._set_training_starts(on=False)
         policy = self.agent.policy
         policy.eval()
         rates = success_by_kind(self.envs, policy.act, self.kinds, episodes, EVAL_SEED_BASE)
         policy.train()
-        self._set_spawn_margin(self.config.spawn_margin)
+        self._set_training_starts(on=True)
         for env, state in zip(self.envs, training_rngs, strict=True):
             env.np_random.bit_generator.state = state
         return rates
 
-    def _set_spawn_margin(self, margin: float) -> None:
-        if self.config.spawn_margin:
+    def _set_training_starts(self, on: bool) -> None:
+        """The starts only training draws (spawn margin, missed puts), on or off: evaluation keeps to the tasks'."""
+        if self.config.spawn_margin or self.config.missed_put_share:
             for env in self.envs:
-                env.spawn_margin = margin
+                env.spawn_margin = self.config.spawn_margin if on else 0.0
+                env.missed_put_share = self.config.missed_put_share if on else 0.0
 
     def run(self, resume: bool = False) -> dict[str, float]:
         cfg = self.config

@@ -22,8 +22,8 @@ import numpy as np
 
 from semgoal_core import features, layout, tasks
 from semgoal_core.settling import MotionReward, info_motion
-from semgoal_core.vocabulary import SCENES, Literal, SubGoal, parse_subgoal, rests_on
-from semgoal_sim.expert import clear_of, destination, expert_action, move_to
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal, SubGoal, parse_subgoal, rests_on
+from semgoal_sim.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import run_subgoal, satisfied
 from semgoal_sim.world import FetchWorld
@@ -75,6 +75,15 @@ TAKE_OUT = "take_out"
 the bin (desk scenes), so evaluation can report take-outs apart."""
 MAX_SPAWN_MARGIN = 0.1
 """Largest ``spawn_margin`` (m): 1.05..1.55 in x, still inside the workspace and within the expert's reach."""
+MAX_MISSED_PUT_SHARE = 0.5
+"""Largest ``missed_put_share``: most put_near episodes still start with the block held."""
+MISSED_PUT_REACH = (THRESHOLDS.close_distance + 0.002, THRESHOLDS.close_distance + 0.025)
+"""A missed put_near start: the block rests this far (centre, m) from one reference, just beyond close, as
+the actors' misses left it (session 52: 0.101 to 0.121 m, then the open fingers hovered over it for good)."""
+MISSED_PUT_TURN = np.pi / 6
+"""Largest angle (rad) between a missed block's bearing from its reference and the expert's spot's bearing."""
+MISSED_GRIP_OFFSET = 0.03
+"""Largest offset (m, x and y) of the open fingers from straight above a missed block (the misses: up to 5 cm)."""
 PICK_START_SHARES = {"home": 0.3, "over_table": 0.3, "after_put": 0.4}
 """Where pick episodes start. ``after_put`` is where a plan hands the next pick over: the open fingers
 just above a block that was just put (in the bin, say), which no training pick had started from before."""
@@ -85,16 +94,22 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
-                 render_mode: str | None = None) -> None:
+                 missed_put_share: float = 0.0, render_mode: str | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
             blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.
+        :param missed_put_share: share of put_near episodes that start where a put that let go just out of
+            reach left the world (:meth:`_miss`), so that actors learn to pick the block again instead of
+            hovering over it. Evaluation sets it to 0.
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
+        if not 0.0 <= missed_put_share <= MAX_MISSED_PUT_SHARE:
+            raise ValueError(f"missed_put_share {missed_put_share} is outside [0, {MAX_MISSED_PUT_SHARE}]")
         self._set_render_mode(render_mode)
         self.spawn_margin = spawn_margin
+        self.missed_put_share = missed_put_share
         self.scene = SCENES[scene]
         self.derived = features.check(scene, derived)
         counts = self.scene.block_counts or (self.scene.max_blocks,)
@@ -232,6 +247,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         near_both = subgoal.kind == "put_near" and len(subgoal.args) == 3
         if near_both and not self._join(subgoal.args[1:], subgoal.block):
             return False
+        if subgoal.kind == "put_near" and rng.uniform() < self.missed_put_share:
+            return self._miss(subgoal)
         if rng.uniform() < PLACED_START_SHARE:
             self.world.place_in_gripper(subgoal.block)
             return True
@@ -243,6 +260,27 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         if self._close(self.world.semantic_vector(), refs):
             return True
         return self._expert_put(SubGoal("put_near", refs), block)
+
+    def _miss(self, subgoal: SubGoal) -> bool:
+        """The world a put_near leaves that let go just out of reach: the block at rest on the table a little
+        beyond close of one reference, roughly where the expert would put it, the open fingers above it."""
+        rng, view = self.np_random, self.world.view()
+        spot = destination(subgoal, view)
+        if spot is None:
+            return False
+        reference = view.positions[str(rng.choice(subgoal.references))][:2]
+        bearing = np.arctan2(*(spot[:2] - reference)[::-1]) + rng.uniform(-MISSED_PUT_TURN, MISSED_PUT_TURN)
+        miss = reference + rng.uniform(*MISSED_PUT_REACH) * np.array([np.cos(bearing), np.sin(bearing)])
+        others = list(view.others(subgoal.block).values())
+        low, high = ARM_START_LOW[:2], ARM_START_HIGH[:2]
+        if not (np.all((low <= miss) & (miss <= high)) and clear_of(miss[None], others, DROP_CLEARANCE)[0]):
+            return False
+        rest = np.array([*miss, tasks.TABLE_TOP + BLOCK_HALF_SIZE])
+        self._move_grip(rest + np.array([0.0, 0.0, HOVER + 2 * BLOCK_HALF_SIZE]), steps=25)  # over the blocks
+        self.world.set_block_pose(subgoal.block, rest)
+        offset = rng.uniform(-MISSED_GRIP_OFFSET, MISSED_GRIP_OFFSET, 2)
+        self._move_grip(rest + np.array([*offset, HOVER]), steps=8)
+        return not self._under_another(subgoal.block)
 
     def _put_another(self, block: str) -> bool:
         """The expert puts some other block (a sampled put sub-goal), as the step before a pick of ``block``
@@ -259,8 +297,9 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         return not self._under_another(block)
 
     def _move_grip(self, target: np.ndarray, steps: int = 12) -> None:
+        """Move the grip site toward ``target``, fingers opening."""
         for _ in range(steps):
-            self.world.step(move_to(self.world.view().grip, target, 1.0))
+            self.world.step(move_to(self.world.view().grip, target, RELEASE))
 
     def _pick_up(self, block: str) -> bool:
         """The expert picks ``block`` (with a little noise) until holding it is confirmed, as the planner

@@ -140,24 +140,25 @@ def test_averaging_resumes_from_its_checkpoint_or_starts_at_the_actor() -> None:
     assert all(torch.equal(a, b) for a, b in zip(started.actor_average.parameters(), started.actor.parameters(), strict=True))
 
 
-def test_a_spawn_margin_widens_training_starts_but_not_evaluation(tmp_path) -> None:
-    trainer = trainer_for(replace(config(tmp_path, 400), spawn_margin=0.05))
+def test_a_spawn_margin_and_missed_puts_shape_training_starts_but_not_evaluation(tmp_path) -> None:
+    trainer = trainer_for(replace(config(tmp_path, 400), spawn_margin=0.05, missed_put_share=0.25))
     seen = []
     original = type(trainer.envs[0])._sample_positions
 
     def spy(env, binned: bool = False):
-        seen.append(env.spawn_margin)
+        seen.append((env.spawn_margin, env.missed_put_share))
         return original(env, binned)
 
     for env in trainer.envs:
         env._sample_positions = spy.__get__(env)
     trainer.evaluate(1)
-    assert seen and set(seen) == {0.0}
+    assert seen and set(seen) == {(0.0, 0.0)}
     seen.clear()
     trainer.collect()
-    assert seen and set(seen) == {0.05}
+    assert seen and set(seen) == {(0.05, 0.25)}
 
 
-def test_flat_baselines_refuse_a_spawn_margin(tmp_path) -> None:
+@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25}])
+def test_flat_baselines_refuse_training_only_starts(tmp_path, setting: dict) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
-        trainer_for(replace(config(tmp_path, 400), agent="flat-semantic", spawn_margin=0.05))
+        trainer_for(replace(config(tmp_path, 400), agent="flat-semantic", **setting))

@@ -8,7 +8,9 @@ start where the previous step of a plan leaves the arm: a put starts once a pick
 confirmed (the scripted expert picks it, with a little noise); a pick starts at the home pose, with the arm
 moved somewhere over the table, or right where the expert's put of another block was confirmed: open
 fingers just above that block, the desk as that put left it (in a bin, next to another block, ...).
-Episodes never start with the sub-goal already achieved. ``reset(options=...)`` takes
+Training may also start a put near where a put that let go just out of reach left the block
+(``missed_put_share``), so that the actor learns to try again. Episodes never start with the sub-goal already
+achieved. ``reset(options=...)`` takes
 ``{"subgoal": "pick(red)"}`` or ``{"kind": "pick"}`` (a sub-goal type: the training curriculum picks types).
 """
 

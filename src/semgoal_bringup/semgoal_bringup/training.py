@@ -99,6 +99,7 @@ def train_config(argv: list[str]):
 
 def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
+    from semgoal_core.settling import SETTLE_STEPS
     from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES
@@ -117,6 +118,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "as policy_node runs it (action_mode: sample)")
     parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
     parser.add_argument("--envs", type=int, default=10)
+    parser.add_argument("--misses", action="store_true",
+                        help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     for name in ("episodes", "horizon", "envs"):
@@ -138,11 +141,19 @@ def eval_subgoals_main(argv: list[str]) -> int:
         return actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
 
     kinds = spec.kinds(args.scene) + ((TAKE_OUT,) if envs[0].scene.bin is not None else ())  # put_on_table from the bin
-    rates = success_by_kind(envs, act, kinds, args.episodes, args.seed)
+    misses: list[dict] = []
+
+    def record(kind: str, seed: int, env) -> None:
+        why = env.shortfall() or [f"achieved at rest at the end, for fewer than the {SETTLE_STEPS} steps that confirm it"]
+        misses.append({"kind": kind, "seed": seed, "subgoal": str(env.subgoal), "why": why})
+
+    rates = success_by_kind(envs, act, kinds, args.episodes, args.seed, on_miss=record if args.misses else None)
     result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon,
               "action_mode": args.action_mode, "per_subgoal": rates,
-              "overall": sum(rates.values()) / len(rates)}
+              "overall": sum(rates.values()) / len(rates)} | ({"misses": misses} if args.misses else {})
     if not args.json:
+        for miss in misses:
+            print(f"missed {miss['kind']} seed {miss['seed']}: {miss['subgoal']}: {'; '.join(miss['why'])}")
         for kind, rate in rates.items():
             print(f"{kind:14s} {rate:6.1%}")
     print(json.dumps(result) if args.json else f"{'overall':14s} {result['overall']:6.1%}")

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -79,9 +80,12 @@ def run_episodes(envs: Sequence, act: ActFn, options: Sequence[dict], seeds: Seq
     return Episodes(obs, achieved, motion, goal, actions, labels, success, kinds)
 
 
-def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: int, seed: int = EVAL_SEED_BASE
-                    ) -> dict[str, float]:
-    """Deterministic success rate per kind (sub-goal type, or task for the flat agents), ``episodes`` each, batched over ``envs``."""
+def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: int, seed: int = EVAL_SEED_BASE,
+                    on_miss: Callable[[str, int, Any], None] | None = None) -> dict[str, float]:
+    """Deterministic success rate per kind (sub-goal type, or task for the flat agents), ``episodes`` each, batched over ``envs``.
+
+    :param on_miss: called as ``on_miss(kind, seed, env)`` for each failed episode, with the env as it ended.
+    """
     rates = {}
     for k, kind in enumerate(kinds):
         wins = 0
@@ -90,5 +94,8 @@ def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: 
             seeds = [seed + 10_000 * k + start + i for i in range(batch)]
             result = run_episodes(envs, act, [{"kind": kind}] * batch, seeds, label=False)
             wins += int(result.success.sum())
+            for env, episode_seed, success in zip(envs, seeds, result.success, strict=False):
+                if on_miss is not None and not success:
+                    on_miss(kind, episode_seed, env)
         rates[kind] = wins / episodes
     return rates

@@ -23,7 +23,7 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_core import features, layout, tasks
-from semgoal_core.settling import MotionReward, info_motion
+from semgoal_core.settling import MotionReward, at_rest, info_motion, moving_blocks
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal, SubGoal, parse_subgoal, rests_on
 from semgoal_sim.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_sim.render import RgbArrayRendering
@@ -249,7 +249,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         near_both = subgoal.kind == "put_near" and len(subgoal.args) == 3
         if near_both and not self._join(subgoal.args[1:], subgoal.block):
             return False
-        if subgoal.kind == "put_near" and rng.uniform() < self.missed_put_share:
+        # drawn only when on: evaluation's starts must not depend on a training-only setting
+        if subgoal.kind == "put_near" and self.missed_put_share and rng.uniform() < self.missed_put_share:
             return self._miss(subgoal)
         if rng.uniform() < PLACED_START_SHARE:
             self.world.place_in_gripper(subgoal.block)
@@ -375,6 +376,24 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         """The sub-goal's literals hold (at rest or not): a start that already meets them is drawn again."""
         achieved = layout.achieved_goal(self.world.semantic_vector(), self._mask)
         return bool(layout.goal_reward(achieved, np.concatenate([self._target, self._mask])))
+
+    def shortfall(self) -> list[str]:
+        """Why the sub-goal is not achieved at rest now, in words (``eval-subgoals --misses``): each of its
+        literals that does not hold, a close one with the centre distance it was judged on, and what keeps
+        the world from rest. Empty when it is achieved at rest."""
+        snapshot = self.world.snapshot()
+        vector, positions = self.world.semantic_vector(snapshot), self.world.view().positions
+        literals, reasons = self.subgoal.literals(), []
+        for literal in literals:
+            if bool(vector[self.layout.index(literal)]) != literal.value:
+                distance = (f" ({np.linalg.norm(positions[literal.args[0]] - positions[literal.args[1]]):.3f} m)"
+                            if literal.name == "close" else "")
+                reasons.append(f"{literal} is false{distance}")
+        moving = moving_blocks(self.world.blocks, snapshot.block_velocities)
+        held = [b for b in self.world.blocks if vector[self.layout.index(Literal("holding", (b,)))]]
+        if not at_rest(literals, moving, held):
+            reasons.append(f"not at rest (moving: {', '.join(moving) or 'none'}; held: {', '.join(held) or 'none'})")
+        return reasons
 
     def _obs(self) -> dict[str, np.ndarray]:
         snapshot = self.world.snapshot()

@@ -28,6 +28,15 @@ def test_a_one_step_horizon_leaves_no_time_to_confirm_a_subgoal(capsys) -> None:
     assert result["horizon"] == 1 and result["overall"] == 0.0
 
 
+def test_misses_lists_every_failed_episode_with_its_seed_and_why(capsys) -> None:
+    result = _run(capsys, "--horizon", "1", "--seed", "2000000", "--misses")
+    misses = result["misses"]
+    assert len(misses) == 2 * len(result["per_subgoal"])  # one step confirms nothing: every episode missed
+    assert [m["seed"] for m in misses[:2]] == [2000000, 2000001] and misses[0]["kind"] == "pick"
+    assert all(m["subgoal"].startswith(m["kind"]) and m["why"] and all(m["why"]) for m in misses)
+    assert "misses" not in _run(capsys, "--horizon", "1")
+
+
 def test_the_sampled_actor_is_seeded_so_a_run_repeats(capsys) -> None:
     first, again = (_run(capsys, "--action-mode", "sample", "--horizon", "20") for _ in range(2))
     assert first["action_mode"] == "sample" and first == again

@@ -94,8 +94,9 @@ def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: 
             seeds = [seed + 10_000 * k + start + i for i in range(batch)]
             result = run_episodes(envs, act, [{"kind": kind}] * batch, seeds, label=False)
             wins += int(result.success.sum())
-            for env, episode_seed, success in zip(envs, seeds, result.success, strict=False):
-                if on_miss is not None and not success:
-                    on_miss(kind, episode_seed, env)
+            if on_miss is not None:
+                for env, episode_seed, success in zip(envs, seeds, result.success, strict=False):
+                    if not success:
+                        on_miss(kind, episode_seed, env)
         rates[kind] = wins / episodes
     return rates

@@ -27,7 +27,7 @@ from semgoal_core.settling import MotionReward, at_rest, info_motion, moving_blo
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal, SubGoal, parse_subgoal, rests_on
 from semgoal_sim.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_sim.render import RgbArrayRendering
-from semgoal_sim.rollout import run_subgoal, satisfied
+from semgoal_sim.rollout import held_blocks, run_subgoal, satisfied
 from semgoal_sim.world import FetchWorld
 
 EPISODE_STEPS = 50
@@ -390,7 +390,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
                             if literal.name == "close" else "")
                 reasons.append(f"{literal} is false{distance}")
         moving = moving_blocks(self.world.blocks, snapshot.block_velocities)
-        held = [b for b in self.world.blocks if vector[self.layout.index(Literal("holding", (b,)))]]
+        held = held_blocks(self.world, vector)
         if not at_rest(literals, moving, held):
             reasons.append(f"not at rest (moving: {', '.join(moving) or 'none'}; held: {', '.join(held) or 'none'})")
         return reasons

@@ -23,13 +23,17 @@ def satisfied(layout: SemanticLayout, vector: np.ndarray, literals: list[Literal
     return all(bool(vector[layout.index(lit)]) == lit.value for lit in literals)
 
 
+def held_blocks(world: FetchWorld, vector: np.ndarray) -> list[str]:
+    """The blocks ``holding`` is true of in the world's semantic ``vector``."""
+    return [b for b in world.blocks if vector[world.layout.index(Literal("holding", (b,)))]]
+
+
 def settled(world: FetchWorld, literals: list[Literal]) -> bool:
     """The literals hold in ``world`` now, with the world at rest for them (:mod:`semgoal_core.settling`)."""
     snapshot = world.snapshot()
     vector = world.semantic_vector(snapshot)
-    held = [b for b in world.blocks if vector[world.layout.index(Literal("holding", (b,)))]]
     return (satisfied(world.layout, vector, literals)
-            and at_rest(literals, moving_blocks(world.blocks, snapshot.block_velocities), held))
+            and at_rest(literals, moving_blocks(world.blocks, snapshot.block_velocities), held_blocks(world, vector)))
 
 
 def _close_clique(layout: SemanticLayout, vector: np.ndarray, view: WorldView, x: str,

@@ -8,6 +8,7 @@ from gymnasium.utils.env_checker import check_env
 
 from semgoal_core.layout import goal_reward, observation_size
 from semgoal_core.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP, TASKS
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE
 from semgoal_sim import env as env_module
 from semgoal_sim.env import SubgoalEnv
 from semgoal_sim.expert import expert_action
@@ -195,7 +196,7 @@ def test_the_shortfall_says_which_literal_fails_how_far_off_and_what_is_not_at_r
     env.reset(seed=0, options={"subgoal": "put_near(red,green)"})
     green = env.world.view().positions["green"]
     env._move_grip(green + np.array([0.0, 0.3, 0.25]), steps=40)  # fingers open, well away from the blocks
-    rest_z = TABLE_TOP + 0.025
+    rest_z = TABLE_TOP + BLOCK_HALF_SIZE
 
     def put_red(offset: float, height: float, steps: int) -> list[str]:
         env.world.set_block_pose("red", np.array([green[0] + offset, green[1], rest_z + height]))

@@ -44,27 +44,34 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"to (be|end up|stay|remain|sit)", ""),  # "I'd like red to be next to blue"
     (r"as well as|as well|along with", "and"),
+    (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
+     r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
+    (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
+    (r"by (itself|themselves)|on (its|their) own|all alone", "apart"),
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|empty (hand|gripper))", "and release all"),
-    (r"nothing|none( of them| of the (blocks|cubes))?|no (blocks?|cubes?|ones?)", "all not"),
+    (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
+    (r"without", "and not"),  # "put red near green without touching blue"
+    (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"except for|except|other than|save for", "except"),
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
-    (r"close together|near each other|close to each other|next to each other|beside each other|together|touching",
-     "together"),
+    (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
+     r"together|neighbou?rs|(touch|touches|touching)( each other| one another)?(?= (and|then)\b|$)", "together"),
     (r"(far from|away from|apart from) (each other|one another)", "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated", "apart"),
     (r"over to", "to"),
+    (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
     (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with|"
-     r"towards|toward|up to|in between|between", "near"),
+     r"towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)", "near"),
     (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"out of|outside of|outside|out from", "out"),
@@ -76,12 +83,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"pick up|pick|grab|grasp|lift up|lift|hold on to|hold onto|hold up|take hold of|hold|seize|raise", "pick"),
     (r"let go of|let go|release|set down|put down|lay down|drop off", "release"),
     (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear|(throw|toss|chuck|put) away|dump|"
-     r"discard|dispose of|get rid of", "clean"),
+     r"discard|dispose of|get rid of|fill up|fill", "clean"),
     (r"empty out|empty", "empty"),
-    (r"spread out|spread apart|spread|split up|split|scatter|pull apart|separate|space out", "separate"),
-    (r"put together|bring together|push together|gather|group|cluster|bunch up|bunch|collect", "group"),
+    (r"spread out|spread apart|spread|split up|split|scatter|pull apart|separate|space out|isolate|single out",
+     "separate"),
+    (r"put together|bring together|push together|gather|group|cluster|bunch up|bunch|collect|pair up|pair", "group"),
     (r"take down|unstack", "unstack"),
-    (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|put", "put"),
+    (r"pull|retrieve|fetch|extract", "take"),
+    (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
+     r"put", "put"),
     (r"pile|stack", "stack"),
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),
@@ -99,14 +109,15 @@ FILLERS = frozenset({
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
-    "first", "firstly", "start", "begin", "alone", "untouched",
+    "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
+    "stand", "stands", "standing",
 })
 """Words that carry nothing for the goal."""
 
 CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
-    "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both",
+    "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
 })
 """The words the grammar reads (besides the colours)."""
 
@@ -122,6 +133,7 @@ clause: NOT? action              -> act
       | NOT? refs                -> ellipsis_refs
 
 action: ("put" | "keep") refs dest          -> put
+      | "put" refs "down" (near | away | in_bin) -> put
       | "put" refs                           -> release
       | ("put" refs "down" | "put" "down" refs | "release" refs) -> release
       | "stack" refs dest_on                 -> put
@@ -135,8 +147,12 @@ action: ("put" | "keep") refs dest          -> put
       | "pick" refs "up"?                     -> hold
       | "pick" refs "up"? "off" refs          -> off
       | "pick" refs "up"? "from" refs         -> hold
-      | ("put" | "keep") refs "held"          -> hold
+      | "pick" refs "up"? ("out" ("bin" | "from" "bin")? | "from" "bin") -> out_bin
+      | ("put" | "keep" | "pick") refs "up"? "held" -> hold
+      | "keep" "held" refs                    -> hold
       | "clean" ("table" | "bin")?            -> clean_all
+      | "keep"? "table" ("clean" | "empty")  -> clean_all
+      | "keep"? "bin" "empty"                -> empty
       | "clean" refs ("in" "bin" | "table")?  -> clean
       | "bin" refs                            -> clean
       | "put" refs "off" "table"              -> clean
@@ -147,6 +163,7 @@ action: ("put" | "keep") refs dest          -> put
       | "separate" refs? ("apart" | "out")?   -> apart
       | "separate" refs ("from" | "away") refs -> separate_from
       | "unstack" refs?                       -> unstack
+      | "unstack" refs ("on" | "down")        -> unstack
       | "keep" refs                           -> keep
 
 condition: dest | "held" -> held
@@ -157,7 +174,7 @@ dest_to: in_bin | near | on | on_table
 in_bin: ("in" | "to") "bin"
 out_of_bin: "out" "bin"? | "from" "bin"
 near: ("near" | "to") refs
-away: "away" refs
+away: "away" refs?
 on: "on" refs
 under: "under" refs
 off_of: "off" refs
@@ -165,6 +182,7 @@ on_table: "on" "table" | "down" "on"? "table"?
 
 refs: ref ("and" ref)*
 ref: COLOUR                      -> colour
+   | "only" COLOUR               -> only
    | "all" ("except" refs)?      -> all
    | "both"                      -> all
    | "other"                     -> other
@@ -202,9 +220,25 @@ class Clause:
     """Borrows what it lacks (the relation, or the subjects) from the clause before it."""
 
 
-def normalise(text: str, blocks: Sequence[str] = BLOCK_COLOURS) -> list[str]:
-    """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (and the
-    ``blocks`` present, by colour)."""
+def examples(scene: str, blocks: Sequence[str]) -> str:
+    """Goals the scene can state with the blocks present, quoted: what a refusal suggests saying instead."""
+    predicates = LAYOUTS[scene].scene.predicates
+    first, second, last = blocks[0], blocks[1 % len(blocks)], blocks[-1]
+    said = []
+    if "in_bin" in predicates:
+        said += [f"put {first} in the bin", f"take {second} out of the bin"]
+    if len(blocks) > 1 and "above" in predicates:
+        said.append(f"stack {second} on {first}")
+    if len(blocks) > 1 and "close" in predicates:
+        said += [f"put {second} next to {first}", f"keep {last} away from {first}"]
+    if "holding" in predicates:
+        said.append(f"pick up {last}")
+    return ", ".join(f"'{s}'" for s in said[:3])
+
+
+def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
+    """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (with the
+    ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     text = " " + re.sub(r"[,.!?:]+", lambda m: " and " if "," in m.group() else " ", text.lower()) + " "
@@ -218,14 +252,13 @@ def normalise(text: str, blocks: Sequence[str] = BLOCK_COLOURS) -> list[str]:
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
-                            "and say where they go, e.g. 'put red in the bin', 'stack green on red', "
-                            "'keep blue away from red', 'pick up green'")
+                            f"and say where they go, e.g. {examples(scene, blocks)}")
     while words and words[0] in ("and", "then"):
         words.pop(0)
     while words and words[-1] in ("and", "then"):
         words.pop()
     if not words:
-        raise LanguageError("the goal says nothing to do: e.g. 'put red in the bin'")
+        raise LanguageError(f"the goal says nothing to do: e.g. {examples(scene, blocks)}")
     return words
 
 
@@ -351,7 +384,7 @@ class _Clauses(lark.Transformer):
         return Clause("near", objects=items[0])
 
     def away(self, items: list) -> Clause:
-        return Clause("away", objects=items[0])
+        return Clause("away", objects=items[0] if items else ())
 
     def off_of(self, items: list) -> Clause:
         return Clause("off", objects=items[0])
@@ -374,6 +407,9 @@ class _Clauses(lark.Transformer):
 
     def colour(self, items: list) -> Ref:
         return Ref("colours", (str(items[0]),))
+
+    def only(self, items: list) -> Ref:
+        return Ref("only", (str(items[0]),))
 
     def all(self, items: list) -> Ref:
         return Ref("all", excluded=items[0] if items else ())
@@ -420,22 +456,24 @@ class _Resolver:
 
     def __init__(self, scene: str, blocks: Sequence[str]) -> None:
         self.scene, self.blocks = scene, tuple(blocks)
+        self.examples = examples(scene, blocks)
         self.mentioned: list[str] = []
         self.last: tuple[str, ...] = ()
         """The blocks the clause before was about (what 'it' names)."""
         self.last_named: tuple[str, ...] = ()
         """Every block the clause before named, subjects and objects (what 'them' names)."""
 
-    def blocks_of(self, refs: Iterable[Ref]) -> tuple[str, ...]:
+    def blocks_of(self, refs: Iterable[Ref], besides: tuple[str, ...] = ()) -> tuple[str, ...]:
+        """The blocks ``refs`` name; ``besides``: the clause's subjects, which an object's 'it' is not."""
         found: list[str] = []
         for ref in refs:
-            for block in self._one(ref):
+            for block in self._one(ref, besides):
                 if block not in found:
                     found.append(block)
         return tuple(found)
 
-    def _one(self, ref: Ref) -> tuple[str, ...]:
-        if ref.kind == "colours":
+    def _one(self, ref: Ref, besides: tuple[str, ...]) -> tuple[str, ...]:
+        if ref.kind in ("colours", "only"):
             for colour in ref.colours:
                 if colour not in self.blocks:
                     raise LanguageError(f"there is no {colour} block here: the blocks are {', '.join(self.blocks)}")
@@ -443,12 +481,17 @@ class _Resolver:
         if ref.kind == "all":
             excluded = set(self.blocks_of(ref.excluded))
             return tuple(b for b in self.blocks if b not in excluded)
-        if ref.kind == "other":
-            others = tuple(b for b in self.blocks if b not in self.mentioned)
+        if ref.kind == "other":  # not the blocks named before, nor the clause's own ("red on top") where some remain
+            unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
+            others = tuple(b for b in unnamed if b not in besides) or unnamed
             if not others:
                 raise LanguageError("'the other(s)': every block is already named")
             return others
         if ref.kind == "it":
+            if besides and set(self.last) <= set(besides):  # "red next to green, not on it": 'it' is green
+                named = tuple(b for b in self.last_named if b not in besides)
+                if len(named) == 1:
+                    return named
             if len(self.last) == 1:
                 return self.last
             if len(self.blocks) == 1:
@@ -468,7 +511,7 @@ class _Resolver:
         ``before``)."""
         if clause.elliptic:
             if before is None:
-                raise LanguageError("the goal starts mid-sentence: say what to do, e.g. 'put red in the bin'")
+                raise LanguageError(f"the goal starts mid-sentence: say what to do, e.g. {self.examples}")
             if clause.kind:  # "... and away from blue": the subjects of the clause before
                 clause = replace(clause, subjects=clause.subjects or before.subjects, elliptic=False)
             else:  # "... but not green": the relation of the clause before
@@ -476,18 +519,22 @@ class _Resolver:
         subjects = self.subjects_of(clause)
         if not subjects:
             raise LanguageError(f"say which block: {', '.join(self.blocks)}")
-        objects = self.blocks_of(clause.objects)
+        objects = self.blocks_of(clause.objects, besides=subjects)
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
-        literals = list(self._relation(clause.kind, subjects, objects))
+        generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
+        said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]
+        if not said and objects:
+            raise LanguageError(f"{' and '.join(subjects)} cannot be {clause.kind} itself: say which block")
+        # "all except red" and "only red": the blocks left out explicitly not
         excluded = [b for ref in clause.subjects if ref.kind == "all" for b in self.blocks_of(ref.excluded)]
-        excluded_literals = [lit.negated() for lit in self._relation(clause.kind, tuple(excluded), objects)] if excluded else []
-        literals += excluded_literals  # "all except red": red explicitly not
+        if any(ref.kind == "only" for ref in clause.subjects):
+            excluded += [b for b in self.blocks if b not in subjects and b not in objects]
+        if excluded:
+            said += [(lit.negated(), False) for lit in self._relation(clause.kind, tuple(excluded), objects)]
         self.last = subjects
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
-        literals = [lit.negated() if clause.negated else lit for lit in literals]
-        generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
-        return [(lit, generic and i < len(literals) - len(excluded_literals)) for i, lit in enumerate(literals)], resolved
+        return [(lit.negated() if clause.negated else lit, g) for lit, g in said], resolved
 
     def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:
         others = lambda block: [b for b in self.blocks if b != block]  # noqa: E731
@@ -503,6 +550,12 @@ class _Resolver:
             return [Literal("holding", subjects)]
         if kind == "release":
             return (Literal("holding", (s,), False) for s in subjects)
+        if kind == "away" and not objects:  # "move green away": from every other block; on a desk, into the bin
+            if "close" not in LAYOUTS[self.scene].scene.predicates:
+                return (Literal("in_bin", (s,)) for s in subjects)
+            return (Literal("close", (s, o), False) for s in subjects for o in others(s))
+        if kind == "apart" and len(subjects) == 1:  # "separate red": from every other block
+            return (Literal("close", (subjects[0], o), False) for o in others(subjects[0]))
         if kind in ("near", "away", "on", "under") and not objects:
             raise LanguageError(f"say which block it goes {kind.replace('_', ' ')}")
         pairs = [(s, o) for s in subjects for o in objects if s != o]
@@ -543,11 +596,11 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
     """
     layout = LAYOUTS[scene]
     blocks = tuple(blocks or layout.objects)
-    words = normalise(text, blocks)
+    words = normalise(text, scene, blocks)
     try:
         tree = _parser().parse(" ".join(words))
     except lark.exceptions.LarkError as error:
-        raise LanguageError(_parse_error(words, error)) from None
+        raise LanguageError(_parse_error(words, error, examples(scene, blocks))) from None
     try:
         conjunctions = _Clauses().transform(tree)
     except lark.exceptions.VisitError as error:  # a rule that refused its reading ("red except green")
@@ -581,7 +634,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                 stage[key] = (literal, generic)
         goal.update({key: literal for key, (literal, _) in stage.items()})
     if not goal:
-        raise LanguageError("the goal asks for no change: say where a block should be, e.g. 'put red in the bin'")
+        raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
     return list(goal.values())
 
 
@@ -592,9 +645,8 @@ def _a_means(hold: Clause, later: list[Clause], resolver: _Resolver) -> bool:
                for c in later)
 
 
-def _parse_error(words: list[str], error: lark.exceptions.LarkError) -> str:
+def _parse_error(words: list[str], error: lark.exceptions.LarkError, suggested: str) -> str:
     said = " ".join(words)
     token = getattr(error, "token", None)
     where = f" at {str(token)!r}" if token is not None and str(token) else " (it ends too soon)"
-    return (f"cannot read the goal as a sentence{where} (read as: {said!r}): e.g. 'put red in the bin', "
-            "'stack green on red', 'keep blue away from red and green'")
+    return f"cannot read the goal as a sentence{where} (read as: {said!r}): e.g. {suggested}"

@@ -3,6 +3,7 @@ a round trip from random literal sets through sentences, and the `parse-goal` co
 
 import contextlib
 import json
+import re
 import time
 
 import pytest
@@ -126,6 +127,36 @@ PHRASES = [
     ("two_blocks", "stack red on green with an empty hand", "above(red,green) & not holding(red) & not holding(green)"),
     ("two_blocks", "lift green off of red", "not above(green,red)"),
     ("two_blocks", "pick up red from green", "holding(red)"),
+    # session 54: phrasings first met outside this list
+    ("desk_cleanup", "put only red in the bin", "in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "stow blue in the box", "in_bin(blue)"),
+    ("desk_cleanup", "pull red out of the bin", "not in_bin(red)"),
+    ("desk_cleanup", "lift red out of the bin", "not in_bin(red)"),
+    ("desk_cleanup", "I want the bin empty",
+     "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "leave the desk clean", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "fill the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "put green away", "in_bin(green)"),
+    ("desk_cleanup", "put red in the bin and keep holding green", "in_bin(red) & holding(green)"),
+    ("three_blocks", "red touching green", "close(red,green)"),
+    ("three_blocks", "red and green should touch", "close(red,green)"),
+    ("three_blocks", "move red close to green without touching blue", "close(red,green) & not close(red,blue)"),
+    ("three_blocks", "put red and green side by side", "close(red,green)"),
+    ("three_blocks", "pair red with green", "close(red,green)"),
+    ("three_blocks", "isolate red", "not close(red,green) & not close(red,blue)"),
+    ("three_blocks", "keep red by itself", "not close(red,green) & not close(red,blue)"),
+    ("three_blocks", "move green away", "not close(red,green) & not close(green,blue)"),
+    ("three_blocks", "no two blocks close", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "hold blue in the air", "holding(blue)"),
+    ("two_blocks", "red sits on green", "above(red,green)"),
+    ("two_blocks", "have green rest on red", "above(green,red)"),
+    ("two_blocks", "build a tower with red on top", "above(red,green)"),
+    ("two_blocks", "put red on top", "above(red,green)"),
+    ("two_blocks", "knock the tower over", "not above(red,green) & not above(green,red)"),
+    ("two_blocks", "stack red on green, then knock it over", "not above(red,green)"),
+    ("two_blocks", "red beside green, not on it", "close(red,green) & not above(red,green)"),
+    ("two_blocks", "take green off red and put it next to it", "not above(green,red) & close(red,green)"),
+    ("two_blocks", "put red down next to green", "close(red,green)"),
 ]
 
 REFUSALS = [
@@ -148,6 +179,8 @@ REFUSALS = [
     ("three_blocks", "group red", "needs two or more blocks"),
     ("desk_cleanup", "put red in the bin except green", "'except' follows 'all'"),
     ("two_blocks", "stack the blocks", "say which block goes on which"),
+    ("two_blocks", "put red next to red", "red cannot be near itself"),
+    ("three_blocks", "put red on top", "a block goes on one block"),
 ]
 
 
@@ -175,6 +208,18 @@ def test_a_block_not_present_is_named() -> None:
 def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() -> None:
     with pytest.raises(LanguageError, match=r"unknown word 'purple': goals name blocks by colour \(red, green, blue\)"):
         parse_english("put purple near red", "three_blocks")
+
+
+@pytest.mark.parametrize("scene", list(SCENES))
+def test_a_refusal_suggests_goals_the_scene_can_state_with_its_blocks(scene: str) -> None:
+    objects = LAYOUTS[scene].objects
+    for blocks in (objects, objects[-1:], objects[1:]):
+        with pytest.raises(LanguageError) as refusal:
+            parse_english("swap them", scene, blocks)
+        suggested = re.findall(r"'([^']+)'", str(refusal.value).split("e.g.")[1])
+        assert suggested
+        for sentence in suggested:
+            assert parse_english(sentence, scene, blocks)
 
 
 def test_a_megabyte_goal_is_refused_at_once() -> None:

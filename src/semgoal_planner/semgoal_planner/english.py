@@ -42,7 +42,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
-    (r"to (be|end up|stay|remain|sit)", ""),  # "I'd like red to be next to blue"
+    (r"to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),  # "I'd like red to be next to blue"
+    (r"(all|both)( of)?( the)? (two|three|four)|the (two|three|four) (blocks|cubes)", "all"),  # "all three blocks"
+    (r"the other (two|three)", "other"),
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
@@ -59,11 +61,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"except for|except|other than|save for", "except"),
+    (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
     (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
-     r"together|neighbou?rs|(touch|touches|touching)( each other| one another)?(?= (and|then)\b|$)", "together"),
+     r"together|neighbou?rs|(touch|touches|touching|adjacent)( each other| one another)?(?= (and|then)\b|$)",
+     "together"),
     (r"(far from|away from|apart from) (each other|one another)", "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated", "apart"),
@@ -71,7 +75,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
     (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with|"
-     r"towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)", "near"),
+     r"towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
+     r"closer to|closer", "near"),
     (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"out of|outside of|outside|out from", "out"),
@@ -91,7 +96,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"take down|unstack", "unstack"),
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
-     r"put", "put"),
+     r"return|lay|put", "put"),
     (r"pile|stack", "stack"),
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),
@@ -131,6 +136,7 @@ clause: NOT? action              -> act
       | refs NOT? condition "except" refs -> state_except
       | NOT? condition           -> ellipsis_state
       | NOT? refs                -> ellipsis_refs
+      | refs NOT                 -> ellipsis_refs_negated
 
 action: ("put" | "keep") refs dest          -> put
       | "put" refs "down" (near | away | in_bin) -> put
@@ -144,6 +150,7 @@ action: ("put" | "keep") refs dest          -> put
       | "take" refs "up"?                     -> hold
       | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
       | "remove" refs ("from" | "off") refs   -> off
+      | ("remove" | "take") refs ("from" | "off") "table" -> clean
       | "pick" refs "up"?                     -> hold
       | "pick" refs "up"? "off" refs          -> off
       | "pick" refs "up"? "from" refs         -> hold
@@ -178,7 +185,7 @@ away: "away" refs?
 on: "on" refs
 under: "under" refs
 off_of: "off" refs
-on_table: "on" "table" | "down" "on"? "table"?
+on_table: ("on" | "to") "table" | "down" "on"? "table"?
 
 refs: ref ("and" ref)*
 ref: COLOUR                      -> colour
@@ -241,7 +248,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    text = " " + re.sub(r"[,.!?:]+", lambda m: " and " if "," in m.group() else " ", text.lower()) + " "
+    text = " " + re.sub(r"[,.!?:]+", lambda m: " " if m.group() == ":" else " and ", text.lower()) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = re.sub(r"&+", " and ", text)
     text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
@@ -312,6 +319,9 @@ class _Clauses(lark.Transformer):
 
     def ellipsis_refs(self, items: list) -> Clause:
         return Clause("", subjects=items[-1], negated=len(items) == 2, elliptic=True)
+
+    def ellipsis_refs_negated(self, items: list) -> Clause:  # "..., blue should not"
+        return Clause("", subjects=items[0], negated=True, elliptic=True)
 
     def condition(self, items: list) -> Clause:
         return items[0]

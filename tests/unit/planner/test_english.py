@@ -157,6 +157,18 @@ PHRASES = [
     ("two_blocks", "red beside green, not on it", "close(red,green) & not above(red,green)"),
     ("two_blocks", "take green off red and put it next to it", "not above(green,red) & close(red,green)"),
     ("two_blocks", "put red down next to green", "close(red,green)"),
+    ("desk_cleanup", "Everything in the bin but blue.", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("desk_cleanup", "make sure blue ends up in the bin", "in_bin(blue)"),
+    ("desk_cleanup", "Red in bin. Green in bin.", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "Red should end up in the bin, blue should not.", "in_bin(red) & not in_bin(blue)"),
+    ("desk_cleanup", "take red off the desk", "in_bin(red)"),
+    ("desk_cleanup", "remove red and blue from the table", "in_bin(red) & in_bin(blue)"),
+    ("desk_cleanup", "return red to the table", "not holding(red) & not in_bin(red)"),
+    ("three_blocks", "make all three blocks touch", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "get blue away from the other two", "not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "move red closer to green", "close(red,green)"),
+    ("three_blocks", "red and green adjacent", "close(red,green)"),
+    ("two_blocks", "lay red on green", "above(red,green)"),
 ]
 
 REFUSALS = [

@@ -1,7 +1,8 @@
 """Check a plan against a PDDL task by executing it on the lifted actions, without the planner's grounding:
 each step's action exists, its arguments are objects of the parameters' types, its precondition holds
-(equality included), and the goal holds at the end. A second opinion on ``plan-pddl``'s plans where VAL
-is not at hand.
+(equality included), and the goal holds at the end; where the problem minimises total-cost, it prints the
+plan's cost, summed from the actions' increases. A second opinion on ``plan-pddl``'s plans where VAL is not
+at hand.
 
     source tools/env.sh && python bench/validate_plan.py DOMAIN PROBLEM PLAN
 Exit 0 valid, 1 invalid (the reason on stderr).
@@ -46,6 +47,19 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
     return f"the goal {unmet[0]} does not hold at the end" if unmet else None
 
 
+def plan_cost(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) -> int:
+    """The total-cost of a valid plan: each step's increase, a function term looked up in ``:init``."""
+    actions = {action.name: action for action in domain.actions}
+    total = 0
+    for name, *args in plan:
+        action = actions[name]
+        amount = action.cost
+        if isinstance(amount, Atom):
+            amount = problem.values[_bind(amount, dict(zip((v for v, _ in action.parameters), args, strict=True)))]
+        total += amount
+    return total
+
+
 def read_plan(text: str) -> list[tuple[str, ...]]:
     """``(move a b)`` lines (comments after ';' ignored) -> name-and-arguments tuples, lower case."""
     steps = []
@@ -60,10 +74,13 @@ def main(argv: list[str]) -> int:
     domain_path, problem_path, plan_path = map(Path, argv)
     domain = parse_domain(domain_path.read_text())
     problem = parse_problem(problem_path.read_text(), domain)
-    reason = invalid_step(domain, problem, read_plan(plan_path.read_text()))
+    plan = read_plan(plan_path.read_text())
+    reason = invalid_step(domain, problem, plan)
     if reason:
         print(f"invalid: {reason}", file=sys.stderr)
         return 1
+    if problem.minimise_cost:
+        print(f"cost {plan_cost(domain, problem, plan)}")
     return 0
 
 

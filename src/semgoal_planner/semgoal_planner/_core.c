@@ -93,8 +93,9 @@ typedef struct {
        the goal operator nops */
     Rows rpre, radd, consumers, achievers;
     /* heuristic workspace, reused between evaluations */
-    int *fact_cost, *achiever, *missing, *supporter, *op_max; /* achiever: the unit-cost sweep's, for hFF */
-    int *base_cost, *cost; /* 1 per operator, 0 for the goal operator; LM-cut's costs, lowered by its cuts */
+    int *fact_cost, *achiever, *missing, *supporter, *op_max; /* achiever: each fact's cheapest, for hFF */
+    int *base_cost, *cost; /* the operators' costs, 0 for the goal operator; LM-cut's costs, lowered by its cuts */
+    int unit, min_cost;    /* whether every operator costs 1; the cheapest operator's cost */
     int *mark, *in_zone, *op_mark, *stack, *cut; /* marks hold the epoch of their last use */
     int epoch;
     Heap heap;
@@ -151,12 +152,14 @@ static int next_epoch(TaskObject *t) {
     return ++t->epoch;
 }
 
-/* LM-cut's Dijkstra: lower the cost of every fact that operator o adds to `value`, where that is cheaper. */
+/* The Dijkstra over facts: lower the cost of every fact that operator o adds to `value`, where that is
+   cheaper (o becomes its cheapest achiever). */
 static int offer(TaskObject *t, int o, int value) {
     for (int k = t->radd.start[o]; k < t->radd.start[o + 1]; k++) {
         int g = t->radd.items[k];
         if (value < t->fact_cost[g]) {
             t->fact_cost[g] = value;
+            t->achiever[g] = o;
             if (heap_push(&t->heap, value, g, g)) return -1;
         }
     }
@@ -232,15 +235,28 @@ static void unit_costs(TaskObject *t, const word *s) {
     }
 }
 
+/* hmax costs and cheapest achievers of all facts from state `s` under the operators' own costs: the
+   breadth-first sweep where every operator costs 1, else the Dijkstra. */
+static int hmax_costs(TaskObject *t, const word *s) {
+    if (t->unit) {
+        unit_costs(t, s);
+        return 0;
+    }
+    memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)(t->nops + 1));
+    return relaxed_costs(t, s);
+}
+
 static int h_hmax(TaskObject *t, const word *s) {
-    unit_costs(t, s);
+    if (hmax_costs(t, s)) return -1;
     return t->fact_cost[t->nfacts];
 }
 
-/* hFF: the size of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
-   goal fact. */
+static int in_state(const word *s, int f) { return (int)(s[f / 64] >> (f % 64) & 1); }
+
+/* hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
+   goal fact (its size where every operator costs 1). */
 static int h_hff(TaskObject *t, const word *s) {
-    unit_costs(t, s);
+    if (hmax_costs(t, s)) return -1;
     int goal = t->nfacts, truth = t->nfacts + 1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int epoch = next_epoch(t), size = 0, top = 0;
@@ -248,11 +264,11 @@ static int h_hff(TaskObject *t, const word *s) {
     t->mark[goal] = epoch;
     while (top) {
         int f = t->stack[--top];
-        if (f == truth || t->fact_cost[f] == 0) continue; /* true in the state */
+        if (f == truth || (f < goal && in_state(s, f))) continue;
         int o = t->achiever[f];
         if (t->op_mark[o] == epoch) continue;
         t->op_mark[o] = epoch;
-        size += o < t->nops;
+        size += t->base_cost[o];
         for (int k = t->rpre.start[o]; k < t->rpre.start[o + 1]; k++) {
             int p = t->rpre.items[k];
             if (t->mark[p] != epoch) {
@@ -388,7 +404,7 @@ static int evaluate(TaskObject *t, int heuristic, const word *s) {
     case H_HMAX: h = h_hmax(t, s); break;
     case H_HFF: h = h_hff(t, s); break;
     case H_LMCUT: h = h_lmcut(t, s); break;
-    default: return goal_reached(t, s) ? 0 : 1;
+    default: return goal_reached(t, s) ? 0 : t->min_cost;
     }
     if (h < 0) PyErr_NoMemory();
     return h;
@@ -563,13 +579,14 @@ static int run_astar(TaskObject *t, Store *st, int heuristic, word *child, int *
         int g = st->g[s], nops = applicable_ops(t, state, ops);
         for (int k = 0; k < nops; k++) {
             apply_op(t, st->states + (size_t)s * (size_t)st->nwords, ops[k], child);
-            long c = meet(st, child, s, ops[k], g + 1, &added);
+            int gc = g + t->base_cost[ops[k]];
+            long c = meet(st, child, s, ops[k], gc, &added);
             if (c < 0) goto done;
             if (!added) {
-                if (g + 1 >= st->g[c]) continue;
+                if (gc >= st->g[c]) continue;
                 st->parent[c] = (int)s;
                 st->op[c] = ops[k];
-                st->g[c] = g + 1;
+                st->g[c] = gc;
             }
             if (st->h[c] < 0) {
                 int h = evaluate(t, heuristic, child);
@@ -579,8 +596,8 @@ static int run_astar(TaskObject *t, Store *st, int heuristic, word *child, int *
             out->generated++;
             if (st->h[c] == COST_INF) continue;
             counter++;
-            int64_t tie = -(int64_t)(g + 1) * ((int64_t)1 << 40) + counter;
-            if (heap_push(&open, g + 1 + st->h[c], tie, (int)c)) goto oom;
+            int64_t tie = -(int64_t)gc * ((int64_t)1 << 40) + counter;
+            if (heap_push(&open, gc + st->h[c], tie, (int)c)) goto oom;
         }
     }
     status = 0;
@@ -696,6 +713,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
         PyErr_NoMemory();
         goto done;
     }
+    if (kind == S_BFS && !t->unit) kind = S_ASTAR, heuristic = H_BLIND; /* uniform-cost search */
     if (meet(&st, t->init, -1, -1, 0, &added) < 0) goto done;
     if (kind == S_BFS && goal_reached(t, t->init)) {
         out.goal_state = 0;
@@ -710,7 +728,8 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
     PyObject *plan = Py_None;
     Py_INCREF(plan);
     if (out.goal_state >= 0) {
-        Py_ssize_t length = st.g[out.goal_state];
+        Py_ssize_t length = 0;
+        for (long s = out.goal_state; st.parent[s] >= 0; s = st.parent[s]) length++;
         Py_DECREF(plan);
         if (!(plan = PyList_New(length))) goto done;
         for (long s = out.goal_state; st.parent[s] >= 0; s = st.parent[s])
@@ -861,7 +880,6 @@ static int build_indexes(TaskObject *t) {
     if (!t->fact_cost || !t->achiever || !t->missing || !t->supporter || !t->op_max || !t->base_cost || !t->cost || !t->mark ||
         !t->in_zone || !t->op_mark || !t->stack || !t->cut)
         goto done;
-    for (int o = 0; o < nr; o++) t->base_cost[o] = o < t->nops;
     status = 0;
 done:
     free(row);
@@ -874,11 +892,39 @@ done:
 static const char *const MASK_NAMES[4] = {"pre", "pre_neg", "add", "delete"};
 static PyObject *mask_names[4]; /* the same, interned at import */
 
+/* The operators' costs: each 1 where `costs` is None, else its items (non-negative ints); the goal operator's 0. */
+static int read_costs(TaskObject *t, PyObject *costs) {
+    PyObject *seq = costs == Py_None ? NULL : PySequence_Fast(costs, "costs must be None or a sequence of ints");
+    if (costs != Py_None && !seq) return -1;
+    if (seq && PySequence_Fast_GET_SIZE(seq) != t->nops) {
+        PyErr_Format(PyExc_ValueError, "costs: %zd for %d operators", PySequence_Fast_GET_SIZE(seq), t->nops);
+        Py_DECREF(seq);
+        return -1;
+    }
+    t->unit = 1;
+    t->min_cost = 1;
+    for (int o = 0; o < t->nops; o++) {
+        long cost = seq ? PyLong_AsLong(PySequence_Fast_GET_ITEM(seq, o)) : 1;
+        if (cost == -1 && PyErr_Occurred()) break;
+        if (cost < 0 || cost > INT_MAX / 4) {
+            PyErr_Format(PyExc_ValueError, "operator %d costs %ld: costs are ints from 0 to %d", o, cost, INT_MAX / 4);
+            break;
+        }
+        t->base_cost[o] = (int)cost;
+        t->unit &= cost == 1;
+        if (o == 0 || cost < t->min_cost) t->min_cost = (int)cost;
+    }
+    t->base_cost[t->nops] = 0;
+    Py_XDECREF(seq);
+    return PyErr_Occurred() ? -1 : 0;
+}
+
 static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", NULL};
+    static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", "costs", NULL};
     int nfacts;
-    PyObject *operators, *init, *goal, *goal_neg;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO", keywords, &nfacts, &operators, &init, &goal, &goal_neg))
+    PyObject *operators, *init, *goal, *goal_neg, *costs = Py_None;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO|O", keywords, &nfacts, &operators, &init, &goal, &goal_neg,
+                                     &costs))
         return NULL;
     if (nfacts < 0) return PyErr_Format(PyExc_ValueError, "nfacts must not be negative");
     PyObject *seq = PySequence_Fast(operators, "operators must be a sequence");
@@ -921,6 +967,7 @@ static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) 
         PyErr_NoMemory();
         goto fail;
     }
+    if (read_costs(t, costs)) goto fail;
     Py_DECREF(seq);
     return (PyObject *)t;
 fail:
@@ -941,8 +988,9 @@ static PyMethodDef Task_methods[] = {
 static PyTypeObject TaskType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "semgoal_planner._core.Task",
-    .tp_doc = "Task(nfacts, operators, init, goal, goal_neg): a grounded task. States and masks are int "
-              "bitsets over the facts; each operator has the masks pre, pre_neg, add and delete.",
+    .tp_doc = "Task(nfacts, operators, init, goal, goal_neg, costs=None): a grounded task. States and masks are "
+              "int bitsets over the facts; each operator has the masks pre, pre_neg, add and delete; costs: one "
+              "non-negative int per operator (None: each costs 1).",
     .tp_basicsize = sizeof(TaskObject),
     .tp_flags = Py_TPFLAGS_DEFAULT,
     .tp_new = Task_new,

@@ -16,7 +16,7 @@ from typing import NamedTuple
 
 from semgoal_planner import _core, _ground
 from semgoal_planner.exploration import Exploration, Schema
-from semgoal_planner.pddl import Action, Atom, Condition, Domain, Problem
+from semgoal_planner.pddl import Action, Atom, Condition, Domain, PddlError, Problem
 
 
 class Operator(NamedTuple):
@@ -43,12 +43,18 @@ class Task:
     """A grounded task: facts, initial state, goal and operators over int bitsets."""
 
     def __init__(self, facts: tuple[Atom, ...], init: int, goal: int, goal_neg: int, operators: tuple[Operator, ...],
-                 unsolvable_reason: str = "") -> None:
+                 unsolvable_reason: str = "", costs: tuple[int, ...] | None = None) -> None:
         self.facts = facts
         """Bit i of a state is ``facts[i]``."""
         self.init, self.goal, self.goal_neg, self.operators = init, goal, goal_neg, operators
         self.unsolvable_reason = unsolvable_reason
         """Set when grounding alone proves the goal unreachable (a static or unreachable goal atom)."""
+        self.costs = costs
+        """Each operator's cost where the problem minimises total-cost; None: every action costs 1."""
+
+    def cost(self, plan: list[int]) -> int:
+        """The cost of a plan given as operator indices (its length where actions cost 1)."""
+        return sum(self.costs[i] for i in plan) if self.costs is not None else len(plan)
 
     def goal_reached(self, state: int) -> bool:
         return state & self.goal == self.goal and not state & self.goal_neg
@@ -59,7 +65,7 @@ class Task:
     @cached_property
     def compiled(self) -> _core.Task:
         """This task for the C searches and heuristics (built on first use)."""
-        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg)
+        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, self.costs)
 
 
 class _Grounder:
@@ -135,7 +141,25 @@ class _Grounder:
             [self._key(a) for a in self.problem.init if a.predicate in self.predicate_index],
             [self._key(c.atom) for c in positive], [self._key(c.atom) for c in fluent if not c.positive],
             list(map(self._action, self.domain.actions, self._reachable_bindings())), Atom, Operator)
-        return Task(tuple(facts), init, goal, goal_neg, tuple(operators), self._unsolvable_reason({positive[i] for i in unreached}))
+        costs = self._costs(operators) if self.problem.minimise_cost else None
+        return Task(tuple(facts), init, goal, goal_neg, tuple(operators),
+                    self._unsolvable_reason({positive[i] for i in unreached}), costs)
+
+    def _costs(self, operators: list[Operator]) -> tuple[int, ...]:
+        """Each operator's cost: its action's amount, a function term's value looked up in ``:init``."""
+        actions = {action.name: action for action in self.domain.actions}
+        costs = []
+        for operator in operators:
+            action = actions[operator.name]
+            amount = action.cost
+            if isinstance(amount, Atom):
+                binding = dict(zip((variable for variable, _ in action.parameters), operator.args, strict=True))
+                term = Atom(amount.predicate, tuple(binding.get(arg, arg) for arg in amount.args))
+                if term not in self.problem.values:
+                    raise PddlError(f"?:?: {operator} costs {term}, which :init gives no value")
+                amount = self.problem.values[term]
+            costs.append(amount)
+        return tuple(costs)
 
     def _reachable_bindings(self) -> list[list[tuple[int, ...]]]:
         init = [(a.predicate, tuple(map(self.index.__getitem__, a.args))) for a in self.problem.init]

@@ -3,11 +3,11 @@
 They run in C (``_core.c``) inside the searches; :func:`heuristic` evaluates one on a single state, for
 tests and for inspecting a task. All of them ignore delete effects, negative preconditions and negative
 goals, which only relaxes the task further, so hmax and LM-cut stay admissible (Bonet & Geffner 2001;
-Hoffmann & Nebel 2001; Helmert & Domshlak 2009). Actions cost 1.
+Hoffmann & Nebel 2001; Helmert & Domshlak 2009). Actions cost 1, or their own costs where the task has them.
 
-- blind: 0 in a goal state, else 1.
+- blind: 0 in a goal state, else the cheapest action's cost (1 without costs).
 - hmax: the cost of the goal's costliest fact in the relaxed task (a Dijkstra over facts).
-- hFF: the size of a relaxed plan made of each needed fact's cheapest achiever, traced back from the goal.
+- hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever, traced back from the goal.
 - LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts, with the
   incremental hmax update between cuts.
 """

@@ -1,8 +1,12 @@
-"""A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, objects and constants.
+"""A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, :action-costs, objects and constants.
 
 Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (``or``,
-``forall``, ``when``, numeric fluents) is refused with a :class:`PddlError` that names the line and
-column, so a user knows what to rewrite.
+``forall``, ``when``, numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that
+names the line and column, so a user knows what to rewrite.
+
+Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` or ``(increase (total-cost)
+(f ?x ...))`` in an effect, with ``(= (f a ...) N)`` in ``:init``; they count when the problem says
+``(:metric minimize (total-cost))``, and an action without an increase then costs 0.
 
 Valid input is read fast: tokens are plain strings and lists plain lists. Only when that first pass
 finds an error is the text read again with every token and list knowing its line and column, and the
@@ -15,7 +19,8 @@ import re
 from collections.abc import Callable
 from typing import NamedTuple, TypeVar
 
-SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality"}
+SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
+TOTAL_COST = "total-cost"
 ROOT_TYPE = "object"
 EITHER = "either("
 """Prefix of a union type's name: ``(either a b)`` is read as the type ``either(a,b)``."""
@@ -154,6 +159,8 @@ class Action(NamedTuple):
     precondition: tuple[Condition, ...]
     add: tuple[Atom, ...]
     delete: tuple[Atom, ...]
+    cost: int | Atom = 0
+    """What it adds to ``total-cost``: a number, or a function term whose value ``:init`` gives."""
 
 
 class Domain:
@@ -167,7 +174,11 @@ class Domain:
         self.constants: dict[str, str] = {}
         self.predicates: dict[str, tuple[str, ...]] = {}
         """name -> parameter types."""
+        self.functions: dict[str, tuple[str, ...]] = {}
+        """Numeric functions (``total-cost``, ``road-length``): name -> parameter types."""
         self.actions: list[Action] = []
+        self.warnings: list[str] = []
+        """What the reader let through that strict PDDL refuses (an undeclared requirement)."""
 
     def is_subtype(self, sub: str, sup: str) -> bool:
         """Whether every object of type ``sub`` is one of type ``sup`` (``either`` types: unions)."""
@@ -188,6 +199,10 @@ class Problem:
     def __init__(self, name: str, domain_name: str, objects: dict[str, str], init: set[Atom],
                  goal: tuple[Condition, ...]) -> None:
         self.name, self.domain_name, self.objects, self.init, self.goal = name, domain_name, objects, init, goal
+        self.values: dict[Atom, int] = {}
+        """The functions' values from ``:init``: ``(= (road-length a b) 7)``."""
+        self.minimise_cost = False
+        """``(:metric minimize (total-cost))``: plans are judged by cost, not length."""
 
 
 # -- readers ---------------------------------------------------------------------------------------------
@@ -245,7 +260,7 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
     args = tuple(expr[1:])
     if predicate == "=":
         if ":equality" not in domain.requirements and variables is not None:
-            raise _error(expr, "(= ...) needs :equality in the domain's :requirements")
+            _warn(domain, "(= ...) is used without :equality in the domain's :requirements")
         if len(args) != 2:
             raise _error(expr, f"(= ...) takes 2 arguments, got {len(args)}")
         expected: tuple[str, ...] = (ROOT_TYPE, ROOT_TYPE)
@@ -281,11 +296,48 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
             raise _error(inner, f"only atoms can be negated in a {what}")
         if (what == "precondition" and ":negative-preconditions" not in domain.requirements
                 and inner and _name(inner[0], "") != "="):
-            raise _error(expr, "negative preconditions need :negative-preconditions in :requirements")
+            _warn(domain, "negative preconditions are used without :negative-preconditions in :requirements")
         return [Condition(_atom(inner, domain, variables, objects), positive=False)]
     if head in ("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"):
         raise _unsupported(expr, f"{head!r} is not STRIPS: only conjunctions of literals are supported")
     return [Condition(_atom(expr, domain, variables, objects))]
+
+
+def _warn(domain: Domain, message: str) -> None:
+    """Note what other planners accept silently (Fast Downward reads both undeclared requirements)."""
+    message = f"{message}; read as if declared"
+    if message not in domain.warnings:
+        domain.warnings.append(message)
+
+
+def _cost(expr: list, domain: Domain, variables: dict[str, str]) -> int | Atom:
+    """The amount of ``(increase (total-cost) AMOUNT)``: a non-negative integer or a function term."""
+    if len(expr) != 3 or _sub(expr[1], "(total-cost)") != [TOTAL_COST]:
+        raise _unsupported(expr, "numeric effects other than (increase (total-cost) ...) are not supported")
+    amount = expr[2]
+    if not isinstance(amount, list):
+        return _number(amount)
+    function = _name(amount[0], "a function name") if amount else ""
+    if function not in domain.functions or function == TOTAL_COST:
+        raise _error(amount, f"unknown function {function!r}")
+    args = tuple(_name(a, "an argument") for a in amount[1:])
+    if len(args) != len(domain.functions[function]):
+        raise _error(amount, f"{function} takes {len(domain.functions[function])} argument(s), got {len(args)}")
+    for arg in args:
+        if arg not in (variables if arg[0] == "?" else domain.constants):
+            raise _error(arg, f"unknown {'variable' if arg[0] == '?' else 'object or constant'} {arg!r}")
+    return Atom(function, args)
+
+
+def _number(token: str | list) -> int:
+    text = _name(token, "a number")
+    try:
+        value = float(text)
+    except ValueError:
+        raise _error(token, f"expected a number, found {text!r}") from None
+    if value < 0 or value != int(value):
+        raise _unsupported(token, f"action costs are non-negative integers, not {text}")
+    return int(value)
 
 
 def _sub(item: str | list, what: str) -> list:
@@ -338,11 +390,32 @@ def _domain(root: list) -> Domain:
                 for _, kind, token in params:
                     _check_type(domain, kind, token)
                 domain.predicates[pred] = tuple(kind for _, kind, _ in params)
+        elif key == ":functions":
+            _functions(body, domain)
         elif key == ":action":
             domain.actions.append(_action(section, domain))
         else:
             raise (_unsupported if key else _error)(section, f"unsupported domain section {key or '()'!r}")
     return domain
+
+
+def _functions(body: list, domain: Domain) -> None:
+    """``(total-cost) - number (road-length ?a ?b - location) - number``: numeric functions only."""
+    i = 0
+    while i < len(body):
+        decl = _sub(body[i], "function declaration")
+        name = _name(decl[0], "a function name") if decl else ""
+        if not name:
+            raise _error(decl, "empty function declaration ()")
+        params = _typed_list(decl[1:], decl, variables=True)
+        for _, kind, token in params:
+            _check_type(domain, kind, token)
+        i += 1
+        if i < len(body) and body[i] == "-":
+            if i + 1 >= len(body) or body[i + 1] != "number":
+                raise _unsupported(body[i], f"function {name!r}: only number-valued functions are supported")
+            i += 2
+        domain.functions[name] = tuple(kind for _, kind, _ in params)
 
 
 def _action(section: list, domain: Domain) -> Action:
@@ -364,11 +437,27 @@ def _action(section: list, domain: Domain) -> Action:
     variables = {var: kind for var, kind, _ in params}
     pre = _literals(fields.get(":precondition", []), domain, variables, domain.constants,
                     "precondition")
-    effect = _literals(fields.get(":effect", []), domain, variables, domain.constants, "effect")
+    effect_expr, costs = _without_increase(fields.get(":effect", []))
+    effect = _literals(effect_expr, domain, variables, domain.constants, "effect")
+    if len(costs) > 1:
+        raise _unsupported(costs[1], f"action {name}: more than one (increase (total-cost) ...)")
     if any(c.atom.predicate == "=" for c in effect):
         raise _error(section, f"action {name}: equality cannot be an effect")
     return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre),
-                  tuple(c.atom for c in effect if c.positive), tuple(c.atom for c in effect if not c.positive))
+                  tuple(c.atom for c in effect if c.positive), tuple(c.atom for c in effect if not c.positive),
+                  _cost(costs[0], domain, variables) if costs else 0)
+
+
+def _without_increase(effect: list) -> tuple[list, list[list]]:
+    """The effect without its ``(increase ...)`` parts, and those parts."""
+    def is_increase(part: object) -> bool:
+        return isinstance(part, list) and bool(part) and part[0] == "increase"
+    if is_increase(effect):
+        return [], [effect]
+    if effect and effect[0] == "and":
+        kept = [part for part in effect[1:] if not is_increase(part)]
+        return [effect[0], *kept], [part for part in effect[1:] if is_increase(part)]
+    return effect, []
 
 
 def parse_problem(text: str, domain: Domain) -> Problem:
@@ -393,6 +482,9 @@ def _problem(root: list, domain: Domain) -> Problem:
             for fact in section[1:]:
                 fact = _sub(fact, "initial fact")
                 head = _name(fact[0], "") if fact else ""
+                if head == "=" and len(fact) == 3 and isinstance(fact[1], list):
+                    _value(fact, domain, problem)
+                    continue
                 if head == "=" and any(isinstance(arg, list) for arg in fact[1:]):
                     raise _unsupported(fact, "numeric fluents ((= (f) n) in :init) are not supported")
                 if head in ("not", "="):
@@ -400,6 +492,10 @@ def _problem(root: list, domain: Domain) -> Problem:
                 problem.init.add(_atom(fact, domain, None, problem.objects))
         elif key == ":goal":
             goal_section = section
+        elif key == ":metric":
+            if section[1:] != ["minimize", [TOTAL_COST]]:
+                raise _unsupported(section, "the only metric supported is (:metric minimize (total-cost))")
+            problem.minimise_cost = True
         elif key == ":requirements":
             continue
         else:
@@ -408,3 +504,18 @@ def _problem(root: list, domain: Domain) -> Problem:
         raise _error(goal_section or root, "the problem needs one (:goal EXPRESSION)")
     problem.goal = tuple(_literals(_sub(goal_section[1], "goal"), domain, None, problem.objects, "goal"))
     return problem
+
+
+def _value(fact: list, domain: Domain, problem: Problem) -> None:
+    """``(= (f a ...) N)`` in ``:init``: a function's value (``total-cost`` starts at 0 and is not stored)."""
+    term = fact[1]
+    function = _name(term[0], "a function name") if term else ""
+    if function not in domain.functions:
+        raise _unsupported(fact, f"numeric fluents ((= ({function}) n) in :init) need {function!r} in :functions")
+    args = tuple(_name(a, "an object") for a in term[1:])
+    for arg in args:
+        if arg not in problem.objects:
+            raise _error(arg, f"unknown object or constant {arg!r}")
+    value = _number(fact[2])
+    if function != TOTAL_COST:
+        problem.values[Atom(function, args)] = value

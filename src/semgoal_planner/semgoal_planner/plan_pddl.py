@@ -1,7 +1,8 @@
 """`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--stats]`: our planner on any STRIPS PDDL.
 
-Exit 0 with the plan (one action a line), 1 unsolvable, 2 bad PDDL, an unreadable file or a bad command line,
-3 valid PDDL outside the supported fragment (the message names the construct).
+Exit 0 with the plan (one action a line, then ``; cost = N`` where the problem minimises total-cost), 1
+unsolvable, 2 bad PDDL, an unreadable file or a bad command line, 3 valid PDDL outside the supported fragment
+(the message names the construct).
 
 The command starts in a bare interpreter (see ./semgoal), and it reads its few arguments by hand: argparse,
 with the gettext, locale and shutil it loads, would be about a tenth of its whole start-up.
@@ -20,11 +21,13 @@ USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHE
          f"[--heuristic {{{','.join(HEURISTICS)}}}] [--stats]")
 HELP = f"""{USAGE}
 
-Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality, constants, either types).
+Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
+either types).
 
 options:
   --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),
-                  gbfs (greedy best-first: fast, not shortest)
+                  gbfs (greedy best-first: fast, not shortest); with (:metric minimize (total-cost)),
+                  shortest means cheapest and bfs searches by cost (uniform-cost)
   --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs)
   --stats         print expanded and generated states and the search time to stderr
 
@@ -83,6 +86,8 @@ def main(argv: list[str]) -> int:
     except PddlError as error:
         print(f"semgoal plan-pddl: bad PDDL: {error}", file=sys.stderr)
         return 2
+    for warning in result.warnings:
+        print(f"semgoal plan-pddl: warning: {warning}", file=sys.stderr)
     if stats:
         print(f"expanded {result.stats.expanded}, generated {result.stats.generated}, "
               f"{result.seconds * 1000:.2f} ms", file=sys.stderr)
@@ -92,6 +97,8 @@ def main(argv: list[str]) -> int:
             print(result.reason, file=sys.stderr)
         return 1
     print("\n".join(map(str, result.plan)))
+    if result.cost is not None:
+        print(f"; cost = {result.cost}")
     return 0
 
 

@@ -12,10 +12,14 @@ from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, sea
 
 class PlanResult:
     def __init__(self, plan: list[Operator] | None, reason: str = "", stats: SearchStats | None = None,
-                 seconds: float = 0.0) -> None:
+                 seconds: float = 0.0, cost: int | None = None) -> None:
         self.plan = plan
         """None: no plan exists."""
         self.reason, self.stats, self.seconds = reason, stats or SearchStats(), seconds
+        self.cost = cost
+        """The plan's total-cost where the problem minimises it; None where every action costs 1."""
+        self.warnings: list[str] = []
+        """What the reader let through that strict PDDL refuses."""
 
 
 def check_choice(search: str, heuristic: str | None) -> str:
@@ -36,11 +40,14 @@ def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = Non
     stats = SearchStats()
     plan = search(task, search_name, heuristic, stats)
     reason = "" if plan is not None else "no state reachable from the initial state satisfies the goal"
-    return PlanResult(plan, reason, stats, time.perf_counter() - start)
+    cost = stats.cost if plan is not None and task.costs is not None else None
+    return PlanResult(plan, reason, stats, time.perf_counter() - start, cost)
 
 
 def solve_pddl(domain_text: str, problem_text: str, search: str = "bfs", heuristic: str | None = None) -> PlanResult:
     """Parse, ground and search; raises :class:`~semgoal_planner.pddl.PddlError` on bad PDDL."""
     domain = parse_domain(domain_text)
     task = ground(domain, parse_problem(problem_text, domain))
-    return solve_task(task, search, heuristic)
+    result = solve_task(task, search, heuristic)
+    result.warnings = domain.warnings
+    return result

@@ -2,8 +2,9 @@
 
 The searches run in C (``_core.c``) on the task's bit masks; this module names them and maps the plan's
 operator indices back to operators. Breadth-first and A* with an admissible heuristic return shortest
-plans (unit action costs); greedy best-first is fast and not optimal. Successors come in a fixed order,
-so a search returns the same plan every time.
+plans, or cheapest where the task has action costs (breadth-first then runs as uniform-cost search);
+greedy best-first is fast and not optimal. Successors come in a fixed order, so a search returns the same
+plan every time.
 """
 
 from __future__ import annotations
@@ -15,10 +16,10 @@ DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff"}
 
 
 class SearchStats:
-    __slots__ = ("expanded", "generated")
+    __slots__ = ("cost", "expanded", "generated")
 
-    def __init__(self, expanded: int = 0, generated: int = 0) -> None:
-        self.expanded, self.generated = expanded, generated
+    def __init__(self, expanded: int = 0, generated: int = 0, cost: int = 0) -> None:
+        self.expanded, self.generated, self.cost = expanded, generated, cost
 
 
 def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = None) -> list[Operator] | None:
@@ -27,6 +28,7 @@ def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = No
     plan, expanded, generated = task.compiled.search(name, heuristic)
     if stats is not None:
         stats.expanded, stats.generated = expanded, generated
+        stats.cost = task.cost(plan) if plan is not None else 0
     return None if plan is None else [task.operators[i] for i in plan]
 
 

@@ -35,8 +35,7 @@ DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (r ?x) :effect (q)))", "3:44", "unknown predicate"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?y) :effect (q)))", "3:47", "unknown variable"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?x ?x) :effect (q)))", "3:44", "takes 1 argument"),
-    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (not (p ?x)) :effect (q)))", "3:44", "negative-preconditions"),
-    (DOMAIN_HEAD + " (:functions (f)))", "3:2", "unsupported domain section"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (and (q) (assign (f) 1))))", "3:47", "not STRIPS"),
     ("(define (domain d) (:requirements :fluents))", "1:20", "unsupported requirement"),
     (DOMAIN_HEAD + " (:action a :parameters (?x - thing) :effect (q)))", "3:26", "unknown type"),
 ])

@@ -43,7 +43,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),  # "I'd like red to be next to blue"
-    (r"(all|both)( of)?( the)? (two|three|four)|the (two|three|four) (blocks|cubes)", "all"),  # "all three blocks"
+    (r"(all|both)( of)?( the)? (two|three|four)", "all"),  # "all three blocks"; "the two blocks" is refused
     (r"the other (two|three)", "other"),
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"

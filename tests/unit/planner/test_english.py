@@ -192,6 +192,7 @@ REFUSALS = [
     ("desk_cleanup", "put red in the bin except green", "'except' follows 'all'"),
     ("two_blocks", "stack the blocks", "say which block goes on which"),
     ("two_blocks", "put red next to red", "red cannot be near itself"),
+    ("desk_cleanup", "put the two blocks in the bin", "unknown word 'two'"),
     ("three_blocks", "put red on top", "a block goes on one block"),
 ]
 

@@ -60,7 +60,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
-    (r"except for|except|other than|save for", "except"),
+    (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
@@ -141,7 +141,7 @@ clause: NOT? action              -> act
 action: ("put" | "keep") refs dest          -> put
       | "put" refs "down" (near | away | in_bin) -> put
       | "put" refs                           -> release
-      | ("put" refs "down" | "put" "down" refs | "release" refs) -> release
+      | ("put" refs "down" | "put" "down" refs | "release" refs?) -> release
       | "stack" refs dest_on                 -> put
       | "stack" refs                         -> stack_unsaid
       | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
@@ -158,6 +158,7 @@ action: ("put" | "keep") refs dest          -> put
       | ("put" | "keep" | "pick") refs "up"? "held" -> hold
       | "keep" "held" refs                    -> hold
       | "clean" ("table" | "bin")?            -> clean_all
+      | "clean" ("table" | "bin")? "except" refs -> clean_all_except
       | "keep"? "table" ("clean" | "empty")  -> clean_all
       | "keep"? "bin" "empty"                -> empty
       | "clean" refs ("in" "bin" | "table")?  -> clean
@@ -200,6 +201,11 @@ NOT: "not"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
 %ignore " "
 """
+
+
+OPPOSABLE = frozenset({"in_bin", "out_bin", "hold", "release", "near", "away", "on", "under"})
+"""Relations whose opposite is one literal per block, so 'all except red' and 'only red' can give it to the
+blocks left out (the opposite of 'on the table' or 'apart' is no single place)."""
 
 
 class LanguageError(ValueError):
@@ -331,7 +337,8 @@ class _Clauses(lark.Transformer):
         return replace(items[-1], subjects=items[0])
 
     def release(self, items: list) -> Clause:
-        return Clause("release", subjects=_refs_in(items)[0])
+        refs = _refs_in(items)
+        return Clause("release", subjects=refs[0] if refs else ())  # "... and let go": the block before
 
     def out_bin(self, items: list) -> Clause:
         return Clause("out_bin", subjects=items[0])
@@ -346,6 +353,9 @@ class _Clauses(lark.Transformer):
 
     def clean_all(self, _: list) -> Clause:
         return Clause("in_bin", subjects=(Ref("all"),))
+
+    def clean_all_except(self, items: list) -> Clause:
+        return Clause("in_bin", subjects=(Ref("all", excluded=items[-1]),))
 
     def clean(self, items: list) -> Clause:
         return Clause("in_bin", subjects=items[0])
@@ -539,8 +549,11 @@ class _Resolver:
         excluded = [b for ref in clause.subjects if ref.kind == "all" for b in self.blocks_of(ref.excluded)]
         if any(ref.kind == "only" for ref in clause.subjects):
             excluded += [b for b in self.blocks if b not in subjects and b not in objects]
-        if excluded:
-            said += [(lit.negated(), False) for lit in self._relation(clause.kind, tuple(excluded), objects)]
+        if excluded and clause.kind not in ("together", "apart"):  # a group says nothing of those left out
+            if clause.kind not in OPPOSABLE:
+                raise LanguageError(f"'except' or 'only' leaves {' and '.join(excluded)} unclear here: "
+                                    "say where they go")
+            said += [(lit.negated(), False) for b in excluded for lit in self._relation(clause.kind, (b,), objects)]
         self.last = subjects
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())

@@ -169,6 +169,11 @@ PHRASES = [
     ("three_blocks", "move red closer to green", "close(red,green)"),
     ("three_blocks", "red and green adjacent", "close(red,green)"),
     ("two_blocks", "lay red on green", "above(red,green)"),
+    ("desk_cleanup", "hold only red", "holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
+    ("desk_cleanup", "Could you please clear the desk, except for the red block?",
+     "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
+    ("three_blocks", "spread all except red apart", "not close(green,blue)"),
+    ("two_blocks", "Put green onto red and let go.", "above(green,red) & not holding(green)"),
 ]
 
 REFUSALS = [
@@ -193,6 +198,7 @@ REFUSALS = [
     ("two_blocks", "stack the blocks", "say which block goes on which"),
     ("two_blocks", "put red next to red", "red cannot be near itself"),
     ("desk_cleanup", "put the two blocks in the bin", "unknown word 'two'"),
+    ("desk_cleanup", "Only green should stay on the table.", "leaves red and blue and yellow unclear"),
     ("three_blocks", "put red on top", "a block goes on one block"),
 ]
 

@@ -256,6 +256,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     text = " " + re.sub(r"[,.!?:]+", lambda m: " " if m.group() == ":" else " and ", text.lower()) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
+    text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = re.sub(r"&+", " and ", text)
     text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
@@ -273,6 +274,19 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if not words:
         raise LanguageError(f"the goal says nothing to do: e.g. {examples(scene, blocks)}")
     return words
+
+
+_EXCEPTION_AFTER_ALL = re.compile(
+    r"\b((?:all|every|everything|each)\b.*?) (?:apart from|aside from|besides|but for)"
+    r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+ *$)")
+"""'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
+where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
+_PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
+
+
+def _as_exception(match: re.Match) -> str:
+    said = match[1]
+    return f"{said} except" if _PLACE.search(said) else match[0]
 
 
 def _joined(words: list[str]) -> list[str]:

@@ -174,6 +174,11 @@ PHRASES = [
      "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
     ("three_blocks", "spread all except red apart", "not close(green,blue)"),
     ("two_blocks", "Put green onto red and let go.", "above(green,red) & not holding(green)"),
+    ("desk_cleanup", "Put every cube in the bin apart from green.",
+     "in_bin(red) & in_bin(blue) & in_bin(yellow) & not in_bin(green)"),
+    ("desk_cleanup", "all blocks in the box besides red and yellow",
+     "in_bin(green) & in_bin(blue) & not in_bin(red) & not in_bin(yellow)"),
+    ("three_blocks", "keep every block apart from green", "not close(red,green) & not close(green,blue)"),
 ]
 
 REFUSALS = [

@@ -253,21 +253,24 @@ def _check_type(domain: Domain, kind: str, token: str) -> None:
     domain.types.setdefault(kind, ROOT_TYPE)
 
 
-def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str]) -> Atom:
+def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
+          functions: bool = False) -> Atom:
+    """A predicate's atom, checked against its declaration; with ``functions``, a numeric function's term."""
     if not expr:
         raise _error(expr, "empty atom ()")
-    predicate = _name(expr[0], "a predicate name")
+    predicate = _name(expr[0], "a function name" if functions else "a predicate name")
     args = tuple(expr[1:])
-    if predicate == "=":
+    declared = domain.functions if functions else domain.predicates
+    if predicate == "=" and not functions:
         if ":equality" not in domain.requirements and variables is not None:
             _warn(domain, "(= ...) is used without :equality in the domain's :requirements")
         if len(args) != 2:
             raise _error(expr, f"(= ...) takes 2 arguments, got {len(args)}")
         expected: tuple[str, ...] = (ROOT_TYPE, ROOT_TYPE)
-    elif predicate not in domain.predicates:
-        raise _error(expr, f"unknown predicate {predicate!r}")
+    elif predicate not in declared:
+        raise _error(expr, f"unknown {'function' if functions else 'predicate'} {predicate!r}")
     else:
-        expected = domain.predicates[predicate]
+        expected = declared[predicate]
         if len(args) != len(expected):
             raise _error(expr, f"{predicate} takes {len(expected)} argument(s), got {len(args)}")
     for arg, kind in zip(args, expected, strict=True):
@@ -317,16 +320,9 @@ def _cost(expr: list, domain: Domain, variables: dict[str, str]) -> int | Atom:
     amount = expr[2]
     if not isinstance(amount, list):
         return _number(amount)
-    function = _name(amount[0], "a function name") if amount else ""
-    if function not in domain.functions or function == TOTAL_COST:
-        raise _error(amount, f"unknown function {function!r}")
-    args = tuple(_name(a, "an argument") for a in amount[1:])
-    if len(args) != len(domain.functions[function]):
-        raise _error(amount, f"{function} takes {len(domain.functions[function])} argument(s), got {len(args)}")
-    for arg in args:
-        if arg not in (variables if arg[0] == "?" else domain.constants):
-            raise _error(arg, f"unknown {'variable' if arg[0] == '?' else 'object or constant'} {arg!r}")
-    return Atom(function, args)
+    if amount and amount[0] == TOTAL_COST:
+        raise _error(amount, "an action's cost cannot be (total-cost) itself")
+    return _atom(amount, domain, variables, domain.constants, functions=True)
 
 
 def _number(token: str | list) -> int:
@@ -508,14 +504,10 @@ def _problem(root: list, domain: Domain) -> Problem:
 
 def _value(fact: list, domain: Domain, problem: Problem) -> None:
     """``(= (f a ...) N)`` in ``:init``: a function's value (``total-cost`` starts at 0 and is not stored)."""
-    term = fact[1]
-    function = _name(term[0], "a function name") if term else ""
+    function = _name(fact[1][0], "a function name") if fact[1] else ""
     if function not in domain.functions:
         raise _unsupported(fact, f"numeric fluents ((= ({function}) n) in :init) need {function!r} in :functions")
-    args = tuple(_name(a, "an object") for a in term[1:])
-    for arg in args:
-        if arg not in problem.objects:
-            raise _error(arg, f"unknown object or constant {arg!r}")
+    term = _atom(fact[1], domain, None, problem.objects, functions=True)
     value = _number(fact[2])
     if function != TOTAL_COST:
-        problem.values[Atom(function, args)] = value
+        problem.values[term] = value

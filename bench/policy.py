@@ -32,15 +32,18 @@ REFERENCE = "sb3:FetchPickAndPlace-v4"
 WARMUP_STEPS = 1_000
 
 
-def _sb3_model(env):
+def _sb3_model(env, keep_infos: bool, warmup: int = WARMUP_STEPS):
+    """SB3's SAC + HER as the reference runs it; ``keep_infos`` for envs whose reward reads the step's info."""
     import torch
     from stable_baselines3 import SAC, HerReplayBuffer
 
+    from semgoal_core.settling import HER_REPLAY_KWARGS
+
     torch.set_num_threads(1)
-    return SAC("MultiInputPolicy", env, replay_buffer_class=HerReplayBuffer,
-               replay_buffer_kwargs={"n_sampled_goal": 4, "goal_selection_strategy": "future"},
+    her = {"n_sampled_goal": 4, "goal_selection_strategy": "future", **(HER_REPLAY_KWARGS if keep_infos else {})}
+    return SAC("MultiInputPolicy", env, replay_buffer_class=HerReplayBuffer, replay_buffer_kwargs=her,
                batch_size=256, policy_kwargs={"net_arch": [256, 256]}, train_freq=1, gradient_steps=1,
-               learning_starts=WARMUP_STEPS, buffer_size=100_000, seed=0, verbose=0)
+               learning_starts=warmup, buffer_size=100_000, seed=0, verbose=0)
 
 
 def _sb3_env(name: str):
@@ -55,8 +58,8 @@ def _sb3_env(name: str):
     return gym.make(name)
 
 
-def train_rate(config: str, steps: int) -> float:
-    """Env steps/s of one training configuration over ``steps`` env steps after the warm-up."""
+def train_rate(config: str, steps: int, warmup: int = WARMUP_STEPS) -> float:
+    """Env steps/s of one training configuration over ``steps`` env steps after ``warmup`` steps without updates."""
     kind, _, arg = config.partition(":")
     if kind == "ours":
         from semgoal_bringup.training import trainer_for
@@ -65,8 +68,8 @@ def train_rate(config: str, steps: int) -> float:
         defaults = TrainConfig(scene="two_blocks")
         updates = 1.0 if arg == "1" else defaults.updates_per_step
         trainer = trainer_for(TrainConfig(scene="two_blocks", seed=0, updates_per_step=updates,
-                                      learning_starts=WARMUP_STEPS, run_dir=None))
-        while trainer.replay.transitions < WARMUP_STEPS:
+                                      learning_starts=warmup, run_dir=None))
+        while trainer.replay.transitions < warmup:
             trainer.cycle()
         start, done = time.perf_counter(), 0
         while done < steps:
@@ -78,12 +81,12 @@ def train_rate(config: str, steps: int) -> float:
         """Time from the first gradient step on."""
 
         def _on_step(self) -> bool:
-            if self.num_timesteps == WARMUP_STEPS:
+            if self.num_timesteps == warmup:
                 self.locals["self"].bench_start = time.perf_counter()
             return True
 
-    model = _sb3_model(_sb3_env(arg))
-    model.learn(total_timesteps=WARMUP_STEPS + steps, callback=Clock())
+    model = _sb3_model(_sb3_env(arg), keep_infos=arg == "two_blocks", warmup=warmup)
+    model.learn(total_timesteps=warmup + steps, callback=Clock())
     return steps / (time.perf_counter() - model.bench_start)
 
 
@@ -112,7 +115,7 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
         controllers[scene] = SubgoalController(scene)
         controllers[scene].set_subgoal(envs[scene].subgoal.literals())
     obs, actor = observations["two_blocks"], controllers["two_blocks"].actor
-    sb3 = _sb3_model(envs["two_blocks"])
+    sb3 = _sb3_model(envs["two_blocks"], keep_infos=True)
     return {
         "ours:Actor.act": _percentiles(lambda: actor.act(obs["observation"], obs["desired_goal"]), calls),
         **{f"ours:SubgoalController.act[{scene}]":
@@ -132,19 +135,22 @@ def _child(args: list[str]) -> str:
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench-policy", description=__doc__.split("\n\n")[0])
     parser.add_argument("--steps", type=int, default=2_000, help="env steps timed per training run")
+    parser.add_argument("--warmup", type=int, default=WARMUP_STEPS, help="env steps before the first update")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--calls", type=int, default=5_000, help="single-observation actions timed")
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--worker", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.worker:  # a child: one measurement, printed as its last line
-        print(json.dumps(inference(args.calls)) if args.worker == "inference" else train_rate(args.worker, args.steps))
+        print(json.dumps(inference(args.calls)) if args.worker == "inference"
+              else train_rate(args.worker, args.steps, args.warmup))
         return 0
     out = sys.stderr if args.json else sys.stdout
     rates: dict[str, list[float]] = {config: [] for config in TRAIN_CONFIGS}
     for repeat in range(args.repeats):
         for config in TRAIN_CONFIGS:
-            rates[config].append(float(_child(["--worker", config, "--steps", str(args.steps)])))
+            worker = ["--worker", config, "--steps", str(args.steps), "--warmup", str(args.warmup)]
+            rates[config].append(float(_child(worker)))
             print(f"[repeat {repeat + 1}/{args.repeats}] {config:28s} {rates[config][-1]:7.1f} steps/s", file=out, flush=True)
     medians = {config: round(statistics.median(values), 1) for config, values in rates.items()}
     latency = json.loads(_child(["--worker", "inference", "--calls", str(args.calls)]))

@@ -35,9 +35,24 @@ def held_blocks_asked(literals: Iterable[Literal]) -> set[str]:
     return {lit.args[0] for lit in literals if lit.name == "holding" and lit.value}
 
 
+HER_REPLAY_KWARGS = {"copy_info_dict": True}
+"""What Stable-Baselines3's ``HerReplayBuffer`` needs (``replay_buffer_kwargs``) to relabel at rest: by
+default it hands ``compute_reward`` empty info dicts, and rest cannot be judged from goals alone."""
+
+
 def info_motion(info: dict | Sequence[dict]) -> np.ndarray:
-    """The motion bits of a step's info dict, or of a sequence of them (as Stable-Baselines3's HER passes)."""
-    return np.asarray(info["motion"] if isinstance(info, dict) else [i["motion"] for i in info])
+    """The motion bits of a step's info dict, or of a sequence of them (as Stable-Baselines3's HER passes).
+
+    :raises ValueError: an info lacks ``motion``, saying how to keep it (:data:`HER_REPLAY_KWARGS`).
+    """
+    infos = [info] if isinstance(info, dict) else list(info)
+    if any("motion" not in i for i in infos):
+        raise ValueError(
+            "compute_reward needs each step's info['motion'] to judge the world at rest; with "
+            "Stable-Baselines3's HerReplayBuffer pass replay_buffer_kwargs={'copy_info_dict': True} "
+            "(semgoal_core.settling.HER_REPLAY_KWARGS) so that it keeps the infos")
+    motion = np.asarray([i["motion"] for i in infos])
+    return motion[0] if isinstance(info, dict) else motion
 
 
 def restless(moving: np.ndarray, held: np.ndarray, asked: np.ndarray) -> np.ndarray:

@@ -1,6 +1,14 @@
-"""bench-policy's inference worker times every shipped actor the way the policy node runs it."""
+"""bench-policy: the inference worker times every shipped actor the way the policy node runs it; the whole
+command runs at a tiny size."""
 
-from bench.policy import inference
+import json
+import subprocess
+import sys
+
+import pytest
+
+from bench.policy import REFERENCE, TRAIN_CONFIGS, inference
+from conftest import ROOT
 from semgoal_core.vocabulary import SCENES
 
 
@@ -10,3 +18,16 @@ def test_inference_times_each_scenes_controller_and_the_peers():
     assert set(figures) == expected
     for name, row in figures.items():
         assert 0 < row["p50_ms"] <= row["p99_ms"], name
+
+
+@pytest.mark.slow
+def test_bench_policy_runs_every_configuration_at_a_tiny_size():
+    """The whole command, SB3's HER on our env included, so that it cannot break silently again."""
+    result = subprocess.run([sys.executable, "-m", "bench.policy", "--steps", "20", "--warmup", "110",
+                             "--repeats", "1", "--calls", "5", "--json"],
+                            capture_output=True, text=True, cwd=ROOT, timeout=280)
+    assert result.returncode == 0, result.stderr[-3000:]
+    figures = json.loads(result.stdout.strip().splitlines()[-1])
+    rates = figures["training"]["steps_per_second"]
+    assert set(rates) == set(TRAIN_CONFIGS) and all(rate > 0 for rate in rates.values())
+    assert figures["training"]["ratio_to_reference"][REFERENCE] == 1.0

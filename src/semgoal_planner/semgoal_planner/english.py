@@ -33,6 +33,7 @@ from dataclasses import dataclass, replace
 
 import lark
 
+from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, Literal, VocabularyError
 
 MAX_GOAL_CHARS = 2_000
@@ -43,7 +44,6 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),  # "I'd like red to be next to blue"
-    (r"(all|both)( of)?( the)? (two|three|four)", "all"),  # "all three blocks"; "the two blocks" is refused
     (r"the other (two|three)", "other"),
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
@@ -257,6 +257,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = " " + re.sub(r"[,.!?:]+", lambda m: " " if m.group() == ":" else " and ", text.lower()) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
+    text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = re.sub(r"&+", " and ", text)
     text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
@@ -274,6 +275,21 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if not words:
         raise LanguageError(f"the goal says nothing to do: e.g. {examples(scene, blocks)}")
     return words
+
+
+NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}
+_COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r")(?: blocks| cubes| ones)?"
+                      r"|the (?P<the>" + "|".join(NUMBERS) + r") (?:blocks|cubes|ones))\b")
+"""A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
+
+
+def _all_counted(match: re.Match, blocks: Sequence[str]) -> str:
+    """'all' where the count is the number of blocks present, else the refusal names the blocks there are."""
+    said = match["all"] or match["the"]
+    if NUMBERS[said] != len(blocks):
+        raise LanguageError(f"{match[0]!r} speaks of {said} blocks, but this world has {len(blocks)} "
+                            f"({', '.join(blocks)}): name the blocks by colour")
+    return " all "
 
 
 _EXCEPTION_AFTER_ALL = re.compile(
@@ -672,6 +688,10 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
         goal.update({key: literal for key, (literal, _) in stage.items()})
     if not goal:
         raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
+    try:
+        check_consistent(goal.values())
+    except ContradictionError as error:
+        raise LanguageError(str(error)) from None
     return list(goal.values())
 
 

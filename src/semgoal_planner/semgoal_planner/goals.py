@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
@@ -42,17 +43,12 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
         except LanguageError as error:
             raise GoalError(f"{error} (or give a task, {', '.join(TASKS)}, or literals such as in_bin(red))") from None
     layout = LAYOUTS[scene]
-    goal: dict[tuple[str, tuple[str, ...]], Literal] = {}
-    for part in split_literals(text):
-        try:
-            literal = layout.validate(parse_literal(part), objects)
-        except VocabularyError as error:
-            raise GoalError(str(error)) from None
-        key = (literal.name, literal.args)
-        if key in goal and goal[key].value != literal.value:
-            raise GoalError(f"contradictory goal: both {literal} and {literal.negated()}")
-        goal[key] = literal
-    return list(goal.values())
+    try:
+        goal = [layout.validate(parse_literal(part), objects) for part in split_literals(text)]
+        check_consistent(goal)
+    except (VocabularyError, ContradictionError) as error:
+        raise GoalError(str(error)) from None
+    return list(dict.fromkeys(goal))
 
 
 def check_goal_text(text: str, scene: str) -> None:

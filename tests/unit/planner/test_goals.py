@@ -5,7 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from semgoal_core.vocabulary import Literal
-from semgoal_planner.goals import GoalError, parse_goal
+from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 
 BLOCKS = ("red", "green", "blue")
 
@@ -53,3 +53,16 @@ def test_fuzzed_goal_strings_never_raise_anything_but_goal_errors(text: str) -> 
         assert str(error)
     else:
         assert goal and all(lit.name in ("close", "holding") for lit in goal)
+
+
+@pytest.mark.parametrize(("scene", "text", "named"), [
+    ("two_blocks", "holding(red) & holding(green)", "holding(red) and holding(green): one hand"),
+    ("two_blocks", "above(red,green) & above(green,red)", "above(red,green) and above(green,red)"),
+    ("two_blocks", "above(red,green) & not close(red,green)", "above(red,green) and not close(red,green)"),
+    ("desk_cleanup", "in_bin(red) & not in_bin(red)", "both in_bin(red) and not in_bin(red)"),
+    ("three_blocks", "close(red,red)", "close(red,red): a block cannot be related to itself"),
+])
+def test_contradictions_are_refused_before_any_state_naming_the_literals(scene: str, text: str, named: str) -> None:
+    """What the goal topic and the console check before planning (``check_goal_text``, ``parse_goal``)."""
+    with pytest.raises(GoalError, match=named.replace("(", r"\(").replace(")", r"\)")):
+        check_goal_text(text, scene)

@@ -27,6 +27,8 @@ LAUNCH_ARGUMENTS = (
     ("record", "", "an MCAP file to record every topic into until the graph stops (empty: no recording)"),
     ("foxglove", "", "a port to serve the Foxglove live view on, at 127.0.0.1 (empty: none)"),
     ("console", "", "a port to serve the collaboration console on, at 127.0.0.1 (empty: none)"),
+    ("state_dir", "", "a folder for the planner's journal, so that a restarted planner carries on with the plan "
+     "(empty: a new temporary folder for this run)"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -50,11 +52,11 @@ def scene_task(scene: str, task_name: str):
 
 
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
-                foxglove: str = "", console: str = "") -> list[tuple[str, str, dict[str, object]]]:
+                foxglove: str = "", console: str = "", state_dir: str = "") -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
     ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` or
     ``console`` (a port each), the live view and the console last. ValueError for a port that is not a number."""
-    params = node_params(task_name, seed, mode, models)
+    params = node_params(task_name, seed, mode, models, state_dir)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
     views = []
     for name, port, executable in (("foxglove", foxglove, "foxglove_node"), ("console", console, "console_node")):
@@ -64,6 +66,14 @@ def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: 
     return [*recorder, *((package, executable, params[executable]) for package, executable in NODES), *views]
 
 
+def run_state_dir(given: str) -> str:
+    """The planner's journal folder for a graph that restarts dead nodes: ``given``, else a new temporary one (a
+    journal of an earlier run is never taken up by a new graph)."""
+    import tempfile
+
+    return given or tempfile.mkdtemp(prefix="semgoal-planner-")
+
+
 def rviz_config() -> Path:
     """The RViz view of the graph as installed: share/semgoal_bringup/rviz/semgoal.rviz."""
     from semgoal_ros.package_data import share_path
@@ -71,13 +81,15 @@ def rviz_config() -> Path:
     return share_path("semgoal_bringup", "rviz", "semgoal.rviz")
 
 
-def node_params(task_name: str, seed: int, mode: str, models: str = "") -> dict[str, dict[str, object]]:
-    """The task's own parameters per executable, set on top of :func:`params_file`."""
+def node_params(task_name: str, seed: int, mode: str, models: str = "",
+                state_dir: str = "") -> dict[str, dict[str, object]]:
+    """The task's own parameters per executable, set on top of :func:`params_file`; ``state_dir``: the planner's
+    journal (empty: none)."""
     task = get_task(task_name)
     return {
         "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode},
         "predicate_node": {},
-        "planner_node": {"scene": task.scene},
+        "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {})},
         "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": f"{models}/{task.scene}"} if models else {})},
     }
 

@@ -1,5 +1,5 @@
 """`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]
-[--record FILE] [--foxglove [PORT]] [--console [PORT]]`: start
+[--record FILE] [--foxglove [PORT]] [--console [PORT]] [--state-dir DIR]`: start
 the four nodes and stay up; the options are the launch file's arguments (``ros2 launch semgoal_bringup
 semgoal.launch.py``), read from the same definition.
 
@@ -16,7 +16,7 @@ import shutil
 import subprocess
 import time
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, rviz_config, scene_task, stop_graph
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, run_state_dir, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
 
 DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
@@ -46,7 +46,8 @@ def main(argv: list[str]) -> int:
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
     try:
-        nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console)
+        nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console,
+                            run_state_dir(args.state_dir))
     except ValueError as error:
         parser.error(str(error))
     processes = {executable: start_node(package, executable, params, args.log_level)

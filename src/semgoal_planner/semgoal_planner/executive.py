@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
-from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_subgoal
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
 from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 
@@ -136,6 +136,45 @@ class Executive:
     def cancel(self, reason: str = "cancelled by the operator") -> None:
         if self.status in UNDER_WAY:
             self._finish(PlanStatus.FAILED, reason)
+
+    # -- the journal ---------------------------------------------------------------------------------
+    def snapshot(self) -> dict:
+        """What a planner started again needs to carry on (:mod:`semgoal_planner.journal`), as plain data."""
+        return {"goal": [str(lit) for lit in self.goal], "goal_text": self.goal_text,
+                "steps": [{"subgoal": str(s.subgoal), "status": str(s.status), "assignee": str(s.assignee)}
+                          for s in self.steps],
+                "current": self.current, "status": str(self.status), "revision": self.revision,
+                "replans": self.replans, "message": self.message, "goal_started": self.goal_started,
+                "step_budget": self.step_budget, "step_started": self.step_started}
+
+    def restore(self, snapshot: dict, message: str) -> None:
+        """Take up a :meth:`snapshot` (of the same world): the active step is checked against the world again
+        on the next observation, and its clocks start from there. Raises ValueError for a snapshot that does not
+        fit this scene."""
+        scene = SCENES[self.planner.scene]
+        try:
+            steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), Assignee(s["assignee"]))
+                     for s in snapshot["steps"]]
+            goal = [parse_literal(text) for text in snapshot["goal"]]
+            status = PlanStatus(snapshot["status"])
+        except (KeyError, TypeError, ValueError) as error:
+            raise ValueError(f"the journal's plan does not fit scene {scene.name}: {error}") from None
+        self.goal, self.goal_text, self.steps, self.status = goal, str(snapshot["goal_text"]), steps, status
+        for name in ("current", "replans", "goal_started", "step_budget", "step_started"):
+            setattr(self, name, int(snapshot[name]))
+        self.revision = int(snapshot["revision"])
+        if self.current < len(self.steps) and self.steps[self.current].status == StepStatus.ACTIVE:
+            self.steps[self.current].status = StepStatus.PENDING  # re-activated once the world says it is not done
+        self.confirmation.reset()
+        self.goal_settling.reset()
+        self.contradicted_since = None
+        self.message = message
+        self._emit(message)
+
+    def continue_revisions(self, revision: int) -> None:
+        """Number the next plan after ``revision`` (a journal that was not taken up): an edit made on an old
+        plan's numbers then never applies to a new plan."""
+        self.revision = max(self.revision, revision)
 
     # -- monitoring ----------------------------------------------------------------------------------
     def observe(self, observation: Observation) -> None:

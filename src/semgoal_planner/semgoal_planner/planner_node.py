@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import time
 
+from action_msgs.msg import GoalInfo, GoalStatus, GoalStatusArray
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.action.server import ServerGoalHandle
 from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
+from rclpy.qos import qos_profile_action_status_default
 from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
@@ -26,6 +28,7 @@ from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, Semant
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
+from semgoal_planner.journal import PlanJournal, Record, Verdict, World, resume
 from semgoal_planner.search import SEARCHES
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
@@ -74,6 +77,8 @@ PARAMS = (
     Param("world_silence_s", 3.0, "a goal under way fails once no semantic state has come for this long (the sim "
           "or the predicates gone; the lockstep sim's heartbeat keeps a still world talking); 0: wait for ever",
           low=0.0, high=3600.0, runtime=True),
+    Param("state_dir", "", "a folder for the planner's journal (SQLite): goal, plan, edits and revision survive a "
+          "restart on the same world; empty: nothing survives"),
 )
 EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval")
 """Parameters that are the executive's settings of the same name."""
@@ -103,6 +108,13 @@ class PlannerNode(Node):
         self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
         self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
         self.events_pub = self.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS)
+        self.action_status_pub = self.create_publisher(GoalStatusArray, topics.action_status(topics.EXECUTE_GOAL),
+                                                       qos_profile_action_status_default)
+        """Beside the action server's own: tells a client of the planner before a restart that its goal ended."""
+        self.journal = PlanJournal(values["state_dir"]) if values["state_dir"] else None
+        self.journaled = self.journal.load() if self.journal else None
+        """The journal's record, taken up (or discarded) on the first semantic state: only then is the world known."""
+        self.last_saved: tuple | None = None
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
@@ -183,6 +195,8 @@ class PlannerNode(Node):
         except VocabularyError as error:
             self.get_logger().warn(f"ignored a semantic state: {error}", throttle_duration_sec=5.0)
             return
+        if self.journaled is not None:
+            self.take_up_journal(msg)
         self.last_state, self.heard_at = msg, time.monotonic()
         for waiter in self.state_waiters:
             if not waiter.done():
@@ -195,6 +209,58 @@ class PlannerNode(Node):
                                                tuple(msg.moving)))
         self.counters["re-plans"] += max(0, self.executive.replans - replans)
         self.publish(decided=True)
+
+    # -- the journal ---------------------------------------------------------------------------------
+    def take_up_journal(self, msg: SemanticState) -> None:
+        """Carry on with the plan of the planner before this one when the world is the one it was for;
+        else discard it, numbering plans on from its revision. An action goal it had in flight is ended for
+        its client, with the reason, either way: its handle died with that planner."""
+        record = self.journaled
+        verdict, why = resume(record, World(msg.scene, tuple(msg.objects), int(msg.episode), sim_time(msg)))
+        if verdict == Verdict.WAIT:
+            return
+        self.journaled, ok = None, verdict == Verdict.RESUME
+        revision = int(record.executive.get("revision", 0))
+        if ok:
+            try:
+                self.executive.restore(record.executive, f"planner restarted: resumed the plan at revision {revision}, "
+                                                         f"step {record.executive.get('current', 0)} ({why})")
+            except ValueError as error:
+                ok, why = False, str(error)
+        if not ok:
+            self.executive.continue_revisions(revision)
+            self.get_logger().warn(f"the planner's journal ({self.journal.path}) was discarded: {why}")
+        outcome = (f"the plan resumed at revision {revision}" if ok
+                   else f"the journal was discarded ({why}): send the goal again")
+        self.operator_event(OperatorEvent.KIND_GOAL, record.executive.get("goal_text", ""), ok,
+                            f"planner_node stopped and started again; {outcome}")
+        if record.action_goal:
+            self.end_journaled_action_goal(record, f"the ExecuteGoal was interrupted: planner_node stopped and "
+                                                   f"started again; {outcome}")
+
+    def end_journaled_action_goal(self, record: Record, reason: str) -> None:
+        """Mark the old planner's action goal aborted on the action's status topic (a client's goal handle reads
+        it) and say why on the operator events, under the goal's id."""
+        status = GoalStatus(status=GoalStatus.STATUS_ABORTED,
+                            goal_info=GoalInfo(stamp=self.get_clock().now().to_msg()))
+        status.goal_info.goal_id.uuid = list(bytes.fromhex(record.action_goal))
+        self.action_status_pub.publish(GoalStatusArray(status_list=[status]))
+        self.operator_event(OperatorEvent.KIND_GOAL, record.executive.get("goal_text", ""), False, reason,
+                            request_id=record.action_goal)
+        self.get_logger().warn(f"action goal {record.action_goal}: {reason}")
+
+    def save_journal(self) -> None:
+        """Write the plan to the journal when it changed (a new revision, status or step, another action goal)."""
+        if self.journal is None or self.last_state is None or self.journaled is not None:
+            return
+        action_goal = bytes(self.action_goal[0].goal_id.uuid).hex() if self.action_goal else ""
+        ex, state = self.executive, self.last_state
+        key = (ex.revision, ex.status, ex.current, action_goal, state.episode)
+        if key == self.last_saved:
+            return
+        self.last_saved = key
+        world = World(state.scene, tuple(state.objects), int(state.episode), sim_time(state))
+        self.journal.save(Record(ex.snapshot(), world, action_goal))
 
     def check_silence(self) -> None:
         silent = time.monotonic() - self.heard_at
@@ -383,6 +449,7 @@ class PlannerNode(Node):
                     self.publish_feedback()
         if changed or decided:
             self.subgoal_publisher.publish(self.subgoal_message())
+        self.save_journal()
 
     def subgoal_message(self) -> SubGoal:
         """The active robot step; else an empty goal (the policy holds still) with the reason as status:

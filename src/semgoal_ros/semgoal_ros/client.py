@@ -35,6 +35,8 @@ RECORDER_SETTLE_S = 0.5
 PLANNER_SILENCE_S = 3.0
 """A planner that leaves GetPlan unanswered this long while a goal runs is taken for gone (killed, hung): the
 goal is reported failed with that reason instead of being waited on (a restarted planner has lost it)."""
+RESULT_GRACE_S = 1.0
+"""How long a goal marked aborted may wait for its result before it counts as ended without one."""
 PLANNER_ASK_S = 0.5
 """How often a running goal's client asks the planner whether it is still there."""
 
@@ -79,6 +81,23 @@ class PlannerWatch:
         return not self.answer.done() and now - self.asked_at > PLANNER_SILENCE_S
 
 
+class InterruptionWatch:
+    """A goal marked aborted on the action's status topic whose result does not follow within
+    :data:`RESULT_GRACE_S`: how a planner started again ends the goals of the one before (their results died with it)."""
+
+    def __init__(self, handle, result_future) -> None:
+        from action_msgs.msg import GoalStatus
+
+        self.handle, self.result, self.aborted = handle, result_future, GoalStatus.STATUS_ABORTED
+        self.since: float | None = None
+
+    def ended(self) -> bool:
+        if self.handle.status != self.aborted or self.result.done():
+            return False
+        self.since = self.since or time.monotonic()
+        return time.monotonic() - self.since > RESULT_GRACE_S
+
+
 class GraphClient:
     """An rclpy node holding the sim's reset and move services, the planner's services and ExecuteGoal, and
     (``watch``) the state streams. It initialises rclpy on the current ROS_DOMAIN_ID when the caller's
@@ -93,7 +112,7 @@ class GraphClient:
         from rclpy.signals import SignalHandlerOptions
 
         from semgoal_msgs.action import ExecuteGoal
-        from semgoal_msgs.msg import GoalRequest, SemanticState, SubGoal, WorldState
+        from semgoal_msgs.msg import GoalRequest, OperatorEvent, SemanticState, SubGoal, WorldState
         from semgoal_msgs.srv import EditPlan, GetPlan, MoveBlock, ResetWorld
 
         if not rclpy.ok():
@@ -113,6 +132,10 @@ class GraphClient:
         self.watch, self.lockstep = watch, lockstep
         self.episode = 0
         """The world episode of this client's last reset: its goals are planned on that world, never an older one."""
+        self.answers: dict[str, str] = {}
+        """The planner's answers on the operator events, by request id (an action goal's id in hex among them)."""
+        node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS,
+                                 lambda event: self.answers.__setitem__(event.request_id, event.answer), topics.EVENTS)
         if watch:
             node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.STREAM)
             node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self._on_semantic, topics.LATCHED)
@@ -270,19 +293,24 @@ class GraphClient:
                 return GoalResult(False, "the planner did not accept the goal", 0, 0, 0.0, 0.0)
             result_future = handle.get_result_async()
             planner = PlannerWatch(self.plan_client, self.GetPlan.Request())
+            interruption = InterruptionWatch(handle, result_future)
 
             def done() -> bool:
                 if while_running is not None:
                     while_running()
-                return result_future.done() or planner.gone()
+                return result_future.done() or interruption.ended() or planner.gone()
 
             if not self.spin_until(done, timeout):
                 self.cancel(sent)
                 return GoalResult(False, f"no result within {timeout:.0f} s; cancelled", 0, 0, 0.0,
                                   time.perf_counter() - started)
+            if interruption.ended():
+                reason = self.answers.get(bytes(handle.goal_id.uuid).hex(), "the planner ended the goal without a result")
+                return GoalResult(False, reason, 0, 0, 0.0, time.perf_counter() - started)
             if not result_future.done():
                 return GoalResult(False, f"planner_node left GetPlan unanswered for {PLANNER_SILENCE_S:.0f} s (killed or "
-                                  "hung?): the goal is lost with it; send it again once the planner is back", 0, 0, 0.0,
+                                  "hung?): this goal's result is lost with it; a planner started again on the same world "
+                                  "carries on with its plan (./semgoal plan show)", 0, 0, 0.0,
                                   time.perf_counter() - started)
         except GraphUnavailableError as error:
             return GoalResult(False, str(error), 0, 0, 0.0, 0.0)

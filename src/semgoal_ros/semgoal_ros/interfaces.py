@@ -33,6 +33,11 @@ EDIT_PLAN = f"{NAMESPACE}/edit_plan"
 EXECUTE_GOAL = f"{NAMESPACE}/execute_goal"
 OPERATOR_EVENTS = f"{NAMESPACE}/operator_events"
 
+
+def action_status(action: str) -> str:
+    """The status topic of an action (``rcl_action``'s name for it): where a client's goal handles learn their status."""
+    return f"{action}/_action/status"
+
 LATCHED = QoSProfile(
     depth=1,
     history=HistoryPolicy.KEEP_LAST,

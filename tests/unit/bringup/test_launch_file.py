@@ -6,6 +6,7 @@ import json
 import sys
 import types
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import pytest
 import yaml
@@ -69,7 +70,9 @@ def _launched(launch_file, **given) -> list[Recorded]:
 ])
 def test_the_launch_file_starts_the_graph_that_up_starts(launch_file, given, task, seed, mode) -> None:
     launched = _launched(launch_file, **given)
-    expected = graph_nodes(task, seed, mode)
+    planner = next(n.kwargs["parameters"][1] for n in launched if n.kwargs["executable"] == "planner_node")
+    assert Path(planner["state_dir"]).is_dir()  # a journal folder of its own, so a respawned planner carries on
+    expected = graph_nodes(task, seed, mode, state_dir=planner["state_dir"])
     assert [(n.kwargs["package"], n.kwargs["executable"]) for n in launched] == [(p, e) for p, e, _ in expected]
     for node, (_, _, params) in zip(launched, expected, strict=True):
         assert node.kwargs["parameters"] == [str(params_file()), params]

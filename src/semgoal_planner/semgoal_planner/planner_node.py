@@ -115,6 +115,10 @@ class PlannerNode(Node):
         self.journaled = self.journal.load() if self.journal else None
         """The journal's record, taken up (or discarded) on the first semantic state: only then is the world known."""
         self.last_saved: tuple | None = None
+        if self.journal is not None:
+            self.get_logger().info(f"journal {self.journal.path}" + (
+                f": revision {self.journaled.executive.get('revision')} is taken up if the world is the same"
+                if self.journaled else ""))
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)

@@ -1,6 +1,7 @@
 """The four nodes as processes, solving MC-2 through ExecuteGoal while an operator intervenes:
-a block moved by hand mid-task is re-planned around, and a policy node killed mid-task and started
-again picks the task up where it stood (the lockstep world waits for it). The interventions happen
+a block moved by hand mid-task is re-planned around, a policy node killed mid-task and started
+again picks the task up where it stood (the lockstep world waits for it), and an early re-plan leaves the
+result's step count true. The interventions happen
 while the operator holds the world through plan edits, so they do not race the graph."""
 
 from collections.abc import Callable
@@ -10,6 +11,9 @@ import pytest
 
 from conftest import NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
+from semgoal_core.names import PlanStatus, StepStatus
+from semgoal_msgs.msg import SubGoal
+from semgoal_ros import interfaces as topics
 from semgoal_ros.client import GraphClient
 
 TASK, SEED = "MC-2", 4
@@ -117,3 +121,32 @@ def test_policy_node_restarted_mid_task_and_the_task_resumes(graph, nodes: NodeP
     assert done == ["approved", "intervened"], done
     assert result.success, result.message
     assert result.control_steps > frozen[0]
+
+
+def test_control_steps_are_the_worlds_steps_from_the_goals_start_to_its_end_across_a_replan_and_a_reset(graph) -> None:
+    """The result counts the world's control steps between the planner's first decision on the goal and the one
+    that found it held at rest, read from the step stamps of every decision, with an operator's early re-plan and
+    a world reset to step 0 in between (a reset under the goal used to make the count the new world's alone)."""
+    client, _ = graph
+    decisions = []
+    client.node.create_subscription(SubGoal, topics.SUBGOAL, decisions.append, topics.RECORDING)
+    interventions = []
+
+    def replan_and_reset_early() -> None:
+        if not interventions and client.get_plan().plan.current >= 1:
+            interventions.append(client.edit("replan").success)
+            client.reset(TASK, SEED + 1, attempts=1)  # the goal goes on in a new world of the same blocks
+            interventions.append(client.episode)
+
+    result = client.execute(TASK, while_running=replan_and_reset_early, timeout=120)
+    assert result.success, result.message
+    assert interventions[0] is True and interventions[1] > 1
+    client.spin_until(lambda: False, 0.5)  # the last decisions, still on their way
+    first = next(i for i, d in enumerate(decisions) if d.status == StepStatus.ACTIVE)
+    last = next(i for i, d in enumerate(decisions) if d.status == PlanStatus.SUCCEEDED)
+    counted, previous = 0, decisions[first].step
+    for decision in decisions[first + 1: last + 1]:  # a step before the last: the world was reset to step 0
+        counted += decision.step - previous if decision.step >= previous else decision.step
+        previous = decision.step
+    assert len({d.episode for d in decisions[first: last + 1]}) == 2
+    assert result.control_steps == counted > decisions[last].step, (result.control_steps, counted)

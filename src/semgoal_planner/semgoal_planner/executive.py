@@ -103,9 +103,11 @@ class Executive:
     last_tick: int = 0
     """The latest control step seen by :meth:`tick`: world states reach the planner before the semantic
     states the predicates derive from them, so confirmation counts up to here."""
-    goal_started: int = 0
+    goal_steps: int = 0
+    """The world's control steps since the goal was set, summed tick by tick while it is under way: a world reset
+    to step 0 under it (or a planner restart) neither loses nor double-counts any."""
     step_budget: int = 0
-    """Control steps the goal may take from ``goal_started`` before it fails (0: no limit)."""
+    """Control steps (``goal_steps``) the goal may take before it fails (0: no limit)."""
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
 
@@ -127,7 +129,7 @@ class Executive:
         except (GoalError, PlanningError) as error:
             return False, str(error)
         self.goal, self.goal_text = goal, " & ".join(map(str, goal))
-        self.replans, self.goal_started, self.step_budget = 0, obs.step, max(0, step_budget)
+        self.replans, self.goal_steps, self.step_budget = 0, 0, max(0, step_budget)
         meaning = "" if text.strip() == self.goal_text else f" (the goal: {self.goal_text})"
         self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}{meaning}")
         self._advance()
@@ -144,8 +146,8 @@ class Executive:
                 "steps": [{"subgoal": str(s.subgoal), "status": str(s.status), "assignee": str(s.assignee)}
                           for s in self.steps],
                 "current": self.current, "status": str(self.status), "revision": self.revision,
-                "replans": self.replans, "message": self.message, "goal_started": self.goal_started,
-                "step_budget": self.step_budget, "step_started": self.step_started}
+                "replans": self.replans, "message": self.message, "goal_steps": self.goal_steps,
+                "step_budget": self.step_budget, "step_started": self.step_started, "last_tick": self.last_tick}
 
     def restore(self, snapshot: dict, message: str) -> None:
         """Take up a :meth:`snapshot` (of the same world): the active step is checked against the world again
@@ -160,7 +162,7 @@ class Executive:
         except (KeyError, TypeError, ValueError) as error:
             raise ValueError(f"the journal's plan does not fit scene {scene.name}: {error}") from None
         self.goal, self.goal_text, self.steps, self.status = goal, str(snapshot["goal_text"]), steps, status
-        for name in ("current", "replans", "goal_started", "step_budget", "step_started"):
+        for name in ("current", "replans", "goal_steps", "step_budget", "step_started", "last_tick"):
             setattr(self, name, int(snapshot[name]))
         self.revision = int(snapshot["revision"])
         if self.current < len(self.steps) and self.steps[self.current].status == StepStatus.ACTIVE:
@@ -192,11 +194,14 @@ class Executive:
             if self.status == PlanStatus.EXECUTING:
                 self._check_consistency()
         if (self.step_budget and self.status in UNDER_WAY
-                and observation.step - self.goal_started >= self.step_budget):
+                and self.goal_steps >= self.step_budget):
             self._finish(PlanStatus.FAILED, f"the goal did not hold within its budget of {self.step_budget} control steps")
 
     def tick(self, step: int) -> None:
-        """A control step happened (from the world state stream): stall and contradiction clocks."""
+        """A control step happened (from the world state stream): the goal's step count, stall and contradiction
+        clocks. A step before the last is a world reset to step 0: its steps count from there."""
+        if self.status in UNDER_WAY:
+            self.goal_steps += step - self.last_tick if step >= self.last_tick else step
         self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)

@@ -169,6 +169,7 @@ class PlannerNode(Node):
         self.start_goal(msg)
 
     def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
+        steps_before = self.executive.goal_steps  # what a goal this one supersedes reports
         try:
             with self.planning.time():
                 ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
@@ -178,7 +179,7 @@ class PlannerNode(Node):
         self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)} text={msg.text!r}: {message}")
         if ok:
             self.heard_at = time.monotonic()  # a goal planned on a state from long ago gets its own time to hear one
-            self.end_action_goal("superseded by a new goal")
+            self.end_action_goal("superseded by a new goal", steps_before)
         self.publish()
         self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(msg), ok, message)
         return ok, message
@@ -331,24 +332,23 @@ class PlannerNode(Node):
             self.min_episode = episode
             ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
         result.episode = self.last_state.episode if self.last_state else 0
-        # a refused goal ran no steps: its result must not carry the previous goal's figures (issue 57)
-        start_step = self.executive.goal_started if ok else self.observed_step()
-        end_step = self.observed_step()
+        # a refused goal ran no steps: its result must not carry the previous goal's figures
+        steps = self.executive.goal_steps if ok else 0
         if ok and self.executive.status not in FINAL:
             ended = Future(executor=self.executor)
             self.action_goal = (handle, ended)
             self.publish_feedback()
-            # ``ended`` carries the step the goal ended on: states that arrive before this resumes come later
-            message, end_step = await ended
+            # ``ended`` carries the goal's step count when it ended: a new goal may come before this resumes
+            message, steps = await ended
         self.min_episode = 0  # only while this goal runs: a sim restarted later counts episodes from 1 again
         if handle.is_cancel_requested:
             handle.canceled()
             result.message = "cancelled"
-            return self._fill(result, ok, start_step, end_step)
+            return self._fill(result, ok, steps)
         result.success = ok and self.executive.status == PlanStatus.SUCCEEDED
         result.message = message
         (handle.succeed if result.success else handle.abort)()
-        return self._fill(result, ok, start_step, end_step)
+        return self._fill(result, ok, steps)
 
     def stateable(self, msg: GoalRequest) -> bool:
         """Whether the goal passes every check that needs no world state (else it is refused at once)."""
@@ -384,26 +384,23 @@ class PlannerNode(Node):
             self.publish()
         return CancelResponse.ACCEPT
 
-    def end_action_goal(self, reason: str) -> None:
+    def end_action_goal(self, reason: str, steps: int | None = None) -> None:
+        """Resolve the action goal with ``reason`` and its step count (default: the goal's now)."""
         if self.action_goal is not None:
             _, ended = self.action_goal
             self.action_goal = None
-            ended.set_result((reason, self.observed_step()))
+            ended.set_result((reason, self.executive.goal_steps if steps is None else steps))
 
     def publish_feedback(self) -> None:
         handle, _ = self.action_goal
-        feedback = ExecuteGoal.Feedback(plan=self.plan_message())
+        feedback = ExecuteGoal.Feedback(plan=self.plan_message(), control_steps=self.executive.goal_steps)
         if self.last_state is not None:
             feedback.state = self.last_state
         handle.publish_feedback(feedback)
 
-    def observed_step(self) -> int:
-        obs = self.executive.observation
-        return obs.step if obs else 0
-
-    def _fill(self, result: ExecuteGoal.Result, started: bool, start_step: int, end_step: int) -> ExecuteGoal.Result:
+    def _fill(self, result: ExecuteGoal.Result, started: bool, steps: int) -> ExecuteGoal.Result:
         result.replans = self.executive.replans if started else 0
-        result.control_steps = max(0, end_step - start_step)
+        result.control_steps = steps
         result.sim_time = result.control_steps * CONTROL_DT
         return result
 

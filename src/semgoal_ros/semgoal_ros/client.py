@@ -23,6 +23,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+from semgoal_core.layout import CONTROL_DT
 from semgoal_ros import interfaces as topics
 
 READY_TIMEOUT_S = 60.0
@@ -51,6 +52,8 @@ class GoalResult:
     message: str
     replans: int
     control_steps: int
+    """The world's control steps of the goal, as the planner counts them; for a goal whose result was lost (the
+    planner died), its last count in the feedback."""
     sim_time: float
     wall_s: float
 
@@ -286,9 +289,15 @@ class GraphClient:
 
         ``while_running`` is called between spins (not inside a callback, so it may call services): the
         robustness tests intervene there."""
-        started, sent = time.perf_counter(), []
+        started, sent, counted = time.perf_counter(), [], [0]
+
+        def on_feedback(message) -> None:  # the planner's step count so far: all a lost goal's result can say
+            counted[0] = int(message.feedback.control_steps)
+            if feedback is not None:
+                feedback(message)
+
         try:
-            handle = self.send(text, max_steps, feedback, sent)
+            handle = self.send(text, max_steps, on_feedback, sent)
             if handle is None or not handle.accepted:
                 return GoalResult(False, "the planner did not accept the goal", 0, 0, 0.0, 0.0)
             result_future = handle.get_result_async()
@@ -306,12 +315,12 @@ class GraphClient:
                                   time.perf_counter() - started)
             if interruption.ended():
                 reason = self.answers.get(bytes(handle.goal_id.uuid).hex(), "the planner ended the goal without a result")
-                return GoalResult(False, reason, 0, 0, 0.0, time.perf_counter() - started)
+                return GoalResult(False, reason, 0, counted[0], counted[0] * CONTROL_DT, time.perf_counter() - started)
             if not result_future.done():
                 return GoalResult(False, f"planner_node left GetPlan unanswered for {PLANNER_SILENCE_S:.0f} s (killed or "
                                   "hung?): this goal's result is lost with it; a planner started again on the same world "
-                                  "carries on with its plan (./semgoal plan show)", 0, 0, 0.0,
-                                  time.perf_counter() - started)
+                                  "carries on with its plan (./semgoal plan show)", 0, counted[0],
+                                  counted[0] * CONTROL_DT, time.perf_counter() - started)
         except GraphUnavailableError as error:
             return GoalResult(False, str(error), 0, 0, 0.0, 0.0)
         except KeyboardInterrupt:

@@ -66,16 +66,37 @@ def test_confirmation_counts_world_ticks_that_arrive_before_the_semantic_state()
 
 def test_a_goal_fails_once_its_step_budget_is_spent_but_may_succeed_on_its_last_step() -> None:
     ex = executive()
-    ex.observe(observe([], 7))
+    tick_and_observe(ex, observe([], 7))
     ex.set_goal("in_bin(red)", step_budget=10)
-    ex.observe(observe(["holding(red)"], 16))
-    assert ex.status == "executing"
-    ex.observe(observe(["holding(red)"], 17))
+    tick_and_observe(ex, observe(["holding(red)"], 16))
+    assert ex.status == "executing" and ex.goal_steps == 9
+    tick_and_observe(ex, observe(["holding(red)"], 17))
     assert ex.status == "failed" and "budget of 10 control steps" in ex.message
     ex = executive()
     ex.set_goal("in_bin(red)", step_budget=10)
-    ex.observe(observe(["in_bin(red)"], 10))
-    assert ex.status == "succeeded"
+    tick_and_observe(ex, observe(["in_bin(red)"], 10))
+    assert ex.status == "succeeded" and ex.goal_steps == 10
+
+
+def tick_and_observe(ex: Executive, observation: Observation) -> None:
+    """A semantic state as the planner node and the in-process episode take it: a tick, then the observation."""
+    ex.tick(observation.step)
+    ex.observe(observation)
+
+
+def test_the_goal_counts_the_worlds_steps_across_a_reset_and_a_replan_and_stops_when_it_ends() -> None:
+    ex = executive(stall_steps=5)
+    tick_and_observe(ex, observe([], 100))
+    ex.set_goal("in_bin(red)")
+    tick_and_observe(ex, observe([], 110))  # stalls: re-planned at 106..110
+    assert ex.replans == 1 and ex.goal_steps == 10
+    tick_and_observe(ex, observe([], 3))  # the world was reset to step 0 under the goal, now at 3
+    tick_and_observe(ex, observe(["in_bin(red)"], 20))
+    assert ex.status == "succeeded" and ex.goal_steps == 10 + 3 + 17
+    tick_and_observe(ex, observe(["in_bin(red)"], 30))
+    assert ex.goal_steps == 30  # a finished goal's count stays
+    ex.set_goal("in_bin(green)")
+    assert ex.goal_steps == 0
 
 
 def test_bad_goal_keeps_the_previous_plan() -> None:

@@ -14,7 +14,7 @@ import mujoco
 import numpy as np
 
 from semgoal_core import layout
-from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
@@ -123,6 +123,13 @@ class FetchWorld:
         addr, dof = self._block_qpos[i], self._block_qvel[i]
         self.data.qpos[addr: addr + 7] = [*position, *quaternion]
         self.data.qvel[dof: dof + 6] = 0.0
+        mujoco.mj_forward(self.model, self.data)
+
+    def open_fingers(self, opening: float = GRASP_OPENING) -> None:
+        """Open the fingers to ``opening`` (m, both together) at once and keep them there: a hand let go of."""
+        self.data.qpos[self._finger_qpos] = opening / 2
+        self.data.qvel[self._finger_qvel] = 0.0
+        self.data.ctrl[self._finger_actuators] = opening / 2
         mujoco.mj_forward(self.model, self.data)
 
     def place_in_gripper(self, block: str, steps: int = 6) -> Snapshot:

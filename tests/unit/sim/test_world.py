@@ -4,7 +4,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_sim.expert import move_to
@@ -173,3 +173,20 @@ def test_a_reset_to_given_positions_starts_there_and_refuses_what_no_world_can_h
         ok, message = core.reset("MC-3", 8, bad)
         assert not ok and why in message, message
         np.testing.assert_allclose(core.snapshot().block_positions, start, atol=0.003)  # settled
+
+
+def test_moving_a_held_block_out_of_the_hand_lets_it_go() -> None:
+    """The fingers open as the block leaves them, so the idle arm cannot close on it (or on a block put back
+    under it) and the next state says the hand is empty."""
+    core = SimCore("desk_cleanup", "DC-2", seed=0)
+    world = core.world
+    world.place_in_gripper("red")
+    assert world.layout.readable(world.semantic_vector()) == "holding(red)"
+    ok, message = core.move_block("red", np.array([1.35, 0.55, 0.0]))
+    assert ok and message.endswith("out of the robot's hand (the fingers opened)")
+    for _ in range(10):
+        world.step(np.zeros(4))
+        assert world.snapshot().finger_opening == pytest.approx(GRASP_OPENING, abs=0.005)
+        assert "holding(red)" not in world.layout.readable(world.semantic_vector())
+    ok, message = core.move_block("green", np.array([1.25, 0.65, 0.0]))
+    assert ok and "hand" not in message  # a block that was not held: the fingers stay as they are

@@ -7,7 +7,7 @@ from rclpy.action import ActionClient
 from conftest import GraphProbe, NodeProcesses
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import GoalRequest
+from semgoal_msgs.msg import GoalRequest, OperatorEvent
 from semgoal_msgs.srv import ResetWorld
 from semgoal_ros import interfaces as topics
 
@@ -31,3 +31,30 @@ def test_reset_and_goal_compose_without_a_client_wait(nodes: NodeProcesses, prob
         assert not (result.success and result.control_steps == 0), f"cycle {cycle}: success in 0 steps: {result.message}"
         outcomes.append(result.success)
     assert sum(outcomes) >= CYCLES - 1, outcomes
+
+
+def test_a_topic_goal_sent_right_after_a_reset_is_judged_on_the_new_world(nodes: NodeProcesses,
+                                                                          probe: GraphProbe) -> None:
+    """ResetWorld to a desk of another size, then at once the task's goal on the topic (as `ros2 service call`
+    then `ros2 topic pub` would): every goal is planned on the new world, none refused against the old one's
+    blocks; a refused topic goal is announced with its reason."""
+    params = node_params("DC-2", 0, "lockstep")
+    for package, executable in NODES[:3]:  # no policy: the plans need only be made
+        nodes.start(package, executable, params=params[executable])
+    reset = probe.node.create_client(ResetWorld, topics.RESET_WORLD)
+    goals = probe.node.create_publisher(GoalRequest, topics.GOAL, 10)
+    answers: list[OperatorEvent] = []
+    probe.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS,
+                                   lambda e: e.kind == OperatorEvent.KIND_GOAL and answers.append(e), topics.EVENTS_LIVE)
+    probe.spin_until(lambda: reset.service_is_ready() and goals.get_subscription_count() >= 1
+                     and probe.node.count_publishers(topics.OPERATOR_EVENTS) >= 2, 60, "the graph")
+    probe.spin_for(1.0)  # the planner's events reader matched the sim's writer
+    tasks = ["DC-4", "DC-2", "DC-3", "DC-4", "DC-2", "DC-4"]
+    for cycle, task in enumerate(tasks):
+        assert probe.spin_future(reset.call_async(ResetWorld.Request(task=task, seed=cycle)), 30, "reset").success
+        goals.publish(GoalRequest(task=task))
+        probe.spin_until(lambda n=cycle + 1: len(answers) >= n, 30, f"the answer to goal {cycle}")
+    assert [a.accepted for a in answers] == [True] * len(tasks), [a.answer for a in answers if not a.accepted]
+    goals.publish(GoalRequest(literals=["holding(red)", "holding(green)"]))
+    probe.spin_until(lambda: len(answers) > len(tasks), 30, "the refusal")
+    assert not answers[-1].accepted and "one hand holds one block at a time" in answers[-1].answer

@@ -119,7 +119,13 @@ class PlannerNode(Node):
             self.get_logger().info(f"journal {self.journal.path}" + (
                 f": revision {self.journaled.executive.get('revision')} is taken up if the world is the same"
                 if self.journaled else ""))
+        # the sim's reset answers first: the executor takes what is ready in the order it was subscribed to, and a
+        # goal sent on the reset's answer often comes in the same wait as the reset's event
+        self.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self.operator_event_callback, topics.EVENTS_LIVE)
         self.create_subscription(GoalRequest, topics.GOAL, self.goal_callback, 10)
+        self.reset_episode = 0
+        """The least world episode a topic goal is planned on: one past the latest state's, once the sim
+        announces a reset (the goal's sender has the reset's answer; the new world's state may still be on its way)."""
         self.create_subscription(SemanticState, topics.SEMANTIC_STATE, self.semantic_callback, topics.PER_STEP)
         self.create_service(GetPlan, topics.GET_PLAN, self.get_plan_callback)
         self.create_service(EditPlan, topics.EDIT_PLAN, self.edit_plan_callback)
@@ -154,19 +160,25 @@ class PlannerNode(Node):
 
     # -- inputs --------------------------------------------------------------------------------------
     def goal_callback(self, msg: GoalRequest) -> None:
-        """A goal on the topic (``ros2 topic pub``), perhaps sent as the nodes start: like an action goal, it
-        waits up to ``state_wait_s`` for a first semantic state rather than being refused for want of one.
-        The wait is a task of its own: awaited here, it would hold the callback group the states come in on."""
-        if self.stateable(msg) and not self.has_state(0):
-            self.executor.create_task(self.start_goal_on_state(msg))
+        """A goal on the topic (``ros2 topic pub``), perhaps sent as the nodes start or right after a reset: like
+        an action goal, it waits up to ``state_wait_s`` for a state of the current world (the first one, or the
+        reset's) rather than being refused for want of one or judged on the world before. The wait is a task of
+        its own: awaited here, it would hold the callback group the states come in on."""
+        if self.stateable(msg) and not self.has_state(self.reset_episode):
+            self.executor.create_task(self.start_goal_on_state(msg, self.reset_episode))
         else:
             self.min_episode = 0
             self.start_goal(msg)
 
-    async def start_goal_on_state(self, msg: GoalRequest) -> None:
-        await self.state_of(0, self.state_wait_s)
+    async def start_goal_on_state(self, msg: GoalRequest, episode: int) -> None:
+        await self.state_of(episode, self.state_wait_s)
         self.min_episode = 0
         self.start_goal(msg)
+
+    def operator_event_callback(self, event: OperatorEvent) -> None:
+        """The sim's answer to a reset: a topic goal sent from here on waits for the new world's state."""
+        if event.kind == OperatorEvent.KIND_RESET and event.accepted:
+            self.reset_episode = max(self.reset_episode, (self.last_state.episode if self.last_state else 0) + 1)
 
     def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
         steps_before = self.executive.goal_steps  # what a goal this one supersedes reports
@@ -283,7 +295,7 @@ class PlannerNode(Node):
         reason = (f"the world started again (sim time {sim_time(msg):.2f} s after {sim_time(self.last_state):.2f} s: "
                   "was sim_node restarted?); the goal was for the world before: send it again")
         self.get_logger().warn(reason)
-        self.min_episode = 0
+        self.min_episode = self.reset_episode = 0
         self.executive.cancel(reason)
         self.publish()
 

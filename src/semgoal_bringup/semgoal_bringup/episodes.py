@@ -31,6 +31,7 @@ from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import SubgoalController
+from semgoal_sim.rollout import settled
 from semgoal_sim.world import FetchWorld
 
 
@@ -43,6 +44,11 @@ class Outcome:
     replans: int = 0
     first_held: int | None = None
     """The first control step at which the goal's literals held, at rest or not (None: never)."""
+    linger_holds: bool | None = None
+    """After a success and ``linger`` more control steps of the idle arm: whether the goal still held at rest
+    (None: not checked)."""
+    fell_off: bool = False
+    """A block ended the episode off the table."""
 
     @property
     def first_step_success(self) -> bool:
@@ -70,26 +76,28 @@ class HierarchicalAgent:
         self._worlds: dict[tuple[str, int], FetchWorld] = {}
         """One world per task (or family) and block count, kept between its episodes."""
 
-    def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET) -> Outcome:
+    def run(self, task_name: str, seed: int, budget: int = TASK_STEP_BUDGET, linger: int = 0) -> Outcome:
         task = _scene_task(task_name, self.scene)
-        return self.run_goal(task.initial_state(seed)[0], task.name, seed, budget, label=task.name)
+        return self.run_goal(task.initial_state(seed)[0], task.name, seed, budget, label=task.name, linger=linger)
 
     def run_goal(self, positions: np.ndarray, goal: str, seed: int, budget: int = TASK_STEP_BUDGET,
-                 label: str = "") -> Outcome:
+                 label: str = "", linger: int = 0) -> Outcome:
         """An episode from blocks at ``positions`` (the scene's first ``len(positions)`` objects) to ``goal`` (a
         task, literals or a sentence), as the planner node runs it; a goal the planner refuses fails at step 0."""
-        return self.run_goals(positions, (goal,), seed, budget, label)
+        return self.run_goals(positions, (goal,), seed, budget, label, linger)
 
     def run_goals(self, positions: np.ndarray, goals: Sequence[str], seed: int, budget: int = TASK_STEP_BUDGET,
-                  label: str = "") -> Outcome:
+                  label: str = "", linger: int = 0) -> Outcome:
         """:meth:`run_goal` for goals one after the other, each from where the one before left the world and with
-        ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal."""
+        ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal.
+        ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
+        it, then whether the last goal still holds at rest (``linger_holds``)."""
         key = (label, len(positions))
         if key not in self._worlds:
             self._worlds[key] = FetchWorld(self.scene, len(positions))
         world = self._worlds[key]
         world.reset(positions)
-        success, replans, first_held = True, 0, None
+        success, replans, first_held, executive = True, 0, None, None
         decided_before = None  # a goal's first step follows the decision before it, as the policy node does
         for goal in goals:
             executive = Executive(SemanticPlanner(self.scene))
@@ -113,7 +121,18 @@ class HierarchicalAgent:
             success = success and executive.status == "succeeded"
             if not success:
                 break
-        return Outcome(label or " -> ".join(goals), seed, success, world.step_count, replans, first_held)
+        steps = world.step_count
+        linger_holds = self._linger(world, executive.goal, seed, linger) if success and linger and executive else None
+        return Outcome(label or " -> ".join(goals), seed, success, steps, replans, first_held, linger_holds,
+                       bool(world.fallen_blocks()))
+
+    def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
+        """Run the arm with no goal (what the policy node does once a goal is done) for ``steps`` control steps;
+        whether ``goal`` then holds with the world at rest."""
+        self.controller.set_subgoal([])
+        for _ in range(steps):
+            world.step(self.controller.act(world.observation(), (seed, world.step_count)))
+        return settled(world, goal)
 
 
 class FlatAgent:
@@ -134,8 +153,11 @@ class FlatAgent:
             if first_held is None and info["goal_holds"]:
                 first_held = step
             if settling.update(info["is_success"], step):
-                return Outcome(task.name, seed, True, step, first_held=first_held)
-        return Outcome(task.name, seed, False, budget, first_held=first_held)
+                return Outcome(task.name, seed, True, step, first_held=first_held, fell_off=self._fell_off())
+        return Outcome(task.name, seed, False, budget, first_held=first_held, fell_off=self._fell_off())
+
+    def _fell_off(self) -> bool:
+        return bool(self.env.world.fallen_blocks())
 
 
 def _scene_task(task_name: str, scene: str) -> Task:

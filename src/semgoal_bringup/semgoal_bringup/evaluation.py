@@ -12,7 +12,8 @@ up to N training seeds of each agent where exported actors exist (the shipped on
 ``models/seeds/<name>/seedK``); the table says how many each row has. ``--via-ros`` also runs the
 hierarchical agent through the real node graph in lockstep (:mod:`semgoal_bringup.graph_eval`).
 Writes ``table1.md``, ``table1.csv`` and ``table1.png`` under ``--out``; the last line printed is the
-JSON ``{task: {agent: rate, "settled_steps": {agent: median steps}, "first_step_rule": {agent: rate}}}``.
+JSON ``{task: {agent: rate, "settled_steps": {agent: median steps}, "first_step_rule": {agent: rate},
+"linger_holds": {agent: rate}, "fell_off": {agent: rate}}}`` (the last three where observed).
 """
 
 from __future__ import annotations
@@ -63,10 +64,18 @@ class Tally:
     """Episodes whose goal literals held at some step, at rest or not (None: not observed, via ROS)."""
     settled_steps: list[int] = field(default_factory=list)
     """Control steps to success at rest, one per successful episode."""
+    lingered: int = 0
+    """Successes checked again after ``--linger`` control steps of the idle arm..."""
+    linger_holds: int = 0
+    """...and of those, the ones whose goal still held at rest."""
+    fell_off: int | None = 0
+    """Episodes that ended with a block off the table (None: not observed, via ROS)."""
 
     def add(self, other: Tally) -> None:
         """Count ``other``'s episodes too (the same seed and task, other episodes: another job's chunk)."""
         self.wins, self.episodes, self.steps = self.wins + other.wins, self.episodes + other.episodes, self.steps + other.steps
+        self.lingered, self.linger_holds = self.lingered + other.lingered, self.linger_holds + other.linger_holds
+        self.fell_off = None if None in (self.fell_off, other.fell_off) else self.fell_off + other.fell_off
         self.first_step_wins = (None if self.first_step_wins is None or other.first_step_wins is None
                                 else self.first_step_wins + other.first_step_wins)
         self.settled_steps += other.settled_steps
@@ -97,9 +106,13 @@ class Row:
         if outcome.success:
             tally.settled_steps.append(outcome.steps)
         if not first_step_observed or tally.first_step_wins is None:
-            tally.first_step_wins = None
+            tally.first_step_wins = tally.fell_off = None
         else:
             tally.first_step_wins += int(outcome.first_step_success)
+            tally.fell_off += int(outcome.fell_off)
+        if outcome.linger_holds is not None:
+            tally.lingered += 1
+            tally.linger_holds += int(outcome.linger_holds)
 
     def tallies(self, task: str) -> list[Tally]:
         return [by_task[task] for by_task in self.per_seed.values() if task in by_task]
@@ -123,6 +136,16 @@ class Row:
     def first_step_rate(self, task: str) -> float | None:
         """The rate under the rule before issue 49 (literals held at some step), where it was observed."""
         counts = [t.first_step_wins for t in self.tallies(task)]
+        return None if None in counts else sum(counts) / self.episodes(task)
+
+    def linger_rate(self, task: str) -> float | None:
+        """Of the successes checked after ``--linger`` steps, the share whose goal still held at rest."""
+        lingered = sum(t.lingered for t in self.tallies(task))
+        return sum(t.linger_holds for t in self.tallies(task)) / lingered if lingered else None
+
+    def fell_off_rate(self, task: str) -> float | None:
+        """The share of episodes that ended with a block off the table, where it was observed."""
+        counts = [t.fell_off for t in self.tallies(task)]
         return None if None in counts else sum(counts) / self.episodes(task)
 
     def median_settled_steps(self, task: str) -> float | None:
@@ -174,9 +197,11 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
     return dirs[:seeds]
 
 
-def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds: int, models_dir: Path) -> Row:
+def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds: int, models_dir: Path,
+                  linger: int = 0) -> Row:
     """In-process episodes (their indices: episode i starts from task seed ``seed + i``) of one agent on one task,
-    for every available training seed (one job)."""
+    for every available training seed (one job); ``linger``: control steps after a success before the goal is
+    checked again (the hierarchical agent)."""
     import torch
 
     from semgoal_bringup.episodes import make_agent
@@ -194,7 +219,8 @@ def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds:
         row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
         for i in episodes:
-            row.add(label, runner.run(task_name, seed + i))
+            row.add(label, runner.run(task_name, seed + i, linger=linger) if agent == "hierarchical"
+                    else runner.run(task_name, seed + i))
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -213,11 +239,11 @@ def merge(rows: list[Row]) -> list[Row]:
 
 
 def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
-                        jobs: int, executor: str = "local", chunk: int = 0) -> list[Row]:
+                        jobs: int, executor: str = "local", chunk: int = 0, linger: int = 0) -> list[Row]:
     """Every (agent, task, chunk of ``chunk`` episodes; 0: all) as a job on ``executor`` with ``jobs`` workers.
     Each job is seeded by its episodes' indices: the rows do not depend on the executor, the workers or the chunks."""
     size = chunk or episodes
-    work = [(agent, task, range(first, min(first + size, episodes)), seed, seeds, models_dir)
+    work = [(agent, task, range(first, min(first + size, episodes)), seed, seeds, models_dir, linger)
             for agent in agents for task in tasks for first in range(0, episodes, size)]
     return merge(run_jobs(evaluate_task, work, executor, jobs, what="eval job"))
 
@@ -370,10 +396,14 @@ def write_chart(rows: list[Row], tasks: list[str], path: Path) -> None:
 def summary(rows: list[Row], task: str) -> dict:
     """One task's JSON: each agent's rate at rest, the median steps to success at rest and, where observed,
     the rate under the first-step rule on the same episodes."""
-    first_step = {row.agent: round(row.first_step_rate(task), 4) for row in rows if row.first_step_rate(task) is not None}
+    def observed(rate) -> dict:
+        return {row.agent: round(rate(row), 4) for row in rows if rate(row) is not None}
+
     return {**{row.agent: round(row.rate(task), 4) for row in rows},
             "settled_steps": {row.agent: row.median_settled_steps(task) for row in rows},
-            "first_step_rule": first_step}
+            "first_step_rule": observed(lambda row: row.first_step_rate(task)),
+            "linger_holds": observed(lambda row: row.linger_rate(task)),
+            "fell_off": observed(lambda row: row.fell_off_rate(task))}
 
 
 def main(argv: list[str]) -> int:
@@ -394,11 +424,15 @@ def main(argv: list[str]) -> int:
                         help="local (a process pool), dask (a Dask LocalCluster on 127.0.0.1) or dask:ADDRESS (a running "
                              "Dask scheduler)")
     parser.add_argument("--chunk", type=int, default=10, help="episodes per job (per agent and task; 0: all in one)")
+    parser.add_argument("--linger", type=int, default=0, help="after each success, this many control steps of the idle "
+                        "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
     args = parser.parse_args(argv)
     try:
         tasks = parse_tasks(args.tasks)
     except KeyError as error:
         parser.error(str(error.args[0]))
+    if args.linger < 0:
+        parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
         parser.error("--record writes the episodes run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]
@@ -410,7 +444,7 @@ def main(argv: list[str]) -> int:
     models_dir = args.models or actor_io.models_dir()
     try:
         rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs,
-                                   args.executor, args.chunk)
+                                   args.executor, args.chunk, args.linger)
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2

@@ -1,7 +1,9 @@
 """`./semgoal eval-goals --scene S [--families F,G] --episodes N --seed S [--jobs J] [--via-ros] [--json]`: the
 hierarchical agent on goal families beyond the benchmark (:mod:`semgoal_core.goal_families`), in process, by the
 executive's at-rest rule: per family the success rate with its 95 % Wilson interval, mean steps and re-plans; the
-last line is one JSON object ``{"<scene>/<family>": rate, ..., "overall": rate}``.
+last line is one JSON object ``{"<scene>/<family>": rate, ..., "overall": rate, "fell_off": {family: share},
+"linger_holds": {family: share}}`` (``linger_holds`` with ``--linger N``: of the successes, the share whose goal
+still held at rest N control steps later, the idle arm running).
 
 ``--via-ros`` also runs a sample of the same cases (``--ros-episodes`` per scene, spread over the families: the
 first cases of each) through the node graph, each from its very start (``ResetWorld`` with the positions), and
@@ -16,6 +18,7 @@ import statistics
 import sys
 from pathlib import Path
 
+from semgoal_bringup.episodes import Outcome
 from semgoal_bringup.evaluation import wilson_interval
 from semgoal_bringup.executors import check_executor, run_jobs
 from semgoal_core import tasks
@@ -26,10 +29,10 @@ DEFAULT_SEED = 6_000_000
 """Goal seeds from here: never used in training (training draws below 1e6, task evaluation from 3e6)."""
 
 
-def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Path | None = None
-               ) -> list[tuple[str, bool, int, int]]:
-    """(goal, success, steps, re-plans) of each episode of one family (one job); ``model_dir``: an exported
-    actor instead of the shipped one."""
+def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Path | None = None, linger: int = 0
+               ) -> list[Outcome]:
+    """The outcome of each episode of one family (one job, ``task``: the goal as said); ``model_dir``: an exported
+    actor instead of the shipped one; ``linger``: control steps after a success before the goal is checked again."""
     import torch
 
     from semgoal_bringup.episodes import make_agent
@@ -38,8 +41,7 @@ def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Pat
     agent = make_agent("hierarchical", scene, model_dir)
     outcomes = []
     for case in goal_cases(scene, family, episodes, seed):
-        outcome = agent.run_goals(case.positions, case.goals, case.seed, label=family)
-        outcomes.append((case.text, outcome.success, outcome.steps, outcome.replans))
+        outcomes.append(agent.run_goals(case.positions, case.goals, case.seed, label=case.text, linger=linger))
     return outcomes
 
 
@@ -79,32 +81,42 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--model-dir", type=Path, help="an exported actor (default: the shipped one; in process only)")
     parser.add_argument("--via-ros", action="store_true", help="also run a sample of the cases through the node graph")
     parser.add_argument("--ros-episodes", type=int, default=50, help="with --via-ros: cases run through the graph")
+    parser.add_argument("--linger", type=int, default=0, help="after each success, this many control steps of the idle "
+                        "arm, then whether the goal still holds at rest (in process)")
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
     args = parser.parse_args(argv)
     families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
-    if unknown or args.episodes < 1 or args.ros_episodes < 1:
+    if unknown or args.episodes < 1 or args.ros_episodes < 1 or args.linger < 0:
         parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown}); episodes and ros-episodes >= 1")
     if args.model_dir and args.via_ros:
         parser.error("--via-ros runs the shipped actor (the policy node's); leave out --model-dir")
-    results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed, args.model_dir) for f in families], args.executor,
-                       args.jobs, what="family")
+    results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed, args.model_dir, args.linger)
+                                    for f in families], args.executor, args.jobs, what="family")
     table = sys.stderr if args.json else sys.stdout
-    rates, wins_all, n_all = {}, 0, 0
+    rates, lingering, fell_off, wins_all, n_all = {}, {}, {}, 0, 0
     for family, outcomes in zip(families, results, strict=True):
-        wins, n = sum(o[1] for o in outcomes), len(outcomes)
+        name, wins, n = f"{args.scene}/{family}", sum(o.success for o in outcomes), len(outcomes)
         low, high = wilson_interval(wins, n)
-        print(f"{args.scene}/{family:14s} {100 * wins / n:5.1f} % [{100 * low:.0f}-{100 * high:.0f}] of {n}   "
-              f"mean steps {statistics.fmean(o[2] for o in outcomes):6.1f}   re-plans "
-              f"{statistics.fmean(o[3] for o in outcomes):.2f}", file=table)
-        for goal, success, steps, _ in outcomes:
-            if not success:
-                print(f"    failed: {goal} ({steps} steps)", file=table)
-        rates[f"{args.scene}/{family}"] = round(wins / n, 4)
+        checked = [o.linger_holds for o in outcomes if o.linger_holds is not None]
+        fell_off[name] = round(sum(o.fell_off for o in outcomes) / n, 4)
+        after = ""
+        if checked:
+            lingering[name] = round(sum(checked) / len(checked), 4)
+            after = f"   holds {args.linger} steps on {100 * lingering[name]:5.1f} %"
+        print(f"{name:28s} {100 * wins / n:5.1f} % [{100 * low:.0f}-{100 * high:.0f}] of {n}   "
+              f"mean steps {statistics.fmean(o.steps for o in outcomes):6.1f}   re-plans "
+              f"{statistics.fmean(o.replans for o in outcomes):.2f}{after}   fell off {100 * fell_off[name]:.1f} %",
+              file=table)
+        for o in outcomes:
+            if not o.success or o.linger_holds is False:
+                why = "failed" if not o.success else f"no longer held {args.linger} steps on"
+                print(f"    {why}: {o.task} ({o.steps} steps{', a block fell off' if o.fell_off else ''})", file=table)
+        rates[name] = round(wins / n, 4)
         wins_all, n_all = wins_all + wins, n_all + n
     if args.via_ros:
         by_family = {f: goal_cases(args.scene, f, args.episodes, args.seed) for f in families}
-        in_process = {(f, case.seed): outcome[1] for f, outcomes in zip(families, results, strict=True)
+        in_process = {(f, case.seed): outcome.success for f, outcomes in zip(families, results, strict=True)
                       for case, outcome in zip(by_family[f], outcomes, strict=True)}
         sample = ros_sample(by_family, args.ros_episodes)
         graph = run_via_ros(args.scene, sample)
@@ -116,5 +128,6 @@ def main(argv: list[str]) -> int:
         print(f"via ROS: {sum(graph)} of {len(sample)} succeeded; {same} of {len(sample)} ended as in process",
               file=table)
         print(json.dumps({"via_ros": summary}), file=sys.stderr)
-    print(json.dumps({**rates, "overall": round(wins_all / n_all, 4)}))
+    print(json.dumps({**rates, "overall": round(wins_all / n_all, 4), "fell_off": fell_off,
+                      **({"linger_holds": lingering} if args.linger else {})}))
     return 0

@@ -24,7 +24,7 @@ import numpy as np
 from semgoal_bringup.training import make_env
 from semgoal_core.lockstep import lockstep_subgoal
 from semgoal_core.names import PlanStatus
-from semgoal_core.settling import Settling, moving_blocks
+from semgoal_core.settling import Settling, held_blocks_asked, moving_blocks
 from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
@@ -110,7 +110,7 @@ class HierarchicalAgent:
                 literals = lockstep_subgoal(decided_before, decided_now)
                 if literals is None:  # a human step: nobody acts in an evaluation
                     break
-                self.controller.set_subgoal(literals)
+                self.controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
                 world.step(self.controller.act(world.observation(), (seed, world.step_count)))
                 decided_before = decided_now
                 executive.tick(world.step_count)
@@ -127,9 +127,9 @@ class HierarchicalAgent:
                        bool(world.fallen_blocks()))
 
     def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
-        """Run the arm with no goal (what the policy node does once a goal is done) for ``steps`` control steps;
-        whether ``goal`` then holds with the world at rest."""
-        self.controller.set_subgoal([])
+        """Run the arm with no step (what the policy node does once a goal is done: it retreats, keeping what the
+        goal asks to hold) for ``steps`` control steps; whether ``goal`` then holds with the world at rest."""
+        self.controller.set_subgoal([], keep=held_blocks_asked(goal))
         for _ in range(steps):
             world.step(self.controller.act(world.observation(), (seed, world.step_count)))
         return settled(world, goal)

@@ -14,7 +14,7 @@ Decision = TypeVar("Decision")
 def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | None) -> Decision | None:
     """The planner's decision the policy follows at a lockstep control step, given the active sub-goals
     decided on the step before and on this one (None where a decision names none or has not come; an
-    empty decision, the goal settling, is followed by holding still).
+    empty decision, the goal settling, is followed by the arm's retreat).
 
     The decision on the step before, when it names a sub-goal: one control step of decision latency, as
     in realtime, lets the actor run while the predicates and the planner work on the same world state,
@@ -26,8 +26,8 @@ def lockstep_subgoal(decided_before: Decision | None, decided_now: Decision | No
 
 
 FOLLOWED = (StepStatus.ACTIVE, StepStatus.SETTLING)
-"""Sub-goal statuses the policy answers with a command: act on the step, or hold still while the goal's
-world settles (in lockstep the world waits for a command, so holding still must be one)."""
+"""Sub-goal statuses the policy answers with a command: act on the step, or retreat clear of the blocks while the
+goal's world settles (in lockstep the world waits for a command, so the retreat must be one)."""
 
 
 class PlannerDecision(Protocol):

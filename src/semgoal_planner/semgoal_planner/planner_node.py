@@ -469,8 +469,11 @@ class PlannerNode(Node):
         ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` or the plan's status."""
         ex = self.executive
         active = ex.active
-        if ex.settling:
-            msg = SubGoal(index=ex.current, status=StepStatus.SETTLING)
+        goal = [Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in ex.goal]
+        if ex.settling:  # the goal's literals: the policy keeps what they ask to hold while the arm retreats
+            msg = SubGoal(index=ex.current, status=StepStatus.SETTLING, goal=goal)
+        elif ex.status == PlanStatus.SUCCEEDED:
+            msg = SubGoal(index=ex.current, status=ex.status, goal=goal)
         elif active is None:
             waiting = ex.status == PlanStatus.EXECUTING  # executing without an active robot step: a human's turn
             msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,

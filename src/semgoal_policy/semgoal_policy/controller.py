@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
 
 from semgoal_core import features, layout
 from semgoal_core.settling import Settling, at_rest
-from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, held_alone
+from semgoal_core.vocabulary import LAYOUTS, THRESHOLDS, Literal, VocabularyError, held_alone
 from semgoal_policy import actor as actor_io
 
 HOLD = np.zeros(4, dtype=np.float32)
@@ -17,6 +18,16 @@ HOLD_GRIP = np.array([0.0, 0.0, 0.0, -1.0], dtype=np.float32)
 """The arm holds still and the fingers keep squeezing: a held block is kept, not let slip (issue 57: a pause
 dropped the held block)."""
 
+
+RETREAT_OPENING = THRESHOLDS.holding_opening_max + 0.006
+"""Finger opening (m) the idle arm keeps at least: past what ``holding`` reads, so a block let go of is never
+held again (the fingers left at rest drift shut, from 52-61 mm to 48 mm in 25 steps, and ``holding`` read
+true again), and no wider, so fingers beside a tower's block do not push it."""
+RETREAT_HEIGHT = 0.08
+"""How far (m) above the highest block's centre the idle arm's grip site goes: the fingertips clear every block
+(the expert descends onto a block from this height) and ``holding``'s 0.04 m reach."""
+RETREAT_GAIN = 15.0
+"""Displacement command per metre from the retreat height (saturates beyond 6.7 cm, as the expert's)."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -38,18 +49,23 @@ class SubgoalController:
         self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None
         self.literals: list[Literal] = []
+        self.retreat = True
+        """With no sub-goal: retreat clear of the blocks (a goal done), or hold still (paused, a person's turn)."""
+        self.keep: frozenset[str] = frozenset()
+        """Blocks the goal asks to be held: the retreating arm keeps them in the hand."""
         self.confirmation = Settling()
         self.obs_size = layout.observation_size(scene)
 
-    def set_subgoal(self, literals: list[Literal]) -> None:
-        """Condition on a sub-goal's literals; an empty list means hold still. VocabularyError if invalid."""
+    def set_subgoal(self, literals: list[Literal], retreat: bool = True, keep: Iterable[str] = ()) -> None:
+        """Condition on a sub-goal's literals; an empty list means no step to act on: :meth:`idle` (``retreat``,
+        keeping the blocks in ``keep`` in the hand) or :meth:`hold`. VocabularyError if invalid."""
         goal = None
         if literals:
             target, mask = self.layout.encode(literals)
             goal = np.concatenate([target, mask])
         if goal is None or self.goal is None or not np.array_equal(goal, self.goal):
             self.confirmation.reset()  # a new sub-goal: its confirmation starts over
-        self.goal, self.literals = goal, list(literals)
+        self.goal, self.literals, self.retreat, self.keep = goal, list(literals), retreat, frozenset(keep)
 
     def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
         """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
@@ -69,8 +85,10 @@ class SubgoalController:
     def act(self, observation: np.ndarray, noise_key: tuple[int, ...] = (0,)) -> np.ndarray:
         """The command for an observation; ``noise_key`` (task seed, step) seeds the sampled noise."""
         observation = np.asarray(observation, dtype=np.float32)
-        if self.goal is None or observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
-            return self.hold(observation)
+        if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
+            return HOLD.copy()
+        if self.goal is None:
+            return self.idle(observation) if self.retreat else self.hold(observation)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
@@ -82,11 +100,36 @@ class SubgoalController:
         observation = np.asarray(observation, dtype=np.float32)
         if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
-        arm = layout.arm_state(observation)
-        blocks = layout.block_slots(self.scene, observation)
+        return (HOLD_GRIP if self._held(observation) else HOLD).copy()
+
+    def idle(self, observation: np.ndarray) -> np.ndarray:
+        """With nothing to do once a goal is done: a block the goal asks to hold (:attr:`keep`) stays in the hand;
+        else the arm retreats, letting go of any other block it straddles. The fingers open to
+        :data:`RETREAT_OPENING` if they are narrower, then the grip site rises straight up to
+        :data:`RETREAT_HEIGHT` over the highest block and stays there, the fingers as they are."""
+        observation = np.asarray(observation, dtype=np.float32)
+        if self._held(observation) & self.keep:
+            return HOLD_GRIP.copy()
+        arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
+        grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
+        action = HOLD.copy()
+        if opening < RETREAT_OPENING:  # a finger command is metres added to each finger's target: a quarter of
+            action[3] = (RETREAT_OPENING - opening) / 4  # the way a step comes to rest 3-4 mm past it, no more
+            return action
+        action[3] = -float(arm["finger_velocities"].mean())  # (per step) brakes the fingers where they are
+        present = blocks["present"][:, 0] > 0.5
+        if present.any():
+            height = float(blocks["position"][present, 2].max()) + RETREAT_HEIGHT
+            action[2] = float(np.clip((height - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block
+        return action
+
+    def _held(self, observation: np.ndarray) -> set[str]:
+        """The blocks between the fingers (``holding``'s geometry)."""
+        arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
         held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
                           blocks["present"][:, 0] > 0.5)
-        return (HOLD_GRIP if held.any() else HOLD).copy()
+        return {name for name, inside in zip(self.layout.objects, held, strict=True) if inside}
 
 
-__all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "SubgoalController", "VocabularyError"]
+__all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "RETREAT_HEIGHT", "RETREAT_OPENING", "SubgoalController",
+           "VocabularyError"]

@@ -7,7 +7,8 @@ the graph takes exactly its steps. The actor then runs as soon as a world state 
 predicates and the planner work on the same state, instead of after them. At an episode's first step,
 or when the decision on the step before names no sub-goal, the policy waits for the decision on the
 current step; without an active sub-goal no command goes out and the world waits, except while the
-goal settles (status ``settling``): then the arm holds still, so the world steps on and comes to rest.
+goal settles (status ``settling``): then the arm retreats clear of the blocks, so the world steps on and comes
+to rest.
 Realtime: a command at ``rate_hz`` with the latest sub-goal; once that is achieved (its literals held at
 rest for ``SETTLE_STEPS`` steps, the planner's rule) the arm holds still until the planner names the
 next. It never publishes NaN or values outside [-1, 1].
@@ -22,7 +23,8 @@ from rclpy.node import Node
 
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.lockstep import followed_decision
-from semgoal_core.names import Mode, StepStatus
+from semgoal_core.names import Mode, PlanStatus, StepStatus
+from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.actor import LayoutMismatchError
@@ -40,6 +42,9 @@ PARAMS = (
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
 )
+RETREATS = (StepStatus.SETTLING, PlanStatus.SUCCEEDED)
+"""Sub-goal statuses on which the arm retreats clear of the blocks, keeping what the goal asks it to hold
+(``SubgoalController.idle``); on any other without a step (paused, a person's turn, failed) it holds still."""
 DECISIONS_KEPT = 8
 """Decisions remembered: the step before the world's and its own are the ones used, a few more cover a
 reordering between the two topics."""
@@ -104,15 +109,18 @@ class PolicyNode(Node):
         if key == self.subgoal_key:
             return
         self.subgoal_key = key
-        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal] if msg.status == StepStatus.ACTIVE else []
+        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal]
         try:
-            self.controller.set_subgoal(literals)
+            if msg.status == StepStatus.ACTIVE:
+                self.controller.set_subgoal(literals)
+            else:  # the plan's goal, when it holds: the blocks it asks to be held stay in the hand
+                self.controller.set_subgoal([], retreat=msg.status in RETREATS, keep=held_blocks_asked(literals))
         except VocabularyError as error:
             self.controller.set_subgoal([])
             self.get_logger().warn(f"holding still: sub-goal {msg.action!r} is not valid here: {error}")
             self.counters["invalid sub-goals"] += 1
             return
-        text = msg.action if literals else f"(none: {msg.status or 'no plan'})"
+        text = msg.action if msg.status == StepStatus.ACTIVE else f"(none: {msg.status or 'no plan'})"
         self.get_logger().info(f"sub-goal {text}")
 
     def world_callback(self, msg: WorldState) -> None:
@@ -147,7 +155,7 @@ class PolicyNode(Node):
         decision = followed_decision(self.decisions, msg.episode, msg.step)
         if decision is None:
             return
-        self.follow(decision)  # a settling decision: no goal, the actor's command is to hold still
+        self.follow(decision)  # a settling decision: no goal, the controller's command is to retreat
         with self.acting.time():
             action = self.controller.act(msg.observation, (msg.seed, msg.step))
         self.publish_command(msg, action)

@@ -130,7 +130,8 @@ def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
     export(actor, tmp_path, SCENE, {})
     controller = SubgoalController(SCENE, tmp_path)
     obs = np.ones(layout.observation_size(SCENE), np.float32)
-    assert np.array_equal(controller.act(obs), HOLD)  # no sub-goal: hold still
+    controller.set_subgoal([], retreat=False)
+    assert np.array_equal(controller.act(obs), HOLD)  # no sub-goal, paused: hold still
     controller.set_subgoal([Literal("holding", ("red",))])
     action = controller.act(obs)
     assert np.isfinite(action).all() and np.abs(action).max() <= 1.0 and not np.array_equal(action, HOLD)
@@ -272,8 +273,8 @@ def test_an_actor_trained_on_another_feature_version_refuses_to_load(tmp_path, m
 
 
 def test_holding_still_keeps_a_held_block(tmp_path) -> None:
-    """Without a sub-goal (paused, settling, a human's turn) the arm holds still; with a block between the
-    closed fingers it keeps squeezing, so the block is not let slip (issue 57)."""
+    """Paused, the arm holds still; with a block between the closed fingers it keeps squeezing, so the block is
+    not let slip (as it does with no step to act on: ``test_retreat.py``)."""
     from semgoal_policy.controller import HOLD_GRIP
     from semgoal_sim.world import FetchWorld
 
@@ -281,6 +282,7 @@ def test_holding_still_keeps_a_held_block(tmp_path) -> None:
     controller = SubgoalController(SCENE, tmp_path)
     world = FetchWorld(SCENE)
     world.reset(np.array([[1.25, 0.70, 0.425], [1.40, 0.80, 0.425]]))
+    controller.set_subgoal([], retreat=False)
     assert np.array_equal(controller.act(world.observation()), HOLD)
     world.place_in_gripper("red")
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)

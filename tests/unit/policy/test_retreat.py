@@ -1,0 +1,70 @@
+"""The idle arm finishes clear: once a goal is done it opens its fingers past what ``holding`` reads, rises
+straight up over the blocks and stays there, and the goal still holds at rest long after."""
+
+import numpy as np
+import pytest
+
+from semgoal_bringup.episodes import make_agent
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import THRESHOLDS
+from semgoal_policy.controller import HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
+from semgoal_sim.expert import move_to
+from semgoal_sim.rollout import held_blocks
+from semgoal_sim.world import FetchWorld
+
+
+def test_a_stack_stays_up_and_unheld_while_the_idle_arm_runs_50_steps_after_success() -> None:
+    agent = make_agent("hierarchical", "two_blocks")
+    for seed in range(3_000_000, 3_000_004):
+        outcome = agent.run_goal(TASKS["MC-2"].initial_state(seed)[0], "above(green,red)", seed, label="stack",
+                                 linger=50)
+        assert outcome.success and outcome.linger_holds, outcome
+        world = agent._worlds[("stack", 2)]
+        snapshot = world.snapshot()
+        assert snapshot.finger_opening > THRESHOLDS.holding_opening_max
+        assert snapshot.grip_position[2] > snapshot.block_positions[:, 2].max() + RETREAT_HEIGHT - 0.01
+        assert not held_blocks(world, world.semantic_vector())
+
+
+def test_the_retreat_opens_first_then_rises_and_never_descends() -> None:
+    """From the fingers 52 mm apart around a block just let go of (where they drifted shut on it): open, then
+    up, then hold there; the block stays where it was."""
+    world, controller = FetchWorld("two_blocks"), SubgoalController("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(0)[0])
+    world.open_fingers(0.052)
+    red = world.snapshot().block_positions[0].copy()
+    for target, steps in ((red + np.array([0.0, 0.0, 0.1]), 25), (red, 15)):  # over red, then down around it
+        for _ in range(steps):
+            snapshot = world.snapshot()
+            world.step(move_to(snapshot.grip_position, target, (0.052 - snapshot.finger_opening) / 2))
+    assert world.snapshot().grip_position[2] == pytest.approx(red[2], abs=0.01)
+    controller.set_subgoal([])
+    heights, openings = [], []
+    for _ in range(30):
+        action = controller.act(world.observation())
+        assert action[2] >= 0.0 and not action[:2].any()
+        world.step(action)
+        snapshot = world.snapshot()
+        heights.append(snapshot.grip_position[2])
+        openings.append(snapshot.finger_opening)
+    rose = next(i for i, height in enumerate(heights) if height > heights[0] + 0.005)
+    assert rose >= 2 and min(openings[rose - 1:]) >= RETREAT_OPENING - 0.002  # opened before it rose, kept open
+    assert max(openings) < RETREAT_OPENING + 0.01  # no wider than needed
+    assert heights[-1] == pytest.approx(red[2] + RETREAT_HEIGHT, abs=0.01)
+    assert np.ptp(heights[-10:]) < 0.005  # and stays there
+    np.testing.assert_allclose(world.snapshot().block_positions[0], red, atol=0.003)
+
+
+def test_a_block_the_goal_holds_is_kept_any_other_let_go_and_a_paused_arm_holds_still() -> None:
+    world, controller = FetchWorld("two_blocks"), SubgoalController("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(0)[0])
+    world.place_in_gripper("red")
+    controller.set_subgoal([], keep={"red"})
+    assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)
+    controller.set_subgoal([], retreat=False)
+    assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)  # paused mid-carry: kept
+    controller.set_subgoal([], keep={"green"})
+    assert controller.act(world.observation())[3] > 0  # not a block the goal holds: the fingers open
+    world.step(np.array([0.0, 0.0, 0.0, 1.0]))  # dropped
+    controller.set_subgoal([], retreat=False)
+    assert np.array_equal(controller.act(world.observation()), HOLD)

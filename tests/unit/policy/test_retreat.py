@@ -55,7 +55,7 @@ def test_the_retreat_opens_first_then_rises_and_never_descends() -> None:
     np.testing.assert_allclose(world.snapshot().block_positions[0], red, atol=0.003)
 
 
-def test_a_block_the_goal_holds_is_kept_any_other_let_go_and_a_paused_arm_holds_still() -> None:
+def test_a_block_the_goal_holds_is_kept_an_unasked_one_let_go_and_a_paused_arm_holds_still() -> None:
     world, controller = FetchWorld("two_blocks"), SubgoalController("two_blocks")
     world.reset(TASKS["MC-2"].initial_state(0)[0])
     world.place_in_gripper("red")
@@ -63,8 +63,8 @@ def test_a_block_the_goal_holds_is_kept_any_other_let_go_and_a_paused_arm_holds_
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)
     controller.set_subgoal([], retreat=False)
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)  # paused mid-carry: kept
-    controller.set_subgoal([], keep={"green"})
-    assert controller.act(world.observation())[3] > 0  # not a block the goal holds: the fingers open
+    controller.set_subgoal([])
+    assert controller.act(world.observation())[3] > 0  # the goal asks no block held: the fingers open
     world.step(np.array([0.0, 0.0, 0.0, 1.0]))  # dropped
     controller.set_subgoal([], retreat=False)
     assert np.array_equal(controller.act(world.observation()), HOLD)

@@ -3,7 +3,7 @@
 SHELL := /bin/bash
 .ONESHELL:
 .SHELLFLAGS := -eo pipefail -c
-.PHONY: setup demo test lint test-unit test-graph clean
+.PHONY: setup demo test check lint test-unit test-graph clean
 
 setup:
 	@bash tools/setup.sh
@@ -21,6 +21,12 @@ test: setup
 	@source tools/env.sh
 	ruff check .
 	python -m pytest $(PYTEST_ARGS)
+
+# The edit loop: ruff and the pure unit tests (no process, no ROS context; `--pure` fails one that starts any).
+check: setup
+	@source tools/env.sh
+	ruff check .
+	python -m pytest -q -m "not graph and not slow" --pure -p no:cacheprovider $(PYTEST_ARGS)
 
 test-unit: setup
 	@source tools/env.sh && python -m pytest -m "not graph" $(PYTEST_ARGS)

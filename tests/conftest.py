@@ -22,6 +22,28 @@ def free_port() -> int:
         return probe_socket.getsockname()[1]
 
 
+def pytest_addoption(parser: pytest.Parser) -> None:
+    parser.addoption("--pure", action="store_true",
+                     help="fail a test that starts a process or a ROS context (make check: those carry `slow`)")
+
+
+@pytest.fixture(autouse=True)
+def _pure(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Under ``--pure`` a test that starts a process (subprocess, multiprocessing) or initialises rclpy fails
+    with what to do, so the fast loop stays fast and ``slow`` stays true."""
+    if not request.config.getoption("--pure"):
+        return
+    import multiprocessing.process
+
+    def refuse(*_args, **_kwargs) -> None:
+        raise RuntimeError("a test under --pure started a process or a ROS context: mark it @pytest.mark.slow")
+
+    monkeypatch.setattr(subprocess.Popen, "__init__", refuse)
+    monkeypatch.setattr(multiprocessing.process.BaseProcess, "start", refuse)
+    if "rclpy" in sys.modules:
+        monkeypatch.setattr(sys.modules["rclpy"], "init", refuse)
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """Tests under tests/graph/ start real nodes: mark them so they can be run apart (-m graph)."""
     for item in items:

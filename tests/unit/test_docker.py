@@ -4,6 +4,8 @@
 import re
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).parents[2]
 DOCKERFILE = (ROOT / "docker" / "Dockerfile").read_text()
 
@@ -33,6 +35,7 @@ def test_the_image_builds_plainly_and_sources_with_a_double_dash() -> None:
     assert all(line.rstrip().endswith("--") for line in entrypoint.splitlines() if line.startswith("source "))
 
 
+@pytest.mark.slow
 def test_the_dockerfile_is_hadolint_clean() -> None:
     import subprocess
 

@@ -35,6 +35,7 @@ def test_a_package_imports_only_the_layers_below_it(package: str) -> None:
         assert semgoal_imports(path) - {package} <= ALLOWED[package], path.name
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("module", ["semgoal_sim.predicate_node", "semgoal_planner.planner_node", "semgoal_policy.policy_node"])
 def test_a_node_that_reads_world_states_loads_no_mujoco(module: str) -> None:
     loaded = subprocess.run([sys.executable, "-c", f"import sys, {module}; print('mujoco' in sys.modules)"],

@@ -2,9 +2,12 @@
 
 import subprocess
 
+import pytest
+
 from conftest import ROOT
 
 
+@pytest.mark.slow
 def test_second_setup_rebuilds_nothing() -> None:
     built = ROOT / "ros_ws" / "install" / "semgoal_msgs" / "share" / "semgoal_msgs" / "package.xml"
     before = built.stat().st_mtime_ns

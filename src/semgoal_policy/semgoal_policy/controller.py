@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_core import features, layout
-from semgoal_core.settling import Settling, at_rest
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
+from semgoal_core.settling import REST_SPEED, Settling, at_rest
 from semgoal_core.vocabulary import LAYOUTS, THRESHOLDS, Literal, VocabularyError, held_alone
 from semgoal_policy import actor as actor_io
 
@@ -26,6 +27,11 @@ true again), and no wider, so fingers beside a tower's block do not push it."""
 RETREAT_HEIGHT = 0.08
 """How far (m) above the highest block's centre the idle arm's grip site goes: the fingertips clear every block
 (the expert descends onto a block from this height) and ``holding``'s 0.04 m reach."""
+EDGE_MARGIN = 0.045
+"""A held block is let go only with its centre this far (m) inside the table's edge: 2 cm past its half-size. Let
+go nearer, a block still sliding went over (held-out chains: put away at y 0.397, 3 mm inside the edge)."""
+EDGE_NUDGE = 0.2
+"""Least inward displacement command (1 cm a step) for a held block beyond :data:`EDGE_MARGIN`."""
 RETREAT_GAIN = 15.0
 """Displacement command per metre from the retreat height (saturates beyond 6.7 cm, as the expert's)."""
 
@@ -92,7 +98,24 @@ class SubgoalController:
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
-        return np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
+        action = np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
+        return self._kept_on_the_table(observation, action)
+
+    def _kept_on_the_table(self, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+        """The actor's command, except that a held block beyond :data:`EDGE_MARGIN` of the table's edge is not let
+        go and is moved back inward: no block leaves the table by the robot's hand where the actor aims too far."""
+        arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
+        held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
+                          blocks["present"][:, 0] > 0.5)
+        if not held.any():
+            return action
+        offset = blocks["position"][held][0, :2] - np.asarray(TABLE_CENTER)
+        out = np.abs(offset) > np.asarray(TABLE_HALF_SIZE) - EDGE_MARGIN
+        if out.any():
+            action[3] = min(action[3], 0.0)
+            inward = -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE)
+            action[:2] = np.where(out, inward, action[:2])
+        return action
 
 
     def hold(self, observation: np.ndarray) -> np.ndarray:
@@ -106,9 +129,10 @@ class SubgoalController:
         """With nothing to do once a goal is done: where the goal asks to hold a block (:attr:`keep`; the goal
         holds, so it is in the hand), the arm holds still and keeps squeezing (a block held 39 mm under the grip
         site, at the edge of what ``holding`` reads, was let go when this asked the geometry); else it retreats,
-        letting go of any block it straddles. The fingers open to :data:`RETREAT_OPENING` if they are narrower,
-        then the grip site rises straight up to :data:`RETREAT_HEIGHT` over the highest block and stays there,
-        the fingers as they are."""
+        letting go of any block it straddles. The fingers open to :data:`RETREAT_OPENING` if they are narrower;
+        once no block moves (a block dropped onto another still tumbled, and fingers rising past it lifted it off
+        the table) the grip site rises straight up to :data:`RETREAT_HEIGHT` over the highest block and stays
+        there, the fingers as they are."""
         observation = np.asarray(observation, dtype=np.float32)
         if self.keep:
             return HOLD_GRIP.copy()
@@ -120,6 +144,9 @@ class SubgoalController:
             return action
         action[3] = -float(arm["finger_velocities"].mean())  # (per step) brakes the fingers where they are
         present = blocks["present"][:, 0] > 0.5
+        speeds = np.linalg.norm(blocks["velocity"][present], axis=1) / layout.CONTROL_DT
+        if (speeds >= REST_SPEED).any():  # a block let go still moves: rising fingers could drag it along
+            return action
         if present.any():
             height = float(blocks["position"][present, 2].max()) + RETREAT_HEIGHT
             action[2] = float(np.clip((height - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block

@@ -9,6 +9,7 @@ import pytest
 ROOT = Path(__file__).parents[3]
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(600)
 def test_bench_eval_reports_both_executors_with_one_and_two_workers() -> None:
     out = subprocess.run([str(ROOT / "semgoal"), "bench-eval", "--episodes", "2", "--json"],

@@ -3,6 +3,8 @@
 import sys
 from pathlib import Path
 
+import pytest
+
 from bench.planner import OURS_RUNNER, phase_speedup, run_one, speedup
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
@@ -33,6 +35,7 @@ def test_phase_speedup_splits_parse_and_ground_from_search() -> None:
     assert phase_speedup(ours, result(None, "timeout (60 s)"), "search") is None
 
 
+@pytest.mark.slow
 def test_our_runner_times_both_phases(tmp_path: Path) -> None:
     prob = tmp_path / "bw-4.pddl"
     prob.write_text(problem(4, seed=1))

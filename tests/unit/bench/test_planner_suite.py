@@ -4,6 +4,8 @@ import shutil
 import time
 from pathlib import Path
 
+import pytest
+
 from bench.planner_suite import Planner, install, run, run_suite, suite_problems, validity
 
 FIXTURES = Path(__file__).parents[1] / "planner" / "fixtures"
@@ -34,6 +36,7 @@ def test_the_suite_layout_pairs_each_problem_with_its_domain(tmp_path) -> None:
         ("own-domains", "p02-domain.pddl", "p02-gripper-4.pddl")]
 
 
+@pytest.mark.slow
 def test_every_problem_is_solved_and_every_plan_validated(tmp_path) -> None:
     result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search="gbfs", heuristic="hff")
     assert result["problems"] == 5 and result["coverage"] == {"ours": 5} and result["invalid_plans"] == {"ours": 0}
@@ -41,6 +44,7 @@ def test_every_problem_is_solved_and_every_plan_validated(tmp_path) -> None:
     assert all(row["ours"]["median_s"] > 0 for row in result["domains"].values())
 
 
+@pytest.mark.slow
 def test_a_plan_an_unsolvable_task_and_a_refusal_are_told_apart(tmp_path) -> None:
     domain, problem = FIXTURES / "blocksworld-domain.pddl", FIXTURES / "blocksworld-sussman.pddl"
     ours = install("ours")
@@ -60,6 +64,7 @@ def test_an_invalid_plan_is_named(tmp_path) -> None:
     assert validity(domain, problem, []).startswith("the goal")
 
 
+@pytest.mark.slow
 def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked(tmp_path) -> None:
     """The two reference planners install into .bench/ (pinned) and run as whole processes; on this small suite
     each solves everything with a valid plan, and their times are set beside ours."""
@@ -71,6 +76,7 @@ def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked
     assert set(result["median_ratio_to_ours"]) == {"pyperplan", "fast-downward"}
 
 
+@pytest.mark.slow
 def test_a_time_out_ends_the_planner_and_its_children(tmp_path) -> None:
     """Fast Downward's driver runs its search as a child; a time-out must end both, or the search goes on
     using a core and skews every later time."""

@@ -4,9 +4,12 @@ import json
 import subprocess
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).parents[3]
 
 
+@pytest.mark.slow
 def test_bench_sim_reports_every_scene_and_the_reference() -> None:
     out = subprocess.run([str(ROOT / "semgoal"), "bench-sim", "--steps", "50", "--repeats", "1", "--json"],
                          capture_output=True, text=True, timeout=240, check=True, cwd="/")

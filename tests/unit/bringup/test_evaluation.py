@@ -29,6 +29,7 @@ def test_parse_tasks() -> None:
         evaluation.parse_tasks("MC-2,XX-1")
 
 
+@pytest.mark.slow
 def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
     code = evaluation.main(["--tasks", "MA-2", "--episodes", "2", "--seeds", "1", "--json", "--out", str(tmp_path)])
     assert code == 0
@@ -41,6 +42,7 @@ def test_eval_writes_table_csv_and_chart(tmp_path, capsys) -> None:
     assert (tmp_path / "table1.png").stat().st_size > 5000
 
 
+@pytest.mark.slow
 def test_every_figure_of_a_results_file_traces_to_a_commit(tmp_path) -> None:
     """The table's JSON, CSV and markdown name the commit that produced them: this checkout's HEAD."""
     assert evaluation.main(["--tasks", "MC-2", "--episodes", "1", "--seeds", "1", "--out", str(tmp_path)]) == 0
@@ -77,6 +79,7 @@ def test_a_pool_file_names_the_pooled_training_seeds(tmp_path) -> None:
         evaluation.actor_dirs("hierarchical", "desk_cleanup", 3, tmp_path)
 
 
+@pytest.mark.slow
 def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
     """Two "seeds" that are the same shipped actor: pooled and per-seed rates must all agree."""
     from semgoal_policy.actor import models_dir
@@ -96,6 +99,7 @@ def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
     assert {line.split(" | ")[-1] for line in per_seed} == {f"{100 * rate:.0f} |"}
 
 
+@pytest.mark.slow
 def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> None:
     with pytest.raises(SystemExit):
         evaluation.main(["--tasks", "MC-2", "--agents", "oracle"])

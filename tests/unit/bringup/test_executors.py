@@ -15,6 +15,7 @@ def figures(rows) -> list:
              row.seed_steps) for row in rows]
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(600)
 def test_local_and_dask_give_the_same_rows() -> None:
     local = evaluate_in_process(["hierarchical"], TASKS, EPISODES, SEED, 1, models_dir(), 2, "local", 0)

@@ -7,6 +7,7 @@ import pytest
 from semgoal_bringup import goal_eval
 
 
+@pytest.mark.slow
 def test_eval_goals_prints_a_row_per_family_and_the_json_line(capsys) -> None:
     assert goal_eval.main(["--scene", "two_blocks", "--families", "hold", "--episodes", "2", "--json"]) == 0
     captured = capsys.readouterr()
@@ -16,6 +17,7 @@ def test_eval_goals_prints_a_row_per_family_and_the_json_line(capsys) -> None:
     assert "two_blocks/hold" in captured.err and "of 2" in captured.err
 
 
+@pytest.mark.slow
 def test_eval_goals_checks_the_goal_again_after_lingering(capsys) -> None:
     assert goal_eval.main(["--scene", "two_blocks", "--families", "stack", "--episodes", "2", "--linger", "25",
                            "--json"]) == 0
@@ -25,6 +27,7 @@ def test_eval_goals_checks_the_goal_again_after_lingering(capsys) -> None:
     assert "holds 25 steps on" in captured.err
 
 
+@pytest.mark.slow
 def test_eval_goals_runs_another_actor_in_process_only(capsys) -> None:
     from semgoal_policy.actor import models_dir
 

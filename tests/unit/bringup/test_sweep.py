@@ -53,6 +53,7 @@ def _resumed(sweep: subprocess.Popen, runs: Path) -> tuple[dict, str]:
     return result, err
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(600)
 def test_a_seed_killed_mid_training_is_resumed_from_its_checkpoint(tmp_path: Path) -> None:
     sweep, training = _sweep(tmp_path, "local")
@@ -61,6 +62,7 @@ def test_a_seed_killed_mid_training_is_resumed_from_its_checkpoint(tmp_path: Pat
     assert result["attempts"] == 2 and "resuming from its checkpoint" in err
 
 
+@pytest.mark.slow
 @pytest.mark.timeout(600)
 def test_a_dask_worker_killed_mid_training_takes_its_training_along_and_the_seed_is_resumed(tmp_path: Path) -> None:
     sweep, training = _sweep(tmp_path, "dask")

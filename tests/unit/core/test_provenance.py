@@ -3,11 +3,14 @@
 import subprocess
 from pathlib import Path
 
+import pytest
+
 from semgoal_core.provenance import LIBRARIES, UNKNOWN, describe, git_state, provenance, traced
 
 ROOT = Path(__file__).parents[3]
 
 
+@pytest.mark.slow
 def test_the_record_names_this_checkout_and_the_versions() -> None:
     record = provenance("./semgoal eval --tasks MC-2", seed=7, root=ROOT)
     head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
@@ -18,6 +21,7 @@ def test_the_record_names_this_checkout_and_the_versions() -> None:
     assert line.startswith(f"commit {head[:12]} (") and "numpy " in line and "seed 7" in line
 
 
+@pytest.mark.slow
 def test_outside_a_checkout_the_commit_is_unknown(tmp_path: Path) -> None:
     assert git_state(tmp_path) == (UNKNOWN, None)
     assert "no git checkout" in describe(provenance("x", root=tmp_path))
@@ -27,6 +31,7 @@ def _git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout.strip()
 
 
+@pytest.mark.slow
 def test_results_written_into_runs_or_results_and_prose_do_not_make_the_code_dirty(tmp_path: Path) -> None:
     _git(tmp_path, "init", "-q")
     _git(tmp_path, "config", "user.email", "t@example.org")
@@ -45,6 +50,7 @@ def test_results_written_into_runs_or_results_and_prose_do_not_make_the_code_dir
     assert git_state(tmp_path)[1] is True
 
 
+@pytest.mark.slow
 def test_a_file_made_before_records_were_kept_is_traced_to_the_first_commit_that_held_it(tmp_path: Path) -> None:
     _git(tmp_path, "init", "-q")
     _git(tmp_path, "config", "user.email", "t@example.org")

@@ -106,6 +106,7 @@ def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) ->
     assert invalid_step(domain, parse_problem(EITHER_PROBLEM, domain), [("shift", "a", "b", "d")]) is not None
 
 
+@pytest.mark.slow
 def test_the_command_starts_without_ros_or_numpy(tmp_path: Path) -> None:
     """`./semgoal plan-pddl` runs an isolated interpreter without site on the planner's sources (about 0.05 s in
     all instead of 0.25 s): it needs no sourced environment, and the planner loads neither ROS nor numpy, nor

@@ -1,13 +1,15 @@
-"""The idle arm finishes clear: once a goal is done it opens its fingers past what ``holding`` reads, rises
-straight up over the blocks and stays there, and the goal still holds at rest long after."""
+"""What is done stays done: once a goal is done the idle arm opens its fingers past what ``holding`` reads, rises
+straight up over the blocks (once they are still) and stays there, so the goal still holds at rest long after;
+and no held block is let go past the table's edge."""
 
 import numpy as np
 import pytest
 
 from semgoal_bringup.episodes import make_agent
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
 from semgoal_core.tasks import TASKS
-from semgoal_core.vocabulary import THRESHOLDS
-from semgoal_policy.controller import HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
+from semgoal_core.vocabulary import THRESHOLDS, Literal
+from semgoal_policy.controller import EDGE_MARGIN, EDGE_NUDGE, HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
 from semgoal_sim.expert import move_to
 from semgoal_sim.rollout import held_blocks
 from semgoal_sim.world import FetchWorld
@@ -68,3 +70,20 @@ def test_a_block_the_goal_holds_is_kept_an_unasked_one_let_go_and_a_paused_arm_h
     world.step(np.array([0.0, 0.0, 0.0, 1.0]))  # dropped
     controller.set_subgoal([], retreat=False)
     assert np.array_equal(controller.act(world.observation()), HOLD)
+
+
+def test_a_held_block_past_the_table_edge_is_not_let_go_and_is_moved_back_in() -> None:
+    """No block leaves the table by the robot's hand: a release the actor aims past the edge margin is held back."""
+    world, controller = FetchWorld("two_blocks"), SubgoalController("two_blocks")
+    world.reset(TASKS["MC-2"].initial_state(0)[0])
+    controller.set_subgoal([Literal("close", ("red", "green"), False), Literal("holding", ("red",), False)])
+    world.place_in_gripper("red")
+    inside = controller._kept_on_the_table(world.observation(), np.array([0.3, -0.4, 0.0, 1.0], dtype=np.float32))
+    assert inside.tolist() == pytest.approx([0.3, -0.4, 0.0, 1.0])  # well inside: the actor's command as it is
+    edge_y = TABLE_CENTER[1] - TABLE_HALF_SIZE[1] + EDGE_MARGIN - 0.01  # the near edge, inside the margin
+    for _ in range(40):
+        snapshot = world.snapshot()
+        world.step(move_to(snapshot.grip_position, np.array([1.3, edge_y, 0.47]), -1.0))
+    assert "holding(red)" in world.layout.readable(world.semantic_vector())
+    action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
+    assert action[3] <= 0.0 and action[1] >= EDGE_NUDGE  # not let go; moved back toward the table's middle

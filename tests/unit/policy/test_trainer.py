@@ -19,6 +19,7 @@ def config(tmp_path, steps: int) -> TrainConfig:
                        eval_episodes=2, final_eval_episodes=2, run_dir=tmp_path / "run", export_dir=tmp_path / "export")
 
 
+@pytest.mark.slow
 def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     first = trainer_for(config(tmp_path, 400))
     first.run()
@@ -36,6 +37,7 @@ def test_tiny_run_checkpoints_resumes_and_exports(tmp_path) -> None:
     assert load(tmp_path / "run" / "snapshots" / "800", "two_blocks")[1]["env_steps"] == 800
 
 
+@pytest.mark.slow
 def test_tensorboard_gets_the_progress_rows_keys_across_a_resume(tmp_path) -> None:
     from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
 
@@ -51,6 +53,7 @@ def test_tensorboard_gets_the_progress_rows_keys_across_a_resume(tmp_path) -> No
     assert (tmp_path / "export" / "MODEL_CARD.md").read_text().startswith("# two_blocks · hierarchical actor")
 
 
+@pytest.mark.slow
 def test_averaged_runs_snapshot_the_live_actor_beside_the_averaged_one(tmp_path) -> None:
     trainer_for(replace(config(tmp_path, 400), snapshots=True, sac=SacConfig(actor_average_rate=0.25))).run()
     snapshots = tmp_path / "run" / "snapshots"
@@ -76,6 +79,7 @@ def test_a_resumed_agent_takes_the_configured_learning_rate_not_the_checkpoints(
     assert {group["lr"] for opt in optimisers for group in opt.param_groups} == {3e-4}
 
 
+@pytest.mark.slow
 def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_path) -> None:
     trainer_for(config(tmp_path, 400)).run()
     (tmp_path / "run" / "replay.npz").unlink()
@@ -85,6 +89,7 @@ def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_
     assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
 
 
+@pytest.mark.slow
 def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
     trainer_for(config(tmp_path, 400)).run()
     (tmp_path / "run" / "replay.npz").unlink()
@@ -98,6 +103,7 @@ def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
     assert resumed.refill() == 0  # a full enough buffer is left alone
 
 
+@pytest.mark.slow
 def test_flat_baseline_trains_on_whole_tasks_and_exports_with_its_goal_layout(tmp_path) -> None:
     cfg = config(tmp_path, 2 * 4 * 120)
     cfg.agent, cfg.learning_starts, cfg.eval_every = "flat-semantic", 480, 960

@@ -24,6 +24,7 @@ def test_held_ids_are_distinct_and_avoid_what_is_asked(tmp_path: Path) -> None:
     assert lease(set(), tmp_path)[0] in DOMAINS
 
 
+@pytest.mark.slow
 def test_a_killed_holder_frees_its_id(tmp_path: Path) -> None:
     avoid = set(DOMAINS) - {42}
     holder = subprocess.Popen([sys.executable, "-c", f"from pathlib import Path; from semgoal_ros.domains import lease; "

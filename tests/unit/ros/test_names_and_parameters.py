@@ -45,6 +45,7 @@ def node(ros_domain):
     rclpy.shutdown()
 
 
+@pytest.mark.slow
 def test_parameters_carry_descriptors_and_refuse_bad_start_values(node) -> None:
     probe = node()
     assert declare(probe, PARAMS) == {"mode": "lockstep", "rate_hz": 25.0, "every": 5, "kind": "a"}
@@ -60,6 +61,7 @@ def test_parameters_carry_descriptors_and_refuse_bad_start_values(node) -> None:
             declare(node(overrides), PARAMS)
 
 
+@pytest.mark.slow
 def test_changes_at_run_time_are_applied_or_refused_with_the_reason(node) -> None:
     probe = node()
     declare(probe, PARAMS)

@@ -72,6 +72,7 @@ def test_requests_without_an_id_are_never_remembered() -> None:
     assert recent.get("") is None and not recent.answers
 
 
+@pytest.mark.slow
 def test_run_node_stops_cleanly_when_interrupted_while_a_node_is_built() -> None:
     """A SIGINT while a node creates its servers invalidates the context and rcl raises from the constructor
     (seen in CI as "Failed to create action server: rcl node's context is invalid"): a clean stop, exit 0."""

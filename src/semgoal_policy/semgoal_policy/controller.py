@@ -102,14 +102,19 @@ class SubgoalController:
         return self._kept_on_the_table(observation, action)
 
     def _kept_on_the_table(self, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
-        """The actor's command, except that a held block beyond :data:`EDGE_MARGIN` of the table's edge is not let
-        go and is moved back inward: no block leaves the table by the robot's hand where the actor aims too far."""
+        """The actor's command, except that a held block beyond :data:`EDGE_MARGIN` of the table's edge, over no other
+        block, is not let go and is moved back inward: no block leaves the table by the robot's hand where the actor
+        aims too far."""
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
         held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
                           blocks["present"][:, 0] > 0.5)
         if not held.any():
             return action
-        offset = blocks["position"][held][0, :2] - np.asarray(TABLE_CENTER)
+        block = blocks["position"][held][0]
+        others = blocks["position"][(blocks["present"][:, 0] > 0.5) & ~held]
+        if (np.linalg.norm(others[:, :2] - block[:2], axis=1) < THRESHOLDS.above_xy).any():
+            return action  # over another block: a put on it, which holds it up (a tower at the edge stays allowed)
+        offset = block[:2] - np.asarray(TABLE_CENTER)
         out = np.abs(offset) > np.asarray(TABLE_HALF_SIZE) - EDGE_MARGIN
         if out.any():
             action[3] = min(action[3], 0.0)

@@ -87,3 +87,7 @@ def test_a_held_block_past_the_table_edge_is_not_let_go_and_is_moved_back_in() -
     assert "holding(red)" in world.layout.readable(world.semantic_vector())
     action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
     assert action[3] <= 0.0 and action[1] >= EDGE_NUDGE  # not let go; moved back toward the table's middle
+    red = world.snapshot().block_positions[0]
+    world.set_block_pose("green", np.array([red[0], red[1], 0.425]))  # a block under it there: a put on it
+    action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
+    assert action.tolist() == pytest.approx([0.0, -0.5, 0.0, 1.0])

@@ -36,8 +36,9 @@ SCENE = SCENES[TASKS[TASK].scene]
 GET_PLAN_LIMIT_S = 0.1
 ANSWER_S = 10.0
 NODE_NAMES = ("sim", "predicates", "planner", "policy")
-TAKERS = {topics.WORLD_STATE: 2, topics.SEMANTIC_STATE: 1, topics.SUBGOAL: 1, topics.ARM_COMMAND: 1, topics.GOAL: 1}
-"""Subscribers each fuzzed topic has once the graph is up."""
+TAKERS = {topics.WORLD_STATE: 2, topics.SEMANTIC_STATE: 1, topics.SUBGOAL: 1, topics.ARM_COMMAND: 1, topics.GOAL: 1,
+          topics.OPERATOR_EVENTS: 2}
+"""Subscribers each fuzzed topic has once the graph is up (the operator events: the planner and this probe)."""
 
 # -- strategies: mostly the scene's own words and numbers near the real ones, some garbage, rarely a megabyte
 UINT32, UINT64, INT64 = st.integers(0, 2**32 - 1), st.integers(0, 2**64 - 1), st.integers(-(2**63), 2**63 - 1)
@@ -90,6 +91,8 @@ RESET = st.builds(ResetWorld.Request, task=st.one_of(st.sampled_from(list(TASKS)
 MOVE = st.builds(MoveBlock.Request, block=BLOCK,
                  position=st.one_of(st.builds(Point, x=st.floats(1.0, 1.6), y=st.floats(0.4, 1.1), z=st.floats(0.4, 0.6)),
                                     st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT)))
+EVENT = st.builds(OperatorEvent, kind=st.one_of(st.sampled_from(["goal", "edit", "move", "reset"]), TEXT), request=TEXT,
+                  request_id=TEXT, accepted=st.booleans(), answer=TEXT, revision=SMALL_OR(UINT32))
 ACTION_GOAL = st.builds(ExecuteGoal.Goal, goal=GOAL, max_steps=SMALL_OR(UINT32), episode=SMALL_OR(UINT32))
 
 
@@ -109,6 +112,7 @@ class Fuzzer:
             topics.SEMANTIC_STATE: node.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.PER_STEP),
             topics.SUBGOAL: node.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP),
             topics.ARM_COMMAND: node.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM),
+            topics.OPERATOR_EVENTS: node.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS),
         }
         self.events: list[OperatorEvent] = []
         node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self.events.append, topics.EVENTS_LIVE)
@@ -244,6 +248,7 @@ def test_every_interface_survives_a_thousand_drawn_inputs(nodes: NodeProcesses, 
         topics.SUBGOAL: (SUBGOAL, fuzzer.publish(topics.SUBGOAL)),
         topics.WORLD_STATE: (WORLD, fuzzer.publish(topics.WORLD_STATE)),
         topics.ARM_COMMAND: (COMMAND, fuzzer.publish(topics.ARM_COMMAND)),
+        topics.OPERATOR_EVENTS: (EVENT, fuzzer.publish(topics.OPERATOR_EVENTS)),  # after the goals: it echoes here
     }
     unfuzzed = interfaces_taken(probe) - set(fuzzed) - {topics.GET_PLAN}  # GetPlan: asked after every input
     assert not unfuzzed, f"interfaces the nodes take that nothing here fuzzes: {sorted(unfuzzed)}"

@@ -4,7 +4,7 @@ node's memory growing.
 Each cycle first makes the goal hold in the old world (a person moves red next to green), then resets to a new
 MC-2 start (blocks far apart) and at once sends MC-2 for the new episode with a budget of a few control steps,
 too few to bring the blocks together. A goal decided on the old world's state would "succeed"; every result
-must be a failure for the budget, in the new episode."""
+must be a failure for the budget, in the new episode, after exactly the budget's control steps of the world."""
 
 import math
 import os
@@ -71,6 +71,7 @@ def test_a_hundred_reset_and_goal_cycles_give_no_false_success_and_keep_memory_f
         result = probe.spin_future(handle.get_result_async(), 60, "the goal's result").result
         assert not result.success, f"cycle {cycle}: a false success ({result.message}, {result.control_steps} steps)"
         assert result.episode == world.episode and "budget" in result.message, (cycle, result)
+        assert result.control_steps == BUDGET, (cycle, result.control_steps)  # the new world's steps, all of them
         if cycle in (WARM_UP, CYCLES - 1):
             for name, process in nodes.processes:
                 memory[name].append(resident_mb(process.pid))

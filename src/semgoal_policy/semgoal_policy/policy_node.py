@@ -16,6 +16,7 @@ next. It never publishes NaN or values outside [-1, 1].
 
 from __future__ import annotations
 
+import contextlib
 import time
 
 import numpy as np
@@ -114,7 +115,7 @@ class PolicyNode(Node):
             if msg.status == StepStatus.ACTIVE:
                 self.controller.set_subgoal(literals)
             else:  # the plan's goal, when it holds: the blocks it asks to be held stay in the hand
-                self.controller.set_subgoal([], retreat=msg.status in RETREATS, keep=held_blocks_asked(literals))
+                self.controller.set_subgoal([], retreat=msg.status in RETREATS, keep=self.asked_held(literals))
         except VocabularyError as error:
             self.controller.set_subgoal([])
             self.get_logger().warn(f"holding still: sub-goal {msg.action!r} is not valid here: {error}")
@@ -122,6 +123,14 @@ class PolicyNode(Node):
             return
         text = msg.action if msg.status == StepStatus.ACTIVE else f"(none: {msg.status or 'no plan'})"
         self.get_logger().info(f"sub-goal {text}")
+
+    def asked_held(self, literals: list[Literal]) -> set[str]:
+        """The blocks a goal's literals ask to be held; literals that do not fit the scene are left out."""
+        fitting = []
+        for literal in literals:
+            with contextlib.suppress(VocabularyError):
+                fitting.append(self.controller.layout.validate(literal))
+        return held_blocks_asked(fitting)
 
     def world_callback(self, msg: WorldState) -> None:
         self.latest = msg

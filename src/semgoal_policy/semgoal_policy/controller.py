@@ -16,7 +16,7 @@ from semgoal_policy import actor as actor_io
 HOLD = np.zeros(4, dtype=np.float32)
 """Zero displacement and finger targets at their current positions: the arm holds still."""
 HOLD_GRIP = np.array([0.0, 0.0, 0.0, -1.0], dtype=np.float32)
-"""The arm holds still and the fingers keep squeezing: a held block is kept, not let slip (issue 57: a pause
+"""The arm holds still and the fingers keep squeezing: a held block is kept, not let slip (a pause
 dropped the held block)."""
 
 
@@ -105,11 +105,10 @@ class SubgoalController:
         """The actor's command, except that a held block beyond :data:`EDGE_MARGIN` of the table's edge, over no other
         block, is not let go and is moved back inward: no block leaves the table by the robot's hand where the actor
         aims too far."""
-        arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
-        held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
-                          blocks["present"][:, 0] > 0.5)
+        held = self._held(observation)
         if not held.any():
             return action
+        blocks = layout.block_slots(self.scene, observation)
         block = blocks["position"][held][0]
         others = blocks["position"][(blocks["present"][:, 0] > 0.5) & ~held]
         if (np.linalg.norm(others[:, :2] - block[:2], axis=1) < THRESHOLDS.above_xy).any():
@@ -128,7 +127,7 @@ class SubgoalController:
         observation = np.asarray(observation, dtype=np.float32)
         if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
-        return (HOLD_GRIP if self._held(observation) else HOLD).copy()
+        return (HOLD_GRIP if self._held(observation).any() else HOLD).copy()
 
     def idle(self, observation: np.ndarray) -> np.ndarray:
         """With nothing to do once a goal is done: where the goal asks to hold a block (:attr:`keep`; the goal
@@ -157,12 +156,11 @@ class SubgoalController:
             action[2] = float(np.clip((height - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block
         return action
 
-    def _held(self, observation: np.ndarray) -> set[str]:
-        """The blocks between the fingers (``holding``'s geometry)."""
+    def _held(self, observation: np.ndarray) -> np.ndarray:
+        """(max_blocks,) bool: the block slots between the fingers (``holding``'s geometry)."""
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
-        held = held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
+        return held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
                           blocks["present"][:, 0] > 0.5)
-        return {name for name, inside in zip(self.layout.objects, held, strict=True) if inside}
 
 
 __all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "RETREAT_HEIGHT", "RETREAT_OPENING", "SubgoalController",

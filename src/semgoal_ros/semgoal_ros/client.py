@@ -136,9 +136,9 @@ class GraphClient:
         self.episode = 0
         """The world episode of this client's last reset: its goals are planned on that world, never an older one."""
         self.answers: dict[str, str] = {}
-        """The planner's answers on the operator events, by request id (an action goal's id in hex among them)."""
-        node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS,
-                                 lambda event: self.answers.__setitem__(event.request_id, event.answer), topics.EVENTS)
+        """The planner's latest answers on the operator events, by request id (an action goal's id in hex among
+        them), as many as the topic keeps."""
+        node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self._on_event, topics.EVENTS)
         if watch:
             node.create_subscription(WorldState, topics.WORLD_STATE, self._on_world, topics.STREAM)
             node.create_subscription(SemanticState, topics.SEMANTIC_STATE, self._on_semantic, topics.LATCHED)
@@ -157,6 +157,12 @@ class GraphClient:
         self.world = msg
         for listener in self.world_listeners:
             listener(msg)
+
+    def _on_event(self, event) -> None:
+        if event.request_id:
+            self.answers[event.request_id] = event.answer
+            if len(self.answers) > topics.EVENTS.depth:  # a long-lived client keeps no more than the topic does
+                del self.answers[next(iter(self.answers))]
 
     def _on_semantic(self, msg) -> None:
         self.semantic = msg

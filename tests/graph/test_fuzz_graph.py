@@ -1,4 +1,4 @@
-"""Hypothesis-drawn input on every topic, service and action the four nodes take, over real DDS (issue 57).
+"""Hypothesis-drawn input on every topic, service and action the four nodes take, over real DDS.
 
 After each input every node is alive and the planner answers GetPlan within 100 ms (asked again once when a
 busy machine delays the first answer: a stalled planner misses both); a refused edit, goal,

@@ -1,4 +1,4 @@
-"""Goal families through the node graph (issue 51): `eval-goals --via-ros` resets the sim to each case's own
+"""Goal families through the node graph: `eval-goals --via-ros` resets the sim to each case's own
 start (ResetWorld.positions), sends its goals one after the other, and the episodes end as they do in process."""
 
 import json

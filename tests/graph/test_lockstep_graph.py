@@ -15,8 +15,7 @@ from semgoal_ros.client import GraphClient
 
 CASES = [("Swap-2", 3_000_000), ("MC-3", 3_000_000), ("DC-4", 3_000_006)]
 """One start per scene where the shipped actors re-plan in process (each once; all solved at rest). Re-pick
-them when an actor is shipped: the first seed from 3000000 that re-plans and succeeds (session 44, after
-shipping the actors of the three scenes trained under the at-rest rule)."""
+them when an actor is shipped: the first seed from 3000000 that re-plans and succeeds."""
 
 
 @pytest.mark.parametrize(("task", "seed"), CASES)

@@ -1,4 +1,4 @@
-"""Each node killed outright in the middle of a task under `./semgoal up` (issue 57): the operator's `goal --wait`
+"""Each node killed outright in the middle of a task under `./semgoal up`: the operator's `goal --wait`
 ends in success (the node is back in time and the task goes on) or in a failure that says why, within 5 s of
 the kill; `up` starts the node again and the next goal succeeds."""
 

@@ -1,4 +1,4 @@
-"""Two via-ROS evaluations at once on one host (issue 55): each graph on a ROS domain of its own
+"""Two via-ROS evaluations at once on one host: each graph on a ROS domain of its own
 (:mod:`semgoal_ros.domains`), neither disturbing the other: both run every episode and solve DC-2."""
 
 import json

@@ -171,7 +171,7 @@ def test_a_sentence_on_the_goal_topic_is_planned_and_achieved(nodes: NodeProcess
 
 
 def test_ctrl_c_on_goal_wait_cancels_the_goal(nodes: NodeProcesses, probe: GraphProbe) -> None:
-    """Issue 57: Ctrl-C on `./semgoal goal ... --wait` left the goal running; now it cancels it, exit 130."""
+    """Ctrl-C on `./semgoal goal ... --wait` left the goal running; now it cancels it, exit 130."""
     import signal
     import subprocess
 

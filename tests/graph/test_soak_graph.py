@@ -1,4 +1,4 @@
-"""A soak through the four node processes (issue 57): 100 reset-and-goal cycles, none a false success, and no
+"""A soak through the four node processes: 100 reset-and-goal cycles, none a false success, and no
 node's memory growing.
 
 Each cycle first makes the goal hold in the old world (a person moves red next to green), then resets to a new

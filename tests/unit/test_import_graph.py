@@ -1,4 +1,4 @@
-"""The packages' import graph (issue 50): core <- ros <- {sim, planner, policy} <- bringup (the middle three
+"""The packages' import graph: core <- ros <- {sim, planner, policy} <- bringup (the middle three
 never import each other), and the nodes that only read world states (predicates, planner, policy) load no
 MuJoCo."""
 

@@ -10,7 +10,7 @@ one through the graph (``./semgoal eval --via-ros``) follow the same rules.
 Every agent gets the same start (the task's seeded sampler), the same step budget and the same success
 test: the task's goal literals hold with the world at rest (:mod:`semgoal_core.settling`) over
 ``SETTLE_STEPS`` control steps. Each outcome also records the first step at which the literals held at
-all, the rule before issue 49, so the two can be compared on the same episodes.
+all, the first-step rule, so the two can be compared on the same episodes.
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ class Outcome:
 
     @property
     def first_step_success(self) -> bool:
-        """Success by the rule before issue 49: the literals held at some step, moving blocks or not."""
+        """Success by the first-step rule: the literals held at some step, moving blocks or not."""
         return self.first_held is not None
 
 

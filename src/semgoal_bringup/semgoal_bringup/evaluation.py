@@ -6,7 +6,7 @@
 Every agent meets the same starts (episode ``i`` of a task uses the task sampler's seed ``--seed + i``),
 the same step budget and the same success test, the executive's: the task's goal literals hold with the
 world at rest over ``SETTLE_STEPS`` control steps (:mod:`semgoal_core.settling`). In-process rows also
-report the rule before issue 49 (the literals held at some step) on the same episodes, and the median
+report the first-step rule (the literals held at some step) on the same episodes, and the median
 control steps to success at rest. ``--seeds N`` averages
 up to N training seeds of each agent where exported actors exist (the shipped one, plus
 ``models/seeds/<name>/seedK``); the table says how many each row has. ``--via-ros`` also runs the
@@ -134,7 +134,7 @@ class Row:
         return self.wins(task) / self.episodes(task)
 
     def first_step_rate(self, task: str) -> float | None:
-        """The rate under the rule before issue 49 (literals held at some step), where it was observed."""
+        """The rate under the first-step rule (literals held at some step), where it was observed."""
         counts = [t.first_step_wins for t in self.tallies(task)]
         return None if None in counts else sum(counts) / self.episodes(task)
 
@@ -307,7 +307,7 @@ def write_markdown(rows: list[Row], tasks: list[str], record: dict, path: Path) 
                 lines.append(f"| **{row.agent} (ours)** | {_seeds_text(row, tasks)} | {_steps_text(row.env_steps)} | "
                              f"{episodes} | " + " | ".join(cells) + " |")
                 if all(row.first_step_rate(t) is not None for t in tasks):
-                    lines.append(f"| {row.agent} (ours), first-step rule (before issue 49), same episodes | "
+                    lines.append(f"| {row.agent} (ours), first-step rule, same episodes | "
                                  f"{_seeds_text(row, tasks)} | {_steps_text(row.env_steps)} | {episodes} | "
                                  + " | ".join(f"{100 * row.first_step_rate(t):.0f}" for t in tasks) + " |")
     for row in rows:

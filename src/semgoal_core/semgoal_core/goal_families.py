@@ -1,4 +1,4 @@
-"""Goal families beyond the benchmark's eight tasks (issue 51): seeded draws of a start and a goal over a scene's
+"""Goal families beyond the benchmark's eight tasks: seeded draws of a start and a goal over a scene's
 vocabulary, for `./semgoal eval-goals`. Starts come from every task sampler of the scene; desk starts may have
 blocks in the bin already, so that goals must take them out again.
 

@@ -3,7 +3,7 @@
 One rule for the executive (goals and plan steps), the policy node, the training reward and HER, the
 sub-goal and task evaluations and the expert's rollouts. A block in free fall can satisfy ``close``
 (by height) or ``not in_bin`` (above the rim) for a few steps; counting such a state made a dropped
-block a success that no longer held a second later (issue 49).
+block a success that no longer held a second later.
 
 The world is at rest when no block is *restless*: a block is restless when its linear speed is at least
 :data:`REST_SPEED`, or when it is in the hand although the literals do not ask for it to be held. A block

@@ -362,7 +362,7 @@ class SubGoal:
     ``apart`` (put_near only): blocks the moved block must end up not close to, as the planned step
     promises: ``put_near(red,green,not blue)`` is close(red,green) & not close(red,blue). The actor is sent
     a step's whole effect, so that a put near one block does not land near another the plan counts on
-    staying away (issue 51).
+    staying away.
     """
 
     kind: str

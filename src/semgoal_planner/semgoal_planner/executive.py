@@ -301,7 +301,7 @@ class Executive:
     # -- re-planning ---------------------------------------------------------------------------------
     def replan(self, reason: str, by_operator: bool = False) -> tuple[bool, str]:
         """Plan again from the observed state. The monitor's re-plans spend ``max_replans``; an operator's
-        re-plan spends none of it, and a paused plan stays paused (issue 57)."""
+        re-plan spends none of it, and a paused plan stays paused."""
         obs = self.observation
         if self.status in FINISHED or obs is None:
             return False, "nothing to re-plan: no goal is being executed"
@@ -318,7 +318,7 @@ class Executive:
         self.replans += not by_operator
         paused = self.status == PlanStatus.PAUSED
         done = [s for s in self.steps[: self.current] if s.status == StepStatus.DONE]
-        # a step the operator gave a person stays theirs when the new plan has it too (issue 57)
+        # a step the operator gave a person stays theirs when the new plan has it too
         human = {s.subgoal for s in self.steps[self.current:] if s.assignee == Assignee.HUMAN}
         new = [PlanStep(s, assignee=Assignee.HUMAN if s in human else Assignee.ROBOT) for s in steps]
         self._install(done + new, f"re-planned ({reason})", keep=len(done))

@@ -54,7 +54,7 @@ references are apart, the expert first puts one next to the other, as the plan's
 PARTIAL_PUT_SHARE = 0.2
 """With three blocks: the share of other puts that name one reference and nothing more, as an operator may
 type them. The rest promise what the planner's steps promise, where the block ends up with respect to every
-other block: ``put_near(x,y,not z)``, ``put_away(x,y,z)`` (issue 51)."""
+other block: ``put_near(x,y,not z)``, ``put_away(x,y,z)``."""
 BINNED_START_SHARE = 0.5
 """With a bin: the share of starts with some blocks already in it."""
 FULL_BIN_SHARE = 0.5
@@ -70,7 +70,7 @@ others take a block outside the bin, as desk plans do (they never take a block o
 three picks in four lifted a block out of a bin holding three, and DC-4's last pick was rare in training."""
 TAKE_OUT_SHARE = 0.5
 """With blocks in the bin: the share of put_on_table sub-goals that take a binned block back out, so
-operators' take-outs are in the training distribution (issue 49: an actor that had rarely lifted a block
+operators' take-outs are in the training distribution (an actor that had rarely lifted a block
 out let it go over the bin, where it landed back in)."""
 TAKE_OUT = "take_out"
 """A pseudo sub-goal type for ``reset(options={"kind": TAKE_OUT})``: ``put_on_table`` of a block that starts in
@@ -81,7 +81,7 @@ MAX_MISSED_PUT_SHARE = 0.5
 """Largest ``missed_put_share``: most put_near episodes still start with the block held."""
 MISSED_PUT_REACH = (THRESHOLDS.close_distance + 0.002, THRESHOLDS.close_distance + 0.025)
 """A missed put_near start: the block rests this far (centre, m) from one reference, just beyond close, as
-the actors' misses left it (session 52: 0.101 to 0.121 m, then the open fingers hovered over it for good)."""
+the actors' misses left it (0.101 to 0.121 m, then the open fingers hovered over it for good)."""
 MISSED_PUT_TURN = np.pi / 6
 """Largest angle (rad) between a missed block's bearing from its reference and the expert's spot's bearing."""
 MISSED_GRIP_OFFSET = 0.03

@@ -49,7 +49,7 @@ wherever it falls, beside a reference or onto it, the centres end up close (<= 0
 PLACE_HEIGHT = 0.02
 """Puts let go only once the held block's bottom is at most this high (m) above what it will land on (the
 table, the bin floor, a block below): it is placed, not dropped, and comes to rest within a few control
-steps (issue 49: a block let go 12 cm up fell for 6 to 8 steps, and the reward paid for the fall)."""
+steps (a block let go 12 cm up fell for 6 to 8 steps, and the reward paid for the fall)."""
 AWAY_DROP_DISTANCE = THRESHOLDS.close_distance + 0.02
 """Centre distance (m) from every other block at which put_away lets go: 2 cm beyond ``close``, as the reward
 has it, not :data:`AWAY_DISTANCE` (the spot it heads for): with the latter, actors hovered between the two,

@@ -103,7 +103,7 @@ def test_the_env_computes_the_subject_offset_for_its_episode_goal() -> None:
 def test_feature_values_are_pinned_to_their_versions() -> None:
     """Golden values: a change to what a derived feature computes (here or in geometry.bin_spot) fails this
     until FEATURE_VERSIONS is bumped, and a bumped version makes every actor trained on the old one refuse
-    to load, rather than silently see other inputs (issue 50)."""
+    to load, rather than silently see other inputs."""
     assert features.FEATURE_VERSIONS == {"bin_target": 1, "subject_offset": 1}
     scene = "desk_cleanup"
     blocks = np.array([[1.20, 0.60, 0.425], [1.34, 1.00, 0.436], [1.40, 0.70, 0.425], [1.26, 1.00, 0.436]])

@@ -1,4 +1,4 @@
-"""Plain-English goals (issue 51): phrasings and the literals they become, refusals that name the problem,
+"""Plain-English goals: phrasings and the literals they become, refusals that name the problem,
 a round trip from random literal sets through sentences, and the `parse-goal` contract."""
 
 import contextlib
@@ -128,7 +128,7 @@ PHRASES = [
     ("two_blocks", "stack red on green with an empty hand", "above(red,green) & not holding(red) & not holding(green)"),
     ("two_blocks", "lift green off of red", "not above(green,red)"),
     ("two_blocks", "pick up red from green", "holding(red)"),
-    # session 54: phrasings first met outside this list
+    # phrasings first met outside this list
     ("desk_cleanup", "put only red in the bin", "in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
     ("desk_cleanup", "stow blue in the box", "in_bin(blue)"),
     ("desk_cleanup", "pull red out of the bin", "not in_bin(red)"),

@@ -243,7 +243,7 @@ def test_before_any_state_a_goal_is_checked_against_the_scene_then_refused_for_w
 
 
 def test_a_world_reset_to_other_blocks_fails_the_goal_instead_of_crashing() -> None:
-    """Issue 57: ResetWorld to DC-2 while a DC-4 goal ran raised KeyError('blue') in the consistency check."""
+    """ResetWorld to DC-2 while a DC-4 goal ran raised KeyError('blue') in the consistency check."""
     ex = Executive(SemanticPlanner("desk_cleanup"))
     four = ("red", "green", "blue", "yellow")
     ex.observe(Observation(four, [Literal("in_bin", (b,), False) for b in four], 0))
@@ -255,7 +255,7 @@ def test_a_world_reset_to_other_blocks_fails_the_goal_instead_of_crashing() -> N
 
 
 def test_an_operators_replan_keeps_the_pause_and_spends_no_automatic_budget() -> None:
-    """Issue 57: `plan replan` resumed a paused plan and spent max_replans (the 11th failed the goal)."""
+    """`plan replan` once resumed a paused plan and spent max_replans (the 11th failed the goal)."""
     ex = Executive(SemanticPlanner("desk_cleanup"), max_replans=2)
     blocks = ("red", "green")
     ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
@@ -269,7 +269,7 @@ def test_an_operators_replan_keeps_the_pause_and_spends_no_automatic_budget() ->
 
 
 def test_a_persons_steps_stay_theirs_across_a_replan() -> None:
-    """Issue 57: every re-plan turned human steps back into robot steps."""
+    """Every re-plan turned human steps back into robot steps."""
     ex = Executive(SemanticPlanner("desk_cleanup"))
     blocks = ("red", "green")
     ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
@@ -283,7 +283,7 @@ def test_a_persons_steps_stay_theirs_across_a_replan() -> None:
 
 
 def test_a_persons_step_has_a_time_limit_and_a_pick_is_never_theirs() -> None:
-    """Issue 57: a person could be asked to make the robot hold a block, and waited for without end."""
+    """A person could be asked to make the robot hold a block, and waited for without end."""
     ex = Executive(SemanticPlanner("desk_cleanup"), human_steps=40)
     blocks = ("red", "green")
     ex.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
@@ -335,7 +335,7 @@ def test_a_goal_that_holds_with_a_block_in_the_hand_it_does_not_ask_for_is_plann
     ("in_bin(purple)", "unknown object 'purple'"), ("in_bin(red) & not in_bin(red)", "contradictory goal"),
     ("put the block in the bin", "ambiguous")])
 def test_an_ill_posed_goal_is_refused_with_its_reason_and_the_plan_under_way_stays(goal: str, named: str) -> None:
-    """Issue 51 item 3: the reason comes before anything moves, and the last good plan goes on."""
+    """The reason comes before anything moves, and the last good plan goes on."""
     ex = executive()
     assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
     before, revision, status = copy.deepcopy(ex.steps), ex.revision, ex.status

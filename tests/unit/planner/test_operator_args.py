@@ -1,4 +1,4 @@
-"""`./semgoal plan` refuses a step number it cannot send, before anything is sent (issue 57: '²' printed a
+"""`./semgoal plan` refuses a step number it cannot send, before anything is sent ('²' printed a
 traceback, and 4294967302 wrapped round to step 6 in the uint32 field)."""
 
 import pytest

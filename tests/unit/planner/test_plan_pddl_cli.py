@@ -49,7 +49,7 @@ TOKENS_PROBLEM = """(define (problem p1) (:domain HOPS) (:objects a b c)
 
 
 def test_a_question_mark_starts_a_token_and_names_ignore_case(tmp_path: Path, capsys) -> None:
-    """zenotravel writes ``(aircraft?a)``: read as ``aircraft ?a``, as other PDDL readers do (issue 56)."""
+    """zenotravel writes ``(aircraft?a)``: read as ``aircraft ?a``, as other PDDL readers do."""
     (tmp_path / "d.pddl").write_text(TOKENS_DOMAIN)
     (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
     assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 0
@@ -89,7 +89,7 @@ EITHER_PROBLEM = """(define (problem p) (:domain depotish) (:objects c - crate h
 
 
 def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) -> None:
-    """storage's ``(either ...)`` parameters (issue 56): planned, and the plan checks out step by step."""
+    """storage's ``(either ...)`` parameters: planned, and the plan checks out step by step."""
     import sys
 
     sys.path.insert(0, str(Path(__file__).parents[3] / "bench"))

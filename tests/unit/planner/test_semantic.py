@@ -85,7 +85,7 @@ def test_unreachable_goal_is_reported() -> None:
      "pick(red), the only action that makes holding(red) true, needs above(green,red) false"),
 ])
 def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: str, named: str) -> None:
-    """Issue 51: not only "no state reachable", but which of the goal's literals exclude each other and, where
+    """Not only "no state reachable", but which of the goal's literals exclude each other and, where
     the actions that make one true show it, the domain's reason. Some of these goals never reach a planner
     (``semgoal_core.consistency`` refuses them where they are typed); the planner explains them all the same."""
     objects = ("red", "green")
@@ -95,7 +95,7 @@ def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: 
 
 
 def test_every_three_block_put_says_where_the_block_ends_up_with_respect_to_both_others() -> None:
-    """No action leaves the moved block's closeness to a bystander to the frame (issue 51)."""
+    """No action leaves the moved block's closeness to a bystander to the frame."""
     blocks = ("red", "green", "blue")
     task = SemanticPlanner("three_blocks").task(blocks, [], [Literal("close", ("red", "green"))])
     puts = [plan2goal(op) for op in task.operators if op.name != "pick"]

@@ -1,4 +1,4 @@
-"""Success at rest (issue 49), in real physics: a goal counts only once its literals hold with every block
+"""Success at rest, in real physics: a goal counts only once its literals hold with every block
 still, for SETTLE_STEPS control steps. Under the old rule (the first step at which the literals held)
 the falling block below was a success at once."""
 

@@ -40,7 +40,7 @@ def test_her_relabels_with_future_achieved_goals_and_keeps_labels_only_for_own_g
 
 def test_her_pays_a_relabelled_goal_only_where_the_world_was_at_rest() -> None:
     """put_near(red,green)'s literals hold from the first step, but red falls until step 3: a transition
-    into steps 1 to 3 earns nothing, into steps 4 and 5 it earns 1 (issue 49)."""
+    into steps 1 to 3 earns nothing, into steps 4 and 5 it earns 1."""
     horizon = 5
     goal_layout = LAYOUTS[SCENE]
     target, mask = goal_layout.encode([Literal("close", ("red", "green")), Literal("holding", ("red",), False)])
@@ -137,7 +137,7 @@ def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
     assert np.isfinite(action).all() and np.abs(action).max() <= 1.0 and not np.array_equal(action, HOLD)
     assert np.array_equal(controller.act(np.full_like(obs, np.nan)), HOLD)
     assert np.array_equal(controller.act(obs[:5]), HOLD)
-    assert np.isfinite(controller.act(obs, (-5, 2**63 - 1))).all()  # a malformed seed (issue 57) keys noise too
+    assert np.isfinite(controller.act(obs, (-5, 2**63 - 1))).all()  # a malformed seed keys noise too
     with pytest.raises(VocabularyError):
         controller.set_subgoal([Literal("in_bin", ("red",))])
 

@@ -58,7 +58,7 @@ def test_recent_answers_repeat_an_answer_by_request_id_and_forget_the_oldest() -
 
 
 def test_a_request_id_is_bound_to_its_request() -> None:
-    """Issue 57: a reused request id returned the old answer for a different edit."""
+    """A reused request id returned the old answer for a different edit."""
     recent = RecentAnswers()
     recent.remember("id-1", "removed step 2", ("remove", 2))
     assert recent.get("id-1", ("remove", 2)) == "removed step 2"

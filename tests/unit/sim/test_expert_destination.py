@@ -23,7 +23,7 @@ def carried(block: np.ndarray, others: dict[str, np.ndarray], with_bin: bool = F
 
 
 def assert_lets_go(action: np.ndarray, where: object = None) -> None:
-    """The arm stays put and the fingers open fully (session 33: a label of +0.015, just past the few mm
+    """The arm stays put and the fingers open fully (a label of +0.015, just past the few mm
     that drop a held block, was cloned as 0 and actors hovered holding the block)."""
     np.testing.assert_allclose(action[:3], 0.0, err_msg=str(where))
     assert action[3] == RELEASE, where
@@ -31,9 +31,9 @@ def assert_lets_go(action: np.ndarray, where: object = None) -> None:
 
 def test_put_near_places_wherever_every_reference_is_within_reach() -> None:
     """Beside green, with every reference within reach: the label opens the fingers where the block is,
-    once it is at most PLACE_HEIGHT over what it lands on, and lowers it (fingers shut) while higher. Until
-    session 28 the expert carried it on to its exact spot, and cloning froze the actor there; until
-    session 44 it let go at carry height, and the block fell for 6 to 8 steps (issue 49)."""
+    once it is at most PLACE_HEIGHT over what it lands on, and lowers it (fingers shut) while higher. An expert
+    that carried it on to its exact spot froze the cloned actor there; one that let go at carry height
+    dropped the block for 6 to 8 steps."""
     green = np.array([1.30, 0.75, REST_Z])
     for offset in ([0.08, 0.0, 0.015], [0.0, 0.07, 0.01], [0.06, 0.05, PLACE_HEIGHT - 0.002]):
         assert_lets_go(expert_action(SubGoal("put_near", ("red", "green")), carried(green + np.array(offset), {"green": green})), offset)
@@ -57,7 +57,7 @@ def test_put_near_carries_the_block_on_while_a_reference_is_out_of_reach() -> No
 
 
 def test_put_away_lets_go_low_over_a_spot_far_from_its_references_only() -> None:
-    """Session 32: three_blocks actors hovered, holding the block where letting go would have done (more
+    """Three_blocks actors hovered, holding the block where letting go would have done (more
     than 10 cm from the others), the expert's label carrying it on with the fingers shut."""
     green, blue = np.array([1.20, 0.60, REST_Z]), np.array([1.40, 0.80, REST_Z])
     subgoal, others = SubGoal("put_away", ("red", "green")), {"green": green, "blue": blue}

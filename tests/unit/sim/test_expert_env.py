@@ -96,8 +96,8 @@ def test_pick_episodes_sometimes_start_with_the_arm_elsewhere() -> None:
 @pytest.mark.parametrize("scene", ["three_blocks", "desk_cleanup"])
 def test_picks_sometimes_start_where_a_put_of_another_block_left_the_arm(scene: str) -> None:
     """The hand-over a plan makes: the open fingers above the block just put, nothing held (a put lets go
-    from up to carry height, session 28, and backs away upward; opened fully at once, session 33, the
-    fingers can leave the block landing a few cm off to the side)."""
+    from up to carry height and backs away upward; opened fully at once, the fingers can leave the block
+    landing a few cm off to the side)."""
     env = SubgoalEnv(scene)
     after_put = 0
     for seed in range(30):
@@ -168,7 +168,7 @@ def test_missed_puts_are_a_training_setting_off_by_default() -> None:
         SubgoalEnv("three_blocks", missed_put_share=0.9)
 
 
-PINNED_PUT_NEAR_STARTS = [  # (seed, sub-goal, grip xyz, block xyz), as eval-subgoals has drawn them since session 51
+PINNED_PUT_NEAR_STARTS = [  # (seed, sub-goal, grip xyz, block xyz), as eval-subgoals draws them
     (2010000, "put_near(blue,green)", (1.381, 0.557, 0.547), (1.386, 0.557, 0.548)),
     (2010001, "put_near(blue,red,green)", (1.191, 0.736, 0.562), (1.183, 0.737, 0.529)),
     (2010002, "put_near(blue,red,not green)", (1.342, 0.749, 0.533), (1.342, 0.749, 0.532)),
@@ -258,7 +258,7 @@ def test_desk_starts_fill_the_bin_with_any_number_of_blocks_apart_from_each_othe
         per_block += inside
         off_slot += any(np.abs(bin_.slots()[:, 0] - x).min() > 0.013 for x in binned[:, 0])
     assert set(counts) == {0, 1, 2, 3}  # never all four: a put_in_bin needs a block left out
-    assert counts.count(3) >= 100  # DC-4's last put: 128 here (with the sampler before session 29: 34)
+    assert counts.count(3) >= 100  # DC-4's last put: 128 here (with the earlier sampler: 34)
     assert per_block.min() >= 30  # any block, yellow too (it never was)
     assert off_slot >= 50  # untidy bins, blocks wherever a put let go of them: 77 here
 
@@ -277,12 +277,12 @@ def test_desk_sub_goals_mostly_take_a_block_outside_the_bin() -> None:
             continue
         binned_targets += bool(inside[env.world.blocks.index(subgoal.block)])
         last_picks += inside.sum() == 3 and not inside[env.world.blocks.index(subgoal.block)]
-    assert binned_targets <= 10  # 2 here; drawn alike (before session 20), 41
+    assert binned_targets <= 10  # 2 here; drawn alike, 41
     assert last_picks >= 20  # 29 here; drawn alike, 10
 
 
 def test_a_spawn_margin_starts_table_blocks_beyond_the_task_area_in_x_only() -> None:
-    """Session 31: desk actors stalled over blocks at the far edge of the task area, the edge of their data."""
+    """Desk actors stalled over blocks at the far edge of the task area, the edge of their data."""
     def table_xy(env: SubgoalEnv) -> np.ndarray:
         positions = env._sample_positions()
         on_table = ~env.scene.bin.contains(positions, TABLE_TOP)

@@ -1,5 +1,5 @@
 """How the scripted expert approaches a block it picks: nearby states get nearby labels, so that an actor
-cloning them cannot settle between two that disagree (session 34: labels 1 mm apart said rise and
+cloning them cannot settle between two that disagree (labels 1 mm apart said rise and
 descend, and actors stalled over blocks 1 to 1.5 cm off in xy)."""
 
 import numpy as np

@@ -124,7 +124,7 @@ def test_a_grasp_low_on_a_stack_lifts_both_blocks_and_the_expert_picks_the_top_o
 def test_a_block_flung_over_the_bin_stays_on_the_desk(speed: float) -> None:
     """The bin's far wall is a backboard: a block let go moving away from the robot over the bin lands in
     it. With the low far wall it flew off the desk's far edge, 3.5 cm behind the bin, out of the arm's
-    reach: most lost DC-4 episodes until session 29."""
+    reach: once most lost DC-4 episodes."""
     world = FetchWorld("desk_cleanup", 2)
     bin_ = world.scene.bin
     rest = TABLE_TOP + 0.025
@@ -139,14 +139,14 @@ def test_a_block_flung_over_the_bin_stays_on_the_desk(speed: float) -> None:
 
 
 def test_the_seed_stream_wraps_within_int64() -> None:
-    """Issue 57: a reset to seed 2**63 - 1, then to the next seed (-1), overflowed WorldState.seed."""
+    """A reset to seed 2**63 - 1, then to the next seed (-1), overflowed WorldState.seed."""
     core = SimCore("two_blocks", "MC-2", seed=0)
     assert core.reset("MC-2", 2**63 - 1)[0]
     assert core.reset("MC-2", -1) == (True, "reset to MC-2 with seed 0")
 
 
 def test_move_block_sets_a_block_in_the_bin_and_refuses_the_walls() -> None:
-    """Issue 57: a MoveBlock into the bin's wall reported success and the block was thrown off the desk."""
+    """A MoveBlock into the bin's wall reported success and the block was thrown off the desk."""
     core = SimCore("desk_cleanup", "DC-2", seed=0)
     bin_ = core.world.scene.bin
     ok, message = core.move_block("red", np.array(bin_.center))
@@ -161,7 +161,7 @@ def test_move_block_sets_a_block_in_the_bin_and_refuses_the_walls() -> None:
 
 
 def test_a_reset_to_given_positions_starts_there_and_refuses_what_no_world_can_hold() -> None:
-    """The goal families' starts through ResetWorld.positions (issue 51): checked, the world unchanged on refusal."""
+    """The goal families' starts through ResetWorld.positions: checked, the world unchanged on refusal."""
     core = SimCore("three_blocks", "MC-3", seed=0)
     start = np.array([[1.25, 0.70, TABLE_TOP + 0.025], [1.35, 0.70, TABLE_TOP + 0.025], [1.35, 0.70, TABLE_TOP + 0.076]])
     ok, message = core.reset("MC-3", 7, start.ravel())

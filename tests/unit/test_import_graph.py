@@ -1,6 +1,6 @@
-"""The packages' import graph: core <- ros <- {sim, planner, policy} <- bringup (the middle three
-never import each other), and the nodes that only read world states (predicates, planner, policy) load no
-MuJoCo."""
+"""The packages' import graph: core <- ros <- {sim, planner, policy, perception} <- bringup (the middle
+four never import each other), and the nodes that only read world states (predicates, planner, policy) and
+the whole perception package (it sees through the camera, never the simulator) load no MuJoCo."""
 
 import ast
 import subprocess
@@ -16,6 +16,7 @@ ALLOWED = {
     "semgoal_sim": {"semgoal_core", "semgoal_ros", "semgoal_msgs"},
     "semgoal_planner": {"semgoal_core", "semgoal_ros", "semgoal_msgs"},
     "semgoal_policy": {"semgoal_core", "semgoal_ros", "semgoal_msgs"},
+    "semgoal_perception": {"semgoal_core", "semgoal_ros", "semgoal_msgs"},
 }
 
 
@@ -36,7 +37,8 @@ def test_a_package_imports_only_the_layers_below_it(package: str) -> None:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("module", ["semgoal_sim.predicate_node", "semgoal_planner.planner_node", "semgoal_policy.policy_node"])
+@pytest.mark.parametrize("module", ["semgoal_sim.predicate_node", "semgoal_planner.planner_node", "semgoal_policy.policy_node",
+                                    "semgoal_perception.perception_node", "semgoal_perception.training"])
 def test_a_node_that_reads_world_states_loads_no_mujoco(module: str) -> None:
     loaded = subprocess.run([sys.executable, "-c", f"import sys, {module}; print('mujoco' in sys.modules)"],
                             capture_output=True, text=True, check=True).stdout.strip()

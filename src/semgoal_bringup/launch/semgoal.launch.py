@@ -2,7 +2,8 @@
 
 Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
 ``record`` (an MCAP file), ``foxglove`` and ``console`` (ports for the live view and the console), ``state_dir``
-(the planner's journal: a respawned planner carries on with the plan);
+(the planner's journal: a respawned planner carries on with the plan), ``perception`` and ``policy_input``
+(truth | camera: what the planner and the policy see by);
 ``--show-args`` lists them. The nodes and their parameters come from ``semgoal_bringup.graph``, the
 definition `./semgoal up` starts from, over the installed parameter file; a node that dies is started
 again, as under `./semgoal up`.
@@ -13,7 +14,7 @@ from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, params_file, run_state_dir, rviz_config, scene_task
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_nodes, params_file, run_state_dir, rviz_config, scene_task
 
 
 def generate_launch_description() -> LaunchDescription:
@@ -30,7 +31,8 @@ def launch_nodes(context) -> list[Node]:
                   parameters=[str(params_file()), params])
              for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
                                                             value["record"], value["foxglove"], value["console"],
-                                                            run_state_dir(value["state_dir"]))]
+                                                            run_state_dir(value["state_dir"]),
+                                                            Sight(value["perception"], value["policy_input"]))]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
     return nodes

@@ -30,6 +30,8 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "bench-policy": ("bench.policy", "training steps/s and actor latency beside SB3 SAC+HER"),
     "bench-eval": ("bench.eval", "evaluation episodes/s on the local pool and on Dask, 1 and 2 workers"),
     "eval-goals": ("semgoal_bringup.goal_eval", "the hierarchical agent on goal families beyond the benchmark"),
+    "train-perception": ("semgoal_bringup.perception_training", "render labelled camera frames and train the block voter"),
+    "eval-perception": ("semgoal_bringup.perception_eval", "the block voter on held-out frames: pose error, literal agreement, latency"),
     "eval-subgoals": ("semgoal_bringup.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
 }
 

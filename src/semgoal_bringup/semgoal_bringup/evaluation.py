@@ -32,9 +32,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from semgoal_bringup.executors import check_executor, run_jobs
+from semgoal_bringup.graph import SOURCES, TRUTH, Sight
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
+from semgoal_sim.camera import CONDITIONS
 
 if TYPE_CHECKING:
     from semgoal_bringup.episodes import Outcome
@@ -248,7 +250,8 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
     return merge(run_jobs(evaluate_task, work, executor, jobs, what="eval job"))
 
 
-def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None) -> Row:
+def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None,
+                     sight: Sight = TRUTH) -> Row:
     from tqdm import tqdm
 
     from semgoal_bringup.graph_eval import run_via_ros
@@ -256,7 +259,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Pa
 
     row = Row(VIA_ROS)
     started = time.perf_counter()
-    outcomes = run_via_ros(task_names, episodes, seed, record=record)
+    outcomes = run_via_ros(task_names, episodes, seed, record=record, sight=sight)
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
         row.add("shipped", outcome, first_step_observed=False)  # the graph runs the shipped actors
     for task_name in task_names:
@@ -417,6 +420,12 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
+    parser.add_argument("--perception", default="truth", choices=SOURCES,
+                        help="with --via-ros: the planner's predicates from the simulator's poses or the camera")
+    parser.add_argument("--policy-input", default="truth", choices=SOURCES,
+                        help="with --via-ros: the policy's block poses from the simulator or the camera")
+    parser.add_argument("--camera-condition", default="nominal", choices=tuple(CONDITIONS),
+                        help="with --perception camera: the camera's look (moved: beyond training's range)")
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
@@ -435,6 +444,12 @@ def main(argv: list[str]) -> int:
         parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
         parser.error("--record writes the episodes run through the graph: add --via-ros")
+    try:
+        sight = Sight(args.perception, args.policy_input, args.camera_condition)
+    except ValueError as error:
+        parser.error(str(error))
+    if sight != TRUTH and not args.via_ros:
+        parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]
     unknown = [a for a in agents if a not in AGENT_NAMES]
     if unknown or not agents or not tasks or args.episodes < 1:
@@ -451,7 +466,7 @@ def main(argv: list[str]) -> int:
     failed = False
     if args.via_ros:
         try:
-            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record))
+            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight))
         except RuntimeError as error:  # the in-process rows are still written
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True

@@ -8,6 +8,7 @@ import os
 import subprocess
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 from semgoal_core.tasks import get_task
@@ -15,6 +16,35 @@ from semgoal_ros.domains import domain_for_this_process
 
 NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
          ("semgoal_planner", "planner_node"), ("semgoal_policy", "policy_node"))
+SOURCES = ("truth", "camera")
+"""Where the blocks' poses come from: the simulator's (``truth``) or the RGB-D camera's perception."""
+
+
+@dataclass(frozen=True)
+class Sight:
+    """What the planner and the policy see by: ``perception`` camera runs perception_node in place of
+    predicate_node (the sim publishes its camera); ``policy_input`` camera gives the policy the perceived
+    world state (needs the camera perception); ``camera_condition``: the sim camera's look."""
+
+    perception: str = "truth"
+    policy_input: str = "truth"
+    camera_condition: str = "nominal"
+
+    def __post_init__(self) -> None:
+        for name in ("perception", "policy_input"):
+            if getattr(self, name) not in SOURCES:
+                raise ValueError(f"{name} must be one of {', '.join(SOURCES)}, got {getattr(self, name)!r}")
+        if self.policy_input == "camera" and self.perception != "camera":
+            raise ValueError("the policy can only take the camera's poses when the perception runs on the camera "
+                             "(perception camera)")
+
+    def nodes(self) -> tuple[tuple[str, str], ...]:
+        semantics = ("semgoal_perception", "perception_node") if self.perception == "camera" else NODES[1]
+        return (NODES[0], semantics, *NODES[2:])
+
+
+TRUTH = Sight()
+"""The simulator's poses for everyone (the benchmark's setting)."""
 
 
 LAUNCH_ARGUMENTS = (
@@ -29,6 +59,8 @@ LAUNCH_ARGUMENTS = (
     ("console", "", "a port to serve the collaboration console on, at 127.0.0.1 (empty: none)"),
     ("state_dir", "", "a folder for the planner's journal, so that a restarted planner carries on with the plan "
      "(empty: a new temporary folder for this run)"),
+    ("perception", "truth", "truth: predicates on the simulator's poses | camera: perception_node on the RGB-D camera"),
+    ("policy_input", "truth", "truth: the policy reads the simulator's poses | camera: the perceived ones"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -52,18 +84,19 @@ def scene_task(scene: str, task_name: str):
 
 
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
-                foxglove: str = "", console: str = "", state_dir: str = "") -> list[tuple[str, str, dict[str, object]]]:
+                foxglove: str = "", console: str = "", state_dir: str = "",
+                sight: Sight = TRUTH) -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
     ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` or
     ``console`` (a port each), the live view and the console last. ValueError for a port that is not a number."""
-    params = node_params(task_name, seed, mode, models, state_dir)
+    params = node_params(task_name, seed, mode, models, state_dir, sight)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
     views = []
     for name, port, executable in (("foxglove", foxglove, "foxglove_node"), ("console", console, "console_node")):
         if port and not port.isdigit():
             raise ValueError(f"{name} must be a port number, got {port!r}")
         views += [("semgoal_bringup", executable, {"port": int(port)})] if port else []
-    return [*recorder, *((package, executable, params[executable]) for package, executable in NODES), *views]
+    return [*recorder, *((package, executable, params[executable]) for package, executable in sight.nodes()), *views]
 
 
 def run_state_dir(given: str) -> str:
@@ -82,15 +115,21 @@ def rviz_config() -> Path:
 
 
 def node_params(task_name: str, seed: int, mode: str, models: str = "",
-                state_dir: str = "") -> dict[str, dict[str, object]]:
+                state_dir: str = "", sight: Sight = TRUTH) -> dict[str, dict[str, object]]:
     """The task's own parameters per executable, set on top of :func:`params_file`; ``state_dir``: the planner's
     journal (empty: none)."""
+    from semgoal_ros import interfaces as topics
+
     task = get_task(task_name)
+    camera = {"camera": True, "camera_condition": sight.camera_condition} if sight.perception == "camera" else {}
+    world = {"world_topic": topics.PERCEIVED_WORLD} if sight.policy_input == "camera" else {}
     return {
-        "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode},
+        "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode, **camera},
         "predicate_node": {},
+        "perception_node": {},
         "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {})},
-        "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": f"{models}/{task.scene}"} if models else {})},
+        "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": f"{models}/{task.scene}"} if models else {}),
+                        **world},
     }
 
 
@@ -115,12 +154,13 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "", record: str = "",
-                foxglove: str = "", console: str = "") -> dict[str, subprocess.Popen]:
+                foxglove: str = "", console: str = "", sight: Sight = TRUTH) -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
     ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``, ``console``: ports for the
-    live view and the console."""
+    live view and the console; ``sight``: what the planner and the policy see by."""
     return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove, console)
+            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove, console,
+                                                           sight=sight)
             if executable not in skip}
 
 
@@ -136,14 +176,14 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
 
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
-                  models: str = "", watch: bool = True) -> Iterator:
+                  models: str = "", watch: bool = True, sight: Sight = TRUTH) -> Iterator:
     """The four nodes and a :class:`GraphClient` on a ROS domain of their own (:mod:`semgoal_ros.domains`), ready;
     all stopped on exit. ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do
     not come up."""
     from semgoal_ros.client import GraphClient
 
     with domain_for_this_process():
-        processes = start_graph(task_name, seed, mode=mode, models=models)
+        processes = start_graph(task_name, seed, mode=mode, models=models, sight=sight)
         client = None
         try:
             client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")

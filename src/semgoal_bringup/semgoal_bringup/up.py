@@ -16,7 +16,7 @@ import shutil
 import subprocess
 import time
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, node_command, run_state_dir, rviz_config, scene_task, stop_graph
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_nodes, node_command, run_state_dir, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
 
 DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
@@ -47,7 +47,7 @@ def main(argv: list[str]) -> int:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
     try:
         nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console,
-                            run_state_dir(args.state_dir))
+                            run_state_dir(args.state_dir), Sight(args.perception, args.policy_input))
     except ValueError as error:
         parser.error(str(error))
     processes = {executable: start_node(package, executable, params, args.log_level)

@@ -337,6 +337,34 @@ def evaluate(
     return vector
 
 
+def threshold_margins(layout: SemanticLayout, block_positions: np.ndarray, grip_position: np.ndarray,
+                      table_height: float, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
+    """(layout.size,) how far (m) each grounded predicate's geometry is from its nearest threshold: a literal
+    within a few millimetres of one can flip under that much position error (an estimate's accuracy is
+    reported apart for such cases). Absent blocks' entries are meaningless."""
+    positions = np.asarray(block_positions, dtype=np.float64)
+    t = thresholds
+    margins = np.full(layout.size, np.inf)
+    for name, (entries, args) in layout.groundings.items():
+        a = positions[args[:, 0]]
+        if name == "close":
+            value = np.abs(np.linalg.norm(a - positions[args[:, 1]], axis=1) - t.close_distance)
+        elif name == "above":
+            delta = a - positions[args[:, 1]]
+            value = np.minimum.reduce([np.abs(np.linalg.norm(delta[:, :2], axis=1) - t.above_xy),
+                                       np.abs(delta[:, 2] - t.above_dz_min), np.abs(delta[:, 2] - t.above_dz_max)])
+        elif name == "holding":
+            rel = a - np.asarray(grip_position)
+            value = np.minimum(np.abs(np.linalg.norm(rel[:, :2], axis=1) - t.holding_xy), np.abs(np.abs(rel[:, 2]) - t.holding_z))
+        else:  # in_bin
+            geometry = layout.scene.bin
+            offset = np.abs(a[:, :2] - np.asarray(geometry.center))
+            rim = table_height + geometry.floor_thickness + geometry.wall_height
+            value = np.minimum(np.abs(offset - np.asarray(geometry.inner_half_size)).min(axis=1), np.abs(a[:, 2] - rim))
+        margins[entries] = value
+    return margins
+
+
 def fallen_blocks(names: Sequence[str], block_positions: np.ndarray, table_height: float,
                   thresholds: Thresholds = THRESHOLDS) -> list[str]:
     """The blocks among ``names`` (centres ``block_positions``, (N, 3)) that fell off the table: out of the

@@ -110,6 +110,8 @@ class Executive:
     """Control steps (``goal_steps``) the goal may take before it fails (0: no limit)."""
     events: list[str] = field(default_factory=list)
     """Readable log lines since the last :meth:`drain_events` (the node logs them)."""
+    blind: str = ""
+    """Why the plan is paused for want of a trustworthy state (:meth:`pause_blind`); "" when it is not."""
 
     def __post_init__(self) -> None:
         self.confirmation = Settling(self.settle_steps)
@@ -381,15 +383,32 @@ class Executive:
             return self.replan("asked by the operator", by_operator=True)
         return self._edit_steps(op, index, to_index, action)
 
-    def _pause(self, pause: bool) -> tuple[bool, str]:
+    def pause_blind(self, reason: str) -> None:
+        """Pause an executing plan while the state it would act on cannot be trusted (``reason``: no camera
+        frame, say); :meth:`resume_sighted` carries on. A plan paused by the operator, or not executing, is
+        left as it is."""
+        if self.status == PlanStatus.EXECUTING and not self.blind:
+            self.blind = reason
+            self._pause(True, f"paused: {reason}")
+
+    def resume_sighted(self) -> None:
+        """A trustworthy state again: resume the plan :meth:`pause_blind` paused."""
+        if self.blind:
+            self.blind = ""
+            if self.status == PlanStatus.PAUSED:
+                self._pause(False, "resumed: the state can be trusted again")
+
+    def _pause(self, pause: bool, message: str = "") -> tuple[bool, str]:
         if pause and self.status != PlanStatus.EXECUTING:
             return False, f"cannot pause: the plan is {self.status}"
         if not pause and self.status != PlanStatus.PAUSED:
             return False, f"cannot resume: the plan is {self.status}"
+        if not pause and self.blind and not message:
+            return False, f"cannot resume: {self.blind}; the plan resumes by itself once the state can be trusted"
         self.status = PlanStatus.PAUSED if pause else PlanStatus.EXECUTING
         if not pause and self.observation:
             self.step_started = self.observation.step
-        self._changed("paused" if pause else "resumed")
+        self._changed(message or ("paused" if pause else "resumed"))
         if not pause:
             self._advance()
         return True, self.message

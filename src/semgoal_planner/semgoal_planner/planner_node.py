@@ -222,8 +222,12 @@ class PlannerNode(Node):
         replans = self.executive.replans
         with self.deciding.time():
             self.executive.tick(int(msg.step))
-            self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
-                                               tuple(msg.moving)))
+            if msg.stale:  # the source says this state is not to be acted on: hold the plan until one is
+                self.executive.pause_blind(msg.stale)
+            else:
+                self.executive.resume_sighted()
+                self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
+                                                   tuple(msg.moving)))
         self.counters["re-plans"] += max(0, self.executive.replans - replans)
         self.publish(decided=True)
 
@@ -432,7 +436,8 @@ class PlannerNode(Node):
 
     def plan_message(self) -> Plan:
         ex = self.executive
-        msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans)
+        msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans,
+                   paused_because=ex.blind)
         msg.header.stamp = self.get_clock().now().to_msg()
         msg.steps = [self.step_message(i, step.subgoal, step.status, step.assignee) for i, step in enumerate(ex.steps)]
         return msg

@@ -40,6 +40,8 @@ PARAMS = (
     Param("model_dir", "", "an exported actor's folder (empty: the shipped one for the scene)"),
     Param("mode", Mode.LOCKSTEP.value, "must match the sim's: lockstep | realtime", choices=tuple(Mode)),
     Param("rate_hz", 25.0, "realtime mode: commands per second", low=0.1, high=1000.0, runtime=True),
+    Param("world_topic", topics.WORLD_STATE, "the world state the actor reads: the sim's, or the camera's "
+          f"perception ({topics.PERCEIVED_WORLD})", choices=(topics.WORLD_STATE, topics.PERCEIVED_WORLD)),
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
 )
@@ -64,7 +66,7 @@ class PolicyNode(Node):
                                f"{self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
-        self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
+        self.create_subscription(WorldState, values["world_topic"], self.world_callback, topics.STREAM)
         self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.PER_STEP)
         self.latest: WorldState | None = None
         self.decisions: dict[tuple[int, int], SubGoal] = {}

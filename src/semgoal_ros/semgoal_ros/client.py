@@ -176,16 +176,21 @@ class GraphClient:
     # -- calls ---------------------------------------------------------------------------------------
     def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True) -> bool:
         """Sim services, the planner's services and action, the predicates and (with ``policy``) the policy
-        are up: world state is read by the predicates and the policy, the semantic state by the planner, the
-        sub-goal by the policy, and each of them by this client too when it watches."""
+        are up: world state is read by the predicates (or the perception) and the policy (the sim's, or the
+        perceived one), the semantic state by the planner, the sub-goal by the policy, and each of them by this
+        client too when it watches."""
         own = int(self.watch)
         world_readers, subgoal_readers = (2 + own, 1 + own) if policy else (1 + own, own)
         return self.spin_until(lambda: (self.reset_client.service_is_ready() and self.plan_client.service_is_ready()
                                         and self.action.server_is_ready()
-                                        and self.node.count_subscribers(topics.WORLD_STATE) >= world_readers
+                                        and self.world_readers() >= world_readers
                                         and self.node.count_subscribers(topics.SEMANTIC_STATE) >= 1 + own
                                         and self.node.count_subscribers(topics.SUBGOAL) >= subgoal_readers),
                                timeout)
+
+    def world_readers(self) -> int:
+        """Readers of the sim's world state and of the camera's perceived one (the policy reads either)."""
+        return self.node.count_subscribers(topics.WORLD_STATE) + self.node.count_subscribers(topics.PERCEIVED_WORLD)
 
     def call(self, client, request, wait_s: float = SERVICE_WAIT_S):
         """Call a service (waiting up to ``wait_s`` for it to appear), sending the request again while no

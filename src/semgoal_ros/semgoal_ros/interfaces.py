@@ -26,6 +26,13 @@ ARM_COMMAND = f"{NAMESPACE}/arm_command"
 MARKERS = f"{NAMESPACE}/markers"
 PLAN_MARKERS = f"{NAMESPACE}/plan_markers"
 CAMERA_IMAGE = f"{NAMESPACE}/camera/image_raw"
+RGBD_COLOUR = f"{NAMESPACE}/rgbd/color/image_raw"
+RGBD_DEPTH = f"{NAMESPACE}/rgbd/depth/image_raw"
+RGBD_INFO = f"{NAMESPACE}/rgbd/color/camera_info"
+TF = "/tf"
+TF_STATIC = "/tf_static"
+BLOCK_ESTIMATES = f"{NAMESPACE}/perception/blocks"
+PERCEIVED_WORLD = f"{NAMESPACE}/perception/world_state"
 RESET_WORLD = f"{NAMESPACE}/reset_world"
 MOVE_BLOCK = f"{NAMESPACE}/move_block"
 GET_PLAN = f"{NAMESPACE}/get_plan"
@@ -96,6 +103,19 @@ CAMERA = QoSProfile(
     durability=DurabilityPolicy.VOLATILE,
 )
 """Rendered frames: only the newest matters, a dropped one is no loss (ROS's sensor-data profile)."""
+
+RGBD = QoSProfile(
+    depth=5,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.VOLATILE,
+)
+"""The RGB-D sensor: reliable, since in lockstep the perception's semantic state of each frame counts (a lost
+frame would stall the planner's clock); a few kept for the reader's synchronisation of the three."""
+
+TF_QOS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
+                    durability=DurabilityPolicy.VOLATILE)
+"""/tf as tf2's listeners expect it (reliable, volatile, depth 100); /tf_static is :data:`LATCHED`."""
 
 
 def spin_executor_until(executor, condition: Callable[[], bool], timeout: float) -> bool:

@@ -82,7 +82,8 @@ def plan_markers(plan: Plan):
 
 def format_plan(plan: Plan) -> str:
     """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current)."""
-    lines = [f"goal: {plan.goal or '(none)'}   status: {plan.status}   revision {plan.revision}   replans {plan.replans}"]
+    status = f"{plan.status} ({plan.paused_because})" if plan.paused_because else plan.status
+    lines = [f"goal: {plan.goal or '(none)'}   status: {status}   revision {plan.revision}   replans {plan.replans}"]
     for step in plan.steps:
         marker = ">" if step.index == plan.current and plan.status == PlanStatus.EXECUTING else " "
         lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")

@@ -3,16 +3,18 @@ expert's view of a world state. What every node reads from a world state is in `
 
 from __future__ import annotations
 
+import mujoco
 import numpy as np
 from builtin_interfaces.msg import Time
-from geometry_msgs.msg import Point, Vector3
-from sensor_msgs.msg import Image, JointState
+from geometry_msgs.msg import Point, TransformStamped, Vector3
+from sensor_msgs.msg import CameraInfo, Image, JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES
 from semgoal_msgs.msg import BlockState, WorldState
 from semgoal_ros.messages import block_positions
+from semgoal_sim.camera import Frame
 from semgoal_sim.expert import WorldView
 from semgoal_sim.world import FetchWorld, Snapshot
 
@@ -107,3 +109,44 @@ def image(frame: np.ndarray, step: int) -> Image:
     msg.header.frame_id = f"sim_camera/step_{step}"
     msg.data = np.ascontiguousarray(frame, dtype=np.uint8).tobytes()
     return msg
+
+
+WORLD_FRAME = "world"
+CAMERA_FRAME = "camera_color_optical_frame"
+"""The RGB-D camera's optical frame (REP 103: x right, y down, z ahead); colour and depth share it."""
+GRIP_FRAME = "gripper_grip"
+"""The grip site between the fingertips: where ``holding`` measures from."""
+BASE_FRAME = "base_link"
+
+
+def rgbd(frame: Frame, clock_s: float) -> tuple[Image, Image, CameraInfo]:
+    """Colour (rgb8), depth (32FC1, metres along the optical axis, 0 = no return) and the intrinsics, one stamp."""
+    header_stamp = stamp(clock_s)
+    height, width = frame.depth.shape
+    colour = Image(height=height, width=width, encoding="rgb8", step=3 * width)
+    colour.data = np.ascontiguousarray(frame.rgb, dtype=np.uint8).tobytes()
+    depth = Image(height=height, width=width, encoding="32FC1", step=4 * width,
+                  is_bigendian=int(np.little_endian is False))
+    depth.data = np.ascontiguousarray(frame.depth, dtype=np.float32).tobytes()
+    k = frame.intrinsics
+    info = CameraInfo(height=height, width=width, distortion_model="plumb_bob", d=[0.0] * 5,
+                      k=[k.fx, 0.0, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0],
+                      r=[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+                      p=[k.fx, 0.0, k.cx, 0.0, 0.0, k.fy, k.cy, 0.0, 0.0, 0.0, 1.0, 0.0])
+    for msg in (colour, depth, info):
+        msg.header.stamp, msg.header.frame_id = header_stamp, CAMERA_FRAME
+    return colour, depth, info
+
+
+def transform(child: str, pose: np.ndarray, clock_s: float, parent: str = WORLD_FRAME) -> TransformStamped:
+    """A TransformStamped of ``child`` in ``parent`` from a 4x4 pose."""
+    msg = TransformStamped(child_frame_id=child)
+    msg.header.stamp, msg.header.frame_id = stamp(clock_s), parent
+    t = msg.transform.translation
+    t.x, t.y, t.z = (float(v) for v in pose[:3, 3])
+    quaternion = np.empty(4)
+    mujoco.mju_mat2Quat(quaternion, np.ascontiguousarray(pose[:3, :3], dtype=np.float64).reshape(9))
+    r = msg.transform.rotation
+    r.w, r.x, r.y, r.z = (float(v) for v in quaternion)
+    return msg
+

@@ -4,7 +4,12 @@ Publishes /joint_states, /semgoal/world_state and /semgoal/markers; takes /semgo
 /semgoal/reset_world and /semgoal/move_block. In ``lockstep`` mode one command for the step just
 published advances one control step (as fast as the graph goes); in ``realtime`` mode a timer steps at
 ``rate_hz`` with the last good command. With ``render`` on, an offscreen camera (OSMesa where there
-is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``.
+is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``: a picture for people.
+
+With ``camera`` on, the RGB-D sensor (``semgoal_sim.camera``) publishes colour, depth and camera info
+under /semgoal/rgbd/ every ``camera_every`` control steps, stamped with the step's sim time, right after
+the step's world state; the camera's and the base's frames go on /tf_static (again when an episode's
+look moves the camera), the grip site's on /tf each step.
 """
 
 import time
@@ -14,7 +19,8 @@ from rclpy.clock import Clock as TimerClock
 from rclpy.clock import ClockType
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
-from sensor_msgs.msg import Image, JointState
+from sensor_msgs.msg import CameraInfo, Image, JointState
+from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
 from semgoal_core.names import Mode
@@ -27,6 +33,7 @@ from semgoal_ros import messages
 from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics
 from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, declare
 from semgoal_sim import conversions
+from semgoal_sim.camera import CONDITIONS, SimCamera
 from semgoal_sim.sim_core import SimCore, check_command
 
 WATCHDOG_PERIODS = 5
@@ -47,6 +54,14 @@ PARAMS = (
     Param("render_hz", 5.0, "camera frames per second", low=0.1, high=60.0),
     Param("render_width", 480, "camera image width (px)", low=16, high=4096),
     Param("render_height", 360, "camera image height (px)", low=16, high=4096),
+    Param("camera", False, "publish the RGB-D camera (/semgoal/rgbd/...) and the frames on /tf, /tf_static"),
+    Param("camera_every", 1, "RGB-D frames every N control steps (1: every step, in lockstep)", low=1, high=10_000),
+    Param("camera_width", 160, "RGB-D image width (px)", low=16, high=4096),
+    Param("camera_height", 120, "RGB-D image height (px)", low=16, high=4096),
+    Param("camera_randomise", 0.0, "strength of the per-episode look randomisation (1: training's range, 0: off)",
+          low=0.0, high=2.0),
+    Param("camera_condition", "nominal", "the look when not randomised", choices=tuple(CONDITIONS)),
+    Param("camera_paused", False, "stop publishing RGB-D frames (a camera fault, for drills and tests)", runtime=True),
 )
 
 
@@ -76,6 +91,17 @@ class SimNode(Node):
         if values["render"]:
             self.image_pub = self.create_publisher(Image, topics.CAMERA_IMAGE, topics.CAMERA)
             self.create_timer(1.0 / values["render_hz"], self.publish_image, clock=steady)
+        self.camera = None
+        if values["camera"]:
+            self.camera = SimCamera(values["camera_width"], values["camera_height"], values["camera_randomise"],
+                                    values["camera_condition"])
+            self.camera_every, self.camera_paused = values["camera_every"], values["camera_paused"]
+            self.rgbd_pubs = (self.create_publisher(Image, topics.RGBD_COLOUR, topics.RGBD),
+                              self.create_publisher(Image, topics.RGBD_DEPTH, topics.RGBD),
+                              self.create_publisher(CameraInfo, topics.RGBD_INFO, topics.RGBD))
+            self.tf_pub = self.create_publisher(TFMessage, topics.TF, topics.TF_QOS)
+            self.tf_static_pub = self.create_publisher(TFMessage, topics.TF_STATIC, topics.LATCHED)
+            self.static_pose: np.ndarray | None = None
         self.timer = None
         if self.mode == Mode.REALTIME:
             self.timer = self.create_timer(1.0 / self.rate_hz, self.realtime_step, clock=steady)
@@ -94,6 +120,8 @@ class SimNode(Node):
         """Put a change made while running into effect: the realtime rate, the markers' period."""
         if name == "markers_every":
             self.markers_every = value
+        elif name == "camera_paused":
+            self.camera_paused = value
         elif name == "rate_hz":
             self.rate_hz = value
             if self.timer is not None:
@@ -120,7 +148,25 @@ class SimNode(Node):
         self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot, clock_s))
         if snapshot.step % max(1, self.markers_every) == 0:
             self.marker_pub.publish(conversions.markers(msg))
+        if self.camera is not None:
+            self.publish_camera(snapshot, clock_s)
         return msg
+
+    def publish_camera(self, snapshot, clock_s: float) -> None:
+        """The grip site on /tf every step; an RGB-D frame every ``camera_every`` steps (and the camera's
+        frame on /tf_static when it moved: a new episode's look)."""
+        world = self.core.world
+        self.tf_pub.publish(TFMessage(transforms=[conversions.transform(conversions.GRIP_FRAME, world.grip_pose(), clock_s)]))
+        if snapshot.step % self.camera_every or self.camera_paused:
+            return
+        frame = self.camera.frame(world, self.core.episode, self.core.seed)
+        if self.static_pose is None or not np.array_equal(frame.world_from_camera, self.static_pose):
+            self.static_pose = frame.world_from_camera
+            self.tf_static_pub.publish(TFMessage(transforms=[
+                conversions.transform(conversions.BASE_FRAME, world.base_pose(), clock_s),
+                conversions.transform(conversions.CAMERA_FRAME, frame.world_from_camera, clock_s)]))
+        for publisher, msg in zip(self.rgbd_pubs, conversions.rgbd(frame, clock_s), strict=True):
+            publisher.publish(msg)
 
     def publish_image(self) -> None:
         """Render the current world (a reset may have built another one) and publish the frame."""

@@ -34,6 +34,12 @@ WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_TOP + 0.35])
 """The mocap target is kept in this box so the arm never drives into the table or out of reach."""
 
 
+def _pose(position: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    pose = np.eye(4)
+    pose[:3, :3], pose[:3, 3] = np.reshape(rotation, (3, 3)), position
+    return pose
+
+
 @dataclass(frozen=True)
 class Snapshot:
     """Everything observable after a control step, as plain arrays (world frame, m, m/s)."""
@@ -174,6 +180,15 @@ class FetchWorld:
             finger_positions=d.qpos[self._finger_qpos].copy(),
             finger_velocities=d.qvel[self._finger_qvel].copy(),
         )
+
+    def grip_pose(self) -> np.ndarray:
+        """4x4 pose of the grip site in the world (what /tf publishes as the gripper's frame)."""
+        return _pose(self.data.site_xpos[self._grip_site], self.data.site_xmat[self._grip_site])
+
+    def base_pose(self) -> np.ndarray:
+        """4x4 pose of the robot's base in the world."""
+        body = self.model.body("robot0:base_link").id
+        return _pose(self.data.xpos[body], self.data.xmat[body])
 
     def robot_joint_state(self) -> tuple[np.ndarray, np.ndarray]:
         """Positions and velocities of :attr:`robot_joint_names`, now."""

@@ -16,6 +16,7 @@ NODE_MODULES = {
     "policy": "semgoal_policy.policy_node",
     "foxglove": "semgoal_bringup.foxglove_node",
     "console": "semgoal_bringup.console",
+    "perception": "semgoal_perception.perception_node",
 }
 
 

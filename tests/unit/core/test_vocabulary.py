@@ -174,3 +174,16 @@ def test_a_semantic_state_must_fit_its_scene() -> None:
     ):
         with pytest.raises(VocabularyError, match=says):
             layout.check_state(objects, literals, named)
+
+
+def test_threshold_margins_measure_the_distance_to_the_nearest_threshold() -> None:
+    from semgoal_core.geometry import TABLE_TOP
+    from semgoal_core.vocabulary import LAYOUTS, Literal, threshold_margins
+
+    layout = LAYOUTS["two_blocks"]
+    positions = np.array([[1.3, 0.7, 0.425], [1.3, 0.797, 0.425]])  # centres 9.7 cm apart: close by 3 mm
+    margins = threshold_margins(layout, positions, np.array([1.3, 0.5, 0.6]), TABLE_TOP)
+    assert margins[layout.index(Literal("close", ("red", "green")))] == pytest.approx(0.003)
+    stacked = np.array([[1.3, 0.7, 0.475], [1.31, 0.7, 0.425]])  # 4 cm inside the 5 cm; 2 cm from either height bound
+    margins = threshold_margins(layout, stacked, np.array([1.3, 0.5, 0.6]), TABLE_TOP)
+    assert margins[layout.index(Literal("above", ("red", "green")))] == pytest.approx(0.02)

@@ -342,3 +342,23 @@ def test_an_ill_posed_goal_is_refused_with_its_reason_and_the_plan_under_way_sta
     ok, message = ex.set_goal(goal)
     assert not ok and named in message, message
     assert ex.steps == before and ex.revision == revision and ex.status == status and ex.active is not None
+
+
+def test_a_plan_paused_for_want_of_a_trusted_state_resumes_by_itself_not_by_the_operator() -> None:
+    ex = executive()
+    assert ex.set_goal("in_bin(red)")[0] and ex.status == "executing"
+    ex.pause_blind("no camera frame for 1.2 s")
+    assert ex.status == "paused" and ex.blind == "no camera frame for 1.2 s" and "no camera frame" in ex.message
+    ok, message = ex.edit("resume")
+    assert not ok and "no camera frame" in message and ex.status == "paused"
+    ex.resume_sighted()
+    assert ex.status == "executing" and ex.blind == ""
+
+
+def test_an_operators_pause_is_not_lifted_when_sight_returns() -> None:
+    ex = executive()
+    assert ex.set_goal("in_bin(red)")[0]
+    assert ex.edit("pause")[0]
+    ex.pause_blind("no camera frame for 1.2 s")
+    ex.resume_sighted()
+    assert ex.status == "paused" and ex.blind == ""

@@ -1,0 +1,94 @@
+"""One frame in, block centres out: the voter's labels and votes, reduced per block to a robust centre
+and its uncertainty. A block with too few pixels is not seen in this frame (the tracker carries it)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from semgoal_perception.geometry import PinholeCamera
+from semgoal_perception.network import OFFSET_SCALE, BlockVoter, VoterConfig, network_input
+
+MIN_PIXELS = 6
+"""Fewer labelled pixels than this and a block counts as not seen (a sliver under the arm votes badly)."""
+SIGMA_FLOOR = 0.0015
+"""Smallest standard deviation reported per axis (m): the measured median error at rest is near it."""
+WARM_UP_RUNS = 3
+"""Runs of a newly frozen network before its first answer: TorchScript's profiling executor optimises the
+graph over its first calls, which ran at up to 3x the steady time."""
+ROBUST = 1.4826
+"""Median absolute deviation to standard deviation, for normal errors."""
+
+
+@dataclass(frozen=True)
+class Detection:
+    """Where one block is in one frame."""
+
+    colour: int
+    """Index in ``BLOCK_COLOURS``."""
+    centre: np.ndarray
+    """(3,) world frame (m)."""
+    sigma: np.ndarray
+    """(3,) standard deviation per axis (m)."""
+    pixels: int
+
+
+class BlockEstimator:
+    """The trained voter, loaded once; :meth:`detect` runs it on a frame. Per frame size the network is
+    traced and frozen once (TorchScript folds the batch norms into the convolutions): 9 ms a frame on one
+    core where eager PyTorch took 14."""
+
+    def __init__(self, network: BlockVoter) -> None:
+        self.network = network.eval()
+        self.frozen: dict[tuple[int, ...], torch.jit.ScriptModule] = {}
+
+    def run(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """The network's logits and offsets for a batch ``x`` (N, 7, H, W), through the frozen trace."""
+        if x.shape not in self.frozen:  # the first frame of a size pays for this, about half a second
+            with torch.inference_mode():
+                frozen = torch.jit.freeze(torch.jit.trace(self.network, x))
+                for _ in range(WARM_UP_RUNS):
+                    frozen(x)
+            self.frozen[x.shape] = frozen
+        with torch.inference_mode():
+            return self.frozen[x.shape](x)
+
+    @classmethod
+    def load(cls, folder: Path) -> BlockEstimator:
+        """From an exported folder: ``voter.json`` (architecture) and ``voter.pt`` (weights)."""
+        config = VoterConfig(**json.loads((folder / "voter.json").read_text())["config"])
+        network = BlockVoter(config)
+        network.load_state_dict(torch.load(folder / "voter.pt", map_location="cpu", weights_only=True))
+        return cls(network)
+
+    def detect(self, rgb: np.ndarray, depth: np.ndarray, camera: PinholeCamera) -> list[Detection]:
+        """The blocks seen in one frame, each once, with their centres and uncertainties."""
+        points, valid = camera.world_points(depth)
+        logits, offsets = self.run(torch.from_numpy(network_input(rgb, points, valid))[None])
+        labels = logits[0].numpy().argmax(0)  # numpy's: torch's argmax over channels of the sliced output took 1.7 ms
+        block = valid & (labels > 0)
+        votes = points[block] + offsets[0].numpy()[:, block].T * OFFSET_SCALE
+        return detections(labels[block], votes)
+
+
+def detections(labels: np.ndarray, votes: np.ndarray) -> list[Detection]:
+    """Per labelled colour (``labels`` (M,) of M pixels with depth, 0 = no block) with enough pixels: the
+    median of its pixels' votes (M, 3) and its standard error."""
+    found = []
+    for label in np.unique(labels):
+        if label == 0:
+            continue
+        mask = labels == label
+        count = int(mask.sum())
+        if count < MIN_PIXELS:
+            continue
+        cast = votes[mask].astype(np.float64)
+        centre = np.median(cast, axis=0)
+        spread = ROBUST * np.median(np.abs(cast - centre), axis=0)
+        sigma = np.maximum(spread / np.sqrt(count) * 2.0, SIGMA_FLOOR)
+        found.append(Detection(int(label) - 1, centre, sigma, count))
+    return found

@@ -1,0 +1,117 @@
+"""The perception's pure parts: back-projection, the block tracker, the literal confidences."""
+
+import numpy as np
+import pytest
+from semgoal_perception.estimator import Detection, detections
+from semgoal_perception.geometry import PinholeCamera
+from semgoal_perception.semantics import SemanticEstimator
+from semgoal_perception.tracker import LOST_FRAMES, SIGMA_HELD, BlockTracker, TrackStatus
+
+from semgoal_core.settling import REST_SPEED
+from semgoal_core.vocabulary import LAYOUTS, Literal
+
+LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
+"""An optical frame 1 m over the table top (z = 0.4), looking straight down."""
+
+
+def test_world_points_project_back_onto_their_pixels() -> None:
+    camera = PinholeCamera(140.0, 140.0, 79.5, 59.5, LOOKING_DOWN)
+    depth = np.random.default_rng(0).uniform(0.8, 1.0, (120, 160)).astype(np.float32)
+    depth[3, 4] = 0.0
+    points, valid = camera.world_points(depth)
+    assert not valid[3, 4] and valid.sum() == depth.size - 1
+    v, u = np.nonzero(valid)
+    assert np.allclose(camera.project(points[valid]), np.column_stack([u, v]), atol=1e-3)
+    assert np.allclose(points[..., 2][valid], 1.4 - depth[valid], atol=1e-5)
+
+
+def test_a_block_is_its_pixels_median_vote_and_a_sliver_is_not_seen() -> None:
+    labels = np.zeros((20, 20), dtype=np.int64)
+    labels[2:8, 2:8] = 1  # 36 pixels of colour 0
+    labels[15, 15:17] = 3  # 2 pixels of colour 2: too few
+    votes = np.zeros((20, 20, 3))
+    votes[labels == 1] = [1.30, 0.70, 0.425]
+    votes[3, 3] = [9.0, 9.0, 9.0]  # one wild vote does not move the median
+    found = detections(labels.reshape(-1), votes.reshape(-1, 3))
+    assert [d.colour for d in found] == [0]
+    assert np.allclose(found[0].centre, [1.30, 0.70, 0.425]) and found[0].pixels == 36
+
+
+def seen(colour: int, centre) -> Detection:
+    return Detection(colour, np.asarray(centre, dtype=float), np.full(3, 0.0015), 60)
+
+
+GRIP_AWAY, STILL = np.array([1.3, 0.6, 0.7]), np.zeros(3)
+
+
+def test_a_resting_block_seen_with_millimetre_noise_reads_as_at_rest() -> None:
+    tracker, rng = BlockTracker([0]), np.random.default_rng(1)
+    speeds = []
+    for _ in range(100):
+        track = tracker.update([seen(0, np.array([1.3, 0.7, 0.425]) + rng.normal(0, 0.001, 3))], GRIP_AWAY, STILL, 0.1)[0]
+        speeds.append(np.linalg.norm(track.velocity))
+    assert max(speeds[10:]) < REST_SPEED
+    assert np.linalg.norm(track.position - [1.3, 0.7, 0.425]) < 0.002
+
+
+def test_a_moving_block_reads_as_moving() -> None:
+    tracker = BlockTracker([0])
+    for step in range(30):
+        track = tracker.update([seen(0, [1.2 + 0.004 * step, 0.7, 0.425])], GRIP_AWAY, STILL, 0.1)[0]
+    assert np.allclose(track.velocity, [0.1, 0.0, 0.0], atol=0.01)  # 4 mm per 0.04 s step
+
+
+def test_a_hidden_block_keeps_its_estimate_with_growing_uncertainty_then_is_lost_not_dropped() -> None:
+    tracker = BlockTracker([0, 1])
+    tracker.update([seen(0, [1.3, 0.7, 0.425]), seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)
+    sigmas = []
+    for _ in range(LOST_FRAMES - 1):
+        track = tracker.update([seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)[0]
+        assert track.status == TrackStatus.OCCLUDED
+        sigmas.append(track.sigma[0])
+    assert np.allclose(track.position, [1.3, 0.7, 0.425]) and np.all(np.diff(sigmas) >= 0) and sigmas[-1] > sigmas[0]
+    assert tracker.update([], GRIP_AWAY, STILL, 0.1)[0].status == TrackStatus.LOST
+    assert np.allclose(tracker.tracks[0].position, [1.3, 0.7, 0.425])
+    assert tracker.update([seen(0, [1.31, 0.7, 0.425])], GRIP_AWAY, STILL, 0.1)[0].status == TrackStatus.VISIBLE
+
+
+def test_a_block_in_the_closed_hand_follows_the_grip_when_unseen() -> None:
+    tracker, grip = BlockTracker([0]), np.array([1.3, 0.7, 0.43])
+    tracker.update([seen(0, [1.3, 0.7, 0.425])], grip, STILL, 0.05)  # fingers closed on it
+    for _ in range(10):
+        grip = grip + np.array([0.0, 0.0, 0.01])
+        track = tracker.update([], grip, np.array([0.0, 0.0, 0.25]), 0.05)[0]
+    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip - [0, 0, 0.005])
+    assert np.allclose(track.velocity, [0, 0, 0.25]) and track.sigma.min() >= SIGMA_HELD
+
+
+def test_a_never_seen_block_stays_unknown() -> None:
+    tracker = BlockTracker([0, 1])
+    tracker.update([seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)
+    assert tracker.tracks[0].status == TrackStatus.NEVER_SEEN and np.isnan(tracker.tracks[0].position).all()
+
+
+@pytest.fixture
+def two_blocks() -> SemanticEstimator:
+    return SemanticEstimator(LAYOUTS["two_blocks"])
+
+
+def confidence_of(estimator: SemanticEstimator, literal: Literal, positions, sigma: float) -> tuple[bool, float]:
+    vector, confidence = estimator.estimate(np.asarray(positions, dtype=float), np.full((2, 3), sigma),
+                                            GRIP_AWAY, 0.1, np.ones(2, dtype=bool))
+    entry = estimator.layout.index(literal)
+    return bool(vector[entry]), float(confidence[entry])
+
+
+def test_a_literal_far_from_its_threshold_is_certain_and_one_on_it_is_not(two_blocks) -> None:
+    close = Literal("close", ("red", "green"))
+    assert confidence_of(two_blocks, close, [[1.3, 0.7, 0.425], [1.3, 0.75, 0.425]], 0.002) == (True, 1.0)
+    assert confidence_of(two_blocks, close, [[1.3, 0.7, 0.425], [1.3, 0.95, 0.425]], 0.002) == (False, 1.0)
+    value, confidence = confidence_of(two_blocks, close, [[1.3, 0.7, 0.425], [1.3, 0.7999, 0.425]], 0.002)
+    assert value and 0.3 < confidence < 0.8
+
+
+def test_a_literal_of_a_block_never_seen_has_no_confidence(two_blocks) -> None:
+    value, confidence = confidence_of(two_blocks, Literal("close", ("red", "green")),
+                                      [[np.nan] * 3, [1.3, 0.75, 0.425]], 0.002)
+    assert (value, confidence) == (False, 0.0)

@@ -6,7 +6,9 @@ One process, one asyncio loop: a Starlette app served by uvicorn, and the graph'
 (:class:`~semgoal_ros.client.GraphClient`) whose executor the loop pumps between requests. The page
 (``share/semgoal_bringup/console/console.html``, no file from outside the machine) talks over one WebSocket:
 it sends the person's requests, the console answers each and pushes the state (plan, what holds, whose step
-it is) when it changes; the camera view is ``/camera.jpg``, rendered offscreen from the published states.
+it is) when it changes; the camera view is ``/camera.jpg``: the RGB-D camera's latest frame with the
+perception's estimates drawn on it when the graph runs from the camera, else rendered offscreen from the
+published states. Literals the perception is unsure of are listed as such.
 
 Every request, the page's included, carries the token (``?token=``): one is made up at start unless given
 (``--token`` or ``SEMGOAL_CONSOLE_TOKEN``), and the URL to open is printed. A request without it is refused
@@ -26,7 +28,9 @@ import secrets
 import time
 from pathlib import Path
 
-from semgoal_bringup.console_core import PLACES, StudyLog, place_position, sentences
+import numpy as np
+
+from semgoal_bringup.console_core import PLACES, StudyLog, place_position, sentences, unsure_sentences
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
@@ -37,10 +41,60 @@ STATE_PERIOD_S = 0.2
 """How often the state is pushed to the page when it changed."""
 CAMERA_PERIOD_S = 0.25
 """A camera image is rendered at most this often (older requests get the last one)."""
+CAMERA_FRESH_S = 2.0
+"""An RGB-D frame older than this (wall time) is not shown: the view falls back to the rendered scene."""
 PUMP_PERIOD_S = 0.005
 MAX_REQUEST_CHARS = 10_000
 """A WebSocket request longer than this is refused unread."""
 OPS = ("approve", "pause", "resume", "replan", "insert", "remove", "move", "replace", "assign")
+
+
+class SeenByCamera:
+    """The RGB-D camera's latest frame, its intrinsics and pose, and the perception's latest estimates."""
+
+    def __init__(self, node) -> None:
+        from sensor_msgs.msg import CameraInfo, Image
+        from tf2_msgs.msg import TFMessage
+
+        from semgoal_msgs.msg import BlockEstimates
+        from semgoal_ros import interfaces as topics
+
+        self.frame = self.info = self.estimates = self.pose = None
+        self.frame_at = 0.0
+        node.create_subscription(Image, topics.RGBD_COLOUR, self._on_frame, topics.CAMERA)
+        node.create_subscription(CameraInfo, topics.RGBD_INFO, lambda m: setattr(self, "info", m), topics.CAMERA)
+        node.create_subscription(BlockEstimates, topics.BLOCK_ESTIMATES, lambda m: setattr(self, "estimates", m),
+                                 topics.STREAM)
+        node.create_subscription(TFMessage, topics.TF_STATIC, self._on_static, topics.LATCHED)
+
+    def _on_frame(self, msg) -> None:
+        self.frame, self.frame_at = msg, time.monotonic()
+
+    def _on_static(self, msg) -> None:
+        from semgoal_perception.perception_node import CAMERA_FRAME, pose_matrix
+
+        for transform in msg.transforms:
+            if transform.child_frame_id == CAMERA_FRAME:
+                self.pose = pose_matrix(transform.transform)
+
+    def drawn(self):
+        """The latest frame with the estimates drawn (a PIL image), or None without a recent frame."""
+        if self.frame is None or self.info is None or self.pose is None or time.monotonic() - self.frame_at > CAMERA_FRESH_S:
+            return None
+        from semgoal_perception.geometry import PinholeCamera
+        from semgoal_perception.perception_node import image_array
+
+        from semgoal_bringup.perception_view import draw_estimates
+
+        try:
+            rgb = image_array(self.frame, "rgb8", 3, np.uint8)
+        except ValueError:
+            return None
+        k = self.info.k
+        camera = PinholeCamera(k[0], k[4], k[2], k[5], self.pose)
+        blocks = [(b.name, np.array([b.position.x, b.position.y, b.position.z]), b.status)
+                  for b in (self.estimates.blocks if self.estimates else [])]
+        return draw_estimates(rgb, camera, blocks)
 
 
 class Console:
@@ -63,6 +117,7 @@ class Console:
         self.client.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS, self._on_event, topics.EVENTS_LIVE)
         self.client.world_listeners.append(lambda _: self._changed())
         self.client.node.create_subscription(JointState, topics.JOINT_STATES, self._on_joints, topics.STREAM)
+        self.seen = SeenByCamera(self.client.node)
         self.log: StudyLog | None = None
         self._painter = None
         self._camera: tuple[float, bytes] = (0.0, b"")
@@ -119,6 +174,9 @@ class Console:
                 "episode": world.episode if world else 0, "step": int(world.step) if world else 0,
                 "sim_time": round(self.sim_time(), 2), "blocks": blocks, "has_bin": bool(world and world.has_bin),
                 "holds": sentences(holds), "moving": list(semantic.moving) if semantic else [],
+                "unsure": unsure_sentences((p.name, tuple(p.args), p.value, c)
+                                           for p, c in zip(semantic.predicates, semantic.confidence, strict=False))
+                if semantic else [],
                 "plan": {"goal": plan.goal, "status": plan.status, "revision": plan.revision,
                          "replans": plan.replans, "current": plan.current, "steps": steps} if plan else None,
                 "human_step": human, "events": self.events}
@@ -130,6 +188,12 @@ class Console:
         if world is None or (image and time.monotonic() - rendered_at < CAMERA_PERIOD_S):
             return image
         from PIL import Image
+
+        if (drawn := self.seen.drawn()) is not None:
+            buffer = io.BytesIO()
+            drawn.save(buffer, format="JPEG", quality=85)
+            self._camera = (time.monotonic(), buffer.getvalue())
+            return self._camera[1]
 
         from semgoal_bringup.episode_video import Frame, FramePainter
 

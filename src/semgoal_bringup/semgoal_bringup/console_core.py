@@ -17,6 +17,25 @@ SENTENCES = {"close": "{0} is near {1}", "above": "{0} is on {1}", "holding": "t
              "in_bin": "{0} is in the bin"}
 """How each predicate reads when it holds."""
 
+UNSURE = 0.9
+"""A literal the perception is less sure of than this (the share of its position samples that agree) is shown
+as unsure."""
+
+
+def unsure_sentences(literals: Iterable[tuple[str, tuple[str, ...], bool, float]], below: float = UNSURE) -> list[str]:
+    """The literals (predicate, arguments, value, confidence) the camera's perception is unsure of, as
+    sentences of what it takes to be the case and how sure it is; a symmetric pair reads once."""
+    seen, lines = set(), []
+    for name, args, value, confidence in literals:
+        key = (name, tuple(sorted(args))) if name == "close" else (name, tuple(args))
+        if confidence >= below or key in seen or name not in SENTENCES:
+            continue
+        seen.add(key)
+        sentence = SENTENCES[name].format(*args)
+        lines.append(f"{sentence if value else 'not: ' + sentence}? ({confidence:.0%} sure)")
+    return lines
+
+
 PLACES = ("bin", "table", "near", "on")
 """Where a person can put a block: in the bin, on a free spot of the table, next to or on another block."""
 NEAR_DISTANCE = 0.065

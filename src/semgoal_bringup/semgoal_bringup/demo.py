@@ -26,6 +26,8 @@ TO_DO = (StepStatus.PENDING, StepStatus.ACTIVE)
 
 
 def main(argv: list[str]) -> int:
+    from semgoal_bringup.graph import add_sight_arguments, sight_of, start_graph, stop_graph
+
     parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default=DEFAULT_TASK)
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="the task start (default %(default)s)")
@@ -36,10 +38,11 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--no-gif", action="store_true")
     parser.add_argument("--record", type=Path, help="where to record the episode as MCAP (default results/demo-TASK.mcap)")
     parser.add_argument("--no-record", action="store_true")
+    add_sight_arguments(parser)
     args = parser.parse_args(argv)
     if args.max_steps < 0:
         parser.error("--max-steps must be 0 (no limit) or a number of control steps")
-    from semgoal_bringup.graph import start_graph, stop_graph
+    sight = sight_of(args, parser)
     from semgoal_core.tasks import get_task
     from semgoal_ros.domains import domain_for_this_process
 
@@ -50,7 +53,7 @@ def main(argv: list[str]) -> int:
     gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
     record = None if args.no_record else args.record or Path("results") / f"demo-{task.name}.mcap"  # None: a scratch file
     with domain_for_this_process():  # a domain of its own: parallel demos never meet
-        processes = start_graph(task.name, args.seed, models=args.models)
+        processes = start_graph(task.name, args.seed, models=args.models, sight=sight)
         try:
             return Demo(task.name, args.seed).run(gif, args.max_steps, record)
         finally:

@@ -32,11 +32,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from semgoal_bringup.executors import check_executor, run_jobs
-from semgoal_bringup.graph import SOURCES, TRUTH, Sight
+from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
-from semgoal_sim.camera import CONDITIONS
 
 if TYPE_CHECKING:
     from semgoal_bringup.episodes import Outcome
@@ -420,12 +419,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
-    parser.add_argument("--perception", default="truth", choices=SOURCES,
-                        help="with --via-ros: the planner's predicates from the simulator's poses or the camera")
-    parser.add_argument("--policy-input", default="truth", choices=SOURCES,
-                        help="with --via-ros: the policy's block poses from the simulator or the camera")
-    parser.add_argument("--camera-condition", default="nominal", choices=tuple(CONDITIONS),
-                        help="with --perception camera: the camera's look (moved: beyond training's range)")
+    add_sight_arguments(parser)
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
@@ -444,10 +438,7 @@ def main(argv: list[str]) -> int:
         parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
         parser.error("--record writes the episodes run through the graph: add --via-ros")
-    try:
-        sight = Sight(args.perception, args.policy_input, args.camera_condition)
-    except ValueError as error:
-        parser.error(str(error))
+    sight = sight_of(args, parser)
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]

@@ -21,6 +21,7 @@ from pathlib import Path
 from semgoal_bringup.episodes import Outcome
 from semgoal_bringup.evaluation import wilson_interval
 from semgoal_bringup.executors import check_executor, run_jobs
+from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, running_graph, sight_of
 from semgoal_core import tasks
 from semgoal_core.goal_families import FAMILIES, GoalCase, goal_cases
 from semgoal_core.vocabulary import SCENES
@@ -45,15 +46,15 @@ def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Pat
     return outcomes
 
 
-def run_via_ros(scene: str, cases: list[GoalCase]) -> list[bool]:
-    """Success of each case through the node graph: reset to its start, then its goals one after the other."""
-    from semgoal_bringup.graph import running_graph
-
+def run_via_ros(scene: str, cases: list[GoalCase], sight: Sight = TRUTH) -> list[bool]:
+    """Success of each case through the node graph (seeing by ``sight``): reset to its start, then its goals one
+    after the other."""
     def task_for(case: GoalCase) -> str:  # a task of the scene with the case's block count: the sim's world
         return next(name for name in tasks.scene_tasks(scene) if tasks.TASKS[name].n_blocks == len(case.positions))
 
     successes = []
-    with running_graph(task_for(cases[0]), cases[0].seed, client_name="semgoal_eval_goals", watch=False) as client:
+    with running_graph(task_for(cases[0]), cases[0].seed, client_name="semgoal_eval_goals", watch=False,
+                       sight=sight) as client:
         for case in cases:
             client.must_reset(task_for(case), case.seed, positions=case.positions.ravel())
             success = True
@@ -84,7 +85,11 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--linger", type=int, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (in process)")
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
+    add_sight_arguments(parser)
     args = parser.parse_args(argv)
+    sight = sight_of(args, parser)
+    if sight != TRUTH and not args.via_ros:
+        parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
     if unknown or args.episodes < 1 or args.ros_episodes < 1 or args.linger < 0:
@@ -119,7 +124,7 @@ def main(argv: list[str]) -> int:
         in_process = {(f, case.seed): outcome.success for f, outcomes in zip(families, results, strict=True)
                       for case, outcome in zip(by_family[f], outcomes, strict=True)}
         sample = ros_sample(by_family, args.ros_episodes)
-        graph = run_via_ros(args.scene, sample)
+        graph = run_via_ros(args.scene, sample, sight)
         same = sum(in_process[(case.family, case.seed)] == success for case, success in zip(sample, graph, strict=True))
         for case, success in zip(sample, graph, strict=True):
             if in_process[(case.family, case.seed)] != success:

@@ -47,6 +47,26 @@ TRUTH = Sight()
 """The simulator's poses for everyone (the benchmark's setting)."""
 
 
+def add_sight_arguments(parser) -> None:
+    """``--perception``, ``--policy-input`` and ``--camera-condition`` on a command that starts the graph."""
+    from semgoal_sim.camera import CONDITIONS
+
+    parser.add_argument("--perception", default="truth", choices=SOURCES,
+                        help="the planner's predicates from the simulator's poses (truth) or the RGB-D camera")
+    parser.add_argument("--policy-input", default="truth", choices=SOURCES,
+                        help="the policy's block poses from the simulator (truth) or the camera's perception")
+    parser.add_argument("--camera-condition", default="nominal", choices=tuple(CONDITIONS),
+                        help="with --perception camera: the camera's look (moved: beyond training's range)")
+
+
+def sight_of(args, parser) -> Sight:
+    """The :class:`Sight` the arguments ask for; a parser error when they do not go together."""
+    try:
+        return Sight(args.perception, args.policy_input, args.camera_condition)
+    except ValueError as error:
+        parser.error(str(error))
+
+
 LAUNCH_ARGUMENTS = (
     ("scene", "", "two_blocks | three_blocks | desk_cleanup (empty: the task's)"),
     ("task", "DC-3", "the task whose start the sim loads (empty: the scene's first)"),

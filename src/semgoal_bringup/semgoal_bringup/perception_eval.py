@@ -119,6 +119,47 @@ def table(results: dict) -> str:
     return "\n".join(lines)
 
 
+def figure(frames, estimator, path: Path, count: int = 4) -> None:
+    """Frames of different tasks with the estimated centres (crosses) and the true ones (circles) drawn on
+    them, and what the voter labels each pixel beside each."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import torch
+    from semgoal_perception.network import network_input
+    from semgoal_perception.training import frame_camera
+
+    from semgoal_core.vocabulary import BLOCK_COLOURS
+
+    colours = list(BLOCK_COLOURS)
+    labels_map = matplotlib.colors.ListedColormap([(0.9, 0.9, 0.9), *(rgba[:3] for rgba in BLOCK_COLOURS.values())])
+    chosen = [int(np.flatnonzero(frames.task == task)[3]) for task in np.unique(frames.task)][::2][:count]
+    plot, axes = plt.subplots(2, len(chosen), figsize=(3.2 * len(chosen), 5.0))
+    for column, i in enumerate(chosen):
+        camera = frame_camera(frames.camera[i], frames.world_from_camera[i])
+        points, valid = camera.world_points(frames.depth[i])
+        logits, _ = estimator.run(torch.from_numpy(network_input(frames.rgb[i], points, valid))[None])
+        top, bottom = axes[0, column], axes[1, column]
+        top.imshow(frames.rgb[i])
+        for found in estimator.detect(frames.rgb[i], frames.depth[i], camera):
+            u, v = camera.project(found.centre[None])[0]
+            top.plot(u, v, "x", color="black", markersize=9, markeredgewidth=2)
+            top.annotate(colours[found.colour], (u, v), xytext=(4, -6), textcoords="offset points", fontsize=7)
+        truth = frames.centres[i][np.isfinite(frames.centres[i]).all(axis=1)]
+        u, v = camera.project(truth).T
+        top.plot(u, v, "o", markerfacecolor="none", color="white", markersize=10)
+        bottom.imshow(logits[0].numpy().argmax(0), cmap=labels_map, vmin=0, vmax=len(colours), interpolation="nearest")
+        for axis in (top, bottom):
+            axis.set_xticks([])
+            axis.set_yticks([])
+    axes[0, 0].set_ylabel("frame: estimate x, truth o")
+    axes[1, 0].set_ylabel("the voter's labels")
+    plot.tight_layout()
+    plot.savefig(path, dpi=130)
+    plt.close(plot)
+
+
 def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     from semgoal_perception.estimator import BlockEstimator
@@ -134,6 +175,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--model-dir", type=Path, help="exported voter (default: the shipped one)")
     parser.add_argument("--cache", type=Path, default=Path("runs/perception"))
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--figure", type=Path, help="also draw frames of the first condition with the estimates (PNG)")
     args = parser.parse_args(argv)
     folder = args.model_dir or share_path("semgoal_perception", "models", "block_voter")
     estimator = BlockEstimator.load(folder)
@@ -145,5 +187,7 @@ def main(argv: list[str]) -> int:
         look, strength = CONDITION_LOOKS[condition]
         frames = cached_frames(args.frames, args.seed, size, strength, args.cache, look)
         results[condition] = measure(frames, estimator)
+        if args.figure and len(results) == 1:
+            figure(frames, estimator, args.figure)
     print(json.dumps(results, indent=2) if args.json else table(results))
     return 0

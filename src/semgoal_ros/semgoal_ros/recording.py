@@ -13,6 +13,7 @@ import importlib
 import json
 import re
 import shlex
+import struct
 import sys
 import time
 from pathlib import Path
@@ -53,7 +54,34 @@ def recorded_topics(session: bool = False) -> list[tuple[str, str, QoSProfile]]:
         (topics.CLOCK, "rosgraph_msgs/msg/Clock", topics.RECORDING),
         (topics.CAMERA_IMAGE, "sensor_msgs/msg/Image", topics.CAMERA),
         ("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", topics.RECORDING),
+        (topics.RGBD_COLOUR, "sensor_msgs/msg/Image", topics.RECORDING),
+        (topics.RGBD_DEPTH, "sensor_msgs/msg/Image", topics.RECORDING),
+        (topics.RGBD_INFO, "sensor_msgs/msg/CameraInfo", topics.RECORDING),
+        (topics.BLOCK_ESTIMATES, "semgoal_msgs/msg/BlockEstimates", topics.RECORDING),
+        (topics.TF, "tf2_msgs/msg/TFMessage", topics.RECORDING),
+        (topics.TF_STATIC, "tf2_msgs/msg/TFMessage", latched),
     ]
+
+
+CAMERA_RECORD_PERIOD_S = 0.2
+"""The RGB-D frames are recorded at 5 Hz of sim time (every fifth control step), not at the 25 Hz they come:
+colour, depth and info of the same instants, a fifth of the file."""
+DECIMATED = (topics.RGBD_COLOUR, topics.RGBD_DEPTH, topics.RGBD_INFO)
+
+
+def stamp_of(cdr: bytes) -> float:
+    """The header stamp (s) of a serialised message that starts with a std_msgs/Header: after the 4-byte CDR
+    encapsulation (its second byte 1 for little-endian, 0 for big) come its int32 sec and uint32 nanosec."""
+    sec, nanosec = struct.unpack_from("<iI" if cdr[1] else ">iI", cdr, 4)
+    return sec + nanosec * 1e-9
+
+
+def kept(topic: str, cdr: bytes) -> bool:
+    """Whether a recording keeps this message (the camera's only at :data:`CAMERA_RECORD_PERIOD_S` instants)."""
+    if topic not in DECIMATED:
+        return True
+    ticks = stamp_of(cdr) / CAMERA_RECORD_PERIOD_S
+    return abs(ticks - round(ticks)) < 1e-6
 
 
 @functools.cache
@@ -133,6 +161,8 @@ class Recorder:
                    for sub in self.subscriptions)
 
     def _write(self, channel: int, topic: str, data: bytes) -> None:
+        if not kept(topic, data):
+            return
         now = time.time_ns()
         self.writer.add_message(channel, log_time=now, data=data, publish_time=now, sequence=self.counts[topic])
         self.counts[topic] += 1

@@ -68,3 +68,27 @@ def test_the_study_log_keeps_every_row_in_order(tmp_path) -> None:
     assert [(r["who"], r["event"], r["sim_time"]) for r in rows] == [("person", "goal", "1.50"), ("planner", "plan", "2.00")]
     assert float(rows[0]["wall_time"]) <= float(rows[1]["wall_time"])
     log.close()
+
+
+def test_literals_the_perception_is_unsure_of_read_as_questions_with_how_sure_it_is() -> None:
+    from semgoal_bringup.console_core import unsure_sentences
+
+    literals = [("close", ("red", "green"), True, 0.62), ("close", ("green", "red"), True, 0.62),
+                ("in_bin", ("red",), False, 0.7), ("above", ("red", "green"), False, 1.0)]
+    assert unsure_sentences(literals) == ["red is near green? (62% sure)", "not: red is in the bin? (70% sure)"]
+
+
+def test_the_camera_view_draws_each_estimate_where_it_projects() -> None:
+    import numpy as np
+    from semgoal_perception.geometry import PinholeCamera
+
+    from semgoal_bringup.perception_view import SCALE, draw_estimates
+
+    down = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
+    camera = PinholeCamera(140.0, 140.0, 79.5, 59.5, down)
+    image = np.asarray(draw_estimates(np.full((120, 160, 3), 200, np.uint8), camera,
+                                      [("red", np.array([1.3, 0.75, 0.4]), 0), ("green", np.full(3, np.nan), 4)]))
+    assert image.shape == (120 * SCALE, 160 * SCALE, 3)
+    u, v = (camera.project(np.array([[1.3, 0.75, 0.4]]))[0] + 0.5) * SCALE
+    assert tuple(image[int(v), int(u)]) != (200, 200, 200)  # the cross is drawn on the estimate
+    assert (image[:, :200] == 200).all()  # and nothing for the block never seen

@@ -33,3 +33,20 @@ def test_an_independent_decoder_reads_rclpy_serialisation_with_it() -> None:
 def test_every_recorded_type_has_a_definition() -> None:
     for _, type_name, _ in recorded_topics():
         assert message_definition(type_name)
+
+
+def test_camera_frames_are_kept_at_their_recording_instants_only() -> None:
+    from sensor_msgs.msg import Image
+
+    from semgoal_ros import interfaces as topics
+    from semgoal_ros.recording import kept, stamp_of
+
+    def frame(step: int) -> bytes:
+        image = Image(encoding="rgb8", width=1, height=1, step=3, data=bytes(3))
+        nanoseconds = step * 40_000_000  # 25 Hz control steps
+        image.header.stamp.sec, image.header.stamp.nanosec = divmod(nanoseconds, 1_000_000_000)
+        return serialize_message(image)
+
+    assert stamp_of(frame(123)) == 4.92
+    assert [step for step in range(12) if kept(topics.RGBD_COLOUR, frame(step))] == [0, 5, 10]
+    assert all(kept(topics.WORLD_STATE, frame(step)) for step in range(12))

@@ -18,12 +18,21 @@ TASK, SEED = "DC-3", 6
 PIXELS = Sight(perception="camera", policy_input="camera")
 
 
-def start(nodes: NodeProcesses, sight: Sight) -> GraphClient:
-    for package, executable, params in graph_nodes(TASK, SEED, "lockstep", sight=sight):
-        nodes.start(package, executable, params=params)
-    client = GraphClient("semgoal_test_operator", watch=False)
-    assert client.wait_ready(timeout=60.0), "the graph did not come up"
-    return client
+@pytest.fixture
+def start(nodes: NodeProcesses):
+    """Starts the graph seeing by a :class:`Sight` and gives its client (closed after the test)."""
+    clients = []
+
+    def started(sight: Sight) -> GraphClient:
+        for package, executable, params in graph_nodes(TASK, SEED, "lockstep", sight=sight):
+            nodes.start(package, executable, params=params)
+        clients.append(GraphClient("semgoal_test_operator", watch=False))
+        assert clients[-1].wait_ready(timeout=60.0), "the graph did not come up"
+        return clients[-1]
+
+    yield started
+    for client in clients:
+        client.close()
 
 
 class Listener:
@@ -51,8 +60,8 @@ class Listener:
         return errors
 
 
-def test_dc3_is_solved_from_pixels_and_hidden_blocks_keep_their_tracks(nodes: NodeProcesses) -> None:
-    client = start(nodes, PIXELS)
+def test_dc3_is_solved_from_pixels_and_hidden_blocks_keep_their_tracks(start) -> None:
+    client = start(PIXELS)
     listener = Listener(client)
     ok, message = client.reset(TASK, SEED)
     assert ok, message
@@ -66,11 +75,11 @@ def test_dc3_is_solved_from_pixels_and_hidden_blocks_keep_their_tracks(nodes: No
     assert np.median(errors) < 0.02, f"hidden blocks drifted from the truth: median {np.median(errors):.3f} m"
 
 
-def test_a_camera_that_stops_pauses_the_plan_with_the_reason_until_frames_return(nodes: NodeProcesses) -> None:
+def test_a_camera_that_stops_pauses_the_plan_with_the_reason_until_frames_return(start) -> None:
     from rcl_interfaces.srv import SetParameters
     from rclpy.parameter import Parameter
 
-    client = start(nodes, Sight(perception="camera"))
+    client = start(Sight(perception="camera"))
     listener = Listener(client)
     ok, message = client.reset(TASK, SEED)
     assert ok, message

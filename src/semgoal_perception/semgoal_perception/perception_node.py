@@ -42,6 +42,9 @@ PARAMS = (
     Param("stale_after_s", 1.0, "no frame for this long (wall time) is reported on /diagnostics", low=0.05, high=60.0),
     Param("threads", 1, "torch threads for the voter", low=1, high=64),
 )
+STALE_WORLD_STATES = 3
+"""World states that must come without a whole frame (besides ``stale_after_s`` of wall time) before the state
+is stale: on a loaded machine a frame may follow its world state late, never by three."""
 PENDING_KEPT = 16
 """Frames, camera infos and world states kept while their partners are on the way."""
 
@@ -102,6 +105,8 @@ class PerceptionNode(Node):
         self.pending: dict[int, dict[str, object]] = {}
         self.camera_pose: np.ndarray | None = None
         self.last_frame_at: float | None = None
+        self.worlds_unseen = 0
+        """World states that came since the last whole frame."""
         self.counters, self.latency = Counters(), Latencies()
         self.diagnostics = Diagnostics(self, self.health)
         self.get_logger().info(f"block voter from {folder}")
@@ -121,16 +126,19 @@ class PerceptionNode(Node):
                 self.camera_pose = pose_matrix(transform.transform)
 
     def blind_for(self) -> float | None:
-        """Seconds since the last whole frame when that is longer than ``stale_after_s``; else None."""
-        if self.last_frame_at is None or self.perceiver.tracker is None:
+        """Seconds since the last whole frame, when that is longer than ``stale_after_s`` and
+        :data:`STALE_WORLD_STATES` world states came since; else None."""
+        if self.last_frame_at is None or self.perceiver.tracker is None or self.worlds_unseen < STALE_WORLD_STATES:
             return None
         age = time.monotonic() - self.last_frame_at
         return age if age > self.stale_after_s else None
 
     def pending_in(self, kind: str, msg) -> None:
         """Keep ``msg`` until the frame with its stamp is whole (colour, depth, info, world state), then see it."""
-        if kind == "world" and (age := self.blind_for()) is not None:
-            self.publish_stale(msg, f"no camera frame for {age:.1f} s")
+        if kind == "world":
+            self.worlds_unseen += 1
+            if (age := self.blind_for()) is not None:
+                self.publish_stale(msg, f"no camera frame for {age:.1f} s")
         key = stamp_key(msg.header)
         parts = self.pending.setdefault(key, {})
         parts[kind] = msg
@@ -155,7 +163,7 @@ class PerceptionNode(Node):
             self.counters["frames refused"] += 1
             self.get_logger().warn(f"refused a camera frame: {error}", throttle_duration_sec=2.0)
             return
-        self.last_frame_at = time.monotonic()
+        self.last_frame_at, self.worlds_unseen = time.monotonic(), 0
         arm = self.arm_state(world)
         blocks = task.blocks
         seen = self.perceiver.perceive(rgb, depth, camera, arm, world.scene, blocks, (world.episode, world.seed), world.step)

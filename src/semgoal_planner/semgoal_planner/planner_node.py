@@ -26,6 +26,7 @@ from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, VocabularyError
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan, GetPlan
+from semgoal_planner.doubt import Doubt, unsure_literals
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
 from semgoal_planner.journal import PlanJournal, Record, Verdict, World, resume
@@ -79,6 +80,10 @@ PARAMS = (
           low=0.0, high=3600.0, runtime=True),
     Param("state_dir", "", "a folder for the planner's journal (SQLite): goal, plan, edits and revision survive a "
           "restart on the same world; empty: nothing survives"),
+    Param("min_confidence", 0.9, "a literal the plan relies on that the source (the camera) is less sure of than this "
+          "holds the planner's decisions", low=0.0, high=1.0, runtime=True),
+    Param("unsure_wait_steps", 25, "control steps the planner holds its decisions for unsure literals before it takes "
+          "the state as it is", low=0, high=100_000, runtime=True),
 )
 EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval")
 """Parameters that are the executive's settings of the same name."""
@@ -96,6 +101,7 @@ class PlannerNode(Node):
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
         self.state_wait_s = float(values["state_wait_s"])
         self.world_silence_s = float(values["world_silence_s"])
+        self.doubt = Doubt(values["min_confidence"], values["unsure_wait_steps"])
         apply_changes(self, PARAMS, self.apply_parameter)
         self.state_waiters: list[Future] = []
         """ExecuteGoal requests that arrived before any semantic state: resolved by the first one."""
@@ -155,6 +161,10 @@ class PlannerNode(Node):
             setattr(self.executive, name, value)
         elif name == "state_wait_s":
             self.state_wait_s = float(value)
+        elif name == "min_confidence":
+            self.doubt.threshold = value
+        elif name == "unsure_wait_steps":
+            self.doubt.wait_steps = value
         elif name == "world_silence_s":
             self.world_silence_s = float(value)
 
@@ -212,6 +222,11 @@ class PlannerNode(Node):
         except VocabularyError as error:
             self.get_logger().warn(f"ignored a semantic state: {error}", throttle_duration_sec=5.0)
             return
+        try:
+            unsure = unsure_literals(literals, list(msg.confidence), self.relied_on(), self.doubt.threshold)
+        except ValueError as error:
+            self.get_logger().warn(f"ignored a semantic state: {error}", throttle_duration_sec=5.0)
+            return
         if self.journaled is not None:
             self.take_up_journal(msg)
         self.last_state, self.heard_at = msg, time.monotonic()
@@ -224,12 +239,22 @@ class PlannerNode(Node):
             self.executive.tick(int(msg.step))
             if msg.stale:  # the source says this state is not to be acted on: hold the plan until one is
                 self.executive.pause_blind(msg.stale)
+            elif self.doubt.holds(unsure, int(msg.step)):
+                self.executive.resume_sighted()
+                self.counters["states held in doubt"] += 1
+                self.get_logger().info("deciding nothing on " + ", ".join(f"{lit} ({sure:.0%} sure)" for lit, sure in unsure),
+                                       throttle_duration_sec=1.0)
             else:
                 self.executive.resume_sighted()
                 self.executive.observe(Observation(tuple(msg.objects), literals, int(msg.step), tuple(msg.fallen),
                                                    tuple(msg.moving)))
         self.counters["re-plans"] += max(0, self.executive.replans - replans)
         self.publish(decided=True)
+
+    def relied_on(self) -> list[Literal]:
+        """The literals the plan's decisions rest on now: the goal's and the active step's."""
+        active = self.executive.active
+        return [*self.executive.goal, *(active.subgoal.literals() if active else ())]
 
     # -- the journal ---------------------------------------------------------------------------------
     def take_up_journal(self, msg: SemanticState) -> None:

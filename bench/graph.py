@@ -1,11 +1,13 @@
-"""`./semgoal bench-graph [--task T] [--episodes N] [--json]`: the four-node graph's speed, both modes.
+"""`./semgoal bench-graph [--task T] [--episodes N] [--pixels] [--json]`: the four-node graph's speed, both modes.
 
 Lockstep: control steps per second of wall time, end to end (sim -> predicates -> planner -> policy ->
 sim, over DDS), over N episodes of the task, beside the same episodes in one process (no ROS) as the
 peer: the ratio is what the graph costs; and the same episodes again, each recorded as MCAP.
 Realtime: the sim steps at 25 Hz on its timer; the client
 records when each world state arrives (:func:`arrival_timing`: the rate, and the steps late by more
-than half a period). Figures are medians over episodes; the last line is JSON with ``--json``.
+than half a period). With ``--pixels`` the same lockstep episodes run again with the planner and the policy on
+the RGB-D camera (the sim rendering every step, perception_node in place of predicate_node): steps/s from
+pixels beside ground truth. Figures are medians over episodes; the last line is JSON with ``--json``.
 """
 
 from __future__ import annotations
@@ -17,25 +19,27 @@ import time
 from itertools import pairwise
 
 from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.graph import TRUTH, Sight, running_graph
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 REALTIME_HZ = 25.0
 
 
-def lockstep(task: str, episodes: int, seed: int) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
-    """(control steps, wall seconds) per episode through the graph, unrecorded and recorded as MCAP (into a
-    scratch folder, as ``eval --via-ros --record`` does): each start once of each kind, in turns on the same
-    running graph, so that the ratio does not depend on a graph's start or on what else the machine does."""
+def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH,
+             record: bool = True) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
+    """(control steps, wall seconds) per episode through the graph seeing by ``sight``, unrecorded and (with
+    ``record``) recorded as MCAP (into a scratch folder, as ``eval --via-ros --record`` does): each start once of
+    each kind, in turns on the same running graph, so that the ratio does not depend on a graph's start or on
+    what else the machine does."""
     import tempfile
     from pathlib import Path
 
-    from semgoal_bringup.graph import running_graph
-
     plain, recorded = [], []
     with tempfile.TemporaryDirectory() as scratch, \
-            running_graph(task, seed, client_name="semgoal_bench", watch=False) as client:
+            running_graph(task, seed, client_name="semgoal_bench", watch=False, sight=sight) as client:
         for i in range(episodes):
-            for runs, path in ((plain, None), (recorded, Path(scratch) / f"{i}.mcap")):
+            kinds = ((plain, None), (recorded, Path(scratch) / f"{i}.mcap")) if record else ((plain, None),)
+            for runs, path in kinds:
                 with client.recording(path):
                     client.must_reset(task, seed + i)
                     result = client.execute(task, max_steps=TASK_STEP_BUDGET)
@@ -55,8 +59,6 @@ def in_process(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
 
 def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
     """Arrival jitter of world states while the graph solves the task at 25 Hz."""
-    from semgoal_bringup.graph import running_graph
-
     arrivals: list[tuple[int, float]] = []
     with running_graph(task, seed, mode="realtime", client_name="semgoal_bench") as client:
         client.world_listeners.append(lambda msg: arrivals.append((int(msg.step), time.perf_counter())))
@@ -80,12 +82,21 @@ def arrival_timing(arrivals: list[tuple[int, float]], hz: float) -> dict[str, fl
             "max_gap_ms": 1000 * max(gaps, default=0.0)}
 
 
+def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
+    """The lockstep episodes again with the planner and the policy on the RGB-D camera, beside ground truth's rate."""
+    runs, _ = lockstep(task, episodes, seed, Sight(perception="camera", policy_input="camera"), record=False)
+    rate = statistics.median(steps / wall for steps, wall in runs if wall > 0)
+    return {"lockstep_pixels_steps_per_s": round(rate, 1), "pixels_over_truth": round(rate / truth_rate, 3),
+            "pixels_steps": [s for s, _ in runs]}
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench-graph", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default="MC-2")
     parser.add_argument("--episodes", type=int, default=5)
     parser.add_argument("--seed", type=int, default=3_000_000)
     parser.add_argument("--realtime-s", type=float, default=20.0, help="seconds of realtime running")
+    parser.add_argument("--pixels", action="store_true", help="also the lockstep episodes with everything on the camera")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     import torch
@@ -104,11 +115,15 @@ def main(argv: list[str]) -> int:
                   (steps / wall) / (plain_steps / plain_wall)
                   for (steps, wall), (plain_steps, plain_wall) in zip(recorded, graph, strict=True)), 3),
               "graph_steps": [s for s, _ in graph], "in_process_steps": [s for s, _ in local],
+              **(from_pixels(task, args.episodes, args.seed, rate(graph)) if args.pixels else {}),
               "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
     print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
           f"{args.episodes}); in one process: {result['in_process_steps_per_s']} steps/s; "
           f"ratio {result['graph_over_in_process']}; recording every topic: {result['lockstep_recorded_steps_per_s']} "
           f"steps/s ({result['recorded_over_unrecorded']} of unrecorded, median over the pairs of one start)")
+    if args.pixels:
+        print(f"lockstep from pixels (planner and policy on the camera): {result['lockstep_pixels_steps_per_s']} "
+              f"control steps/s, {result['pixels_over_truth']} of ground truth's")
     rt = result["realtime"]
     print(f"realtime at {REALTIME_HZ:.0f} Hz: {rt['steps']} steps at {rt['rate_hz']:.2f} Hz, "
           f"{100 * rt['late_fraction']:.2f} % late (> 1.5 periods after the step before), "

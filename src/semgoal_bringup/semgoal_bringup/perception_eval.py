@@ -27,13 +27,15 @@ CONDITION_LOOKS = {"nominal": ("nominal", 0.0), "randomised": ("nominal", 1.0), 
 """Measured condition: (camera condition, randomisation strength)."""
 
 
-def measure(frames, estimator) -> dict:
-    """The figures of one set of frames (module doc)."""
+def measure(frames, estimator, literal_net=None) -> dict:
+    """The figures of one set of frames (module doc); with ``literal_net`` (the paper's alternative: literals
+    straight from the frame) its agreement on the same literals too."""
     import torch
     from semgoal_perception.estimator import MIN_PIXELS
+    from semgoal_perception.literal_net import INDEX as ATOM_INDEX
+    from semgoal_perception.literal_net import literal_probabilities
     from semgoal_perception.training import frame_camera
 
-    from semgoal_bringup.evaluation import wilson_interval
     from semgoal_core.geometry import TABLE_TOP
     from semgoal_core.settling import REST_SPEED
     from semgoal_core.tasks import TASKS, get_task
@@ -44,6 +46,8 @@ def measure(frames, estimator) -> dict:
     errors, missed, latencies = [], 0, []
     agree: dict[str, list[int]] = {}
     near = {"agree": 0, "total": 0}
+    direct: dict[str, list[int]] = {}
+    direct_near = {"agree": 0, "total": 0}
     for i in range(len(frames.rgb)):
         started = time.perf_counter()
         found = {d.colour: d for d in estimator.detect(frames.rgb[i], frames.depth[i],
@@ -73,30 +77,51 @@ def measure(frames, estimator) -> dict:
         true_vector = evaluate(layout, slots, grip, opening, TABLE_TOP, present)
         seen_vector = evaluate(layout, estimate, grip, opening, TABLE_TOP, present)
         margins = threshold_margins(layout, slots, grip, TABLE_TOP)
+        probabilities = None
+        if literal_net is not None:
+            probabilities = literal_probabilities(literal_net, frames.rgb[i], frames.depth[i],
+                                                  frame_camera(frames.camera[i], frames.world_from_camera[i]), frames.grip[i])
         for entry, (name, args) in enumerate(layout.atoms):
             if not all(present[layout.objects.index(a)] for a in args):
                 continue
-            same = int(true_vector[entry] == seen_vector[entry])
-            if margins[entry] <= NEAR_THRESHOLD:
-                near["agree"] += same
-                near["total"] += 1
-            else:
-                agree.setdefault(name, []).append(same)
+            near_threshold = margins[entry] <= NEAR_THRESHOLD
+            tally(agree, near, name, near_threshold, int(true_vector[entry] == seen_vector[entry]))
+            if probabilities is not None:
+                said = bool(probabilities[ATOM_INDEX[(name, args)]] > 0.5)
+                tally(direct, direct_near, name, near_threshold, int(true_vector[entry] == said))
     errors_mm = 1e3 * np.array(errors)
-    every = [v for values in agree.values() for v in values]
-    literal_rows = {name: {"agree": int(sum(v)), "total": len(v), "rate": sum(v) / len(v), "wilson95": wilson_interval(sum(v), len(v))}
-                    for name, v in sorted(agree.items())}
     return {
         "frames": len(frames.rgb),
         "poses": {"blocks": len(errors), "missed": missed, "median_mm": float(np.median(errors_mm)),
                   "p90_mm": float(np.quantile(errors_mm, 0.9)), "p99_mm": float(np.quantile(errors_mm, 0.99)),
                   "max_mm": float(errors_mm.max())},
-        "literals": {"overall": {"agree": int(sum(every)), "total": len(every), "rate": sum(every) / max(len(every), 1),
-                                 "wilson95": wilson_interval(sum(every), len(every)) if every else None},
-                     "per_predicate": literal_rows,
-                     "near_threshold": {**near, "rate": near["agree"] / max(near["total"], 1)}},
+        "literals": agreement(agree, near),
+        **({"literals_straight_from_the_frame": agreement(direct, direct_near)} if literal_net is not None else {}),
         "latency_ms": {"p50": 1e3 * float(np.median(latencies)), "p99": 1e3 * float(np.quantile(latencies, 0.99))},
     }
+
+
+def tally(per_predicate: dict[str, list[int]], near: dict[str, int], name: str, near_threshold: bool, same: int) -> None:
+    """Count one literal's agreement: apart when its true geometry is near a threshold."""
+    if near_threshold:
+        near["agree"] += same
+        near["total"] += 1
+    else:
+        per_predicate.setdefault(name, []).append(same)
+
+
+def agreement(per_predicate: dict[str, list[int]], near: dict[str, int]) -> dict:
+    """Overall, per predicate and near-threshold agreement, with Wilson intervals."""
+    from semgoal_bringup.evaluation import wilson_interval
+
+    def row(agreed: int, total: int) -> dict:
+        return {"agree": agreed, "total": total, "rate": agreed / max(total, 1),
+                "wilson95": wilson_interval(agreed, total) if total else None}
+
+    every = [v for values in per_predicate.values() for v in values]
+    return {"overall": row(int(sum(every)), len(every)),
+            "per_predicate": {name: row(int(sum(v)), len(v)) for name, v in sorted(per_predicate.items())},
+            "near_threshold": row(near["agree"], near["total"])}
 
 
 def _rate_cell(row: dict | None) -> str:
@@ -111,11 +136,20 @@ def table(results: dict) -> str:
     lines = ["| condition | blocks | missed | median mm | p99 mm | literals | "
              + " | ".join(PREDICATES) + " | near 5 mm | p50 ms | p99 ms |", "|---" * 13 + "|"]
     for condition, r in results.items():
-        per, poses, literals = r["literals"]["per_predicate"], r["poses"], r["literals"]
-        cells = [condition, poses["blocks"], poses["missed"], f"{poses['median_mm']:.2f}", f"{poses['p99_mm']:.2f}",
-                 _rate_cell(literals["overall"]), *(_rate_cell(per.get(name)) for name in PREDICATES),
-                 _rate_cell(literals["near_threshold"]), f"{r['latency_ms']['p50']:.1f}", f"{r['latency_ms']['p99']:.1f}"]
-        lines.append("| " + " | ".join(map(str, cells)) + " |")
+        poses = r["poses"]
+        for approach, key in (("poses, then predicates", "literals"),
+                              ("literals straight from the frame", "literals_straight_from_the_frame")):
+            if key not in r:
+                continue
+            literals = r[key]
+            cells = [f"{condition}: {approach}", poses["blocks"], poses["missed"], f"{poses['median_mm']:.2f}",
+                     f"{poses['p99_mm']:.2f}", _rate_cell(literals["overall"]),
+                     *(_rate_cell(literals["per_predicate"].get(name)) for name in PREDICATES),
+                     _rate_cell(literals["near_threshold"]), f"{r['latency_ms']['p50']:.1f}", f"{r['latency_ms']['p99']:.1f}"]
+            if key != "literals":
+                cells[1:5] = ["-"] * 4
+                cells[-2:] = ["-", "-"]
+            lines.append("| " + " | ".join(map(str, cells)) + " |")
     return "\n".join(lines)
 
 
@@ -163,6 +197,7 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
 def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     from semgoal_perception.estimator import BlockEstimator
+    from semgoal_perception.literal_net import load_literal_net
 
     from semgoal_bringup.perception_training import cached_frames
     from semgoal_ros.package_data import share_path
@@ -179,6 +214,8 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     folder = args.model_dir or share_path("semgoal_perception", "models", "block_voter")
     estimator = BlockEstimator.load(folder)
+    literals_folder = folder.parent / "literal_net"
+    literal_net = load_literal_net(literals_folder) if (literals_folder / "literal_net.pt").exists() else None
     size = tuple(json.loads((folder / "voter.json").read_text())["camera_size"])
     results = {}
     for condition in args.conditions.split(","):
@@ -186,7 +223,7 @@ def main(argv: list[str]) -> int:
             parser.error(f"unknown condition {condition!r}: conditions are {', '.join(CONDITION_LOOKS)}")
         look, strength = CONDITION_LOOKS[condition]
         frames = cached_frames(args.frames, args.seed, size, strength, args.cache, look)
-        results[condition] = measure(frames, estimator)
+        results[condition] = measure(frames, estimator, literal_net)
         if args.figure and len(results) == 1:
             figure(frames, estimator, args.figure)
     print(json.dumps(results, indent=2) if args.json else table(results))

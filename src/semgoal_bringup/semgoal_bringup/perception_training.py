@@ -49,11 +49,15 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--out", type=Path, default=CHECKOUT_PACKAGE / "models" / "block_voter",
                         help="export folder (default: the shipped model, in the checkout)")
     parser.add_argument("--cache", type=Path, default=Path("runs/perception"))
+    parser.add_argument("--literal-net", action="store_true",
+                        help="train the paper's alternative instead (literals straight from the frame) into OUT/../literal_net")
     args = parser.parse_args(argv)
     size = tuple(recipe["camera_size"])
     started = time.perf_counter()
     frames = cached_frames(args.images, args.seed, size, recipe["randomisation_strength"], args.cache)
     rendered = time.perf_counter() - started
+    if args.literal_net:
+        return train_literal_alternative(frames, args.out.parent / "literal_net", args.epochs, argv)
     voter = {f.name: recipe["voter"][f.name] for f in fields(VoterRecipe)}
     voter.update(epochs=args.epochs, crop=tuple(voter["crop"]))
     summary = train_voter(frames, args.out, VoterRecipe(**voter), VoterConfig(**recipe["network"]))
@@ -65,6 +69,19 @@ def main(argv: list[str]) -> int:
     plot_curve(args.out / "curve.csv", args.out / "curve.png")
     write_model_card(args.out, summary)
     print(json.dumps(summary["final"], indent=2))
+    return 0
+
+
+def train_literal_alternative(frames, out: Path, epochs: int, argv: list[str]) -> int:
+    """The paper's alternative on the same frames, exported beside the voter (``eval-perception`` compares them)."""
+    from semgoal_perception.literal_net import train_literal_net
+
+    from semgoal_core.tasks import TASKS, get_task
+
+    summary = train_literal_net(frames, [get_task(list(TASKS)[t]) for t in frames.task], out, epochs=epochs)
+    summary["provenance"] = provenance("./semgoal train-perception " + " ".join(argv), None)
+    (out / "literal_net.json").write_text(json.dumps(summary, indent=2) + "\n")
+    print(json.dumps({k: summary[k] for k in ("frames", "epochs", "final_loss", "wall_s")}, indent=2))
     return 0
 
 

@@ -28,10 +28,11 @@ RESTART_WINDOW_S = 60.0
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal up", description=__doc__.split("\n\n")[0])
     for name, default, text in LAUNCH_ARGUMENTS:
+        flags = dict.fromkeys((f"--{name.replace('_', '-')}", f"--{name}"))  # --policy-input, and the launch file's spelling
         if name in DEFAULT_PORTS:  # `--foxglove` / `--console` alone: the default port
-            parser.add_argument(f"--{name}", default=default, nargs="?", const=str(DEFAULT_PORTS[name]), help=text)
+            parser.add_argument(*flags, dest=name, default=default, nargs="?", const=str(DEFAULT_PORTS[name]), help=text)
         else:
-            parser.add_argument(f"--{name}", default=default, help=text)
+            parser.add_argument(*flags, dest=name, default=default, help=text)
     parser.add_argument("--log-level", default="info")
     args = parser.parse_args(argv)
     if args.mode not in list(Mode):

@@ -28,12 +28,13 @@ from tf2_msgs.msg import TFMessage
 from semgoal_core import layout as observation_layout
 from semgoal_core.tasks import TASKS, get_task
 from semgoal_core.vocabulary import LAYOUTS, SCENES
-from semgoal_msgs.msg import BlockEstimate, BlockEstimates, BlockState, Predicate, SemanticState, WorldState
+from semgoal_msgs.msg import BlockEstimate, BlockEstimates, BlockState, SemanticState, WorldState
 from semgoal_perception.estimator import BlockEstimator
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.perceiver import ArmState, Perceiver, Perception
 from semgoal_ros import interfaces as topics
 from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics, Latencies
+from semgoal_ros.messages import semantic_message
 from semgoal_ros.parameters import Param, ParameterValueError, declare
 
 CAMERA_FRAME = "camera_color_optical_frame"
@@ -208,14 +209,7 @@ class PerceptionNode(Node):
 
     @staticmethod
     def semantic_state(world: WorldState, seen: Perception) -> SemanticState:
-        layout = LAYOUTS[world.scene]
-        state = SemanticState(scene=world.scene, step=world.step, episode=world.episode, objects=list(seen.blocks),
-                              vector=[bool(v) for v in seen.vector], confidence=[float(c) for c in seen.confidence],
-                              fallen=seen.fallen, moving=list(seen.moving))
-        state.header = world.header
-        state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
-                            for (name, args), v in zip(layout.atoms, seen.vector, strict=True)]
-        return state
+        return semantic_message(world, seen.blocks, seen.vector, seen.fallen, seen.moving, seen.confidence)
 
     @staticmethod
     def estimates(world: WorldState, seen: Perception, latency_ms: float) -> BlockEstimates:

@@ -42,12 +42,18 @@ def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:
     layout = LAYOUTS[msg.scene]
     positions, present = block_positions(msg)
     objects = [name for name, here in zip(layout.objects, present, strict=True) if here]
-    state = SemanticState(scene=msg.scene, step=msg.step, episode=msg.episode, objects=objects,
-                          vector=[bool(v) for v in vector],
-                          fallen=fallen_blocks(objects, positions[present], TABLE_TOP), moving=list(moving(msg)))
-    state.header = msg.header
+    return semantic_message(msg, objects, vector, fallen_blocks(objects, positions[present], TABLE_TOP), moving(msg))
+
+
+def semantic_message(world: WorldState, objects, vector, fallen, moving_now, confidence=()) -> SemanticState:
+    """The SemanticState of a world state's scene, step, episode and stamp, from its evaluated ``vector``
+    (whoever evaluated it: the simulator's predicates or the camera's perception)."""
+    state = SemanticState(scene=world.scene, step=world.step, episode=world.episode, objects=list(objects),
+                          vector=[bool(v) for v in vector], confidence=[float(c) for c in confidence],
+                          fallen=list(fallen), moving=list(moving_now))
+    state.header = world.header
     state.predicates = [Predicate(name=name, args=list(args), value=bool(v))
-                        for (name, args), v in zip(layout.atoms, vector, strict=True)]
+                        for (name, args), v in zip(LAYOUTS[world.scene].atoms, vector, strict=True)]
     return state
 
 

@@ -48,11 +48,14 @@ def measure(frames, estimator, literal_net=None) -> dict:
     near = {"agree": 0, "total": 0}
     direct: dict[str, list[int]] = {}
     direct_near = {"agree": 0, "total": 0}
-    for i in range(len(frames.rgb)):
+    seen = []
+    for i in range(len(frames.rgb)):  # timed alone, as the node runs it (the alternative evicts its caches)
         started = time.perf_counter()
-        found = {d.colour: d for d in estimator.detect(frames.rgb[i], frames.depth[i],
-                                                       frame_camera(frames.camera[i], frames.world_from_camera[i]))}
+        seen.append(estimator.detect(frames.rgb[i], frames.depth[i],
+                                     frame_camera(frames.camera[i], frames.world_from_camera[i])))
         latencies.append(time.perf_counter() - started)
+    for i in range(len(frames.rgb)):
+        found = {d.colour: d for d in seen[i]}
         task = get_task(list(TASKS)[frames.task[i]])
         layout = LAYOUTS[task.scene]
         truth = np.array([frames.centres[i][colours.index(b)] for b in task.blocks])

@@ -1,8 +1,9 @@
 """The collaboration console in a real browser (Debian's Chromium, headless, through Selenium) on real nodes:
 a person sends DC-3, sees an invalid edit refused with the planner's reason, gives step 3 to themselves,
 approves, does that step in the page when it comes (the block goes into the bin), and sees the robot finish.
-The study log holds every action in order. And a console started with a token, as for other machines,
-refuses a request without it, changing nothing."""
+The study log holds every action in order. On a graph that sees by its camera the page shows the camera's
+frame with the estimates and marks the literals the perception is unsure of. And a console started with a
+token, as for other machines, refuses a request without it, changing nothing."""
 
 import asyncio
 import csv
@@ -13,6 +14,7 @@ import urllib.error
 import urllib.request
 from pathlib import Path
 
+import numpy as np
 import pytest
 import websockets
 from selenium import webdriver
@@ -24,6 +26,8 @@ from selenium.webdriver.support.ui import WebDriverWait
 from websockets.exceptions import InvalidStatus
 
 from conftest import ROOT, GraphProbe, NodeProcesses, free_port
+from semgoal_bringup.console import CAMERA_VIEW
+from semgoal_bringup.graph import Sight, graph_nodes
 
 TOKEN = "study-token-7"
 CHROMIUM, CHROMEDRIVER = Path("/usr/bin/chromium"), Path("/usr/bin/chromedriver")
@@ -173,3 +177,54 @@ def test_a_request_without_the_token_is_refused_and_changes_nothing(nodes: NodeP
     assert plan.status == "empty" and not plan.steps
     rows = list(csv.DictReader(next((tmp_path / "logs").glob("console-*.csv")).open()))
     assert not [r for r in rows if r["who"] == "person"]  # nothing of the refused requests reached the graph
+
+
+def test_from_pixels_the_page_shows_the_camera_and_marks_what_the_perception_is_unsure_of(
+        nodes: NodeProcesses, probe: GraphProbe, browser, tmp_path: Path) -> None:
+    """DC-2 with the planner and the policy on the camera: the picture is the camera's frame (its size), a block
+    moved to the edge of ``close`` reads as unsure in the page, and the goal sent from the page succeeds."""
+    import io
+
+    from PIL import Image
+
+    from semgoal_core.vocabulary import THRESHOLDS
+    from semgoal_ros.client import GraphClient
+
+    port = free_port()
+    for package, executable, params in graph_nodes("DC-2", 6, "lockstep", sight=Sight("camera", "camera")):
+        nodes.start(package, executable, params=params)
+    start_console(nodes, port, tmp_path / "logs")
+    wait = WebDriverWait(browser, 60, ignored_exceptions=(StaleElementReferenceException,))
+    browser.get(f"http://127.0.0.1:{port}/?token={TOKEN}")
+    wait.until(lambda b: b.find_element(By.ID, "view").text == CAMERA_VIEW)
+    wait.until(lambda b: b.execute_script("return document.getElementById('camera').naturalWidth") > 0)
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/camera.jpg?token={TOKEN}", timeout=5) as reply:
+        picture = Image.open(io.BytesIO(reply.read()))
+    assert picture.size == (480, 360), picture.size  # the 160 x 120 camera frame drawn at 3x
+
+    client = GraphClient("semgoal_test_operator", watch=False)
+    try:
+        assert client.wait_ready(timeout=60.0)
+        red = next(b.pose.position for b in client.world.blocks if b.name == "red")
+        toward_middle = np.array([1.30 - red.x, 0.75 - red.y])
+        toward_middle /= np.linalg.norm(toward_middle)
+        x, y = np.array([red.x, red.y]) + THRESHOLDS.close_distance * toward_middle
+        moved, message = client.move_block("green", x, y, red.z)
+        assert moved, message
+    finally:
+        client.close()
+    wait.until(lambda b: any("green" in li.text and "red" in li.text
+                             for li in b.find_elements(By.CSS_SELECTOR, "#holds li.unsure")))
+    unsure = browser.find_element(By.CSS_SELECTOR, "#holds li.unsure")
+    assert "sure)" in unsure.text and unsure.value_of_css_property("font-style") == "italic", unsure.text
+    browser.save_screenshot(str(tmp_path / "camera-unsure.png"))
+
+    browser.find_element(By.ID, "goal-text").send_keys("put red and green in the bin")
+    browser.find_element(By.ID, "goal-send").click()
+    wait = WebDriverWait(browser, 240, ignored_exceptions=(StaleElementReferenceException,))
+    try:
+        wait.until(lambda b: "plan succeeded" in b.find_element(By.ID, "status").text)
+    except TimeoutException:
+        pytest.fail("the goal from the page did not succeed; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    holds = browser.find_element(By.ID, "holds").text
+    assert "red is in the bin" in holds and "green is in the bin" in holds, holds

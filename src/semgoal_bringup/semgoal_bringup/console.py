@@ -43,6 +43,9 @@ CAMERA_PERIOD_S = 0.25
 """A camera image is rendered at most this often (older requests get the last one)."""
 CAMERA_FRESH_S = 2.0
 """An RGB-D frame older than this (wall time) is not shown: the view falls back to the rendered scene."""
+CAMERA_VIEW = "the robot's RGB-D camera, with what the perception makes of it"
+RENDERED_VIEW = "rendered from the simulator's poses (no camera in this graph)"
+"""What the page's picture is: the camera's frame with the estimates drawn, or a render of the published states."""
 PUMP_PERIOD_S = 0.005
 MAX_REQUEST_CHARS = 10_000
 """A WebSocket request longer than this is refused unread."""
@@ -77,9 +80,14 @@ class SeenByCamera:
             if transform.child_frame_id == CAMERA_FRAME:
                 self.pose = pose_matrix(transform.transform)
 
+    def live(self) -> bool:
+        """Whether the camera sent a frame lately and its intrinsics and pose are known."""
+        return not (self.frame is None or self.info is None or self.pose is None
+                    or time.monotonic() - self.frame_at > CAMERA_FRESH_S)
+
     def drawn(self):
         """The latest frame with the estimates drawn (a PIL image), or None without a recent frame."""
-        if self.frame is None or self.info is None or self.pose is None or time.monotonic() - self.frame_at > CAMERA_FRESH_S:
+        if not self.live():
             return None
         from semgoal_perception.geometry import PinholeCamera
         from semgoal_perception.perception_node import image_array
@@ -173,6 +181,7 @@ class Console:
         return {"type": "state", "scene": world.scene if world else "", "task": world.task if world else "",
                 "episode": world.episode if world else 0, "step": int(world.step) if world else 0,
                 "sim_time": round(self.sim_time(), 2), "blocks": blocks, "has_bin": bool(world and world.has_bin),
+                "view": CAMERA_VIEW if self.seen.live() else RENDERED_VIEW,
                 "holds": sentences(holds), "moving": list(semantic.moving) if semantic else [],
                 "unsure": unsure_sentences((p.name, tuple(p.args), p.value, c)
                                            for p, c in zip(semantic.predicates, semantic.confidence, strict=False))

@@ -29,17 +29,25 @@ def unsure_literals(literals: Sequence[Literal], confidence: Sequence[float], re
 
 
 class Doubt:
-    """How long the planner has been holding its decisions for unsure literals, and whether it still may."""
+    """How long the planner has been holding its decisions for unsure literals, and whether it still may.
+
+    The first state of a new world (another episode, or a step count that went back) is never held: the
+    planner's decisions would otherwise rest on the world before the reset (a goal planned on it, a sub-goal
+    stamped with its steps), and in lockstep the new world waits for a decision on it."""
 
     def __init__(self, threshold: float = 0.9, wait_steps: int = 25) -> None:
         self.threshold, self.wait_steps = threshold, wait_steps
         self.since: int | None = None
+        self.world: tuple[int, int] | None = None
+        """(episode, step) of the last state judged."""
 
-    def holds(self, unsure: list[tuple[Literal, float]], step: int) -> bool:
-        """Whether to keep the decisions as they stand on this state (of control ``step``)."""
-        if not unsure:
+    def holds(self, unsure: list[tuple[Literal, float]], step: int, episode: int = 0) -> bool:
+        """Whether to keep the decisions as they stand on this state (of control ``step`` of world ``episode``)."""
+        new_world = self.world is None or episode != self.world[0] or step < self.world[1]
+        self.world = (episode, step)
+        if not unsure or new_world:
             self.since = None
             return False
-        if self.since is None or step < self.since:  # a new doubt, or a world reset under it
+        if self.since is None:
             self.since = step
         return step - self.since < self.wait_steps

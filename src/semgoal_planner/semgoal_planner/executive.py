@@ -78,7 +78,7 @@ class Executive:
     """Control steps the observed state must contradict the plan before a re-plan (debounces releases)."""
     max_replans: int = 10
     """Re-plans before the goal fails; the step budget bounds an episode anyway. More than 10 gained nothing on
-    the desk tasks' validation starts (``docs/training-log.md``)."""
+    the desk tasks' validation starts (``docs/history.md``)."""
     settle_steps: int = SETTLE_STEPS
     """The goal, and a robot step, are achieved once their literals held at rest over this many consecutive
     control steps."""

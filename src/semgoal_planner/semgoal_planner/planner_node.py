@@ -239,7 +239,7 @@ class PlannerNode(Node):
             self.executive.tick(int(msg.step))
             if msg.stale:  # the source says this state is not to be acted on: hold the plan until one is
                 self.executive.pause_blind(msg.stale)
-            elif self.doubt.holds(unsure, int(msg.step)):
+            elif self.doubt.holds(unsure, int(msg.step), int(msg.episode)):
                 self.executive.resume_sighted()
                 self.counters["states held in doubt"] += 1
                 self.get_logger().info("deciding nothing on " + ", ".join(f"{lit} ({sure:.0%} sure)" for lit, sure in unsure),
@@ -510,7 +510,7 @@ class PlannerNode(Node):
                           assignee=Assignee.HUMAN if waiting else "")
         else:
             msg = self.step_message(ex.current, active.subgoal, StepStatus.ACTIVE, Assignee.ROBOT)
-        msg.step = ex.observation.step if ex.observation else 0
+        msg.step = self.last_state.step if self.last_state else 0  # the state this decision answers
         msg.episode = self.last_state.episode if self.last_state else 0
         return msg
 

@@ -43,12 +43,12 @@ class SacConfig:
     log_std_max: float = LOG_STD_MAX
     """Upper clamp of the actor's log std. At e^2 the finger's tanh-Gaussian is a coin flip whose mean
     barely moves the samples, so the mean (the deterministic actor) learns little where a block is held:
-    it freezes there while the sampled actor lets go by chance (``docs/training-log.md``)."""
+    it freezes there while the sampled actor lets go by chance (``docs/history.md``)."""
     mean_reg: float = 0.0
     """Weight of an L2 penalty on the actor's pre-tanh mean (rlkit's ``policy_mean_reg_weight``; 0: off). The
     finger labels are exactly -1 or 1, so cloning them drives the mean towards infinity, where tanh's
     gradient vanishes: a quarter to a third of the finger means sit beyond 2.5. The penalty removes that,
-    but it did not free three_blocks' put near (it lowered it, ``docs/training-log.md``), so it stays off:
+    but it did not free three_blocks' put near (it lowered it, ``docs/history.md``), so it stays off:
     the expert's closed-finger labels hold the hand shut there."""
 
 

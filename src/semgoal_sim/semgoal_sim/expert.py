@@ -263,7 +263,7 @@ def expert_action(subgoal: SubGoal, world: WorldView, achieved: bool = False) ->
         return _pick(x, world)
     # Place the block as soon as the put will hold once it rests there, not after carrying it on to the
     # exact spot: cloning froze actors holding a block where letting go would have done
-    # (``docs/training-log.md``). It is lowered first (:data:`PLACE_HEIGHT`), never dropped.
+    # (``docs/history.md``). It is lowered first (:data:`PLACE_HEIGHT`), never dropped.
     spot = destination(subgoal, world)
     if ((subgoal.kind == "put_near" and _within_drop_reach(subgoal, world))
             or (subgoal.kind == "put_away" and _away_drop_holds(subgoal, world))

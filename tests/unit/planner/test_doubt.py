@@ -25,7 +25,18 @@ def test_confidences_that_do_not_match_the_literals_are_refused() -> None:
 
 def test_the_planner_waits_a_bounded_time_then_takes_the_state_as_it_is() -> None:
     doubt, unsure = Doubt(threshold=0.9, wait_steps=3), [(CLOSE, 0.6)]
-    assert [doubt.holds(unsure, step) for step in range(10, 15)] == [True, True, True, False, False]
-    assert not doubt.holds([], 15)
-    assert doubt.holds(unsure, 16)  # a new doubt waits again
-    assert doubt.holds(unsure, 0)  # and so does one after a world reset
+    assert not doubt.holds(unsure, 9, episode=1)  # the first state of a world is always taken
+    assert [doubt.holds(unsure, step, episode=1) for step in range(10, 15)] == [True, True, True, False, False]
+    assert not doubt.holds([], 15, episode=1)
+    assert doubt.holds(unsure, 16, episode=1)  # a new doubt waits again
+
+
+def test_the_first_state_after_a_world_reset_is_never_held() -> None:
+    """Held, it left the planner deciding on the world before the reset: a goal sent next was planned on the old
+    world's last state, and in lockstep the new world waited for ever on a sub-goal stamped with the old steps."""
+    doubt, unsure = Doubt(threshold=0.9, wait_steps=25), [(CLOSE, 0.0)]
+    assert not doubt.holds(unsure, 0, episode=1)
+    assert doubt.holds(unsure, 262, episode=1)
+    assert not doubt.holds(unsure, 0, episode=2)  # a new episode
+    assert doubt.holds(unsure, 1, episode=2)
+    assert not doubt.holds(unsure, 0, episode=2)  # the step count went back: a world started again

@@ -2,7 +2,7 @@
 ; put away. Every put says where the moved block ends up with respect to both other blocks: near ?y and
 ; not near ?z (put_near), near both (put_near_both), away from both (put_away_both). A put that left
 ; close(?x ?z) to the frame would promise that a block carried across the table stays next to ?z, which
-; the actor is never asked for (issue 51). A block is put near two references only when they are close
+; the actor is never asked for. A block is put near two references only when they are close
 ; to each other (next to a pair, as the expert does). Put away comes first so that breadth-first search
 ; prefers it among plans of equal length.
 (define (domain three_blocks)

@@ -21,7 +21,7 @@ from pathlib import Path
 import yaml
 
 from semgoal_policy.sac import SacConfig
-from semgoal_policy.trainer import TrainConfig
+from semgoal_policy.trainer import Phase, TrainConfig
 from semgoal_ros.package_data import share_path
 
 RUN_FIELDS = ("seed", "run_dir", "export_dir", "command", "tensorboard")
@@ -52,19 +52,20 @@ def recipe_path(name: str) -> Path:
 
 
 def load_recipe(name: str) -> dict:
-    """The settings a recipe holds, checked against the configuration's fields."""
+    """The settings a recipe holds, checked against the configuration's fields; its ``phases`` (settings that
+    change during the run, each ``from_steps`` on) as :class:`Phase` values, in order."""
     values = yaml.safe_load(recipe_path(name).read_text()) or {}
     _check_fields(values, TrainConfig, name)
     _check_fields(values.get("sac", {}), SacConfig, f"{name}: sac")
-    return values
-
-
-def recipe_of(config: TrainConfig) -> dict:
-    """What a recipe holds of a configuration: every setting but the run's own (:data:`RUN_FIELDS`)."""
-    values = dataclasses.asdict(config)
-    for name in RUN_FIELDS:
-        values.pop(name)
-    values["derived_features"] = list(values["derived_features"])
+    try:
+        phases = tuple(Phase.from_recipe(entry) for entry in values.get("phases", ()))
+    except (ValueError, TypeError) as error:
+        raise RecipeError(f"recipe {name}: {error}") from None
+    starts = [phase.from_steps for phase in phases]
+    if starts != sorted(set(starts)):
+        raise RecipeError(f"recipe {name}: phases must start at increasing env steps, got {starts}")
+    if phases:
+        values["phases"] = phases
     return values
 
 
@@ -85,7 +86,7 @@ def add_config_flags(parser: argparse.ArgumentParser) -> None:
     for cls, group in ((TrainConfig, parser.add_argument_group("run")), (SacConfig, parser.add_argument_group("SAC"))):
         docs, hints = field_docs(cls), typing.get_type_hints(cls)
         for field in dataclasses.fields(cls):
-            if field.name in ("sac", "command"):
+            if field.name in ("sac", "command", "phases"):  # phases: in recipes only
                 continue
             flag = FLAG_NAMES.get(field.name, "--" + field.name.replace("_", "-"))
             help_text = docs.get(field.name, "").split(". ")[0].replace("%", "%%")
@@ -106,7 +107,7 @@ def flag_overrides(args: argparse.Namespace) -> dict:
     """The settings given on the command line, ``sac`` ones under ``sac``."""
     given = vars(args)
     sac_names = {f.name for f in dataclasses.fields(SacConfig)}
-    train_names = {f.name for f in dataclasses.fields(TrainConfig)} - {"sac"}
+    train_names = {f.name for f in dataclasses.fields(TrainConfig)} - {"sac", "phases"}
     overrides = {name: value for name, value in given.items() if name in train_names}
     overrides["sac"] = {name: value for name, value in given.items() if name in sac_names}
     return overrides

@@ -19,7 +19,7 @@ import shlex
 import sys
 import time
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -96,6 +96,55 @@ class TrainConfig:
     export_dir: Path | None = None
     """Where the final actor is exported (default the run's export/; ``train --ship``: models/)."""
     command: str = ""
+    phases: tuple[Phase, ...] = ()
+    """Settings that change during the run (a recipe's ``phases``): from each phase's ``from_steps`` on, its
+    settings replace the run's own (:data:`PHASED_SETTINGS` only)."""
+
+
+PHASED_SETTINGS = ("updates_per_step", "demo_fraction", "demo_noise", "spawn_margin", "missed_put_share", "curriculum")
+"""What a phase may change: how the data is drawn and how much is learnt from it, never the networks' shape."""
+
+
+@dataclass(frozen=True)
+class Phase:
+    """From ``from_steps`` env steps on, ``settings`` (a subset of :data:`PHASED_SETTINGS`) apply."""
+
+    from_steps: int
+    settings: dict
+
+    @classmethod
+    def from_recipe(cls, entry: dict) -> Phase:
+        """A recipe's ``{from_steps: N, setting: value, ...}``; ValueError naming what is wrong."""
+        entry = dict(entry)
+        start = entry.pop("from_steps", None)
+        if not isinstance(start, int) or isinstance(start, bool) or start <= 0:
+            raise ValueError(f"a phase needs from_steps, a positive whole number of env steps (got {start!r})")
+        unknown = sorted(set(entry) - set(PHASED_SETTINGS))
+        if unknown or not entry:
+            raise ValueError(f"a phase from {start} sets {', '.join(unknown) or 'nothing'}; a phase may set "
+                             f"{', '.join(PHASED_SETTINGS)}")
+        return cls(start, entry)
+
+
+def settings_at(config: TrainConfig, env_steps: int) -> TrainConfig:
+    """The configuration in force at ``env_steps``: the run's own settings, then every phase begun by then."""
+    changed = {}
+    for phase in config.phases:
+        if phase.from_steps <= env_steps:
+            changed.update(phase.settings)
+    return replace(config, **changed) if changed else config
+
+
+def schedule(config: TrainConfig, until: int | None = None) -> list[dict]:
+    """The phased settings over a run (to ``until`` env steps, default the run's length): the settings from 0,
+    then each phase's start with the settings then in force. What a run records and a recipe promises."""
+    end = config.steps if until is None else until
+    starts = [0, *(p.from_steps for p in config.phases if p.from_steps < end)]
+    rows = []
+    for start in starts:
+        at = settings_at(config, start)
+        rows.append({"from_steps": start, **{name: getattr(at, name) for name in PHASED_SETTINGS}})
+    return rows
 
 
 def recorded_config(config: TrainConfig) -> dict:
@@ -137,10 +186,14 @@ class Trainer:
     ``reset(options={"kind": k})`` (the simulator's, bound in ``semgoal_bringup.training``)."""
 
     def __init__(self, config: TrainConfig, make_env: Callable[[], object]) -> None:
+        self.base_config = config
+        """The run's configuration with its phases; :attr:`config` is the one in force at ``env_steps``."""
         self.config = cfg = config
         torch.set_num_threads(cfg.torch_threads)
         torch.manual_seed(cfg.seed)
         self.spec: AgentSpec = AGENTS[cfg.agent]
+        if not self.spec.subgoals and any(row["spawn_margin"] or row["missed_put_share"] for row in schedule(cfg)):
+            raise ValueError("a phase's spawn margin or missed puts are for the hierarchical agent only")
         self.rng = np.random.default_rng(cfg.seed)
         # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
         self.envs = [make_env() for _ in range(cfg.n_envs)]
@@ -252,9 +305,20 @@ class Trainer:
             env.np_random.bit_generator.state = state
         return rates
 
+    def _enter_phase(self) -> None:
+        """Bring :attr:`config` to the settings in force at ``env_steps`` (a phase begun, or a resumed run)."""
+        now = settings_at(self.base_config, self.env_steps)
+        if now == self.config:
+            return
+        changed = {name: getattr(now, name) for name in PHASED_SETTINGS if getattr(now, name) != getattr(self.config, name)}
+        self.config = now
+        self.curriculum.enabled = now.curriculum
+        self._set_training_starts(on=True)
+        tqdm.write(f"from {self.env_steps} env steps: " + ", ".join(f"{k} {v}" for k, v in changed.items()), file=sys.stderr)
+
     def _set_training_starts(self, on: bool) -> None:
         """The starts only training draws (spawn margin, missed puts), on or off: evaluation keeps to the tasks'."""
-        if self.config.spawn_margin or self.config.missed_put_share:
+        if any(row["spawn_margin"] or row["missed_put_share"] for row in schedule(self.base_config)):
             for env in self.envs:
                 env.spawn_margin = self.config.spawn_margin if on else 0.0
                 env.missed_put_share = self.config.missed_put_share if on else 0.0
@@ -266,14 +330,16 @@ class Trainer:
         elif not resume and self.checkpoint_path.exists():
             raise FileExistsError(f"{self.run_dir} holds a checkpoint: pass --resume to continue it, or remove the folder")
         self.run_dir.mkdir(parents=True, exist_ok=True)
-        (self.run_dir / "config.json").write_text(json.dumps(recorded_config(cfg), indent=2) + "\n")
+        (self.run_dir / "config.json").write_text(json.dumps(recorded_config(self.base_config), indent=2) + "\n")
         csv_path = self.run_dir / "progress.csv"
         bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
         session_start, wall_at_start = time.perf_counter(), self.wall_s
+        self._enter_phase()
         self.refill(lambda steps: bar.set_postfix_str(f"refilling the replay buffer: {self.replay.transitions}"))
         next_eval = (self.env_steps // cfg.eval_every + 1) * cfg.eval_every
         while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
+            self._enter_phase()
             bar.update(self.cycle())
             self.wall_s = wall_at_start + time.perf_counter() - session_start
             if self.env_steps >= next_eval:
@@ -336,7 +402,8 @@ class Trainer:
                 "command": command, "provenance": provenance(command, cfg.seed), "kinds": list(self.kinds),
                 "final_eval": {"episodes_per_kind": cfg.final_eval_episodes, "seed": EVAL_SEED_BASE,
                                "per_kind": final, "overall": float(np.mean(list(final.values())))},
-                "first_reached_95": curve, "config": recorded_config(cfg)}
+                "first_reached_95": curve, "config": recorded_config(self.base_config),
+                "schedule": schedule(self.base_config, until=self.env_steps)}
         self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())
         write_card(self.export_dir)

@@ -11,7 +11,7 @@ from semgoal_bringup.training import trainer_for
 from semgoal_policy.actor import load
 from semgoal_policy.replay import Batch
 from semgoal_policy.sac import SacAgent, SacConfig
-from semgoal_policy.trainer import TrainConfig
+from semgoal_policy.trainer import Phase, TrainConfig
 
 
 def config(tmp_path, steps: int) -> TrainConfig:
@@ -164,7 +164,23 @@ def test_a_spawn_margin_and_missed_puts_shape_training_starts_but_not_evaluation
     assert seen and set(seen) == {(0.05, 0.25)}
 
 
-@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25}])
+@pytest.mark.slow
+def test_a_phase_begins_at_its_step_and_a_resumed_run_starts_in_it(tmp_path) -> None:
+    phased = replace(config(tmp_path, 400), missed_put_share=0.0,
+                     phases=(Phase(200, {"missed_put_share": 0.25, "demo_fraction": 0.5}),))
+    trainer = trainer_for(phased)
+    trainer._enter_phase()
+    assert trainer.config.missed_put_share == 0.0 and trainer.envs[0].missed_put_share == 0.0
+    while trainer.env_steps < 200:
+        trainer.collect()
+    trainer._enter_phase()
+    assert trainer.config.demo_fraction == 0.5 and {env.missed_put_share for env in trainer.envs} == {0.25}
+    trainer.evaluate(1)  # evaluation keeps to the tasks' starts, then training's phase comes back
+    assert {env.missed_put_share for env in trainer.envs} == {0.25}
+
+
+@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25},
+                                     {"phases": (Phase(200, {"missed_put_share": 0.25}),)}])
 def test_flat_baselines_refuse_training_only_starts(tmp_path, setting: dict) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
         trainer_for(replace(config(tmp_path, 400), agent="flat-semantic", **setting))

@@ -163,7 +163,7 @@ def _natural(path: Path) -> list:
 @functools.cache
 def _parsed(domain_path: Path, problem_path: Path) -> tuple:
     """A problem and its domain, parsed once however many planners' plans are checked against them."""
-    from semgoal_planner.pddl import parse_domain, parse_problem
+    from strips_planner.pddl import parse_domain, parse_problem
 
     domain = parse_domain(domain_path.read_text())
     return domain, parse_problem(problem_path.read_text(), domain)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain, parse_problem
+from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain, parse_problem
 
 
 def _holds(condition: Condition, state: set[Atom]) -> bool:

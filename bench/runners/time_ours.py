@@ -8,7 +8,7 @@ import sys
 import time
 from pathlib import Path
 
-from semgoal_planner.planner import solve_pddl
+from strips_planner.planner import solve_pddl
 
 
 def main(domain: str, problem: str, search: str, heuristic: str, repeats: str) -> None:

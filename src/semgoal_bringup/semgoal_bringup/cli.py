@@ -17,7 +17,7 @@ COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); f
     "render": ("semgoal_sim.render", "a PNG of a task's start state (offscreen)"),
     "bench-sim": ("bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),
     "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a plain-English goal becomes (or why not)"),
-    "plan-pddl": ("semgoal_planner.plan_pddl", "plan with our STRIPS planner on any PDDL domain and problem"),
+    "plan-pddl": ("strips_planner.plan_pddl", "plan with our STRIPS planner on any PDDL domain and problem"),
     "goal": ("semgoal_planner.operator:goal_main", "send a goal to the planner (ros2 topic pub / action send_goal)"),
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
     "bench-planner": ("bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),

@@ -89,10 +89,9 @@ class SeenByCamera:
         """The latest frame with the estimates drawn (a PIL image), or None without a recent frame."""
         if not self.live():
             return None
+        from semgoal_bringup.perception_view import draw_estimates
         from semgoal_perception.geometry import PinholeCamera
         from semgoal_perception.perception_node import image_array
-
-        from semgoal_bringup.perception_view import draw_estimates
 
         try:
             rgb = image_array(self.frame, "rgb8", 3, np.uint8)

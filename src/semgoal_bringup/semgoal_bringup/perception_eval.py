@@ -31,15 +31,15 @@ def measure(frames, estimator, literal_net=None) -> dict:
     """The figures of one set of frames (module doc); with ``literal_net`` (the paper's alternative: literals
     straight from the frame) its agreement on the same literals too."""
     import torch
-    from semgoal_perception.estimator import MIN_PIXELS
-    from semgoal_perception.literal_net import INDEX as ATOM_INDEX
-    from semgoal_perception.literal_net import literal_probabilities
-    from semgoal_perception.training import frame_camera
 
     from semgoal_core.geometry import TABLE_TOP
     from semgoal_core.settling import REST_SPEED
     from semgoal_core.tasks import TASKS, get_task
     from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, evaluate, threshold_margins
+    from semgoal_perception.estimator import MIN_PIXELS
+    from semgoal_perception.literal_net import INDEX as ATOM_INDEX
+    from semgoal_perception.literal_net import literal_probabilities
+    from semgoal_perception.training import frame_camera
 
     torch.set_num_threads(1)
     colours = list(BLOCK_COLOURS)
@@ -164,10 +164,10 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import torch
-    from semgoal_perception.network import network_input
-    from semgoal_perception.training import frame_camera
 
     from semgoal_core.vocabulary import BLOCK_COLOURS
+    from semgoal_perception.network import network_input
+    from semgoal_perception.training import frame_camera
 
     colours = list(BLOCK_COLOURS)
     labels_map = matplotlib.colors.ListedColormap([(0.9, 0.9, 0.9), *(rgba[:3] for rgba in BLOCK_COLOURS.values())])
@@ -199,10 +199,9 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
 
 def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
+    from semgoal_bringup.perception_training import cached_frames
     from semgoal_perception.estimator import BlockEstimator
     from semgoal_perception.literal_net import load_literal_net
-
-    from semgoal_bringup.perception_training import cached_frames
     from semgoal_ros.package_data import share_path
     from semgoal_sim.perception_data import MEASUREMENT_SEED
 

@@ -38,7 +38,6 @@ def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     from semgoal_perception.network import VoterConfig
     from semgoal_perception.training import VoterRecipe, train_voter
-
     from semgoal_ros.package_data import share_path
 
     recipe = json.loads(share_path("semgoal_perception", "recipes", "block_voter.json").read_text())
@@ -74,9 +73,8 @@ def main(argv: list[str]) -> int:
 
 def train_literal_alternative(frames, out: Path, epochs: int, argv: list[str]) -> int:
     """The paper's alternative on the same frames, exported beside the voter (``eval-perception`` compares them)."""
-    from semgoal_perception.literal_net import train_literal_net
-
     from semgoal_core.tasks import TASKS, get_task
+    from semgoal_perception.literal_net import train_literal_net
 
     summary = train_literal_net(frames, [get_task(list(TASKS)[t]) for t in frames.task], out, epochs=epochs)
     summary["provenance"] = provenance("./semgoal train-perception " + " ".join(argv), None)

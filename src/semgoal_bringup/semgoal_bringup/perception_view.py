@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 from PIL import Image, ImageDraw
+
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.tracker import TrackStatus
 

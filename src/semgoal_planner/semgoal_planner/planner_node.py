@@ -30,13 +30,13 @@ from semgoal_planner.doubt import Doubt, unsure_literals
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import check_goal_text
 from semgoal_planner.journal import PlanJournal, Record, Verdict, World, resume
-from semgoal_planner.search import SEARCHES
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
 from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
 from semgoal_ros.messages import format_plan
 from semgoal_ros.parameters import Param, apply_changes, declare
+from strips_planner.search import SEARCHES
 
 FINAL = (PlanStatus.SUCCEEDED, PlanStatus.FAILED)
 SILENCE_CHECK_S = 0.25

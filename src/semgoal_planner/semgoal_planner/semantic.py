@@ -16,10 +16,10 @@ from pathlib import Path
 
 from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import Literal, SubGoal
-from semgoal_planner.grounding import Operator, Task, ground
-from semgoal_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
-from semgoal_planner.planner import solve_task
 from semgoal_ros.package_data import share_path
+from strips_planner.grounding import Operator, Task, ground
+from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
+from strips_planner.planner import solve_task
 
 
 def domain_dir() -> Path:

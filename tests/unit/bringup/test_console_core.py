@@ -80,9 +80,9 @@ def test_literals_the_perception_is_unsure_of_read_as_questions_with_how_sure_it
 
 def test_the_camera_view_draws_each_estimate_where_it_projects() -> None:
     import numpy as np
-    from semgoal_perception.geometry import PinholeCamera
 
     from semgoal_bringup.perception_view import SCALE, draw_estimates
+    from semgoal_perception.geometry import PinholeCamera
 
     down = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
     camera = PinholeCamera(140.0, 140.0, 79.5, 59.5, down)

@@ -2,13 +2,13 @@
 
 import numpy as np
 import pytest
+
+from semgoal_core.settling import REST_SPEED
+from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
 from semgoal_perception.tracker import LOST_FRAMES, SIGMA_HELD, BlockTracker, TrackStatus
-
-from semgoal_core.settling import REST_SPEED
-from semgoal_core.vocabulary import LAYOUTS, Literal
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""

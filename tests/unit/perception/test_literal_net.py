@@ -5,9 +5,9 @@ from types import SimpleNamespace
 
 import numpy as np
 import torch
-from semgoal_perception.literal_net import ATOMS, INDEX, LiteralNet, targets
 
 from semgoal_core.tasks import get_task
+from semgoal_perception.literal_net import ATOMS, INDEX, LiteralNet, targets
 
 
 def test_targets_are_the_scenes_literals_on_the_true_centres_and_mask_the_rest() -> None:

@@ -4,8 +4,9 @@ from /tf_static; anything else is refused with the reason (the node counts it an
 import numpy as np
 import pytest
 from geometry_msgs.msg import Transform
-from semgoal_perception.perception_node import image_array, pose_matrix
 from sensor_msgs.msg import Image
+
+from semgoal_perception.perception_node import image_array, pose_matrix
 
 
 def image(encoding: str, width: int, height: int, step: int, size: int) -> Image:

@@ -9,10 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from semgoal_planner import _ground
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
-from semgoal_planner.grounding import Task, ground
-from semgoal_planner.pddl import Atom, Domain, Problem, parse_domain, parse_problem
+from strips_planner import _ground
+from strips_planner.grounding import Task, ground
+from strips_planner.pddl import Atom, Domain, Problem, parse_domain, parse_problem
 
 FIXTURES = Path(__file__).parent / "fixtures"
 CASES = [("blocksworld-domain", "blocksworld-sussman"), ("gripper-domain", "gripper-4balls"),
@@ -220,8 +220,8 @@ def test_the_c_grounder_builds_masks_and_constants() -> None:
 def test_lmcut_stays_admissible_on_random_domains(texts: tuple[str, str]) -> None:
     """Whatever ties LM-cut breaks among costliest preconditions, A* with it finds plans as short as
     breadth-first search, and its estimate at the start never exceeds that length."""
-    from semgoal_planner.heuristics import heuristic
-    from semgoal_planner.planner import solve_task
+    from strips_planner.heuristics import heuristic
+    from strips_planner.planner import solve_task
 
     task, _ = grounded(*texts)
     shortest = solve_task(task, "bfs").plan

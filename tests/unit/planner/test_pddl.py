@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_planner.pddl import PddlError, parse_domain, parse_problem
+from strips_planner.pddl import PddlError, parse_domain, parse_problem
 
 FIXTURES = Path(__file__).parent / "fixtures"
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_planner.plan_pddl import main as plan_pddl_main
+from strips_planner.plan_pddl import main as plan_pddl_main
 
 FIXTURES = Path(__file__).parent / "fixtures"
 KEYS = str(FIXTURES / "keys-domain.pddl")
@@ -95,7 +95,7 @@ def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) ->
     sys.path.insert(0, str(Path(__file__).parents[3] / "bench"))
     from validate_plan import invalid_step, read_plan
 
-    from semgoal_planner.pddl import parse_domain, parse_problem
+    from strips_planner.pddl import parse_domain, parse_problem
 
     (tmp_path / "d.pddl").write_text(EITHER_DOMAIN)
     (tmp_path / "p.pddl").write_text(EITHER_PROBLEM)
@@ -108,7 +108,7 @@ def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) ->
 
 @pytest.mark.slow
 def test_the_command_starts_without_ros_or_numpy(tmp_path: Path) -> None:
-    """`./semgoal plan-pddl` runs an isolated interpreter without site on the planner's sources (about 0.05 s in
+    """`./semgoal plan-pddl` runs an isolated interpreter without site on the planner library's sources (about 0.05 s in
     all instead of 0.25 s): it needs no sourced environment, and the planner loads neither ROS nor numpy, nor
     the modules it avoids for start-up's sake (argparse, dataclasses)."""
     (tmp_path / "d.pddl").write_text(TOKENS_DOMAIN)
@@ -119,12 +119,12 @@ def test_the_command_starts_without_ros_or_numpy(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["(hop a b)", "(hop b c)"]
     loaded = subprocess.run(
-        [sys.executable, "-I", "-S", "-c", "import sys; sys.path.insert(0, sys.argv[1]); from semgoal_planner.plan_pddl "
-         "import main; main(sys.argv[2:]); print(' '.join(sys.modules))", str(root / "src" / "semgoal_planner"),
+        [sys.executable, "-I", "-S", "-c", "import sys; sys.path.insert(0, sys.argv[1]); from strips_planner.plan_pddl "
+         "import main; main(sys.argv[2:]); print(' '.join(sys.modules))", str(root / "src" / "strips_planner"),
          str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")], capture_output=True, text=True, check=True).stdout
     modules = {name.split(".")[0] for name in loaded.split("\n")[-2].split()}
-    assert "semgoal_planner" in modules
-    assert not modules & {"numpy", "rclpy", "semgoal_ros", "site", "argparse", "dataclasses"}
+    assert "strips_planner" in modules  # the planner library alone: nothing of semgoal, ROS or the venv
+    assert not {m for m in modules if m.startswith("semgoal")} and not modules & {"numpy", "rclpy", "site", "argparse", "dataclasses"}
 
 
 @pytest.mark.parametrize("argv, words", [

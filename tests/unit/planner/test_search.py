@@ -6,12 +6,12 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_planner import heuristics
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
-from semgoal_planner.grounding import ground
-from semgoal_planner.pddl import parse_domain, parse_problem
-from semgoal_planner.planner import solve_pddl, solve_task
-from semgoal_planner.search import successors
+from strips_planner import heuristics
+from strips_planner.grounding import ground
+from strips_planner.pddl import parse_domain, parse_problem
+from strips_planner.planner import solve_pddl, solve_task
+from strips_planner.search import successors
 
 FIXTURES = Path(__file__).parent / "fixtures"
 COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff")]

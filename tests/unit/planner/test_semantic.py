@@ -7,8 +7,8 @@ import pytest
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, SubGoal, parse_literal
 from semgoal_planner.goals import parse_goal
-from semgoal_planner.grounding import Operator
 from semgoal_planner.semantic import PlanningError, SemanticPlanner, plan2goal
+from strips_planner.grounding import Operator
 
 STARTS = {  # a typical start state of each task (true literals)
     "MC-2": [], "MA-2": [Literal("close", ("red", "green"))],

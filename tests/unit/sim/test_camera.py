@@ -3,10 +3,10 @@ name the right block, its looks change what it sees but never the geometry it re
 
 import numpy as np
 import pytest
-from semgoal_perception.geometry import PinholeCamera
 
 from semgoal_core.tasks import get_task
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE
+from semgoal_perception.geometry import PinholeCamera
 from semgoal_sim.camera import CONDITIONS, Appearance, RgbdCamera, SimCamera, block_label
 from semgoal_sim.world import FetchWorld
 

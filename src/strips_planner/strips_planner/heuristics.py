@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from semgoal_planner.grounding import Task
+from strips_planner.grounding import Task
 
 HEURISTICS = ("blind", "hmax", "hff", "lmcut")
 Heuristic = Callable[[int], float]

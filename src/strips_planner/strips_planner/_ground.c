@@ -2,7 +2,7 @@
  * what a relaxed exploration from the initial state reaches (delete effects and negative preconditions
  * ignored), and turned into the operators' bit masks.
  *
- * semgoal_planner.grounding does the PDDL-level work in Python (types, static preconditions, the
+ * strips_planner.grounding does the PDDL-level work in Python (types, static preconditions, the
  * bindings) over predicate and object indices, and hands this module integer templates. An atom is a key
  * of `width` ints: its predicate's index, then its arguments' object indices, -1 past its arity.
  * Predicates and objects are numbered in sorted name order, so sorting the keys sorts the atoms as

@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import time
 
-from semgoal_planner.grounding import Operator, Task, ground
-from semgoal_planner.heuristics import HEURISTICS
-from semgoal_planner.pddl import parse_domain, parse_problem
-from semgoal_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
+from strips_planner.grounding import Operator, Task, ground
+from strips_planner.heuristics import HEURISTICS
+from strips_planner.pddl import parse_domain, parse_problem
+from strips_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
 
 
 class PlanResult:
@@ -45,7 +45,7 @@ def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = Non
 
 
 def solve_pddl(domain_text: str, problem_text: str, search: str = "bfs", heuristic: str | None = None) -> PlanResult:
-    """Parse, ground and search; raises :class:`~semgoal_planner.pddl.PddlError` on bad PDDL."""
+    """Parse, ground and search; raises :class:`~strips_planner.pddl.PddlError` on bad PDDL."""
     domain = parse_domain(domain_text)
     task = ground(domain, parse_problem(problem_text, domain))
     result = solve_task(task, search, heuristic)

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import sys
 
-from semgoal_planner.heuristics import HEURISTICS
-from semgoal_planner.pddl import PddlError, PddlUnsupportedError
-from semgoal_planner.planner import check_choice, solve_pddl
-from semgoal_planner.search import SEARCHES
+from strips_planner.heuristics import HEURISTICS
+from strips_planner.pddl import PddlError, PddlUnsupportedError
+from strips_planner.planner import check_choice, solve_pddl
+from strips_planner.search import SEARCHES
 
 USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHES)}}}] "
          f"[--heuristic {{{','.join(HEURISTICS)}}}] [--stats]")

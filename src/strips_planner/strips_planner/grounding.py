@@ -1,7 +1,7 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
 1. Objects and fluent predicates (those some action changes) are numbered in sorted name order.
-2. A relaxed exploration (:mod:`semgoal_planner.exploration`) finds every action's bindings whose positive
+2. A relaxed exploration (:mod:`strips_planner.exploration`) finds every action's bindings whose positive
    preconditions, static ones included, can ever hold together, by joining them over the atoms reached from
    the initial state; no binding is enumerated that a precondition rules out. Static atoms never enter the state.
 3. The C module ``_ground`` instantiates the fluent atoms of those bindings, numbers the facts in sorted order,
@@ -14,9 +14,9 @@ from collections.abc import Callable
 from functools import cached_property
 from typing import NamedTuple
 
-from semgoal_planner import _core, _ground
-from semgoal_planner.exploration import Exploration, Schema
-from semgoal_planner.pddl import Action, Atom, Condition, Domain, PddlError, Problem
+from strips_planner import _core, _ground
+from strips_planner.exploration import Exploration, Schema
+from strips_planner.pddl import Action, Atom, Condition, Domain, PddlError, Problem
 
 
 class Operator(NamedTuple):

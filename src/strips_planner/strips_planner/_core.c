@@ -1,7 +1,7 @@
 /* The planner's hot loop in C: forward searches (breadth-first, A*, greedy best-first) and the
  * delete-relaxation heuristics (blind, hmax, hFF, LM-cut) over a grounded STRIPS task.
  *
- * Parsing stays in Python (semgoal_planner.pddl), grounding in Python and _ground.c; this module gets the
+ * Parsing stays in Python (strips_planner.pddl), grounding in Python and _ground.c; this module gets the
  * ground operators as bit masks and returns plans as operator indices. It holds the GIL throughout and checks
  * for signals now and then, so Ctrl-C still stops a long search.
  *
@@ -987,7 +987,7 @@ static PyMethodDef Task_methods[] = {
 
 static PyTypeObject TaskType = {
     PyVarObject_HEAD_INIT(NULL, 0)
-    .tp_name = "semgoal_planner._core.Task",
+    .tp_name = "strips_planner._core.Task",
     .tp_doc = "Task(nfacts, operators, init, goal, goal_neg, costs=None): a grounded task. States and masks are "
               "int bitsets over the facts; each operator has the masks pre, pre_neg, add and delete; costs: one "
               "non-negative int per operator (None: each costs 1).",

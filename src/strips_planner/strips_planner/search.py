@@ -9,7 +9,7 @@ plan every time.
 
 from __future__ import annotations
 
-from semgoal_planner.grounding import Operator, Task
+from strips_planner.grounding import Operator, Task
 
 SEARCHES = ("bfs", "astar", "gbfs")
 DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff"}

@@ -8,7 +8,7 @@ combinations first. Types, equality and negative static preconditions are checke
 are bound; a parameter that no positive precondition mentions ranges over the objects of its type.
 
 Arguments are object indices; a template argument ``a >= 0`` is the action's parameter ``a`` and ``~a`` the
-object ``a`` (a constant), as :mod:`semgoal_planner.grounding` writes them.
+object ``a`` (a constant), as :mod:`strips_planner.grounding` writes them.
 """
 
 from __future__ import annotations

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from semgoal_bringup.episodes import make_agent
-from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import THRESHOLDS, Literal
 from semgoal_policy.controller import EDGE_MARGIN, EDGE_NUDGE, HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
@@ -91,3 +91,17 @@ def test_a_held_block_past_the_table_edge_is_not_let_go_and_is_moved_back_in() -
     world.set_block_pose("green", np.array([red[0], red[1], 0.425]))  # a block under it there: a put on it
     action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
     assert action.tolist() == pytest.approx([0.0, -0.5, 0.0, 1.0])
+
+
+def test_a_block_at_the_table_edge_beside_the_one_being_moved_stays_where_it_is() -> None:
+    """Red, 1 cm from green, which stands 1.5 cm from the table's near edge, is taken away to blue: the arm's
+    descent and grasp beside green neither push it over the edge nor move it."""
+    agent = make_agent("hierarchical", "three_blocks")
+    top = TABLE_TOP + 0.025
+    for seed, x in zip(range(4_100_000, 4_100_003), (1.20, 1.30, 1.40), strict=True):
+        green = np.array([x, TABLE_CENTER[1] - TABLE_HALF_SIZE[1] + 0.04, top])
+        start = np.array([green + np.array([0.0, 0.06, 0.0]), green, [1.30, 0.80, top]])  # red, green, blue
+        outcome = agent.run_goal(start, "close(red,blue) & not close(red,green)", seed, label="edge")
+        assert outcome.success, outcome
+        after = agent._worlds[("edge", 3)].snapshot().block_positions[1]
+        assert after[2] > TABLE_TOP and np.linalg.norm(after[:2] - green[:2]) < 0.015, after

@@ -1,62 +1,103 @@
-"""The `./semgoal` dispatcher: one registry of subcommands, each living in the package it belongs to; the
-benchmarks live outside the product, in the checkout's ``bench/``."""
+"""The `./semgoal` dispatcher: one registry of commands, each living in the package it belongs to (the
+benchmarks in ``semgoal_bench``). Experiments and benchmarks are grouped (``semgoal eval goals``, ``semgoal
+bench sim``); ``eval`` and ``train`` called with options only run what they once were (``semgoal eval --tasks
+all``), and the
+flat spellings of earlier releases (``eval-goals``, ``bench-sim``) stay as aliases."""
 
 import importlib
-import os
 import sys
-from pathlib import Path
 
-COMMANDS: dict[str, tuple[str, str]] = {  # name: ("module[:function]", help); function defaults to main
+Entry = tuple[str, str]
+"""("module[:function]", help); the function defaults to ``main``."""
+
+COMMANDS: dict[str, Entry | dict[str, Entry]] = {
+    # the graph
+    "up": ("semgoal_bringup.up", "start sim, predicates, planner and policy and stay up for an operator"),
+    "demo": ("semgoal_bringup.demo", "start the node graph and solve a task (make demo)"),
     "run": ("semgoal_bringup.run", "what `ros2 run PKG EXE` does on a native install"),
     "doctor": ("semgoal_bringup.doctor", "versions, workspace state and DDS settings in force"),
-    "demo": ("semgoal_bringup.demo", "start the node graph and solve a task (make demo)"),
-    "replay": ("semgoal_bringup.replay", "an episode recorded as MCAP: summary, re-run check (--verify), GIF"),
-    "console": ("semgoal_bringup.console", "the collaboration console: a web page to set goals, edit the plan and do steps"),
-    "up": ("semgoal_bringup.up", "start sim, predicates, planner and policy and stay up for an operator"),
-    "expert": ("semgoal_sim.cli:expert_main", "run the scripted expert on a task: success rate, steps"),
-    "render": ("semgoal_sim.render", "a PNG of a task's start state (offscreen)"),
-    "bench-sim": ("bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),
-    "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a plain-English goal becomes (or why not)"),
-    "plan-pddl": ("strips_planner.plan_pddl", "plan with our STRIPS planner on any PDDL domain and problem"),
+    # the operator
     "goal": ("semgoal_planner.operator:goal_main", "send a goal to the planner (ros2 topic pub / action send_goal)"),
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
-    "bench-planner": ("bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
-    "train": ("semgoal_bringup.training:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
+    "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a plain-English goal becomes (or why not)"),
+    "console": ("semgoal_bringup.console", "the collaboration console: a web page to set goals, edit the plan and do steps"),
+    "replay": ("semgoal_bringup.replay", "an episode recorded as MCAP: summary, re-run check (--verify), GIF"),
+    "plan-pddl": ("strips_planner.plan_pddl", "plan with our STRIPS planner on any PDDL domain and problem"),
+    # the world and the actors
+    "expert": ("semgoal_sim.cli:expert_main", "run the scripted expert on a task: success rate, steps"),
+    "render": ("semgoal_sim.render", "a PNG of a task's start state (offscreen)"),
+    "train": {
+        "actor": ("semgoal_bringup.training:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
+        "perception": ("semgoal_bringup.perception_training", "render labelled camera frames and train the block voter"),
+    },
     "sweep": ("semgoal_bringup.sweep", "train a recipe on many seeds, each a job (local or Dask), resumed if it dies"),
-    "model-card": ("semgoal_policy.model_card:main", "write MODEL_CARD.md beside exported actors (from actor.json)"),
-    "eval": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
-    "bench-graph": ("bench.graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),
     "ablation": ("semgoal_bringup.ablation", "train the recipe's variants side by side: what expert supervision buys"),
-    "bench-policy": ("bench.policy", "training steps/s and actor latency beside SB3 SAC+HER"),
-    "bench-eval": ("bench.eval", "evaluation episodes/s on the local pool and on Dask, 1 and 2 workers"),
-    "eval-goals": ("semgoal_bringup.goal_eval", "the hierarchical agent on goal families beyond the benchmark"),
-    "train-perception": ("semgoal_bringup.perception_training", "render labelled camera frames and train the block voter"),
-    "eval-perception": ("semgoal_bringup.perception_eval", "the block voter on held-out frames: pose error, literal agreement, latency"),
-    "eval-subgoals": ("semgoal_bringup.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
+    "model-card": ("semgoal_policy.model_card:main", "write MODEL_CARD.md beside exported actors (from actor.json)"),
+    # experiments
+    "eval": {
+        "tasks": ("semgoal_bringup.evaluation", "Table 1: task completion of the agents on the eight tasks"),
+        "goals": ("semgoal_bringup.goal_eval", "the hierarchical agent on goal families beyond the benchmark"),
+        "subgoals": ("semgoal_bringup.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
+        "perception": ("semgoal_bringup.perception_eval", "the block voter on held-out frames: pose error, literal agreement, latency"),
+    },
+    "bench": {
+        "sim": ("semgoal_bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),
+        "planner": ("semgoal_bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),
+        "policy": ("semgoal_bench.policy", "training steps/s and actor latency beside SB3 SAC+HER"),
+        "graph": ("semgoal_bench.graph", "control steps/s through the four nodes (lockstep) and 25 Hz jitter"),
+        "eval": ("semgoal_bench.eval", "evaluation episodes/s on the local pool and on Dask, 1 and 2 workers"),
+    },
 }
+ALIASES = {"eval-goals": ("eval", "goals"), "eval-subgoals": ("eval", "subgoals"), "eval-perception": ("eval", "perception"),
+           "train-perception": ("train", "perception"), "bench-sim": ("bench", "sim"), "bench-planner": ("bench", "planner"),
+           "bench-policy": ("bench", "policy"), "bench-graph": ("bench", "graph"), "bench-eval": ("bench", "eval")}
+"""The flat spellings of earlier releases."""
+DEFAULTS = {"eval": "tasks", "train": "actor"}
+"""What a group that was once a command runs when called with options only (``semgoal eval --tasks all``)."""
 
 
 def usage() -> str:
-    """Return the help text listing every subcommand."""
-    width = max(map(len, COMMANDS))
+    """Return the help text listing every command."""
+    rows = []
+    for name, entry in COMMANDS.items():
+        if isinstance(entry, dict):
+            rows += [(f"{name} [{sub}]" if DEFAULTS.get(name) == sub else f"{name} {sub}", text) for sub, (_, text) in entry.items()]
+        else:
+            rows.append((name, entry[1]))
+    width = max(len(name) for name, _ in rows)
     lines = ["usage: ./semgoal COMMAND [args...]", "", "commands:"]
-    lines += [f"  {name:<{width}}  {text}" for name, (_, text) in COMMANDS.items()]
+    lines += [f"  {name:<{width}}  {text}" for name, text in rows]
+    lines += ["", "also: " + ", ".join(f"{old} (= {' '.join(new)})" for old, new in ALIASES.items())]
     return "\n".join(lines)
 
 
+def resolve(argv: list[str]) -> tuple[Entry, list[str]] | None:
+    """The entry ``argv`` names and the arguments it gets; None for an unknown command."""
+    command, rest = argv[0], argv[1:]
+    if command in ALIASES:
+        command, rest = ALIASES[command][0], [ALIASES[command][1], *rest]
+    entry = COMMANDS.get(command)
+    if not isinstance(entry, dict):
+        return (entry, rest) if entry else None
+    if rest and rest[0] in entry:
+        return entry[rest[0]], rest[1:]
+    if command in DEFAULTS and (not rest or rest[0].startswith("-")):
+        return entry[DEFAULTS[command]], rest  # options only: what the command once was
+    return None
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Dispatch ``argv[0]`` to its module's ``main(argv[1:])``."""
+    """Dispatch to the named module's ``main(args)``."""
     argv = sys.argv[1:] if argv is None else argv
     if not argv or argv[0] in ("-h", "--help", "help"):
         print(usage())
         return 0
-    command, rest = argv[0], argv[1:]
-    if command not in COMMANDS:
-        print(f"semgoal: unknown command {command!r}\n\n{usage()}", file=sys.stderr)
+    found = resolve(argv)
+    if found is None:
+        print(f"semgoal: unknown command {' '.join(argv[:2])!r}\n\n{usage()}", file=sys.stderr)
         return 2
-    module_name, _, function = COMMANDS[command][0].partition(":")
-    if module_name.startswith("bench."):
-        sys.path.insert(0, os.environ.get("SEMGOAL_ROOT") or str(Path.cwd()))
+    (target, _), rest = found
+    module_name, _, function = target.partition(":")
     entry = getattr(importlib.import_module(module_name), function or "main")
     try:
         return int(entry(rest) or 0)

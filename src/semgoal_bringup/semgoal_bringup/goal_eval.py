@@ -1,4 +1,4 @@
-"""`./semgoal eval-goals --scene S [--families F,G] --episodes N --seed S [--jobs J] [--via-ros] [--json]`: the
+"""`./semgoal eval goals --scene S [--families F,G] --episodes N --seed S [--jobs J] [--via-ros] [--json]`: the
 hierarchical agent on goal families beyond the benchmark (:mod:`semgoal_core.goal_families`), in process, by the
 executive's at-rest rule: per family the success rate with its 95 % Wilson interval, mean steps and re-plans; the
 last line is one JSON object ``{"<scene>/<family>": rate, ..., "overall": rate, "fell_off": {family: share},
@@ -71,7 +71,7 @@ def ros_sample(cases: dict[str, list[GoalCase]], episodes: int) -> list[GoalCase
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal eval-goals", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal eval goals", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
     parser.add_argument("--families", help="comma-separated (default: all of the scene's): "
                         + "; ".join(f"{scene}: {', '.join(names)}" for scene, names in FAMILIES.items()))

@@ -1,4 +1,4 @@
-"""`./semgoal eval-perception [--frames N] [--conditions nominal,randomised,moved] [--json]`: how well the
+"""`./semgoal eval perception [--frames N] [--conditions nominal,randomised,moved] [--json]`: how well the
 shipped block voter sees, on frames from held-out task starts (seeds from 9,000,000; training's are from
 8,000,000), one frame at a time (no tracker: what the camera gives at that instant).
 
@@ -205,7 +205,7 @@ def main(argv: list[str]) -> int:
     from semgoal_ros.package_data import share_path
     from semgoal_sim.perception_data import MEASUREMENT_SEED
 
-    parser = argparse.ArgumentParser(prog="semgoal eval-perception", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal eval perception", description=__doc__.split("\n\n")[0])
     parser.add_argument("--frames", type=int, default=400)
     parser.add_argument("--seed", type=int, default=MEASUREMENT_SEED)
     parser.add_argument("--conditions", default="nominal,randomised,moved", help=f"of {', '.join(CONDITION_LOOKS)}")

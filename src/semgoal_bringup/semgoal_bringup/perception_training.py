@@ -1,4 +1,4 @@
-"""`./semgoal train-perception [--images N] [--seed S]`: render labelled frames (the expert at work under a
+"""`./semgoal train perception [--images N] [--seed S]`: render labelled frames (the expert at work under a
 randomised look), train the block voter on them and export it beside its model card.
 
 The recipe is data (``semgoal_perception/recipes/block_voter.json``); flags override it and the exported
@@ -41,7 +41,7 @@ def main(argv: list[str]) -> int:
     from semgoal_ros.package_data import share_path
 
     recipe = json.loads(share_path("semgoal_perception", "recipes", "block_voter.json").read_text())
-    parser = argparse.ArgumentParser(prog="semgoal train-perception", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal train perception", description=__doc__.split("\n\n")[0])
     parser.add_argument("--images", type=int, default=recipe["images"], help="labelled frames to render and train on")
     parser.add_argument("--seed", type=int, default=recipe["seed"], help="task starts seed + episode (8,000,000: training's range)")
     parser.add_argument("--epochs", type=int, default=recipe["voter"]["epochs"])

@@ -106,7 +106,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     from semgoal_policy.evaluate import success_by_kind
     from semgoal_sim.env import EPISODE_STEPS, TAKE_OUT
 
-    parser = argparse.ArgumentParser(prog="semgoal eval-subgoals", description=eval_subgoals_main.__doc__)
+    parser = argparse.ArgumentParser(prog="semgoal eval subgoals", description=eval_subgoals_main.__doc__)
     parser.add_argument("--scene", required=True, choices=list(SCENES))
     parser.add_argument("--episodes", type=int, default=200, help="episodes per sub-goal type")
     parser.add_argument("--seed", type=int, default=2_000_000, help="first episode seed (training uses seeds < 1e6)")

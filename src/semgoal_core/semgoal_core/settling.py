@@ -24,7 +24,7 @@ from semgoal_core.vocabulary import Literal, SemanticLayout
 REST_SPEED = 0.02
 """A block slower than this (m/s, linear) is still. Resting blocks measure about 2e-9 m/s; a block let go
 2 cm over the table stays at or above it for 3 control steps, 5 cm up for 4, 12 cm up for 6
-(``bench/rest_speeds.py``), so a falling or sliding block never passes."""
+(``semgoal_bench/rest_speeds.py``), so a falling or sliding block never passes."""
 SETTLE_STEPS = 5
 """Consecutive control steps (0.2 s) the literals must hold at rest: the planner's sub-goal confirmation
 (``SUBGOAL_CONFIRM_STEPS``), which a grasp that only brushes a block's top edge does not pass either."""

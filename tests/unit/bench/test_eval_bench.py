@@ -1,4 +1,4 @@
-"""`./semgoal bench-eval`: its JSON contract, from the top-level bench/ through the dispatcher."""
+"""`./semgoal bench-eval`: its JSON contract, through the dispatcher."""
 
 import json
 import subprocess

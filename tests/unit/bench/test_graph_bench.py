@@ -2,7 +2,7 @@
 
 import pytest
 
-from bench.graph import arrival_timing
+from semgoal_bench.graph import arrival_timing
 
 PERIOD = 0.04
 

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from bench.planner import OURS_RUNNER, phase_speedup, run_one, speedup
+from semgoal_bench.planner import OURS_RUNNER, phase_speedup, run_one, speedup
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from bench.planner_suite import Planner, install, run, run_suite, suite_problems, validity
+from semgoal_bench.planner_suite import Planner, install, run, run_suite, suite_problems, validity
 
 FIXTURES = Path(__file__).parents[1] / "planner" / "fixtures"
 

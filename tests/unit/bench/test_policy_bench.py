@@ -7,8 +7,8 @@ import sys
 
 import pytest
 
-from bench.policy import REFERENCE, TRAIN_CONFIGS, inference
 from conftest import ROOT
+from semgoal_bench.policy import REFERENCE, TRAIN_CONFIGS, inference
 from semgoal_core.vocabulary import SCENES
 
 
@@ -23,7 +23,7 @@ def test_inference_times_each_scenes_controller_and_the_peers():
 @pytest.mark.slow
 def test_bench_policy_runs_every_configuration_at_a_tiny_size():
     """The whole command, SB3's HER on our env included, so that it cannot break silently again."""
-    result = subprocess.run([sys.executable, "-m", "bench.policy", "--steps", "20", "--warmup", "110",
+    result = subprocess.run([sys.executable, "-m", "semgoal_bench.policy", "--steps", "20", "--warmup", "110",
                              "--repeats", "1", "--calls", "5", "--json"],
                             capture_output=True, text=True, cwd=ROOT, timeout=280)
     assert result.returncode == 0, result.stderr[-3000:]

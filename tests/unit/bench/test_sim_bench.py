@@ -1,4 +1,4 @@
-"""`./semgoal bench-sim`: its JSON contract, from the top-level bench/ through the dispatcher."""
+"""`./semgoal bench-sim`: its JSON contract, through the dispatcher."""
 
 import json
 import subprocess

@@ -3,11 +3,11 @@ and minimised by breadth-first (then uniform-cost) search and by A* with every a
 
 import heapq
 import random
-import sys
 from pathlib import Path
 
 import pytest
 
+from semgoal_bench.validate_plan import invalid_step, plan_cost, read_plan
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 from strips_planner import heuristics
 from strips_planner.grounding import Task, ground
@@ -19,8 +19,6 @@ from strips_planner.search import successors
 FIXTURES = Path(__file__).parent / "fixtures"
 ROADS = (FIXTURES / "roads-domain.pddl").read_text()
 DETOUR = (FIXTURES / "roads-detour.pddl").read_text()
-sys.path.insert(0, str(Path(__file__).parents[3] / "bench"))
-from validate_plan import invalid_step, plan_cost, read_plan  # noqa: E402
 
 
 @pytest.mark.parametrize(("search", "heuristic"), [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"),

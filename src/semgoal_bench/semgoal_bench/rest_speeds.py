@@ -1,7 +1,7 @@
 """Block speeds behind ``semgoal_core.settling.REST_SPEED``: resting blocks, and a block let go 2, 5 and 12 cm
 over the table (the last control step at which it still moves at REST_SPEED or faster), at four spots.
 
-    source tools/env.sh && python bench/rest_speeds.py
+    source tools/env.sh && python -m semgoal_bench.rest_speeds
 """
 
 import numpy as np

@@ -1,7 +1,7 @@
 """gymnasium-robotics' FetchPickAndPlace-v4 stepped with the same random actions: the reference row of
 bench/sim.py, run in a child `python -O` (its asserts fail on mujoco >= 3.12).
 
-    python -O bench/runners/fetch_reference.py STEPS REPEATS   -> the median steps/s
+    python -O src/semgoal_bench/semgoal_bench/runners/fetch_reference.py STEPS REPEATS   -> the median steps/s
 """
 
 import statistics

@@ -1,4 +1,4 @@
-"""`./semgoal bench-policy [--json]`: training throughput and actor latency beside Stable-Baselines3.
+"""`./semgoal bench policy [--json]`: training throughput and actor latency beside Stable-Baselines3.
 
 Training: env steps per second with the gradient steps included, once the replay buffer holds its first
 episodes, on one torch thread:
@@ -126,14 +126,14 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
 
 
 def _child(args: list[str]) -> str:
-    result = subprocess.run([sys.executable, "-O", "-m", "bench.policy", *args], capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-O", "-m", "semgoal_bench.policy", *args], capture_output=True, text=True)
     if result.returncode != 0:
         raise RuntimeError(f"bench worker {args} failed:\n{result.stderr[-2000:]}")
     return result.stdout.strip().splitlines()[-1]
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-policy", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench policy", description=__doc__.split("\n\n")[0])
     parser.add_argument("--steps", type=int, default=2_000, help="env steps timed per training run")
     parser.add_argument("--warmup", type=int, default=WARMUP_STEPS, help="env steps before the first update")
     parser.add_argument("--repeats", type=int, default=3)

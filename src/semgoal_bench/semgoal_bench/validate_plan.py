@@ -4,7 +4,7 @@ each step's action exists, its arguments are objects of the parameters' types, i
 plan's cost, summed from the actions' increases. A second opinion on ``plan-pddl``'s plans where VAL is not
 at hand.
 
-    source tools/env.sh && python bench/validate_plan.py DOMAIN PROBLEM PLAN
+    source tools/env.sh && python -m semgoal_bench.validate_plan DOMAIN PROBLEM PLAN
 Exit 0 valid, 1 invalid (the reason on stderr).
 """
 

@@ -1,4 +1,4 @@
-"""`./semgoal bench-graph [--task T] [--episodes N] [--pixels] [--json]`: the four-node graph's speed, both modes.
+"""`./semgoal bench graph [--task T] [--episodes N] [--pixels] [--json]`: the four-node graph's speed, both modes.
 
 Lockstep: control steps per second of wall time, end to end (sim -> predicates -> planner -> policy ->
 sim, over DDS), over N episodes of the task, beside the same episodes in one process (no ROS) as the
@@ -91,7 +91,7 @@ def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-graph", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench graph", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default="MC-2")
     parser.add_argument("--episodes", type=int, default=5)
     parser.add_argument("--seed", type=int, default=3_000_000)

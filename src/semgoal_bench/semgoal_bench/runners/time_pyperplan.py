@@ -1,6 +1,6 @@
 """Times pyperplan (GPL: run in its own throwaway venv, never imported by the product) on one PDDL task.
 
-    .bench/pyperplan/bin/python bench/runners/time_pyperplan.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
+    .bench/pyperplan/bin/python .../runners/time_pyperplan.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
 """
 
 import json

@@ -1,6 +1,6 @@
-"""Times our planner on one PDDL task in this process; bench/planner.py runs it once per (problem, search).
+"""Times our planner on one PDDL task in this process; semgoal_bench/planner.py runs it once per (problem, search).
 
-    python bench/runners/time_ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
+    python src/semgoal_bench/semgoal_bench/runners/time_ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
 """
 
 import json

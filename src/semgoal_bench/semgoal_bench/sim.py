@@ -1,4 +1,4 @@
-"""`./semgoal bench-sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4
+"""`./semgoal bench sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4
 (the same random actions, one process each; the median of the repeats)."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import numpy as np
 
 def main(argv: list[str]) -> int:
     """`./semgoal bench-sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4."""
-    parser = argparse.ArgumentParser(prog="semgoal bench-sim", description=main.__doc__)
+    parser = argparse.ArgumentParser(prog="semgoal bench sim", description=main.__doc__)
     parser.add_argument("--steps", type=int, default=2000)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--json", action="store_true")

@@ -1,4 +1,4 @@
-"""`./semgoal bench-eval [--episodes N] [--json]`: in-process evaluation episodes per second on the local pool
+"""`./semgoal bench eval [--episodes N] [--json]`: in-process evaluation episodes per second on the local pool
 and on a Dask LocalCluster, with 1 and 2 workers, on the same jobs (the hierarchical agent on MA-2 and DC-2,
 chunks of 2 episodes): what Dask costs on one host. Each configuration starts its own workers (the spawn and
 the actors' loading count, as they do in a real evaluation)."""
@@ -16,7 +16,7 @@ TASKS, SEED, CHUNK = ["MA-2", "DC-2"], 3_000_000, 2
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-eval", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench eval", description=__doc__.split("\n\n")[0])
     parser.add_argument("--episodes", type=int, default=8, help="episodes per task")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)

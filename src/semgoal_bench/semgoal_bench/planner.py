@@ -1,4 +1,4 @@
-"""`./semgoal bench-planner [--json] [--suite DIR]`: our planner beside pyperplan on blocksworld and the project's
+"""`./semgoal bench planner [--json] [--suite DIR]`: our planner beside pyperplan on blocksworld and the project's
 tasks, or on a whole folder of PDDL benchmarks beside pyperplan and Fast Downward (``--suite``, bench/planner_suite.py).
 
 pyperplan (GPL) is installed by this benchmark into a throwaway venv (``.bench/pyperplan``), never
@@ -21,7 +21,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from bench.planner_suite import PLANNERS, bench_python, run_suite, table
+from semgoal_bench.planner_suite import PLANNERS, bench_python, run_suite, table
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
@@ -79,7 +79,7 @@ def project_tasks(repeats: int) -> dict[str, dict]:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal bench-planner", description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="semgoal bench planner", description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, help="runs per measurement, the median kept (default: 3; 1 with --suite)")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner, problem and search")
     parser.add_argument("--sizes", default=",".join(map(str, SIZES)))

@@ -1,8 +1,8 @@
-"""`./semgoal bench-planner --suite DIR`: planners on a folder of PDDL benchmarks, as a user would run them.
+"""`./semgoal bench planner --suite DIR`: planners on a folder of PDDL benchmarks, as a user would run them.
 
 Every planner runs as a whole process, the way its own command line is used (``./semgoal plan-pddl``,
 ``pyperplan``, Fast Downward's ``fast-downward.py``), under the time limit; the wall-clock time of that process is
-what is compared, start-up included. Every plan is checked by the lifted validator (``bench/validate_plan.py``).
+what is compared, start-up included. Every plan is checked by the lifted validator (:mod:`semgoal_bench.validate_plan`).
 pyperplan (GPL) and Fast Downward (GPL, the ``up-fast-downward`` wheel) are installed into throwaway venvs under
 ``.bench/``, never product dependencies; a planner that does not install is left out with the reason.
 
@@ -26,7 +26,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(os.environ.get("SEMGOAL_ROOT") or Path.cwd())
+"""The checkout (``tools/env.sh`` sets SEMGOAL_ROOT): the throwaway venvs live in its ``.bench/``."""
 BENCH_VENVS = ROOT / ".bench"
 PINS = {"pyperplan": "pyperplan==2.1", "fast-downward": "up-fast-downward==1.0.0"}
 PLANNERS = ("ours", "pyperplan", "fast-downward")
@@ -171,7 +172,7 @@ def _parsed(domain_path: Path, problem_path: Path) -> tuple:
 
 def validity(domain_path: Path, problem_path: Path, plan: tuple[str, ...] | None) -> str:
     """"" for a valid plan (or none), else why not: the plan is run on the lifted actions (validate_plan.py)."""
-    from bench.validate_plan import invalid_step, read_plan
+    from semgoal_bench.validate_plan import invalid_step, read_plan
 
     if plan is None:
         return ""

@@ -1,0 +1,1 @@
+"""Measurements outside the product: each a `./semgoal bench ...` command (README.md)."""

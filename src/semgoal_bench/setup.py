@@ -1,0 +1,5 @@
+"""Metadata is declared in setup.cfg."""
+
+from setuptools import setup
+
+setup()

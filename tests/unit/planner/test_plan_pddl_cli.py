@@ -90,7 +90,6 @@ EITHER_PROBLEM = """(define (problem p) (:domain depotish) (:objects c - crate h
 
 def test_either_types_take_objects_of_any_member_type(tmp_path: Path, capsys) -> None:
     """storage's ``(either ...)`` parameters: planned, and the plan checks out step by step."""
-
     from semgoal_bench.validate_plan import invalid_step, read_plan
     from strips_planner.pddl import parse_domain, parse_problem
 

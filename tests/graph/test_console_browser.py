@@ -26,8 +26,8 @@ from selenium.webdriver.support.ui import WebDriverWait
 from websockets.exceptions import InvalidStatus
 
 from conftest import ROOT, GraphProbe, NodeProcesses, free_port
-from semgoal_bringup.console import CAMERA_VIEW
 from semgoal_bringup.graph import Sight, graph_nodes
+from semgoal_bringup.tools.console import CAMERA_VIEW
 
 TOKEN = "study-token-7"
 CHROMIUM, CHROMEDRIVER = Path("/usr/bin/chromium"), Path("/usr/bin/chromedriver")

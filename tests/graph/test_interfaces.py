@@ -37,7 +37,7 @@ def sample_messages() -> list:
 
 
 def test_every_message_round_trips(nodes: NodeProcesses, probe: GraphProbe) -> None:
-    from semgoal_bringup.echo_node import echo_topics
+    from semgoal_bringup.tools.echo_node import echo_topics
 
     nodes.start("semgoal_bringup", "echo_node")
     for sent in sample_messages():

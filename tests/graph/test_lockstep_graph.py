@@ -8,7 +8,7 @@ the graph runs."""
 import pytest
 
 from conftest import NodeProcesses
-from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import NODES, node_params
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 from semgoal_ros.client import GraphClient

@@ -9,7 +9,7 @@ import av
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
-from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_ros import interfaces as topics
 
 ROOT = Path(__file__).parents[2]

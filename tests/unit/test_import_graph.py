@@ -34,7 +34,7 @@ def semgoal_imports(path: Path) -> set[str]:
 
 @pytest.mark.parametrize("package", sorted(ALLOWED))
 def test_a_package_imports_only_the_layers_below_it(package: str) -> None:
-    for path in sorted((SRC / package / package).glob("*.py")):
+    for path in sorted((SRC / package / package).rglob("*.py")):
         assert semgoal_imports(path) - {package} <= ALLOWED[package], path.name
 
 

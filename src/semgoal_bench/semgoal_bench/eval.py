@@ -9,7 +9,7 @@ import argparse
 import json
 import time
 
-from semgoal_bringup.evaluation import evaluate_in_process
+from semgoal_bringup.experiments.evaluation import evaluate_in_process
 from semgoal_policy.actor import models_dir
 
 TASKS, SEED, CHUNK = ["MA-2", "DC-2"], 3_000_000, 2

@@ -18,7 +18,7 @@ import statistics
 import time
 from itertools import pairwise
 
-from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import TRUTH, Sight, running_graph
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 

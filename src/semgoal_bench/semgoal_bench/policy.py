@@ -62,7 +62,7 @@ def train_rate(config: str, steps: int, warmup: int = WARMUP_STEPS) -> float:
     """Env steps/s of one training configuration over ``steps`` env steps after ``warmup`` steps without updates."""
     kind, _, arg = config.partition(":")
     if kind == "ours":
-        from semgoal_bringup.training import trainer_for
+        from semgoal_bringup.experiments.training import trainer_for
         from semgoal_policy.trainer import TrainConfig
 
         defaults = TrainConfig(scene="two_blocks")

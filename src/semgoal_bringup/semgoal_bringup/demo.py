@@ -132,8 +132,8 @@ class Demo:
 
     def write_gif(self, record: Path, gif: Path) -> None:
         """The episode GIF, rendered from the recorded world and joint states (``./semgoal replay --gif``)."""
-        from semgoal_bringup.episode_video import write_video
-        from semgoal_bringup.replay import episode_frames, read
+        from semgoal_bringup.tools.episode_video import write_video
+        from semgoal_bringup.tools.replay import episode_frames, read
 
         frames = episode_frames(read(record))
         write_video(self.task.scene, self.task.n_blocks, frames, gif)

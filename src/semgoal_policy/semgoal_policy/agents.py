@@ -6,7 +6,7 @@ planner. The paper's two flat baselines ("Baselines") learn whole tasks with one
 a goal configuration (dense distance reward). All three get the same budget and the same expert
 supervision (demonstrations and behaviour cloning from the scripted expert), so the comparison isolates
 the hierarchy and the goal representation. Which simulated env each trains in is the simulator's business
-(``semgoal_bringup.training.make_env``): this package imports no simulator.
+(``semgoal_bringup.experiments.training.make_env``): this package imports no simulator.
 """
 
 from __future__ import annotations

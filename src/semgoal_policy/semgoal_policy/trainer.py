@@ -183,7 +183,7 @@ class Curriculum:
 class Trainer:
     """SAC+HER with expert supervision on ``config.n_envs`` envs that ``make_env()`` builds: goal-conditioned
     gymnasium envs with ``max_steps``, ``expert_action()``, an ``is_success`` info entry and
-    ``reset(options={"kind": k})`` (the simulator's, bound in ``semgoal_bringup.training``)."""
+    ``reset(options={"kind": k})`` (the simulator's, bound in ``semgoal_bringup.experiments.training``)."""
 
     def __init__(self, config: TrainConfig, make_env: Callable[[], object]) -> None:
         self.base_config = config

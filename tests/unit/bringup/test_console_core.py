@@ -6,7 +6,7 @@ import csv
 import numpy as np
 import pytest
 
-from semgoal_bringup.console_core import StudyLog, place_position, sentences
+from semgoal_bringup.tools.console_core import StudyLog, place_position, sentences
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, THRESHOLDS, evaluate
 
@@ -71,7 +71,7 @@ def test_the_study_log_keeps_every_row_in_order(tmp_path) -> None:
 
 
 def test_literals_the_perception_is_unsure_of_read_as_questions_with_how_sure_it_is() -> None:
-    from semgoal_bringup.console_core import unsure_sentences
+    from semgoal_bringup.tools.console_core import unsure_sentences
 
     literals = [("close", ("red", "green"), True, 0.62), ("close", ("green", "red"), True, 0.62),
                 ("in_bin", ("red",), False, 0.7), ("above", ("red", "green"), False, 1.0)]
@@ -81,7 +81,7 @@ def test_literals_the_perception_is_unsure_of_read_as_questions_with_how_sure_it
 def test_the_camera_view_draws_each_estimate_where_it_projects() -> None:
     import numpy as np
 
-    from semgoal_bringup.perception_view import SCALE, draw_estimates
+    from semgoal_bringup.tools.perception_view import SCALE, draw_estimates
     from semgoal_perception.geometry import PinholeCamera
 
     down = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])

@@ -7,13 +7,13 @@ from semgoal_bringup.cli import ALIASES, COMMANDS, resolve, usage
 
 
 @pytest.mark.parametrize("argv, target, rest", [
-    (["eval", "goals", "--scene", "two_blocks"], "semgoal_bringup.goal_eval", ["--scene", "two_blocks"]),
-    (["eval", "--tasks", "all"], "semgoal_bringup.evaluation", ["--tasks", "all"]),
-    (["eval"], "semgoal_bringup.evaluation", []),
-    (["train", "--recipe", "two_blocks"], "semgoal_bringup.training:train_main", ["--recipe", "two_blocks"]),
-    (["train", "perception", "--images", "10"], "semgoal_bringup.perception_training", ["--images", "10"]),
+    (["eval", "goals", "--scene", "two_blocks"], "semgoal_bringup.experiments.goal_eval", ["--scene", "two_blocks"]),
+    (["eval", "--tasks", "all"], "semgoal_bringup.experiments.evaluation", ["--tasks", "all"]),
+    (["eval"], "semgoal_bringup.experiments.evaluation", []),
+    (["train", "--recipe", "two_blocks"], "semgoal_bringup.experiments.training:train_main", ["--recipe", "two_blocks"]),
+    (["train", "perception", "--images", "10"], "semgoal_bringup.experiments.perception_training", ["--images", "10"]),
     (["bench", "sim", "--json"], "semgoal_bench.sim", ["--json"]),
-    (["eval-goals", "--scene", "x"], "semgoal_bringup.goal_eval", ["--scene", "x"]),
+    (["eval-goals", "--scene", "x"], "semgoal_bringup.experiments.goal_eval", ["--scene", "x"]),
     (["bench-planner"], "semgoal_bench.planner", []),
     (["plan-pddl", "d", "p"], "strips_planner.plan_pddl", ["d", "p"]),
 ])

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_bringup import evaluation
-from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.experiments import evaluation
+from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.tasks import TASK_STEP_BUDGET
 
 ROOT = Path(__file__).parents[3]

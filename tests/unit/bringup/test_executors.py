@@ -3,8 +3,8 @@ episodes: identical rows (every job is seeded by its episodes)."""
 
 import pytest
 
-from semgoal_bringup.evaluation import evaluate_in_process
-from semgoal_bringup.executors import check_executor
+from semgoal_bringup.experiments.evaluation import evaluate_in_process
+from semgoal_bringup.experiments.executors import check_executor
 from semgoal_policy.actor import models_dir
 
 TASKS, EPISODES, SEED = ["MA-2", "DC-2"], 8, 3_000_000

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from semgoal_bringup import goal_eval
+from semgoal_bringup.experiments import goal_eval
 
 
 @pytest.mark.slow

@@ -99,7 +99,7 @@ def test_the_live_view_and_the_console_join_on_request_with_their_ports(launch_f
 
 
 def test_the_foxglove_layout_shows_what_the_live_view_serves() -> None:
-    from semgoal_bringup.foxglove_node import SCENE_TOPIC
+    from semgoal_bringup.tools.foxglove_node import SCENE_TOPIC
 
     layout = json.loads(share_path("semgoal_bringup", "foxglove", "semgoal.json").read_text())
     panels = layout["configById"]

@@ -14,8 +14,8 @@ NODE_MODULES = {
     "predicates": "semgoal_sim.predicate_node",
     "planner": "semgoal_planner.planner_node",
     "policy": "semgoal_policy.policy_node",
-    "foxglove": "semgoal_bringup.foxglove_node",
-    "console": "semgoal_bringup.console",
+    "foxglove": "semgoal_bringup.tools.foxglove_node",
+    "console": "semgoal_bringup.tools.console",
     "perception": "semgoal_perception.perception_node",
 }
 

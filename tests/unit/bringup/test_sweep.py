@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_bringup.sweep import parse_seeds
+from semgoal_bringup.experiments.sweep import parse_seeds
 
 ROOT = Path(__file__).parents[3]
 

@@ -5,7 +5,7 @@ the falling block below was a success at once."""
 import numpy as np
 import pytest
 
-from semgoal_bringup.episodes import observe
+from semgoal_bringup.experiments.episodes import observe
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS, at_rest, restless
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, Literal

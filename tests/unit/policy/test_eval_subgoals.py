@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from semgoal_bringup.training import eval_subgoals_main
+from semgoal_bringup.experiments.training import eval_subgoals_main
 
 
 def _run(capsys, *extra: str) -> dict:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import torch
 
-from semgoal_bringup.training import make_env
+from semgoal_bringup.experiments.training import make_env
 from semgoal_core import features, layout
 from semgoal_core.lockstep import followed_decision, lockstep_subgoal
 from semgoal_core.settling import SETTLE_STEPS

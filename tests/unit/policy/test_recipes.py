@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from semgoal_bringup.training import checkout_models_dir, train_config, trainer_for
+from semgoal_bringup.experiments.training import checkout_models_dir, train_config, trainer_for
 from semgoal_policy.actor import models_dir
 from semgoal_policy.recipes import RUN_FIELDS, RecipeError, build_config, load_recipe, recipe_names
 from semgoal_policy.trainer import PHASED_SETTINGS, PROJECT_ROOT, TrainConfig, schedule, settings_at

@@ -5,7 +5,7 @@ and no held block is let go past the table's edge."""
 import numpy as np
 import pytest
 
-from semgoal_bringup.episodes import make_agent
+from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import THRESHOLDS, Literal

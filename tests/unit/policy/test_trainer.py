@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import torch
 
-from semgoal_bringup.training import trainer_for
+from semgoal_bringup.experiments.training import trainer_for
 from semgoal_policy.actor import load
 from semgoal_policy.replay import Batch
 from semgoal_policy.sac import SacAgent, SacConfig

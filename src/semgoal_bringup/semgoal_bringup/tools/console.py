@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from semgoal_bringup.console_core import PLACES, StudyLog, place_position, sentences, unsure_sentences
+from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, sentences, unsure_sentences
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
@@ -89,7 +89,7 @@ class SeenByCamera:
         """The latest frame with the estimates drawn (a PIL image), or None without a recent frame."""
         if not self.live():
             return None
-        from semgoal_bringup.perception_view import draw_estimates
+        from semgoal_bringup.tools.perception_view import draw_estimates
         from semgoal_perception.geometry import PinholeCamera
         from semgoal_perception.perception_node import image_array
 
@@ -203,7 +203,7 @@ class Console:
             self._camera = (time.monotonic(), buffer.getvalue())
             return self._camera[1]
 
-        from semgoal_bringup.episode_video import Frame, FramePainter
+        from semgoal_bringup.tools.episode_video import Frame, FramePainter
 
         key = (world.scene, len(world.blocks))
         if self._painter is None or self._painter[0] != key:

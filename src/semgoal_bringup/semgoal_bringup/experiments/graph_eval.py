@@ -12,7 +12,7 @@ import sys
 from collections.abc import Iterator
 from pathlib import Path
 
-from semgoal_bringup.episodes import Outcome
+from semgoal_bringup.experiments.episodes import Outcome
 from semgoal_bringup.graph import TRUTH, Sight, running_graph
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 

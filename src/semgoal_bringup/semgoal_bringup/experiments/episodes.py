@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from semgoal_bringup.training import make_env
+from semgoal_bringup.experiments.training import make_env
 from semgoal_core.lockstep import lockstep_subgoal
 from semgoal_core.names import PlanStatus
 from semgoal_core.settling import Settling, held_blocks_asked, moving_blocks

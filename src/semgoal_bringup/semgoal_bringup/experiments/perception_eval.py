@@ -115,7 +115,7 @@ def tally(per_predicate: dict[str, list[int]], near: dict[str, int], name: str, 
 
 def agreement(per_predicate: dict[str, list[int]], near: dict[str, int]) -> dict:
     """Overall, per predicate and near-threshold agreement, with Wilson intervals."""
-    from semgoal_bringup.evaluation import wilson_interval
+    from semgoal_bringup.experiments.evaluation import wilson_interval
 
     def row(agreed: int, total: int) -> dict:
         return {"agree": agreed, "total": total, "rate": agreed / max(total, 1),
@@ -199,7 +199,7 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
 
 def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
-    from semgoal_bringup.perception_training import cached_frames
+    from semgoal_bringup.experiments.perception_training import cached_frames
     from semgoal_perception.estimator import BlockEstimator
     from semgoal_perception.literal_net import load_literal_net
     from semgoal_ros.package_data import share_path

@@ -74,7 +74,7 @@ def read(path: Path) -> Episode:
 
 def episode_frames(episode: Episode) -> list:
     """The GIF frames of a recorded episode, every second step, captioned with the sub-goal followed."""
-    from semgoal_bringup.episode_video import frames_from
+    from semgoal_bringup.tools.episode_video import frames_from
 
     return frames_from([episode.worlds[s] for s in sorted(episode.worlds)], episode.joints, episode.subgoals)
 
@@ -150,7 +150,7 @@ def main(argv: list[str]) -> int:
         print(summary(episode))
     for video in (args.gif, args.mp4.with_suffix(".mp4") if args.mp4 else None):
         if video:
-            from semgoal_bringup.episode_video import write_video
+            from semgoal_bringup.tools.episode_video import write_video
             from semgoal_core.tasks import get_task
 
             frames = episode_frames(episode)

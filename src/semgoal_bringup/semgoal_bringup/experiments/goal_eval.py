@@ -18,9 +18,9 @@ import statistics
 import sys
 from pathlib import Path
 
-from semgoal_bringup.episodes import Outcome
-from semgoal_bringup.evaluation import wilson_interval
-from semgoal_bringup.executors import check_executor, run_jobs
+from semgoal_bringup.experiments.episodes import Outcome
+from semgoal_bringup.experiments.evaluation import wilson_interval
+from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, running_graph, sight_of
 from semgoal_core import tasks
 from semgoal_core.goal_families import FAMILIES, GoalCase, goal_cases
@@ -36,7 +36,7 @@ def run_family(scene: str, family: str, episodes: int, seed: int, model_dir: Pat
     actor instead of the shipped one; ``linger``: control steps after a success before the goal is checked again."""
     import torch
 
-    from semgoal_bringup.episodes import make_agent
+    from semgoal_bringup.experiments.episodes import make_agent
 
     torch.set_num_threads(1)
     agent = make_agent("hierarchical", scene, model_dir)

@@ -1,5 +1,5 @@
 """`./semgoal sweep --recipe R --seeds 81-90 [--executor local|dask|dask:ADDRESS] [--workers N] [train settings]`:
-train one run per seed, each a job on the executor (:mod:`semgoal_bringup.executors`).
+train one run per seed, each a job on the executor (:mod:`semgoal_bringup.experiments.executors`).
 
 A job runs `./semgoal train --recipe R --seed S --resume ...` as a process of its own and, when that process dies
 (killed, out of memory), runs it again; when the job's worker dies instead (a Dask worker killed or its machine
@@ -18,7 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from semgoal_bringup.executors import check_executor, run_jobs
+from semgoal_bringup.experiments.executors import check_executor, run_jobs
 
 ATTEMPTS = 3
 """Times a seed's training process is started before the sweep reports it failed."""

@@ -10,7 +10,7 @@ report the first-step rule (the literals held at some step) on the same episodes
 control steps to success at rest. ``--seeds N`` averages
 up to N training seeds of each agent where exported actors exist (the shipped one, plus
 ``models/seeds/<name>/seedK``); the table says how many each row has. ``--via-ros`` also runs the
-hierarchical agent through the real node graph in lockstep (:mod:`semgoal_bringup.graph_eval`).
+hierarchical agent through the real node graph in lockstep (:mod:`semgoal_bringup.experiments.graph_eval`).
 Writes ``table1.md``, ``table1.csv`` and ``table1.png`` under ``--out``; the last line printed is the
 JSON ``{task: {agent: rate, "settled_steps": {agent: median steps}, "first_step_rule": {agent: rate},
 "linger_holds": {agent: rate}, "fell_off": {agent: rate}}}`` (the last three where observed).
@@ -31,14 +31,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from semgoal_bringup.executors import check_executor, run_jobs
+from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
 
 if TYPE_CHECKING:
-    from semgoal_bringup.episodes import Outcome
+    from semgoal_bringup.experiments.episodes import Outcome
 
 PAPER_TABLE1 = {
     "flat-semantic": {"MC-2": 10, "MA-2": 80, "Swap-2": 0, "MC-3": 5, "MA-3": 10, "DC-2": 30, "DC-3": 0, "DC-4": 0},
@@ -205,7 +205,7 @@ def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds:
     checked again (the hierarchical agent)."""
     import torch
 
-    from semgoal_bringup.episodes import make_agent
+    from semgoal_bringup.experiments.episodes import make_agent
 
     torch.set_num_threads(1)
     row = Row(agent)
@@ -253,7 +253,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Pa
                      sight: Sight = TRUTH) -> Row:
     from tqdm import tqdm
 
-    from semgoal_bringup.graph_eval import run_via_ros
+    from semgoal_bringup.experiments.graph_eval import run_via_ros
     from semgoal_policy import actor as actor_io
 
     row = Row(VIA_ROS)

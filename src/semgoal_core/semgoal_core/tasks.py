@@ -10,6 +10,7 @@ Every task goal also asks that nothing is held at the end: a task is done when t
 from __future__ import annotations
 
 import itertools
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -165,6 +166,18 @@ def scene_tasks(scene: str) -> tuple[str, ...]:
 def is_task_name(text: str) -> bool:
     """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
     return any(text.strip().lower() == name.lower() for name in TASKS)
+
+
+_SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
+
+
+def split_literals(text: str) -> list[str]:
+    """``a(x) & not b(x,y), c(y)`` -> the literal texts (commas inside parentheses are arguments); ValueError for
+    an empty goal or an empty part."""
+    parts = [p.strip() for p in _SEPARATORS.split(text.strip())]
+    if not text.strip() or any(not p for p in parts):
+        raise ValueError(f"cannot read goal {text!r}: expected a task ({', '.join(TASKS)}) or literals joined by '&'")
+    return parts
 
 
 def goal_form(text: str) -> str:

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
-from semgoal_core.vocabulary import SCENES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
-from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
+from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
+from semgoal_planner.goals import Goal, GoalError, read_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
@@ -118,22 +118,27 @@ class Executive:
         self.goal_settling = Settling(self.settle_steps)
 
     # -- goals ---------------------------------------------------------------------------------------
-    def set_goal(self, text: str, step_budget: int = 0) -> tuple[bool, str]:
+    def set_goal(self, goal: Goal | str, step_budget: int = 0) -> tuple[bool, str]:
         """Plan for a goal from the observed state; on failure the previous plan stays. The goal fails
-        once ``step_budget`` control steps (0: no limit) are spent without it holding."""
+        once ``step_budget`` control steps (0: no limit) are spent without it holding.
+
+        ``goal`` is read where it entered (:func:`~semgoal_planner.goals.read_goal`; the planner node reads its
+        requests); text is read here, for callers in this process, against the world observed."""
         obs = self.observation
+        scene = self.planner.scene
         try:
+            if isinstance(goal, str):
+                goal = read_goal(goal, scene, obs.objects if obs else LAYOUTS[scene].objects)
             if obs is None:
-                check_goal_text(text, self.planner.scene)
                 return False, "no semantic state observed yet: start the sim and predicates nodes first"
-            goal = parse_goal(text, self.planner.scene, obs.objects, obs.true_literals)
-            steps = self.planner.plan(obs.objects, obs.true_literals, goal)
+            literals = goal.instantiate(scene, obs.objects, obs.true_literals)
+            steps = self.planner.plan(obs.objects, obs.true_literals, literals)
         except (GoalError, PlanningError) as error:
             return False, str(error)
-        self.goal, self.goal_text = goal, " & ".join(map(str, goal))
+        self.goal, self.goal_text = literals, " & ".join(map(str, literals))
         self.replans, self.goal_steps, self.step_budget = 0, 0, max(0, step_budget)
-        meaning = "" if text.strip() == self.goal_text else f" (the goal: {self.goal_text})"
-        self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {text.strip()}{meaning}")
+        meaning = "" if goal.said == self.goal_text else f" (the goal: {self.goal_text})"
+        self._install([PlanStep(s) for s in steps], f"planned {len(steps)} step(s) for {goal.said}{meaning}")
         self._advance()
         return True, self.message
 

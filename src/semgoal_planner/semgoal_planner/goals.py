@@ -7,58 +7,79 @@ contradictions, so a planner only ever sees goals it can state.
 
 from __future__ import annotations
 
-import re
+from collections.abc import Sequence
+from dataclasses import dataclass
 
 from semgoal_core.consistency import ContradictionError, check_consistent
-from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state
+from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
 from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
-
-_SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
 
 
 class GoalError(ValueError):
     """A goal that cannot be stated in the scene: the message says what is wrong and what is valid."""
 
 
-def split_literals(text: str) -> list[str]:
-    """``a(x) & not b(x,y), c(y)`` -> the literal texts (commas inside parentheses are arguments)."""
-    parts = [p.strip() for p in _SEPARATORS.split(text.strip())]
-    if not text.strip() or any(not p for p in parts):
-        raise GoalError(f"cannot read goal {text!r}: expected a task ({', '.join(TASKS)}) or literals joined by '&'")
-    return parts
+@dataclass(frozen=True)
+class Goal:
+    """A goal read once, where it entered: a task (whose literals come from the world's state when it is
+    planned: Swap-2 swaps whatever stack there is) or literals (typed, or what a sentence became), with the
+    words it was given in, for display."""
+
+    said: str
+    literals: tuple[Literal, ...] = ()
+    task: str = ""
+
+    def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+        """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
+        goal in that state, or the literals once every block they name is present. Nothing is parsed."""
+        if self.task:
+            return task_goal(self.task, scene, objects, state)
+        layout = LAYOUTS[scene]
+        try:
+            return [layout.validate(literal, objects) for literal in self.literals]
+        except VocabularyError as error:
+            raise GoalError(str(error)) from None
 
 
-def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
-    """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``:
-    a task, literals, or else a sentence."""
+def read_goal(text: str, scene: str, objects: tuple[str, ...]) -> Goal:
+    """The goal ``text`` says in a world of ``scene`` with ``objects`` present: a task, literals, or else a
+    sentence. The one place a typed goal is parsed."""
     if len(text) > MAX_GOAL_CHARS:
         raise GoalError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     form = goal_form(text)
     if form == "task":
-        return task_goal(text, scene, objects, state)
+        return Goal(text.strip(), task=scene_task(text, scene).name)
     if form == "text":
         try:
-            return parse_english(text, scene, objects)
+            return Goal(text.strip(), tuple(parse_english(text, scene, objects)))
         except LanguageError as error:
             raise GoalError(f"{error} (or give a task, {', '.join(TASKS)}, or literals such as in_bin(red))") from None
+    try:
+        literals = [parse_literal(part) for part in split_literals(text)]
+    except (ValueError, VocabularyError) as error:
+        raise GoalError(str(error)) from None
+    return typed_goal(literals, scene, objects, text.strip())
+
+
+def typed_goal(literals: Sequence[Literal], scene: str, objects: tuple[str, ...], said: str = "") -> Goal:
+    """A goal of literals already read: each checked against the scene's vocabulary and ``objects``, the whole
+    against contradictions, repeats dropped."""
     layout = LAYOUTS[scene]
     try:
-        goal = [layout.validate(parse_literal(part), objects) for part in split_literals(text)]
+        goal = [layout.validate(literal, objects) for literal in literals]
         check_consistent(goal)
     except (VocabularyError, ContradictionError) as error:
         raise GoalError(str(error)) from None
-    return list(dict.fromkeys(goal))
+    if not goal:
+        raise GoalError(f"an empty goal: give a task ({', '.join(TASKS)}), literals or a sentence")
+    goal = list(dict.fromkeys(goal))
+    return Goal(said or " & ".join(map(str, goal)), tuple(goal))
 
 
-def check_goal_text(text: str, scene: str) -> None:
-    """Refuse a goal that no world of ``scene`` could state (a task of another scene, an unknown predicate
-    or block, a wrong arity, a contradiction) before any state is known; the blocks present are checked
-    once one is."""
-    if goal_form(text) == "task":
-        scene_task(text, scene)
-    else:
-        parse_goal(text, scene, LAYOUTS[scene].objects, [])
+def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
+    """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
+    return read_goal(text, scene, objects).instantiate(scene, objects, state)
 
 
 def scene_task(name: str, scene: str) -> Task:

@@ -28,7 +28,7 @@ from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, Predicate, Semant
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.doubt import Doubt, unsure_literals
 from semgoal_planner.executive import Executive, Observation
-from semgoal_planner.goals import check_goal_text
+from semgoal_planner.goals import Goal, GoalError, read_goal, typed_goal
 from semgoal_planner.journal import PlanJournal, Record, Verdict, World, resume
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_ros import interfaces as topics
@@ -42,17 +42,25 @@ FINAL = (PlanStatus.SUCCEEDED, PlanStatus.FAILED)
 SILENCE_CHECK_S = 0.25
 
 
-def goal_text(msg: GoalRequest) -> str:
-    """A GoalRequest as the text the executive parses (a task, literals joined by '&', or a sentence)."""
-    given = [bool(msg.task.strip()), bool(msg.literals), bool(msg.text.strip())]
-    if sum(given) != 1:
-        raise ValueError("give exactly one of a task, literals or a sentence (text)")
-    return msg.task.strip() or " & ".join(msg.literals) or msg.text.strip()
-
-
 def goal_as_given(msg: GoalRequest) -> str:
     """A GoalRequest as the operator gave it, malformed ones too (each part there is, joined by ' | ')."""
-    return " | ".join(part for part in (msg.task.strip(), " & ".join(msg.literals), msg.text.strip()) if part)
+    predicates = " & ".join(str(literal_of(p)) for p in msg.predicates)
+    return " | ".join(part for part in (msg.task.strip(), " & ".join(msg.literals), predicates, msg.text.strip()) if part)
+
+
+def literal_of(predicate) -> Literal:
+    return Literal(predicate.name, tuple(predicate.args), bool(predicate.value))
+
+
+def read_request(msg: GoalRequest, scene: str, objects: tuple[str, ...]) -> Goal:
+    """The goal a request carries, read once: predicates are validated, a task, typed literals or a sentence
+    are read (:func:`~semgoal_planner.goals.read_goal`). GoalError unless exactly one of the four is given."""
+    given = [bool(msg.task.strip()), bool(msg.literals), bool(msg.predicates), bool(msg.text.strip())]
+    if sum(given) != 1:
+        raise GoalError("give exactly one of a task, literals (text or predicates) or a sentence (text)")
+    if msg.predicates:
+        return typed_goal([literal_of(p) for p in msg.predicates], scene, objects)
+    return read_goal(msg.task.strip() or " & ".join(msg.literals) or msg.text.strip(), scene, objects)
 
 
 def edit_text(request: EditPlan.Request) -> str:
@@ -174,29 +182,41 @@ class PlannerNode(Node):
         an action goal, it waits up to ``state_wait_s`` for a state of the current world (the first one, or the
         reset's) rather than being refused for want of one or judged on the world before. The wait is a task of
         its own: awaited here, it would hold the callback group the states come in on."""
-        if self.stateable(msg) and not self.has_state(self.reset_episode):
-            self.executor.create_task(self.start_goal_on_state(msg, self.reset_episode))
+        goal = self.read(msg, self.reset_episode)
+        if isinstance(goal, Goal) and not self.has_state(self.reset_episode):
+            self.executor.create_task(self.start_goal_on_state(msg, goal, self.reset_episode))
         else:
             self.min_episode = 0
-            self.start_goal(msg)
+            self.start_goal(msg, goal)
 
-    async def start_goal_on_state(self, msg: GoalRequest, episode: int) -> None:
+    async def start_goal_on_state(self, msg: GoalRequest, goal: Goal, episode: int) -> None:
         await self.state_of(episode, self.state_wait_s)
         self.min_episode = 0
-        self.start_goal(msg)
+        self.start_goal(msg, goal)
+
+    def read(self, msg: GoalRequest, episode: int) -> Goal | GoalError:
+        """The request's goal, read once where it enters, or why it cannot be: against the blocks of the world
+        seen, or, while the goal waits for world ``episode``, against every block of the scene (the world it is
+        planned on checks its blocks)."""
+        scene = self.executive.planner.scene
+        objects = tuple(self.last_state.objects) if self.has_state(episode) else LAYOUTS[scene].objects
+        try:
+            return read_request(msg, scene, objects)
+        except GoalError as error:
+            return error
 
     def operator_event_callback(self, event: OperatorEvent) -> None:
         """The sim's answer to a reset: a topic goal sent from here on waits for the new world's state."""
         if event.kind == OperatorEvent.KIND_RESET and event.accepted:
             self.reset_episode = max(self.reset_episode, (self.last_state.episode if self.last_state else 0) + 1)
 
-    def start_goal(self, msg: GoalRequest, max_steps: int = 0) -> tuple[bool, str]:
+    def start_goal(self, msg: GoalRequest, goal: Goal | GoalError, max_steps: int = 0) -> tuple[bool, str]:
         steps_before = self.executive.goal_steps  # what a goal this one supersedes reports
-        try:
+        if isinstance(goal, GoalError):
+            ok, message = False, str(goal)
+        else:
             with self.planning.time():
-                ok, message = self.executive.set_goal(goal_text(msg), step_budget=max_steps)
-        except ValueError as error:
-            ok, message = False, str(error)
+                ok, message = self.executive.set_goal(goal, step_budget=max_steps)
         self.counters["goals planned" if ok else "goals refused"] += 1
         self.report(ok, f"goal task={msg.task!r} literals={list(msg.literals)} text={msg.text!r}: {message}")
         if ok:
@@ -362,7 +382,8 @@ class PlannerNode(Node):
         goes out with every change of the plan (:meth:`publish`)."""
         result = ExecuteGoal.Result()
         episode = int(handle.request.episode)
-        if self.stateable(handle.request.goal) and not self.has_state(episode):
+        goal = self.read(handle.request.goal, episode)
+        if isinstance(goal, Goal) and not self.has_state(episode):
             await self.state_of(episode, self.state_wait_s)
         if episode and not self.has_state(episode):
             ok, message = False, (f"no semantic state of world episode {episode} within {self.state_wait_s:g} s "
@@ -371,7 +392,7 @@ class PlannerNode(Node):
             self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(handle.request.goal), False, message)
         else:
             self.min_episode = episode
-            ok, message = self.start_goal(handle.request.goal, int(handle.request.max_steps))
+            ok, message = self.start_goal(handle.request.goal, goal, int(handle.request.max_steps))
         result.episode = self.last_state.episode if self.last_state else 0
         # a refused goal ran no steps: its result must not carry the previous goal's figures
         steps = self.executive.goal_steps if ok else 0
@@ -390,14 +411,6 @@ class PlannerNode(Node):
         result.message = message
         (handle.succeed if result.success else handle.abort)()
         return self._fill(result, ok, steps)
-
-    def stateable(self, msg: GoalRequest) -> bool:
-        """Whether the goal passes every check that needs no world state (else it is refused at once)."""
-        try:
-            check_goal_text(goal_text(msg), self.executive.planner.scene)
-        except ValueError:
-            return False
-        return True
 
     def has_state(self, episode: int) -> bool:
         """Whether a semantic state has come (of world ``episode`` or a later one, when it is not 0)."""

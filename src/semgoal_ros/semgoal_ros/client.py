@@ -59,14 +59,23 @@ class GoalResult:
 
 
 def goal_request(text: str):
-    """The GoalRequest for a goal as typed: a task name, literals joined by '&', or a sentence."""
-    from semgoal_core.tasks import goal_form
-    from semgoal_msgs.msg import GoalRequest
+    """The GoalRequest for a goal as typed: a task name, literals joined by '&' (read here, sent as predicates),
+    or a sentence (the planner reads it against the world's blocks). Literals that do not read go as typed, so
+    that the planner's refusal names what is wrong."""
+    from semgoal_core.tasks import goal_form, split_literals
+    from semgoal_core.vocabulary import VocabularyError, parse_literal
+    from semgoal_msgs.msg import GoalRequest, Predicate
 
     form = goal_form(text)
     if form == "task":
         return GoalRequest(task=text.strip())
-    return GoalRequest(literals=[text]) if form == "literals" else GoalRequest(text=text)
+    if form == "text":
+        return GoalRequest(text=text)
+    try:
+        literals = [parse_literal(part) for part in split_literals(text)]
+    except (ValueError, VocabularyError):
+        return GoalRequest(literals=[text])
+    return GoalRequest(predicates=[Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in literals])
 
 
 class PlannerWatch:

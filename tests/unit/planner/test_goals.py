@@ -4,8 +4,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from semgoal_core.vocabulary import Literal
-from semgoal_planner.goals import GoalError, check_goal_text, parse_goal
+from semgoal_core.vocabulary import LAYOUTS, Literal
+from semgoal_planner.goals import GoalError, parse_goal, read_goal
 
 BLOCKS = ("red", "green", "blue")
 
@@ -63,6 +63,32 @@ def test_fuzzed_goal_strings_never_raise_anything_but_goal_errors(text: str) -> 
     ("three_blocks", "close(red,red)", "close(red,red): a block cannot be related to itself"),
 ])
 def test_contradictions_are_refused_before_any_state_naming_the_literals(scene: str, text: str, named: str) -> None:
-    """What the goal topic and the console check before planning (``check_goal_text``, ``parse_goal``)."""
+    """Where the goal is read (``read_goal``: the planner node, the console's Preview), before any state."""
     with pytest.raises(GoalError, match=named.replace("(", r"\(").replace(")", r"\)")):
-        check_goal_text(text, scene)
+        read_goal(text, scene, LAYOUTS[scene].objects)
+
+
+def test_a_goal_is_read_once_then_planned_and_run_without_the_parser(monkeypatch) -> None:
+    """The planner node's path: the request is read where it enters, and from there to the sub-goal it publishes
+    nothing reads the goal again (every reader is made to fail after the first read)."""
+    from semgoal_planner import english, goals
+    from semgoal_planner import executive as executive_module
+    from semgoal_planner.executive import Executive, Observation
+    from semgoal_planner.semantic import SemanticPlanner
+
+    blocks = ("red", "green")
+    said = "put the red block in the bin"
+    goal = read_goal(said, "desk_cleanup", blocks)
+
+    def refuse(*_args, **_kwargs):
+        raise AssertionError("the goal was read again")
+
+    for module, name in ((goals, "parse_english"), (goals, "parse_literal"), (goals, "split_literals"),
+                         (english, "parse_english"), (goals, "read_goal"), (executive_module, "read_goal")):
+        monkeypatch.setattr(module, name, refuse)
+    executive = Executive(SemanticPlanner("desk_cleanup"))
+    executive.observe(Observation(blocks, [Literal("in_bin", (b,), False) for b in blocks], 0))
+    ok, message = executive.set_goal(goal)
+    assert ok, message
+    assert executive.goal == [Literal("in_bin", ("red",))] and said in message
+    assert executive.active is not None and executive.active.subgoal.kind == "pick"

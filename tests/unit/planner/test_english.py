@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from semgoal_core.consistency import contradictions
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
-from semgoal_planner.english import CANONICAL, LanguageError, parse_english
+from semgoal_planner.english import LanguageError, parse_english
+from semgoal_planner.english.words import CANONICAL
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import SemanticPlanner

@@ -1,0 +1,106 @@
+"""Plain-English goals: a sentence becomes the scene's literals, or a refusal that says why.
+
+Offline and grammar-based (the paper's future work asks for "a language interface which can translate
+natural language sentences to semantic goals"). Three passes, each small:
+
+1. **Normalise**: lower-case; phrases and synonyms become one canonical word each (``next to`` ->
+   ``near``, ``place`` -> ``put``, ``box`` -> ``bin``); fillers go (``please``, ``the``, ``block``, ``is``).
+   A word that is neither canonical nor known is refused, naming it.
+2. **Parse** the canonical words with a lark Earley grammar (:data:`GRAMMAR`) into clauses: an action, a
+   state or an ellipsis (``... but not green``), joined by ``and`` (all at once) or ``then`` (later clauses
+   override earlier ones on the same atom: the state at the end).
+3. **Resolve** references in the world's blocks (``it``, ``them``, ``all except red``, ``the others``) and
+   turn each clause into literals; the scene's vocabulary checks them (:meth:`SemanticLayout.validate`).
+
+What a sentence becomes (``PHRASES`` in the tests hold many more)::
+
+    put the red block in the bin                 in_bin(red)
+    clean up the desk but leave green out        in_bin(red) & in_bin(blue) & ... & not in_bin(green)
+    stack red on green                           above(red,green)
+    keep red away from green and blue            not close(red,green) & not close(red,blue)
+    pick up blue                                 holding(blue)
+
+The literals are what the operator is shown before anything moves.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import lark
+
+from semgoal_core.consistency import ContradictionError, check_consistent
+from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
+from semgoal_planner.english.grammar import Clause, Clauses, parser
+from semgoal_planner.english.resolver import Resolver
+from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
+
+__all__ = ["MAX_GOAL_CHARS", "LanguageError", "examples", "normalise", "parse_english"]
+
+
+def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:
+    """The literals a sentence asks for in ``scene`` with ``blocks`` present (default: all of the scene's).
+
+    Clauses joined by ``and`` hold together (a contradiction is refused); a clause after ``then`` overrides
+    the earlier ones on the same atom. Raises :class:`LanguageError` with a message naming what is wrong.
+    """
+    layout = LAYOUTS[scene]
+    blocks = tuple(blocks or layout.objects)
+    words = normalise(text, scene, blocks)
+    try:
+        tree = parser().parse(" ".join(words))
+    except lark.exceptions.LarkError as error:
+        raise LanguageError(_parse_error(words, error, examples(scene, blocks))) from None
+    try:
+        conjunctions = Clauses().transform(tree)
+    except lark.exceptions.VisitError as error:  # a rule that refused its reading ("red except green")
+        if isinstance(error.orig_exc, LanguageError):
+            raise error.orig_exc from None
+        raise
+    resolver, goal, before = Resolver(scene, blocks), {}, None
+    for conjunction in conjunctions:
+        resolved = []
+        for clause in conjunction:
+            literals, before = resolver.literals(clause, before)
+            resolved.append((before, literals))
+        moved = {b for clause, _ in resolved if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
+        # "... then put green on red": what earlier stages said of a block moved now no longer holds
+        goal = {key: lit for key, lit in goal.items() if not moved & set(lit.args)}
+        stage: dict[tuple[str, tuple[str, ...]], tuple[Literal, bool]] = {}
+        for i, (clause, literals) in enumerate(resolved):
+            if clause.kind == "hold" and _a_means(clause, [c for c, _ in resolved[i + 1:]], resolver):
+                continue  # "pick up red and put it in the bin": the picking is how, not where it ends
+            for literal, generic in literals:
+                try:
+                    literal = layout.validate(literal, blocks)
+                except VocabularyError as error:
+                    raise LanguageError(str(error)) from None
+                key = (literal.name, literal.args)
+                if key in stage and stage[key][0].value != literal.value:
+                    if generic:  # "clean up the desk but leave green out": the named block wins
+                        continue
+                    if not stage[key][1]:
+                        raise LanguageError(f"contradictory goal: both {literal} and {literal.negated()}")
+                stage[key] = (literal, generic)
+        goal.update({key: literal for key, (literal, _) in stage.items()})
+    if not goal:
+        raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
+    try:
+        check_consistent(goal.values())
+    except ContradictionError as error:
+        raise LanguageError(str(error)) from None
+    return list(goal.values())
+
+
+def _a_means(hold: Clause, later: list[Clause], resolver: Resolver) -> bool:
+    """Whether a later clause of the same conjunction moves the block a hold clause picks up."""
+    held = set(resolver.blocks_of(hold.subjects)) if hold.subjects else set(resolver.last)
+    return any(c.kind not in ("hold", "keep", "") and not c.negated and held & set(resolver.subjects_of(c))
+               for c in later)
+
+
+def _parse_error(words: list[str], error: lark.exceptions.LarkError, suggested: str) -> str:
+    said = " ".join(words)
+    token = getattr(error, "token", None)
+    where = f" at {str(token)!r}" if token is not None and str(token) else " (it ends too soon)"
+    return f"cannot read the goal as a sentence{where} (read as: {said!r}): e.g. {suggested}"

@@ -1,0 +1,299 @@
+"""Pass 2: the canonical words parsed by a lark Earley grammar into clauses (an action, a state or an
+ellipsis), joined by 'and' (at once) or 'then' (later clauses override earlier ones)."""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, replace
+
+import lark
+
+from semgoal_core.vocabulary import BLOCK_COLOURS
+from semgoal_planner.english.words import LanguageError
+
+GRAMMAR = r"""
+start: conj ("then" conj)*
+conj: clause ("and" clause)*
+
+clause: NOT? action              -> act
+      | NOT? action "except" refs -> act_except
+      | refs NOT? condition      -> state
+      | refs NOT? condition "except" refs -> state_except
+      | NOT? condition           -> ellipsis_state
+      | NOT? refs                -> ellipsis_refs
+      | refs NOT                 -> ellipsis_refs_negated
+
+action: ("put" | "keep") refs dest          -> put
+      | "put" refs "down" (near | away | in_bin) -> put
+      | "put" refs                           -> release
+      | ("put" refs "down" | "put" "down" refs | "release" refs?) -> release
+      | "stack" refs dest_on                 -> put
+      | "stack" refs                         -> stack_unsaid
+      | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
+      | "take" refs ("off" refs? | "from" refs) -> off
+      | "take" refs dest_to                   -> put
+      | "take" refs "up"?                     -> hold
+      | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
+      | "remove" refs ("from" | "off") refs   -> off
+      | ("remove" | "take") refs ("from" | "off") "table" -> clean
+      | "pick" refs "up"?                     -> hold
+      | "pick" refs "up"? "off" refs          -> off
+      | "pick" refs "up"? "from" refs         -> hold
+      | "pick" refs "up"? ("out" ("bin" | "from" "bin")? | "from" "bin") -> out_bin
+      | ("put" | "keep" | "pick") refs "up"? "held" -> hold
+      | "keep" "held" refs                    -> hold
+      | "clean" ("table" | "bin")?            -> clean_all
+      | "clean" ("table" | "bin")? "except" refs -> clean_all_except
+      | "keep"? "table" ("clean" | "empty")  -> clean_all
+      | "keep"? "bin" "empty"                -> empty
+      | "clean" refs ("in" "bin" | "table")?  -> clean
+      | "bin" refs                            -> clean
+      | "put" refs "off" "table"              -> clean
+      | "empty" "bin"                         -> empty
+      | "empty" refs ("out" "bin"?)?          -> empty_refs
+      | "group" refs? "together"?             -> together
+      | "group" refs near                     -> group_near
+      | "separate" refs? ("apart" | "out")?   -> apart
+      | "separate" refs ("from" | "away") refs -> separate_from
+      | "unstack" refs?                       -> unstack
+      | "unstack" refs ("on" | "down")        -> unstack
+      | "keep" refs                           -> keep
+
+condition: dest | "held" -> held
+
+dest: in_bin | out_of_bin | near | away | on | under | off_of | on_table | "together" -> together | "apart" -> apart
+dest_on: on | on_table
+dest_to: in_bin | near | on | on_table
+in_bin: ("in" | "to") "bin"
+out_of_bin: "out" "bin"? | "from" "bin"
+near: ("near" | "to") refs
+away: "away" refs?
+on: "on" refs
+under: "under" refs
+off_of: "off" refs
+on_table: ("on" | "to") "table" | "down" "on"? "table"?
+
+refs: ref ("and" ref)*
+ref: COLOUR                      -> colour
+   | "only" COLOUR               -> only
+   | "all" ("except" refs)?      -> all
+   | "both"                      -> all
+   | "other"                     -> other
+   | "it"                        -> it
+   | "them"                      -> them
+
+NOT: "not"
+COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
+%ignore " "
+"""
+
+
+OPPOSABLE = frozenset({"in_bin", "out_bin", "hold", "release", "near", "away", "on", "under"})
+"""Relations whose opposite is one literal per block, so 'all except red' and 'only red' can give it to the
+blocks left out (the opposite of 'on the table' or 'apart' is no single place)."""
+
+
+@dataclass(frozen=True)
+class Ref:
+    """A reference to blocks before the world is known: colours, ``all`` (minus some), ``other``, ``it``, ``them``."""
+
+    kind: str
+    colours: tuple[str, ...] = ()
+    excluded: tuple[Ref, ...] = ()
+
+
+@dataclass(frozen=True)
+class Clause:
+    """One relation the sentence states: ``kind`` over ``subjects`` (and ``objects``), maybe negated."""
+
+    kind: str
+    subjects: tuple[Ref, ...] = ()
+    objects: tuple[Ref, ...] = ()
+    negated: bool = False
+    elliptic: bool = False
+    """Borrows what it lacks (the relation, or the subjects) from the clause before it."""
+
+
+@functools.cache
+def parser() -> lark.Lark:
+    return lark.Lark(GRAMMAR, parser="earley", lexer="standard", ambiguity="explicit")
+
+
+class Clauses(lark.Transformer):
+    """Parse tree -> a list of conjunctions, each a list of :class:`Clause`."""
+
+    def start(self, conjunctions: list) -> list[list[Clause]]:
+        return conjunctions
+
+    def conj(self, clauses: list) -> list[Clause]:
+        return clauses
+
+    def _ambig(self, alternatives: list) -> object:
+        # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
+        # longest exception ("all except red and blue" leaves out both)
+        return min(alternatives, key=reading_cost)
+
+    # -- clauses ------------------------------------------------------------------------------------
+    def act(self, items: list) -> Clause:
+        negated = len(items) == 2
+        return replace(items[-1], negated=negated)
+
+    def act_except(self, items: list) -> Clause:
+        return replace(excepting(items[-2], items[-1]), negated=len(items) == 3)
+
+    def state(self, items: list) -> Clause:
+        subjects, *rest = items
+        return replace(rest[-1], subjects=subjects, negated=len(rest) == 2)
+
+    def state_except(self, items: list) -> Clause:  # "all in the bin except yellow"
+        return excepting(self.state(items[:-1]), items[-1])
+
+    def ellipsis_state(self, items: list) -> Clause:
+        return replace(items[-1], negated=len(items) == 2, elliptic=True)
+
+    def ellipsis_refs(self, items: list) -> Clause:
+        return Clause("", subjects=items[-1], negated=len(items) == 2, elliptic=True)
+
+    def ellipsis_refs_negated(self, items: list) -> Clause:  # "..., blue should not"
+        return Clause("", subjects=items[0], negated=True, elliptic=True)
+
+    def condition(self, items: list) -> Clause:
+        return items[0]
+
+    # -- actions ------------------------------------------------------------------------------------
+    def put(self, items: list) -> Clause:
+        return replace(items[-1], subjects=items[0])
+
+    def release(self, items: list) -> Clause:
+        refs = refs_in(items)
+        return Clause("release", subjects=refs[0] if refs else ())  # "... and let go": the block before
+
+    def out_bin(self, items: list) -> Clause:
+        return Clause("out_bin", subjects=items[0])
+
+    def off(self, items: list) -> Clause:
+        refs = refs_in(items)
+        return Clause("off", subjects=refs[0], objects=refs[1] if len(refs) > 1 else ())
+
+    def hold(self, items: list) -> Clause:
+        refs = refs_in(items)
+        return Clause("hold", subjects=refs[0] if refs else ())
+
+    def clean_all(self, _: list) -> Clause:
+        return Clause("in_bin", subjects=(Ref("all"),))
+
+    def clean_all_except(self, items: list) -> Clause:
+        return Clause("in_bin", subjects=(Ref("all", excluded=items[-1]),))
+
+    def clean(self, items: list) -> Clause:
+        return Clause("in_bin", subjects=items[0])
+
+    def empty(self, _: list) -> Clause:
+        return Clause("out_bin", subjects=(Ref("all"),))
+
+    def empty_refs(self, items: list) -> Clause:
+        return Clause("out_bin", subjects=items[0])
+
+    def together(self, items: list) -> Clause:
+        return Clause("together", subjects=items[0] if items else (Ref("all"),))
+
+    def apart(self, items: list) -> Clause:
+        return Clause("apart", subjects=items[0] if items else (Ref("all"),))
+
+    def group_near(self, items: list) -> Clause:
+        return replace(items[1], subjects=items[0])
+
+    def stack_unsaid(self, _: list) -> Clause:
+        raise LanguageError("say which block goes on which: e.g. 'stack red on green'")
+
+    def separate_from(self, items: list) -> Clause:
+        return Clause("away", subjects=items[0], objects=items[1])
+
+    def keep(self, items: list) -> Clause:
+        return Clause("keep", subjects=items[0])
+
+    def unstack(self, items: list) -> Clause:
+        refs = refs_in(items)
+        return Clause("unstack", subjects=refs[0] if refs else (Ref("all"),))
+
+    # -- destinations -------------------------------------------------------------------------------
+    def dest(self, items: list) -> Clause:
+        return items[0]
+
+    dest_on = dest_to = dest
+
+    def in_bin(self, _: list) -> Clause:
+        return Clause("in_bin")
+
+    def out_of_bin(self, _: list) -> Clause:
+        return Clause("out_bin")
+
+    def near(self, items: list) -> Clause:
+        return Clause("near", objects=items[0])
+
+    def away(self, items: list) -> Clause:
+        return Clause("away", objects=items[0] if items else ())
+
+    def off_of(self, items: list) -> Clause:
+        return Clause("off", objects=items[0])
+
+    def on(self, items: list) -> Clause:
+        return Clause("on", objects=items[0])
+
+    def under(self, items: list) -> Clause:
+        return Clause("under", objects=items[0])
+
+    def on_table(self, _: list) -> Clause:
+        return Clause("table")
+
+    def held(self, _: list) -> Clause:
+        return Clause("hold")
+
+    # -- references ---------------------------------------------------------------------------------
+    def refs(self, items: list) -> tuple[Ref, ...]:
+        return tuple(items)
+
+    def colour(self, items: list) -> Ref:
+        return Ref("colours", (str(items[0]),))
+
+    def only(self, items: list) -> Ref:
+        return Ref("only", (str(items[0]),))
+
+    def all(self, items: list) -> Ref:
+        return Ref("all", excluded=items[0] if items else ())
+
+    def other(self, _: list) -> Ref:
+        return Ref("other")
+
+    def it(self, _: list) -> Ref:
+        return Ref("it")
+
+    def them(self, _: list) -> Ref:
+        return Ref("them")
+
+
+def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:
+    """``clause`` with ``excluded`` left out of its ``all``; refused where it names no ``all``."""
+    if not any(ref.kind == "all" for ref in clause.subjects):
+        raise LanguageError("'except' follows 'all' or 'every block': e.g. 'put all except red in the bin'")
+    subjects = tuple(replace(ref, excluded=ref.excluded + excluded) if ref.kind == "all" else ref
+                     for ref in clause.subjects)
+    return replace(clause, subjects=subjects)
+
+
+def refs_in(items: list) -> list:
+    """The reference tuples (and clauses) among a rule's children, tokens left out."""
+    return [i for i in items if not isinstance(i, lark.Token)]
+
+
+def reading_cost(node: object) -> tuple[int, int]:
+    """How a reading ranks, lower first: its clauses, then minus the blocks its exceptions leave out."""
+    if isinstance(node, Ref):
+        clauses, excluded = reading_cost(node.excluded)
+        return clauses, excluded - len(node.excluded)
+    if isinstance(node, Clause):
+        return 1, reading_cost((node.subjects, node.objects))[1]
+    if isinstance(node, (list, tuple)):
+        costs = [reading_cost(n) for n in node]
+        return sum(c for c, _ in costs), sum(e for _, e in costs)
+    return 0, 0

@@ -1,0 +1,152 @@
+"""Pass 3: references resolved in the world's blocks ('it', 'them', 'all except red', 'the others'), each
+clause turned into the scene's literals."""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterable, Sequence
+from dataclasses import replace
+
+from semgoal_core.vocabulary import LAYOUTS, Literal
+from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
+from semgoal_planner.english.words import LanguageError, examples
+
+
+class Resolver:
+    """References -> blocks of the world, clauses -> literals, in the order the sentence says them."""
+
+    def __init__(self, scene: str, blocks: Sequence[str]) -> None:
+        self.scene, self.blocks = scene, tuple(blocks)
+        self.examples = examples(scene, blocks)
+        self.mentioned: list[str] = []
+        self.last: tuple[str, ...] = ()
+        """The blocks the clause before was about (what 'it' names)."""
+        self.last_named: tuple[str, ...] = ()
+        """Every block the clause before named, subjects and objects (what 'them' names)."""
+
+    def blocks_of(self, refs: Iterable[Ref], besides: tuple[str, ...] = ()) -> tuple[str, ...]:
+        """The blocks ``refs`` name; ``besides``: the clause's subjects, which an object's 'it' is not."""
+        found: list[str] = []
+        for ref in refs:
+            for block in self._one(ref, besides):
+                if block not in found:
+                    found.append(block)
+        return tuple(found)
+
+    def _one(self, ref: Ref, besides: tuple[str, ...]) -> tuple[str, ...]:
+        if ref.kind in ("colours", "only"):
+            for colour in ref.colours:
+                if colour not in self.blocks:
+                    raise LanguageError(f"there is no {colour} block here: the blocks are {', '.join(self.blocks)}")
+            return ref.colours
+        if ref.kind == "all":
+            excluded = set(self.blocks_of(ref.excluded))
+            return tuple(b for b in self.blocks if b not in excluded)
+        if ref.kind == "other":  # not the blocks named before, nor the clause's own ("red on top") where some remain
+            unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
+            others = tuple(b for b in unnamed if b not in besides) or unnamed
+            if not others:
+                raise LanguageError("'the other(s)': every block is already named")
+            return others
+        if ref.kind == "it":
+            if besides and set(self.last) <= set(besides):  # "red next to green, not on it": 'it' is green
+                named = tuple(b for b in self.last_named if b not in besides)
+                if len(named) == 1:
+                    return named
+            if len(self.last) == 1:
+                return self.last
+            if len(self.blocks) == 1:
+                return self.blocks
+            raise LanguageError(f"'it' or 'the block' is ambiguous: say which block ({', '.join(self.blocks)})")
+        if self.last_named:  # them
+            return self.last_named
+        raise LanguageError(f"'them' is ambiguous: say which blocks ({', '.join(self.blocks)})")
+
+    def subjects_of(self, clause: Clause) -> tuple[str, ...]:
+        """The blocks a clause is about (those of the clause before where it names none)."""
+        return self.blocks_of(clause.subjects) if clause.subjects else self.last
+
+    def literals(self, clause: Clause, before: Clause | None) -> tuple[list[tuple[Literal, bool]], Clause]:
+        """The clause's literals, each with whether it is generic (said of all blocks or the others, so a
+        literal on a named block overrides it), and the clause as completed (an ellipsis borrows from
+        ``before``)."""
+        if clause.elliptic:
+            if before is None:
+                raise LanguageError(f"the goal starts mid-sentence: say what to do, e.g. {self.examples}")
+            if clause.kind:  # "... and away from blue": the subjects of the clause before
+                clause = replace(clause, subjects=clause.subjects or before.subjects, elliptic=False)
+            else:  # "... but not green": the relation of the clause before
+                clause = replace(before, subjects=clause.subjects, negated=before.negated != clause.negated)
+        subjects = self.subjects_of(clause)
+        if not subjects:
+            raise LanguageError(f"say which block: {', '.join(self.blocks)}")
+        objects = self.blocks_of(clause.objects, besides=subjects)
+        self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
+        generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
+        said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]
+        if not said and objects:
+            raise LanguageError(f"{' and '.join(subjects)} cannot be {clause.kind} itself: say which block")
+        # "all except red" and "only red": the blocks left out explicitly not
+        excluded = [b for ref in clause.subjects if ref.kind == "all" for b in self.blocks_of(ref.excluded)]
+        if any(ref.kind == "only" for ref in clause.subjects):
+            excluded += [b for b in self.blocks if b not in subjects and b not in objects]
+        if excluded and clause.kind not in ("together", "apart"):  # a group says nothing of those left out
+            if clause.kind not in OPPOSABLE:
+                raise LanguageError(f"'except' or 'only' leaves {' and '.join(excluded)} unclear here: "
+                                    "say where they go")
+            said += [(lit.negated(), False) for b in excluded for lit in self._relation(clause.kind, (b,), objects)]
+        self.last = subjects
+        self.last_named = subjects + tuple(b for b in objects if b not in subjects)
+        resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
+        return [(lit.negated() if clause.negated else lit, g) for lit, g in said], resolved
+
+    def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:
+        others = lambda block: [b for b in self.blocks if b != block]  # noqa: E731
+        if kind == "in_bin":
+            return (Literal("in_bin", (s,)) for s in subjects)
+        if kind == "out_bin":
+            return (Literal("in_bin", (s,), False) for s in subjects)
+        if kind == "keep":  # "keep it there": nothing to change
+            return []
+        if kind == "hold":
+            if len(subjects) > 1:
+                raise LanguageError(f"the hand holds one block at a time, not {' and '.join(subjects)}")
+            return [Literal("holding", subjects)]
+        if kind == "release":
+            return (Literal("holding", (s,), False) for s in subjects)
+        if kind == "away" and not objects:  # "move green away": from every other block; on a desk, into the bin
+            if "close" not in LAYOUTS[self.scene].scene.predicates:
+                return (Literal("in_bin", (s,)) for s in subjects)
+            return (Literal("close", (s, o), False) for s in subjects for o in others(s))
+        if kind == "apart" and len(subjects) == 1:  # "separate red": from every other block
+            return (Literal("close", (subjects[0], o), False) for o in others(subjects[0]))
+        if kind in ("near", "away", "on", "under") and not objects:
+            raise LanguageError(f"say which block it goes {kind.replace('_', ' ')}")
+        pairs = [(s, o) for s in subjects for o in objects if s != o]
+        if kind == "near":
+            return (Literal("close", p) for p in pairs)
+        if kind == "away":
+            return (Literal("close", p, False) for p in pairs)
+        if kind in ("on", "under"):
+            if len(objects) > 1 or len(subjects) > 1:
+                raise LanguageError("a block goes on one block, and one block on it: say which on which")
+            return (Literal("above", p if kind == "on" else p[::-1]) for p in pairs)
+        if kind == "off":
+            return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
+        if kind == "unstack":
+            return (Literal("above", (s, o), False) for s in subjects for o in others(s))
+        if kind in ("together", "apart"):
+            if len(subjects) < 2:
+                raise LanguageError(f"'{kind}' needs two or more blocks")
+            return (Literal("close", p, kind == "together") for p in itertools.combinations(subjects, 2))
+        return self._on_table(subjects)
+
+    def _on_table(self, subjects: tuple[str, ...]) -> Iterable[Literal]:
+        """On the table: out of the hand, and (where the scene says so) out of the bin, on no block."""
+        predicates = LAYOUTS[self.scene].scene.predicates
+        for s in subjects:
+            yield Literal("holding", (s,), False)
+            if "in_bin" in predicates:
+                yield Literal("in_bin", (s,), False)
+            if "above" in predicates:
+                yield from (Literal("above", (s, o), False) for o in self.blocks if o != s)

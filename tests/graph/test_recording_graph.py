@@ -108,7 +108,11 @@ def test_a_session_recorder_started_late_still_has_the_first_operator_event(node
     record = tmp_path / "session.mcap"
     recorder = nodes.start("semgoal_bringup", "record_node", params={"path": str(record)})
     assert probe.poll(lambda: "recording to" in nodes.logs(), timeout=60), nodes.logs()
-    probe.poll(lambda: False, 3)  # time for the recorder to match the planner and take its kept events
+    def recorder_listens() -> bool:  # the graph knows the recorder's subscription to the events
+        return any(info.node_name == "recorder" for info in probe.node.get_subscriptions_info_by_topic(topics.OPERATOR_EVENTS))
+
+    assert probe.poll(recorder_listens, timeout=60), nodes.logs()
+    probe.poll(lambda: False, 3)  # time for the planner to match it and hand over its kept events
     assert nodes.stop(recorder) == 0, nodes.logs()
     with record.open("rb") as stream:
         events = [message for _, channel, _, message

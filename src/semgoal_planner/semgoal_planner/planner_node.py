@@ -21,7 +21,6 @@ from rclpy.qos import qos_profile_action_status_default
 from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
-from semgoal_core.names import PlanStatus
 from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal
@@ -32,20 +31,20 @@ from semgoal_planner.goal_action import FINAL, GoalAction
 from semgoal_planner.goals import Goal, GoalError
 from semgoal_planner.journal import PlanJournal
 from semgoal_planner.journal_keeping import JournalKeeping
-from semgoal_planner.plan_messages import edit_text, goal_as_given, plan_message, read_request, subgoal_message
+from semgoal_planner.plan_messages import goal_as_given, plan_message, read_request, subgoal_message
+from semgoal_planner.plan_services import PlanServices
 from semgoal_planner.planner_params import EXECUTIVE_PARAMS, PARAMS
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_planner.world_watch import WorldWatch
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
 from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
-from semgoal_ros.messages import format_plan
 from semgoal_ros.parameters import apply_changes, declare
 
 SILENCE_CHECK_S = 0.25
 
 
-class PlannerNode(WorldWatch, GoalAction, JournalKeeping, Node):
+class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
     def __init__(self) -> None:
         super().__init__("planner")
         values = declare(self, PARAMS)
@@ -169,35 +168,6 @@ class PlannerNode(WorldWatch, GoalAction, JournalKeeping, Node):
         self.publish()
         self.operator_event(OperatorEvent.KIND_GOAL, goal_as_given(msg), ok, message)
         return ok, message
-
-    def get_plan_callback(self, request: GetPlan.Request, response: GetPlan.Response) -> GetPlan.Response:
-        response.plan = self.plan_now()
-        if self.last_state is not None:
-            response.state = self.last_state
-        response.success = self.executive.status != PlanStatus.EMPTY
-        response.message = format_plan(response.plan)
-        return response
-
-    def edit_plan_callback(self, request: EditPlan.Request, response: EditPlan.Response) -> EditPlan.Response:
-        asked = (request.op, request.index, request.to_index, request.action, request.revision)
-        try:
-            answered = self.edit_answers.get(request.request_id, asked)
-        except topics.ReusedRequestIdError as error:  # refused, the plan as it is
-            response.success, response.message, response.plan = False, str(error), self.plan_now()
-            self.operator_event(OperatorEvent.KIND_EDIT, edit_text(request), False, response.message, request.request_id)
-            return response
-        if answered is not None:  # sent again because our answer was lost: it was applied once already
-            response.success, response.message, response.plan = answered
-            return response
-        response.success, response.message = self.executive.edit(
-            request.op, int(request.index), int(request.to_index), request.action, int(request.revision))
-        self.report(response.success, f"edit {request.op} {request.index} {request.action!r}: {response.message}")
-        self.publish()
-        response.plan = self.plan_now()
-        self.operator_event(OperatorEvent.KIND_EDIT, edit_text(request), response.success, response.message,
-                            request.request_id)
-        self.edit_answers.remember(request.request_id, (response.success, response.message, response.plan), asked)
-        return response
 
     def report(self, ok: bool, text: str) -> None:
         # rclpy refuses one call site switching severity, so each severity has its own call

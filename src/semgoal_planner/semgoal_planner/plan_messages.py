@@ -4,21 +4,17 @@ active sub-goal as the node publishes them, and operator requests as given (for 
 from __future__ import annotations
 
 from semgoal_core.names import Assignee, PlanStatus, StepStatus
-from semgoal_core.vocabulary import Literal
-from semgoal_msgs.msg import GoalRequest, Plan, Predicate, SemanticState, SubGoal
+from semgoal_msgs.msg import GoalRequest, Plan, SemanticState, SubGoal
 from semgoal_msgs.srv import EditPlan
 from semgoal_planner.executive import Executive
 from semgoal_planner.goals import Goal, GoalError, read_goal, typed_goal
+from semgoal_ros.messages import literal, predicate
 
 
 def goal_as_given(msg: GoalRequest) -> str:
     """A GoalRequest as the operator gave it, malformed ones too (each part there is, joined by ' | ')."""
-    predicates = " & ".join(str(literal_of(p)) for p in msg.predicates)
+    predicates = " & ".join(str(literal(p)) for p in msg.predicates)
     return " | ".join(part for part in (msg.task.strip(), " & ".join(msg.literals), predicates, msg.text.strip()) if part)
-
-
-def literal_of(predicate: Predicate) -> Literal:
-    return Literal(predicate.name, tuple(predicate.args), bool(predicate.value))
 
 
 def read_request(msg: GoalRequest, scene: str, objects: tuple[str, ...]) -> Goal:
@@ -28,7 +24,7 @@ def read_request(msg: GoalRequest, scene: str, objects: tuple[str, ...]) -> Goal
     if sum(given) != 1:
         raise GoalError("give exactly one of a task, literals (text or predicates) or a sentence (text)")
     if msg.predicates:
-        return typed_goal([literal_of(p) for p in msg.predicates], scene, objects)
+        return typed_goal([literal(p) for p in msg.predicates], scene, objects)
     return read_goal(msg.task.strip() or " & ".join(msg.literals) or msg.text.strip(), scene, objects)
 
 
@@ -54,14 +50,14 @@ def plan_message(ex: Executive, stamp) -> Plan:
 
 def step_message(index: int, subgoal, status: str, assignee: str) -> SubGoal:
     return SubGoal(index=index, action=str(subgoal), status=status, assignee=assignee,
-                   goal=[Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in subgoal.literals()])
+                   goal=[predicate(lit) for lit in subgoal.literals()])
 
 
 def subgoal_message(ex: Executive, state: SemanticState | None) -> SubGoal:
     """The active robot step; else an empty goal (the policy holds still) with the reason as status:
     ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` or the plan's status."""
     active = ex.active
-    goal = [Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in ex.goal]
+    goal = [predicate(lit) for lit in ex.goal]
     if ex.settling:  # the goal's literals: the policy keeps what they ask to hold while the arm retreats
         msg = SubGoal(index=ex.current, status=StepStatus.SETTLING, goal=goal)
     elif ex.status == PlanStatus.SUCCEEDED:

@@ -13,6 +13,7 @@ from semgoal_msgs.msg import SemanticState
 from semgoal_planner.doubt import unsure_literals
 from semgoal_planner.executive import Observation
 from semgoal_planner.plan_messages import sim_time
+from semgoal_ros.messages import literal
 
 
 class WorldWatch:
@@ -28,7 +29,7 @@ class WorldWatch:
             self.get_logger().warn(f"ignored a semantic state of episode {msg.episode} (the goal is for "
                                    f"episode {self.min_episode})", throttle_duration_sec=5.0)
             return
-        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.predicates]
+        literals = [literal(p) for p in msg.predicates]
         try:
             LAYOUTS[msg.scene].check_state(tuple(msg.objects), literals, (*msg.fallen, *msg.moving))
         except VocabularyError as error:

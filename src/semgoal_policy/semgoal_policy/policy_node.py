@@ -112,7 +112,7 @@ class PolicyNode(Node):
         if key == self.subgoal_key:
             return
         self.subgoal_key = key
-        literals = [Literal(p.name, tuple(p.args), bool(p.value)) for p in msg.goal]
+        literals = [messages.literal(p) for p in msg.goal]
         try:
             if msg.status == StepStatus.ACTIVE:
                 self.controller.set_subgoal(literals)

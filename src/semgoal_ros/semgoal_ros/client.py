@@ -64,7 +64,8 @@ def goal_request(text: str):
     that the planner's refusal names what is wrong."""
     from semgoal_core.tasks import goal_form, split_literals
     from semgoal_core.vocabulary import VocabularyError, parse_literal
-    from semgoal_msgs.msg import GoalRequest, Predicate
+    from semgoal_msgs.msg import GoalRequest
+    from semgoal_ros.messages import predicate
 
     form = goal_form(text)
     if form == "task":
@@ -75,7 +76,7 @@ def goal_request(text: str):
         literals = [parse_literal(part) for part in split_literals(text)]
     except (ValueError, VocabularyError):
         return GoalRequest(literals=[text])
-    return GoalRequest(predicates=[Predicate(name=lit.name, args=list(lit.args), value=lit.value) for lit in literals])
+    return GoalRequest(predicates=[predicate(lit) for lit in literals])
 
 
 class PlannerWatch:

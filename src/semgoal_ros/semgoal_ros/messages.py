@@ -8,8 +8,18 @@ import numpy as np
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_core.settling import moving_blocks
-from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, fallen_blocks
+from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, evaluate, fallen_blocks
 from semgoal_msgs.msg import Plan, Predicate, SemanticState, WorldState
+
+
+def literal(predicate: Predicate) -> Literal:
+    """A ``semgoal_msgs/Predicate`` as the core's literal."""
+    return Literal(predicate.name, tuple(predicate.args), bool(predicate.value))
+
+
+def predicate(lit: Literal) -> Predicate:
+    """A core literal as a ``semgoal_msgs/Predicate``."""
+    return Predicate(name=lit.name, args=list(lit.args), value=bool(lit.value))
 
 
 def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:

@@ -31,9 +31,10 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, sentences, unsure_sentences
-from semgoal_core.vocabulary import SCENES, Literal
+from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
+from semgoal_ros.messages import literal
 from semgoal_ros.package_data import share_path
 from semgoal_ros.parameters import Param
 
@@ -244,7 +245,7 @@ class Console:
         world, semantic = self.client.world, self.client.semantic
         if world is None:
             raise ValueError("no world yet: is the sim running?")
-        state = [Literal(p.name, tuple(p.args), bool(p.value)) for p in semantic.predicates] if semantic else []
+        state = [literal(p) for p in semantic.predicates] if semantic else []
         return [str(literal) for literal in parse_goal(text, world.scene, tuple(b.name for b in world.blocks), state)]
 
     def _parse(self, request: dict) -> dict:

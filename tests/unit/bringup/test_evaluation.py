@@ -79,6 +79,15 @@ def test_a_pool_file_names_the_pooled_training_seeds(tmp_path) -> None:
         evaluation.actor_dirs("hierarchical", "desk_cleanup", 3, tmp_path)
 
 
+@pytest.mark.parametrize("scene", ["two_blocks", "three_blocks", "desk_cleanup"])
+def test_one_training_seed_is_the_shipped_actor(scene) -> None:
+    """``--seeds 1`` evaluates what ships: the pool's first actor has the shipped weights."""
+    from semgoal_policy.actor import models_dir
+
+    first = evaluation.actor_dirs("hierarchical", scene, 1, models_dir())[0]
+    assert (first / "actor.pt").read_bytes() == (models_dir() / scene / "actor.pt").read_bytes()
+
+
 @pytest.mark.slow
 def test_table_splits_rows_by_training_seed(tmp_path, capsys) -> None:
     """Two "seeds" that are the same shipped actor: pooled and per-seed rates must all agree."""

@@ -28,7 +28,7 @@ from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal
 from semgoal_sim.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import held_blocks, run_subgoal, satisfied
-from semgoal_sim.world import FetchWorld
+from semgoal_sim.world import FetchWorld, Snapshot
 
 EPISODE_STEPS = 50
 """Control steps per sub-goal episode (2 s of sim time; the expert needs about 15 to 25)."""
@@ -162,12 +162,13 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
-        obs = self._obs()
-        reward, info = self._reward(obs)
+        snapshot = self.world.snapshot()  # one read of the world per step: observation, goal and reward
+        obs = self._obs(snapshot)
+        reward, info = self._reward(obs, snapshot)
         return obs, reward, False, self._steps >= self.max_steps, info
 
-    def _reward(self, obs: dict[str, np.ndarray]) -> tuple[float, dict[str, Any]]:
-        motion = self.world.motion()
+    def _reward(self, obs: dict[str, np.ndarray], snapshot: Snapshot | None = None) -> tuple[float, dict[str, Any]]:
+        motion = self.world.motion(snapshot)
         self._achieved = bool(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
         reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], {"motion": motion}))
         return reward, {"subgoal": str(self.subgoal), "subgoal_type": self.kind, "is_success": reward > 0,
@@ -395,8 +396,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             reasons.append(f"not at rest (moving: {', '.join(moving) or 'none'}; held: {', '.join(held) or 'none'})")
         return reasons
 
-    def _obs(self) -> dict[str, np.ndarray]:
-        snapshot = self.world.snapshot()
+    def _obs(self, snapshot: Snapshot | None = None) -> dict[str, np.ndarray]:
+        snapshot = snapshot or self.world.snapshot()
         goal = np.concatenate([self._target, self._mask])
         return {
             "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal),

@@ -72,6 +72,8 @@ class FetchWorld:
         m = self.model
         self._block_qpos = [m.joint(f"{block_body_name(b)}:joint").qposadr[0] for b in self.blocks]
         self._block_qvel = [m.joint(f"{block_body_name(b)}:joint").dofadr[0] for b in self.blocks]
+        self._block_velocity_index = (np.asarray(self._block_qvel, dtype=int)[:, None] + np.arange(6)).reshape(-1)
+        """Every block's six velocity entries in ``qvel``, in block order: one gather per snapshot."""
         self._block_body = np.array([m.body(block_body_name(b)).id for b in self.blocks])
         self._grip_site = m.site("robot0:grip").id
         self._gripper_body = m.body("robot0:gripper_link").id
@@ -164,9 +166,7 @@ class FetchWorld:
     # -- read-out ------------------------------------------------------------------------------------
     def snapshot(self) -> Snapshot:
         d = self.data
-        velocities = np.empty((len(self.blocks), 6))
-        for i, dof in enumerate(self._block_qvel):
-            velocities[i] = d.qvel[dof: dof + 6]
+        velocities = d.qvel[self._block_velocity_index].reshape(len(self.blocks), 6)
         grip_velocity = np.empty(6)
         mujoco.mj_objectVelocity(self.model, d, mujoco.mjtObj.mjOBJ_SITE, self._grip_site, grip_velocity, 0)
         return Snapshot(

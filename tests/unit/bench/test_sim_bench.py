@@ -17,4 +17,7 @@ def test_bench_sim_reports_every_scene_and_the_reference() -> None:
     rates = result["steps_per_second"]
     assert {"two_blocks", "three_blocks", "desk_cleanup_4", "reference:FetchPickAndPlace-v4"} <= set(rates)
     assert all(rate > 0 for rate in rates.values())
-    assert set(result["ratio_to_reference"]) == {"two_blocks", "three_blocks", "desk_cleanup_4"}
+    scenes = {"two_blocks", "three_blocks", "desk_cleanup_4"}
+    assert set(result["ratio_to_reference"]) == scenes
+    for ratio in ("env_over_world", "world_over_physics"):  # the env's and the world's own work, each in (0, 1.5)
+        assert set(result[ratio]) == scenes and all(0.0 < value < 1.5 for value in result[ratio].values()), result

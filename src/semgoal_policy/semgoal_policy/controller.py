@@ -34,6 +34,12 @@ EDGE_NUDGE = 0.2
 """Least inward displacement command (1 cm a step) for a held block beyond :data:`EDGE_MARGIN`."""
 RETREAT_GAIN = 15.0
 """Displacement command per metre from the retreat height (saturates beyond 6.7 cm, as the expert's)."""
+SEATED_DEPTH = 0.012
+"""How far (m) below the grip site a kept block's centre may hang: deeper, the fingertips hold only its top
+edge (a block 2.5-3.9 cm under the grip site was confirmed held, then the squeezing fingers slid up off it)."""
+SEATING_SPEED = 0.15
+"""Downward command (5 mm a step) that seats a shallow grasp: the hand comes down, squeezing, until the block
+rests on what is under it and the fingers slide down its sides."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -131,7 +137,7 @@ class SubgoalController:
 
     def idle(self, observation: np.ndarray) -> np.ndarray:
         """With nothing to do once a goal is done: where the goal asks to hold a block (:attr:`keep`; the goal
-        holds, so it is in the hand), the arm holds still and keeps squeezing (a block held 39 mm under the grip
+        holds, so it is in the hand), the arm keeps squeezing and holds still, once the grasp is seated (a block held 39 mm under the grip
         site, at the edge of what ``holding`` reads, was let go when this asked the geometry); else it retreats,
         letting go of any block it straddles. The fingers open to :data:`RETREAT_OPENING` if they are narrower;
         once no block moves (a block dropped onto another still tumbled, and fingers rising past it lifted it off
@@ -139,7 +145,7 @@ class SubgoalController:
         there, the fingers as they are."""
         observation = np.asarray(observation, dtype=np.float32)
         if self.keep:
-            return HOLD_GRIP.copy()
+            return self._kept(observation)
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
         grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
         action = HOLD.copy()
@@ -154,6 +160,18 @@ class SubgoalController:
         if present.any():
             height = float(blocks["position"][present, 2].max()) + RETREAT_HEIGHT
             action[2] = float(np.clip((height - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block
+        return action
+
+    def _kept(self, observation: np.ndarray) -> np.ndarray:
+        """Keep the block in the hand: squeeze, and where it hangs below :data:`SEATED_DEPTH` under the grip site,
+        come down at :data:`SEATING_SPEED` until the grasp is seated."""
+        action = HOLD_GRIP.copy()
+        held = self._held(observation)
+        if held.any():
+            grip = layout.arm_state(observation)["grip_position"]
+            block = layout.block_slots(self.scene, observation)["position"][held][0]
+            if grip[2] - block[2] > SEATED_DEPTH:
+                action[2] = -SEATING_SPEED
         return action
 
     def _held(self, observation: np.ndarray) -> np.ndarray:

@@ -105,3 +105,31 @@ def test_a_block_at_the_table_edge_beside_the_one_being_moved_stays_where_it_is(
         assert outcome.success, outcome
         after = agent._worlds[("edge", 3)].snapshot().block_positions[1]
         assert after[2] > TABLE_TOP and np.linalg.norm(after[:2] - green[:2]) < 0.015, after
+
+
+def test_a_block_kept_by_its_top_edge_is_seated_and_stays_held() -> None:
+    """Green lifted with the fingertips on its top edge, 3.9 cm under the grip site (what ``holding`` still reads
+    and the executive confirmed; two_blocks hold, goal seed 6000017): squeezing alone, the fingers slide up off it
+    within 25 steps; the kept arm comes down, seats the grasp and still holds green 50 steps later."""
+    def lifted_by_the_edge() -> FetchWorld:
+        world = FetchWorld("two_blocks")
+        world.reset(TASKS["MC-2"].initial_state(0)[0])
+        world.place_in_gripper("green")
+        grip = world.snapshot().grip_position
+        world.set_block_pose("green", grip - np.array([0.0, 0.0, 0.039]))
+        world.step(HOLD_GRIP, count=False)
+        assert "holding(green)" in world.layout.readable(world.semantic_vector())
+        return world
+
+    world = lifted_by_the_edge()
+    for _ in range(25):
+        world.step(HOLD_GRIP)
+    assert "holding(green)" not in world.layout.readable(world.semantic_vector())  # squeezing alone lets it go
+
+    world, controller = lifted_by_the_edge(), SubgoalController("two_blocks")
+    controller.set_subgoal([], keep={"green"})
+    for _ in range(50):
+        world.step(controller.act(world.observation()))
+    snapshot = world.snapshot()
+    assert "holding(green)" in world.layout.readable(world.semantic_vector())
+    assert snapshot.grip_position[2] - snapshot.block_positions[1, 2] < 0.015

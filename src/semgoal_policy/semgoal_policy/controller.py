@@ -34,9 +34,12 @@ EDGE_NUDGE = 0.2
 """Least inward displacement command (1 cm a step) for a held block beyond :data:`EDGE_MARGIN`."""
 RETREAT_GAIN = 15.0
 """Displacement command per metre from the retreat height (saturates beyond 6.7 cm, as the expert's)."""
-SEATED_DEPTH = 0.012
-"""How far (m) below the grip site a kept block's centre may hang: deeper, the fingertips hold only its top
-edge (a block 2.5-3.9 cm under the grip site was confirmed held, then the squeezing fingers slid up off it)."""
+SEATED_DEPTH = 0.02
+"""How far (m) below the grip site a kept block's centre may hang: deeper, the fingertips hold less than 2.4 cm of
+its top (a block 2.5-3.9 cm under the grip site was confirmed held, then the squeezing fingers slid up off it)."""
+SEATING_CLEARANCE = 0.09
+"""A grasp is seated only with no other block's centre this near (m) in the table plane: fingers coming down
+beside a neighbour pressed it and lifted its edge."""
 SEATING_SPEED = 0.15
 """Downward command (5 mm a step) that seats a shallow grasp: the hand comes down, squeezing, until the block
 rests on what is under it and the fingers slide down its sides."""
@@ -163,14 +166,16 @@ class SubgoalController:
         return action
 
     def _kept(self, observation: np.ndarray) -> np.ndarray:
-        """Keep the block in the hand: squeeze, and where it hangs below :data:`SEATED_DEPTH` under the grip site,
-        come down at :data:`SEATING_SPEED` until the grasp is seated."""
+        """Keep the block in the hand: squeeze, and where it hangs below :data:`SEATED_DEPTH` under the grip site
+        with no neighbour within :data:`SEATING_CLEARANCE`, come down at :data:`SEATING_SPEED` until it is seated."""
         action = HOLD_GRIP.copy()
         held = self._held(observation)
         if held.any():
             grip = layout.arm_state(observation)["grip_position"]
-            block = layout.block_slots(self.scene, observation)["position"][held][0]
-            if grip[2] - block[2] > SEATED_DEPTH:
+            blocks = layout.block_slots(self.scene, observation)
+            others = blocks["position"][(blocks["present"][:, 0] > 0.5) & ~held]
+            clear = (np.linalg.norm(others[:, :2] - grip[:2], axis=1) >= SEATING_CLEARANCE).all()
+            if clear and grip[2] - blocks["position"][held][0][2] > SEATED_DEPTH:
                 action[2] = -SEATING_SPEED
         return action
 

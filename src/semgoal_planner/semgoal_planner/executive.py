@@ -240,6 +240,17 @@ class Executive:
         step = self.steps[self.current]
         return step if step.assignee == Assignee.ROBOT else None
 
+    def orderings(self) -> list[tuple[int, ...]]:
+        """For each step, the earlier steps it must follow (:meth:`SemanticPlanner.orderings`): what a person or a
+        second agent may do at the same time. In sequence where the world's blocks are not known yet."""
+        steps = [step.subgoal for step in self.steps]
+        if self.observation is not None:
+            try:
+                return self.planner.orderings(self.observation.objects, self.goal, steps)
+            except PlanningError:  # a goal naming blocks the world lacks: the plan is failing anyway
+                pass
+        return [(i - 1,) if i else () for i in range(len(steps))]
+
     def _advance(self) -> None:
         obs = self.observation
         if obs is None or self.status in FINISHED:

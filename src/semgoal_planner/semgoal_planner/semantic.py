@@ -17,6 +17,7 @@ from pathlib import Path
 from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_ros.package_data import share_path
+from strips_planner.deorder import deorder, transitive_reduction
 from strips_planner.grounding import Operator, Task, ground
 from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
 from strips_planner.planner import solve_task
@@ -220,6 +221,31 @@ class SemanticPlanner:
                      if not self._holds(task, c, current)]
             raise PlanningError(f"the plan does not reach the goal: after the last step {', '.join(unmet)} "
                                 f"{'does' if len(unmet) == 1 else 'do'} not hold")
+
+    def orderings(self, objects: tuple[str, ...], goal: list[Literal], steps: list[SubGoal]) -> list[tuple[int, ...]]:
+        """For each of ``steps``, the earlier steps it must follow. The plan is cut into turns of a hand, from a
+        pick to the step that lets go; a turn follows another where one of its steps relies on an effect of the
+        other's or would undo one too early (:func:`strips_planner.deorder.deorder`, the hand left out: each agent
+        has its own). Within a turn the steps keep their order. So binning red and binning green are independent,
+        while Swap-2's second block is picked only once the first is off it. Each step runs as the action that
+        promises least of those it names; a step that names none follows the one before."""
+        task = self.task(objects, [], goal)
+        actions = [next(iter(_operators_for(task, step)), None) for step in steps]
+        if None in actions:
+            return [(i - 1,) if i else () for i in range(len(steps))]
+        hand = _bits(task, Literal(HAND_EMPTY, ()))
+        turn, turns = [], 0
+        for op in actions:
+            turn.append(turns)
+            turns += bool(op.add & hand)  # a step that lets go ends its turn
+        after: list[set[int]] = [{i - 1} if i and turn[i - 1] == turn[i] else set() for i in range(len(steps))]
+        first = {t: turn.index(t) for t in set(turn)}
+        for j, preds in enumerate(deorder(task, actions, ignore=hand)):
+            for i in preds:
+                if turn[i] != turn[j]:  # turn[j] starts after the whole of turn[i]
+                    last = max(k for k, t in enumerate(turn) if t == turn[i])
+                    after[first[turn[j]]].add(last)
+        return transitive_reduction(after)
 
     @staticmethod
     def _holds(task: Task, condition: Condition, state: int) -> bool:

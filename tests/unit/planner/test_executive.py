@@ -362,3 +362,27 @@ def test_an_operators_pause_is_not_lifted_when_sight_returns() -> None:
     ex.pause_blind("no camera frame for 1.2 s")
     ex.resume_sighted()
     assert ex.status == "paused" and ex.blind == ""
+
+
+
+def test_each_step_names_the_steps_it_must_follow() -> None:
+    """Binning green and binning red are independent: each put follows its own pick and nothing else is ordered
+    (the hand is each agent's own); the plan message carries it."""
+    from semgoal_planner.plan_messages import plan_message
+
+    ex = executive()
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    assert [str(s.subgoal) for s in ex.steps] == ["pick(green)", "put_in_bin(green)", "pick(red)", "put_in_bin(red)"]
+    assert ex.orderings() == [(), (0,), (), (2,)]
+    assert [list(step.after) for step in plan_message(ex, None).steps] == [[], [0], [], [2]]
+
+
+def test_a_stack_is_built_in_order() -> None:
+    """Swap-2 from red on green: green goes on red only once red is off green and down (every step follows the one
+    before); the planner keeps what the steps need, not what the sequence happens to be."""
+    ex = Executive(SemanticPlanner("two_blocks"), settle_steps=1)
+    ex.observe(observe(["above(red,green)", "close(red,green)"], scene="two_blocks", objects=("red", "green")))
+    ok, message = ex.set_goal("above(green,red)")
+    assert ok, message
+    orderings = ex.orderings()
+    assert all(orderings[i] == (i - 1,) for i in range(1, len(orderings))), ([str(s.subgoal) for s in ex.steps], orderings)

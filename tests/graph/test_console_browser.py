@@ -92,6 +92,7 @@ def test_a_person_shares_dc3_with_the_robot_in_the_page(nodes: NodeProcesses, br
                b.find_element(By.ID, "status").text)
     steps = browser.execute_script("return [...document.querySelectorAll('#plan-steps .step-text')].map(e => e.textContent)")
     assert steps[2].startswith("pick(") and steps[3].startswith("put_in_bin("), steps
+    assert "after" not in steps[2] and "after 2 ·" in steps[3], steps  # each block's pick and put, apart from the rest
 
     def click(selector: str) -> None:
         """Click what ``selector`` finds now (the page redraws a part when its state changes)."""

@@ -33,6 +33,8 @@ class PlanStep:
     status: str = StepStatus.PENDING
     """pending, active, done, failed or skipped."""
     assignee: str = Assignee.ROBOT
+    edited: bool = False
+    """A person's: inserted, replaced, moved or assigned by an edit. A plan repair keeps it while it can run."""
 
 
 @dataclass
@@ -150,8 +152,8 @@ class Executive:
     def snapshot(self) -> dict:
         """What a planner started again needs to carry on (:mod:`semgoal_planner.journal`), as plain data."""
         return {"goal": [str(lit) for lit in self.goal], "goal_text": self.goal_text,
-                "steps": [{"subgoal": str(s.subgoal), "status": str(s.status), "assignee": str(s.assignee)}
-                          for s in self.steps],
+                "steps": [{"subgoal": str(s.subgoal), "status": str(s.status), "assignee": str(s.assignee),
+                           "edited": s.edited} for s in self.steps],
                 "current": self.current, "status": str(self.status), "revision": self.revision,
                 "replans": self.replans, "message": self.message, "goal_steps": self.goal_steps,
                 "step_budget": self.step_budget, "step_started": self.step_started, "last_tick": self.last_tick}
@@ -162,8 +164,8 @@ class Executive:
         fit this scene."""
         scene = SCENES[self.planner.scene]
         try:
-            steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), Assignee(s["assignee"]))
-                     for s in snapshot["steps"]]
+            steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), Assignee(s["assignee"]),
+                              bool(s.get("edited", False))) for s in snapshot["steps"]]
             goal = [parse_literal(text) for text in snapshot["goal"]]
             status = PlanStatus(snapshot["status"])
         except (KeyError, TypeError, ValueError) as error:
@@ -240,6 +242,17 @@ class Executive:
         step = self.steps[self.current]
         return step if step.assignee == Assignee.ROBOT else None
 
+    def orderings(self) -> list[tuple[int, ...]]:
+        """For each step, the earlier steps it must follow (:meth:`SemanticPlanner.orderings`): what a person or a
+        second agent may do at the same time. In sequence where the world's blocks are not known yet."""
+        steps = [step.subgoal for step in self.steps]
+        if self.observation is not None:
+            try:
+                return self.planner.orderings(self.observation.objects, self.goal, steps)
+            except PlanningError:  # a goal naming blocks the world lacks: the plan is failing anyway
+                pass
+        return [(i - 1,) if i else () for i in range(len(steps))]
+
     def _advance(self) -> None:
         obs = self.observation
         if obs is None or self.status in FINISHED:
@@ -307,14 +320,23 @@ class Executive:
 
     # -- re-planning ---------------------------------------------------------------------------------
     def replan(self, reason: str, by_operator: bool = False) -> tuple[bool, str]:
-        """Plan again from the observed state. The monitor's re-plans spend ``max_replans``; an operator's
-        re-plan spends none of it, and a paused plan stays paused."""
+        """Where a person edited the plan's rest, mend it for the observed state (:meth:`SemanticPlanner.repair`:
+        what still runs is kept, the person's steps, assignments and order with it, and only what is missing is
+        planned); else, where the repair cannot reach the goal, or the operator asks for it, plan again from
+        scratch: the robot's own steps are best planned anew, the shortest plan from where the world is. The
+        monitor's re-plans spend ``max_replans``; an operator's re-plan spends none of it, and a paused plan stays
+        paused."""
         obs = self.observation
         if self.status in FINISHED or obs is None:
             return False, "nothing to re-plan: no goal is being executed"
         if not by_operator and self.replans >= self.max_replans:
             self._finish(PlanStatus.FAILED, f"{reason}; gave up after {self.replans} re-plans")
             return False, self.message
+        if not by_operator and any(step.edited for step in self.steps[self.current:]):
+            try:
+                return self._repair(reason)
+            except PlanningError as error:
+                reason = f"{reason}; from scratch, as the repair could not: {error}"
         try:
             steps = self.planner.plan(obs.objects, obs.true_literals, self.goal)
         except PlanningError as error:
@@ -329,6 +351,26 @@ class Executive:
         human = {s.subgoal for s in self.steps[self.current:] if s.assignee == Assignee.HUMAN}
         new = [PlanStep(s, assignee=Assignee.HUMAN if s in human else Assignee.ROBOT) for s in steps]
         self._install(done + new, f"re-planned ({reason})", keep=len(done))
+        if paused:
+            self.status = PlanStatus.PAUSED
+        self._advance()
+        return True, self.message
+
+    def _repair(self, reason: str) -> tuple[bool, str]:
+        obs, rest = self.observation, self.steps[self.current:]
+        mended, dropped = self.planner.repair(obs.objects, obs.true_literals, self.goal, [s.subgoal for s in rest],
+                                              frozenset(i for i, step in enumerate(rest) if step.edited))
+        kept = [rest[item] for item in mended if isinstance(item, int)]
+        for step in kept:
+            step.status = StepStatus.PENDING
+        new = [rest[item] if isinstance(item, int) else PlanStep(item) for item in mended]
+        dropped_text = "; ".join(f"dropped {rest[i].subgoal} ({why})" for i, why in sorted(dropped))
+        message = (f"repaired ({reason}): kept {len(kept)} of {len(rest)} steps, planned {len(new) - len(kept)}"
+                   + (f"; {dropped_text}" if dropped_text else ""))
+        self.replans += 1
+        paused = self.status == PlanStatus.PAUSED
+        done = self.steps[: self.current]
+        self._install(done + new, message, keep=len(done))
         if paused:
             self.status = PlanStatus.PAUSED
         self._advance()
@@ -425,7 +467,7 @@ class Executive:
             if op == "insert":
                 if not self.current <= index <= len(steps):
                     raise ValueError(f"insert position {index} is outside {self.current}..{len(steps)} (done steps stay)")
-                steps.insert(index, PlanStep(self._subgoal(action)))
+                steps.insert(index, PlanStep(self._subgoal(action), edited=True))
             elif index not in pending:
                 raise ValueError(f"step {index} is not a pending step (pending: {self._range_text()})")
             elif op == "remove":
@@ -434,8 +476,9 @@ class Executive:
                 if to_index not in pending:
                     raise ValueError(f"target position {to_index} is not a pending position ({self._range_text()})")
                 steps.insert(to_index, steps.pop(index))
+                steps[to_index].edited = True
             elif op == "replace":
-                steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee)
+                steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee, edited=True)
             elif op == "assign":
                 who = action.strip().lower()
                 if who not in list(Assignee):
@@ -443,7 +486,7 @@ class Executive:
                 if who == Assignee.HUMAN and steps[index].subgoal.kind == "pick":
                     raise ValueError(f"step {index} {steps[index].subgoal} asks the robot's hand to hold a block, which "
                                      "a person cannot do for it: give the person the put after it")
-                steps[index].assignee = Assignee(who)
+                steps[index].assignee, steps[index].edited = Assignee(who), True
             self._simulate([s.subgoal for s in steps[self.current:]])
         except (ValueError, PlanningError) as error:
             return False, f"{op} refused: {error}"

@@ -44,13 +44,14 @@ def plan_message(ex: Executive, stamp) -> Plan:
     msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans,
                paused_because=ex.blind)
     msg.header.stamp = stamp
-    msg.steps = [step_message(i, step.subgoal, step.status, step.assignee) for i, step in enumerate(ex.steps)]
+    msg.steps = [step_message(i, step.subgoal, step.status, step.assignee, after)
+                 for i, (step, after) in enumerate(zip(ex.steps, ex.orderings(), strict=True))]
     return msg
 
 
-def step_message(index: int, subgoal, status: str, assignee: str) -> SubGoal:
+def step_message(index: int, subgoal, status: str, assignee: str, after: tuple[int, ...] = ()) -> SubGoal:
     return SubGoal(index=index, action=str(subgoal), status=status, assignee=assignee,
-                   goal=[predicate(lit) for lit in subgoal.literals()])
+                   goal=[predicate(lit) for lit in subgoal.literals()], after=list(after))
 
 
 def subgoal_message(ex: Executive, state: SemanticState | None) -> SubGoal:

@@ -17,6 +17,7 @@ from pathlib import Path
 from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import Literal, SubGoal
 from semgoal_ros.package_data import share_path
+from strips_planner.deorder import deorder, transitive_reduction
 from strips_planner.grounding import Operator, Task, ground
 from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
 from strips_planner.planner import solve_task
@@ -26,6 +27,8 @@ def domain_dir() -> Path:
     """The scenes' PDDL domains as installed: share/semgoal_planner/domains."""
     return share_path("semgoal_planner", "domains")
 HAND_EMPTY = "hand-empty"
+BRIDGE_STEPS = 4
+"""Most steps a plan repair adds before a kept step (two turns of the hand); a step further away is dropped."""
 ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
     # PDDL action -> (sub-goal type, how many leading arguments the sub-goal keeps as its block and references)
     "pick": ("pick", 1),
@@ -220,6 +223,113 @@ class SemanticPlanner:
                      if not self._holds(task, c, current)]
             raise PlanningError(f"the plan does not reach the goal: after the last step {', '.join(unmet)} "
                                 f"{'does' if len(unmet) == 1 else 'do'} not hold")
+
+    def repair(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal], steps: list[SubGoal],
+               protected: frozenset[int] = frozenset()) -> tuple[list[int | SubGoal], list[tuple[int, str]]]:
+        """Mend ``steps`` (the plan's rest) for ``state``: keep every step that can still run, in its order, plan
+        only what is missing before a kept step (what it needs and no longer has) and after the last one (what the
+        goal needs), then leave out each turn of the hand (a pick up to the step that lets go) the goal is reached
+        without, unless it has a step of ``protected`` (a person's) whose literals do not hold yet. Returns the new
+        rest, a kept step as its index in ``steps`` and a planned one as a sub-goal, and the steps dropped, each
+        with why. PlanningError when the goal cannot be reached after the kept steps (re-plan from scratch then)."""
+        task = self.task(objects, state, goal)
+        current, rest, dropped = task.init, [], []
+        for index, step in enumerate(steps):
+            actions = _operators_for(task, step)
+            if not actions:
+                dropped.append((index, f"not an action of scene {self.scene} with these objects"))
+                continue
+            if all(self._holds_literal(task, literal, current) for literal in step.literals()):
+                dropped.append((index, "its literals hold already"))
+                continue
+            runnable = next((op for op in actions if op.applicable(current)), None)
+            bridge: list[Operator] = []
+            if runnable is None:
+                bridge = self._bridge(task, current, actions[0]) or []
+                for op in bridge:
+                    current = op.apply(current)
+                runnable = actions[0] if actions[0].applicable(current) else None
+            if runnable is None:
+                dropped.append((index, f"it needs {self._unmet(task, actions[0], current)}, which no short plan brings about"))
+                continue
+            rest += [(plan2goal(op), op) for op in bridge] + [(index, runnable)]
+            current = runnable.apply(current)
+        tail = solve_task(Task(task.facts, current, task.goal, task.goal_neg, task.operators), self.search,
+                          self.heuristic)
+        if tail.plan is None or task.unsolvable_reason:
+            raise PlanningError(f"the goal cannot be reached after the steps kept: {tail.reason or task.unsolvable_reason}")
+        rest += [(plan2goal(op), op) for op in tail.plan]
+        wanted = {i for i in protected if i < len(steps)
+                  and not all(self._holds_literal(task, lit, task.init) for lit in steps[i].literals())}
+        rest, unneeded = self._without_unneeded_turns(task, rest, wanted)
+        return [item for item, _ in rest], dropped + [(i, "the goal is reached without its turn") for i in unneeded]
+
+    @staticmethod
+    def _without_unneeded_turns(task: Task, rest: list[tuple[int | SubGoal, Operator]], wanted: set[int]
+                                ) -> tuple[list[tuple[int | SubGoal, Operator]], list[int]]:
+        """``rest`` less each turn of the hand it reaches the goal without (first to last), but for turns with a
+        ``wanted`` step; and the kept steps' indices so left out."""
+        hand = _bits(task, Literal(HAND_EMPTY, ()))
+        turns, turn = [], []
+        for item in rest:
+            turn.append(item)
+            if item[1].add & hand:
+                turns.append(turn)
+                turn = []
+        if turn:
+            turns.append(turn)
+        unneeded: list[int] = []
+        for candidate in list(turns):
+            if any(isinstance(item, int) and item in wanted for item, _ in candidate):
+                continue
+            trial = [item for t in turns if t is not candidate for item in t]
+            state = task.init
+            for _, op in trial:
+                if not op.applicable(state):
+                    break
+                state = op.apply(state)
+            else:
+                if task.goal_reached(state):
+                    turns.remove(candidate)
+                    unneeded += [item for item, _ in candidate if isinstance(item, int)]
+        return [item for t in turns for item in t], unneeded
+
+    def _bridge(self, task: Task, state: int, action: Operator) -> list[Operator] | None:
+        """A shortest plan from ``state`` to where ``action`` runs, of at most :data:`BRIDGE_STEPS` steps; None if
+        there is none."""
+        result = solve_task(Task(task.facts, state, action.pre, action.pre_neg, task.operators), self.search,
+                            self.heuristic)
+        return result.plan if result.plan is not None and len(result.plan) <= BRIDGE_STEPS else None
+
+    @staticmethod
+    def _holds_literal(task: Task, literal: Literal, state: int) -> bool:
+        bits = _bits(task, literal)
+        return bool(state & bits) == literal.value if bits else not literal.value
+
+    def orderings(self, objects: tuple[str, ...], goal: list[Literal], steps: list[SubGoal]) -> list[tuple[int, ...]]:
+        """For each of ``steps``, the earlier steps it must follow. The plan is cut into turns of a hand, from a
+        pick to the step that lets go; a turn follows another where one of its steps relies on an effect of the
+        other's or would undo one too early (:func:`strips_planner.deorder.deorder`, the hand left out: each agent
+        has its own). Within a turn the steps keep their order. So binning red and binning green are independent,
+        while Swap-2's second block is picked only once the first is off it. Each step runs as the action that
+        promises least of those it names; a step that names none follows the one before."""
+        task = self.task(objects, [], goal)
+        actions = [next(iter(_operators_for(task, step)), None) for step in steps]
+        if None in actions:
+            return [(i - 1,) if i else () for i in range(len(steps))]
+        hand = _bits(task, Literal(HAND_EMPTY, ()))
+        turn, turns = [], 0
+        for op in actions:
+            turn.append(turns)
+            turns += bool(op.add & hand)  # a step that lets go ends its turn
+        after: list[set[int]] = [{i - 1} if i and turn[i - 1] == turn[i] else set() for i in range(len(steps))]
+        first = {t: turn.index(t) for t in set(turn)}
+        for j, preds in enumerate(deorder(task, actions, ignore=hand)):
+            for i in preds:
+                if turn[i] != turn[j]:  # turn[j] starts after the whole of turn[i]
+                    last = max(k for k, t in enumerate(turn) if t == turn[i])
+                    after[first[turn[j]]].add(last)
+        return transitive_reduction(after)
 
     @staticmethod
     def _holds(task: Task, condition: Condition, state: int) -> bool:

@@ -81,8 +81,8 @@ def plan_markers(plan: Plan):
     for step in plan.steps:
         active = step.index == plan.current and plan.status == PlanStatus.EXECUTING
         colour = (0.2, 1.0, 0.2) if active else (0.6, 0.6, 0.6) if step.status == StepStatus.DONE else (1.0, 1.0, 1.0)
-        lines.append((f"{'> ' if active else ''}{step.index}. {step.action} {step.status} {step.assignee}", colour,
-                      0.04 if active else 0.03))
+        lines.append((f"{'> ' if active else ''}{step.index}. {step.action} {step.status} {step.assignee} "
+                      f"{after_text(step)}".rstrip(), colour, 0.04 if active else 0.03))
     items = [Marker(action=Marker.DELETEALL)]
     for i, (text, colour, height) in enumerate(lines):
         marker = Marker(ns="plan", id=i, type=Marker.TEXT_VIEW_FACING, action=Marker.ADD, text=text)
@@ -97,10 +97,17 @@ def plan_markers(plan: Plan):
 
 
 def format_plan(plan: Plan) -> str:
-    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current)."""
+    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current; "after
+    1, 2": the steps it must follow)."""
     status = f"{plan.status} ({plan.paused_because})" if plan.paused_because else plan.status
     lines = [f"goal: {plan.goal or '(none)'}   status: {status}   revision {plan.revision}   replans {plan.replans}"]
     for step in plan.steps:
         marker = ">" if step.index == plan.current and plan.status == PlanStatus.EXECUTING else " "
-        lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee}")
+        lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee:6s} {after_text(step)}"
+                     .rstrip())
     return "\n".join(lines)
+
+
+def after_text(step) -> str:
+    """The steps a plan step must follow, as the plan shows them: ``after 0, 2``; "" for none."""
+    return f"after {', '.join(map(str, step.after))}" if len(step.after) else ""

@@ -174,7 +174,7 @@ class Console:
         steps = []
         if plan is not None:
             steps = [{"index": s.index, "action": s.action, "status": s.status, "assignee": s.assignee,
-                      "active": s.index == plan.current and plan.status in ("executing", "paused")}
+                      "after": list(s.after), "active": s.index == plan.current and plan.status in ("executing", "paused")}
                      for s in plan.steps]
         human = next((s for s in steps if s["active"] and s["assignee"] == "human"), None)
         blocks = [b.name for b in world.blocks] if world else []

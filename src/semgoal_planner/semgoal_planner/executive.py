@@ -249,7 +249,7 @@ class Executive:
         if self.observation is not None:
             try:
                 return self.planner.orderings(self.observation.objects, self.goal, steps)
-            except PlanningError:  # a goal naming blocks the world lacks: the plan is failing anyway
+            except (PlanningError, KeyError, ValueError):  # what only shows the plan never stops the planner
                 pass
         return [(i - 1,) if i else () for i in range(len(steps))]
 

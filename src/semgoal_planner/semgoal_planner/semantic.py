@@ -313,7 +313,8 @@ class SemanticPlanner:
         has its own). Within a turn the steps keep their order. So binning red and binning green are independent,
         while Swap-2's second block is picked only once the first is off it. Each step runs as the action that
         promises least of those it names; a step that names none follows the one before."""
-        task = self.task(objects, [], goal)
+        named = {block for literal in goal for block in literal.args} | {b for step in steps for b in step.args}
+        task = self.task(tuple(dict.fromkeys((*objects, *sorted(named)))), [], goal)  # a world that lost a block too
         actions = [next(iter(_operators_for(task, step)), None) for step in steps]
         if None in actions:
             return [(i - 1,) if i else () for i in range(len(steps))]

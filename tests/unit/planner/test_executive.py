@@ -457,3 +457,12 @@ def test_a_repair_keeps_every_persons_edit_that_still_applies(data) -> None:
     assert ok and message.startswith("repaired"), message
     assert all(any(s.subgoal == goal_ and s.assignee == who for s in ex.steps) for goal_, who in edited), message
     assert elapsed < 0.05, elapsed
+
+
+def test_the_orderings_of_a_plan_for_blocks_the_world_no_longer_has_are_still_given() -> None:
+    """A reset to a desk without blue while the plan still names it (the planner node crashed building the plan
+    message there): the goal fails, and the plan's orderings are still given."""
+    ex = executive()
+    ex.set_goal("in_bin(red) & in_bin(blue)")
+    ex.observe(observe([], 5, objects=("red", "green")))
+    assert ex.status == "failed" and len(ex.orderings()) == len(ex.steps) == 4

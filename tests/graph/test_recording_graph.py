@@ -108,11 +108,9 @@ def test_a_session_recorder_started_late_still_has_the_first_operator_event(node
     record = tmp_path / "session.mcap"
     recorder = nodes.start("semgoal_bringup", "record_node", params={"path": str(record)})
     assert probe.poll(lambda: "recording to" in nodes.logs(), timeout=60), nodes.logs()
-    def recorder_listens() -> bool:  # the graph knows the recorder's subscription to the events
-        return any(info.node_name == "recorder" for info in probe.node.get_subscriptions_info_by_topic(topics.OPERATOR_EVENTS))
-
-    assert probe.poll(recorder_listens, timeout=60), nodes.logs()
-    probe.poll(lambda: False, 3)  # time for the planner to match it and hand over its kept events
+    # the recorder says when its reader has matched the planner's writer, which then hands it the kept events
+    assert probe.poll(lambda: f"recording {topics.OPERATOR_EVENTS}\n" in nodes.logs(), timeout=60), nodes.logs()
+    probe.poll(lambda: False, 1)
     assert nodes.stop(recorder) == 0, nodes.logs()
     with record.open("rb") as stream:
         events = [message for _, channel, _, message

@@ -16,6 +16,16 @@ class RecordNode(Node):
         self.path = declare(self, PARAMS)["path"]
         self.recorder = Recorder(self, self.path, session=True)
         self.get_logger().info(f"recording to {self.path}")
+        self.heard: set[str] = set()
+        self.match_timer = self.create_timer(0.1, self.log_matches)
+
+    def log_matches(self) -> None:
+        """Say once per topic when its reader has matched a publisher: from then on the topic is recorded, with
+        what the publisher keeps for late readers (discovery of a new process takes a moment)."""
+        for subscription in self.recorder.subscriptions:
+            if subscription.topic_name not in self.heard and subscription.get_publisher_count() > 0:
+                self.heard.add(subscription.topic_name)
+                self.get_logger().info(f"recording {subscription.topic_name}")
 
     def destroy_node(self) -> None:
         counts = self.recorder.close()

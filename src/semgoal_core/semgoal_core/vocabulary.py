@@ -43,6 +43,8 @@ BLOCK_COLOURS: dict[str, tuple[float, float, float, float]] = {
 }
 """Block names in canonical order, with their RGBA colours."""
 
+SYMMETRIC_PREDICATES = frozenset({"close"})
+"""Predicates whose two arguments may come in either order: the state stores them in object order."""
 PREDICATE_ARITY = {"close": 2, "above": 2, "holding": 1, "in_bin": 1}
 
 
@@ -211,7 +213,7 @@ class SemanticLayout:
     def canonical(self, name: str, args: Sequence[str]) -> tuple[str, tuple[str, ...]]:
         """The atom as stored (close is symmetric: its arguments in object order)."""
         args = tuple(args)
-        if name == "close" and len(args) == 2 and all(a in self.objects for a in args):
+        if name in SYMMETRIC_PREDICATES and len(args) == 2 and all(a in self.objects for a in args):
             args = tuple(sorted(args, key=self.objects.index))
         return name, args
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
-from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
+from semgoal_core.vocabulary import LAYOUTS, SCENES, SYMMETRIC_PREDICATES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
 from semgoal_planner.goals import Goal, GoalError, read_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 
@@ -49,7 +49,10 @@ class Observation:
     """Blocks not at rest (:func:`semgoal_core.settling.moving_blocks`)."""
 
     def holds(self, literals: list[Literal]) -> bool:
+        """Whether every one of ``literals`` has its value now (a symmetric predicate's in either argument order:
+        a step's ``close(blue,green)`` is the state's ``close(green,blue)``)."""
         values = {(lit.name, lit.args): lit.value for lit in self.literals}
+        values |= {(lit.name, lit.args[::-1]): lit.value for lit in self.literals if lit.name in SYMMETRIC_PREDICATES}
         return all(values.get((lit.name, lit.args), False) == lit.value for lit in literals)
 
     def settled(self, literals: list[Literal]) -> bool:

@@ -466,3 +466,18 @@ def test_the_orderings_of_a_plan_for_blocks_the_world_no_longer_has_are_still_gi
     ex.set_goal("in_bin(red) & in_bin(blue)")
     ex.observe(observe([], 5, objects=("red", "green")))
     assert ex.status == "failed" and len(ex.orderings()) == len(ex.steps) == 4
+
+
+def test_a_step_is_done_when_its_symmetric_literal_holds_in_the_states_order() -> None:
+    """``put_near(blue,green)`` asks ``close(blue,green)``; the state says ``close(green,blue)``: the same fact. The
+    step was never confirmed that way, and the plan stalled into a re-plan."""
+    objects = ("red", "green", "blue")
+    ex = Executive(SemanticPlanner("three_blocks"), settle_steps=1)
+    ex.observe(observe([], 0, scene="three_blocks", objects=objects))
+    assert ex.set_goal("close(green,blue) & close(red,green)")[0]
+    assert [str(s.subgoal) for s in ex.steps][:2] == ["pick(blue)", "put_near(blue,green)"]
+    ex.observe(observe(["holding(blue)"], 5, scene="three_blocks", objects=objects))
+    for step in range(10, 14):
+        ex.observe(observe(["close(green,blue)"], step, scene="three_blocks", objects=objects))
+        ex.tick(step)
+    assert ex.current == 2 and ex.replans == 0 and ex.steps[1].status == "done"

@@ -22,7 +22,7 @@ from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepSt
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
 from semgoal_core.vocabulary import LAYOUTS, SCENES, SYMMETRIC_PREDICATES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
 from semgoal_planner.goals import Goal, GoalError, read_goal
-from semgoal_planner.semantic import PlanningError, SemanticPlanner
+from semgoal_planner.semantic import PlanningError, SemanticPlanner, in_sequence
 
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
 
@@ -254,7 +254,7 @@ class Executive:
                 return self.planner.orderings(self.observation.objects, self.goal, steps)
             except (PlanningError, KeyError, ValueError):  # what only shows the plan never stops the planner
                 pass
-        return [(i - 1,) if i else () for i in range(len(steps))]
+        return in_sequence(len(steps))
 
     def _advance(self) -> None:
         obs = self.observation
@@ -347,17 +347,10 @@ class Executive:
                 return False, f"re-planning failed: {error}"
             self._finish(PlanStatus.FAILED, f"{reason}; re-planning failed: {error}")
             return False, self.message
-        self.replans += not by_operator
-        paused = self.status == PlanStatus.PAUSED
-        done = [s for s in self.steps[: self.current] if s.status == StepStatus.DONE]
         # a step the operator gave a person stays theirs when the new plan has it too
         human = {s.subgoal for s in self.steps[self.current:] if s.assignee == Assignee.HUMAN}
         new = [PlanStep(s, assignee=Assignee.HUMAN if s in human else Assignee.ROBOT) for s in steps]
-        self._install(done + new, f"re-planned ({reason})", keep=len(done))
-        if paused:
-            self.status = PlanStatus.PAUSED
-        self._advance()
-        return True, self.message
+        return self._take_up(new, f"re-planned ({reason})", counted=not by_operator)
 
     def _repair(self, reason: str) -> tuple[bool, str]:
         obs, rest = self.observation, self.steps[self.current:]
@@ -370,10 +363,15 @@ class Executive:
         dropped_text = "; ".join(f"dropped {rest[i].subgoal} ({why})" for i, why in sorted(dropped))
         message = (f"repaired ({reason}): kept {len(kept)} of {len(rest)} steps, planned {len(new) - len(kept)}"
                    + (f"; {dropped_text}" if dropped_text else ""))
-        self.replans += 1
+        return self._take_up(new, message, counted=True)
+
+    def _take_up(self, rest: list[PlanStep], message: str, counted: bool) -> tuple[bool, str]:
+        """Follow the done steps with ``rest`` (a re-plan, ``counted`` against ``max_replans``, or a repair); a
+        paused plan stays paused."""
+        self.replans += counted
         paused = self.status == PlanStatus.PAUSED
-        done = self.steps[: self.current]
-        self._install(done + new, message, keep=len(done))
+        done = [s for s in self.steps[: self.current] if s.status == StepStatus.DONE]
+        self._install(done + rest, message, keep=len(done))
         if paused:
             self.status = PlanStatus.PAUSED
         self._advance()

@@ -130,6 +130,21 @@ def _undoing(task: Task, made: Literal, broken: Literal) -> str:
     return f"every action that makes {_phrase(made)} ({', '.join(reasons)}) {' or '.join(dict.fromkeys(reasons.values()))}"
 
 
+def in_sequence(count: int) -> list[tuple[int, ...]]:
+    """The orderings of ``count`` steps done one after another: each after the one before."""
+    return [(i - 1,) if i else () for i in range(count)]
+
+
+def _turns(actions: list[Operator], hand: int) -> list[int]:
+    """Each action's turn of the hand (from a pick to the step that lets go, ``hand`` the empty hand's bits),
+    numbered from 0."""
+    numbers, number = [], 0
+    for op in actions:
+        numbers.append(number)
+        number += bool(op.add & hand)  # a step that lets go ends its turn
+    return numbers
+
+
 def _bits(task: Task, literal: Literal) -> int:
     """The task's facts that ``literal``'s atom is (close in both orders), as a bit mask."""
     return sum(1 << task.facts.index(atom) for atom in _atoms(literal) if atom in task.facts)
@@ -269,15 +284,8 @@ class SemanticPlanner:
                                 ) -> tuple[list[tuple[int | SubGoal, Operator]], list[int]]:
         """``rest`` less each turn of the hand it reaches the goal without (first to last), but for turns with a
         ``wanted`` step; and the kept steps' indices so left out."""
-        hand = _bits(task, Literal(HAND_EMPTY, ()))
-        turns, turn = [], []
-        for item in rest:
-            turn.append(item)
-            if item[1].add & hand:
-                turns.append(turn)
-                turn = []
-        if turn:
-            turns.append(turn)
+        ids = _turns([op for _, op in rest], _bits(task, Literal(HAND_EMPTY, ())))
+        turns = [[item for item, t in zip(rest, ids, strict=True) if t == number] for number in dict.fromkeys(ids)]
         unneeded: list[int] = []
         for candidate in list(turns):
             if any(isinstance(item, int) and item in wanted for item, _ in candidate):
@@ -317,12 +325,9 @@ class SemanticPlanner:
         task = self.task(tuple(dict.fromkeys((*objects, *sorted(named)))), [], goal)  # a world that lost a block too
         actions = [next(iter(_operators_for(task, step)), None) for step in steps]
         if None in actions:
-            return [(i - 1,) if i else () for i in range(len(steps))]
+            return in_sequence(len(steps))
         hand = _bits(task, Literal(HAND_EMPTY, ()))
-        turn, turns = [], 0
-        for op in actions:
-            turn.append(turns)
-            turns += bool(op.add & hand)  # a step that lets go ends its turn
+        turn = _turns(actions, hand)
         after: list[set[int]] = [{i - 1} if i and turn[i - 1] == turn[i] else set() for i in range(len(steps))]
         first = {t: turn.index(t) for t in set(turn)}
         for j, preds in enumerate(deorder(task, actions, ignore=hand)):

@@ -32,8 +32,28 @@ class StepStatus(StrEnum):
 
 
 class Assignee(StrEnum):
+    """Who does a step: the robot, or a person (``human``, or one named: ``human:alice``, :func:`agent`)."""
+
     ROBOT = "robot"
     HUMAN = "human"
+
+
+PERSON_PREFIX = f"{Assignee.HUMAN}:"
+
+
+def agent(text: str) -> str:
+    """``text`` as an agent's name (``robot``, ``human``, ``human:alice``: letters, digits, ``_`` and ``-`` after
+    the colon), lower case; ValueError naming the valid forms."""
+    name = text.strip().lower()
+    person = name.removeprefix(PERSON_PREFIX)
+    if name in (Assignee.ROBOT, Assignee.HUMAN) or (
+            name.startswith(PERSON_PREFIX) and person and all(c.isalnum() or c in "_-" for c in person)):
+        return name
+    raise ValueError(f"an agent is 'robot', 'human' or a named person 'human:NAME', got {text!r}")
+
+
+def is_person(assignee: str) -> bool:
+    return assignee == Assignee.HUMAN or assignee.startswith(PERSON_PREFIX)
 
 
 class Mode(StrEnum):

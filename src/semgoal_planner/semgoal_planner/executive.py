@@ -8,23 +8,33 @@ stalls for ``stall_steps`` control steps, or a plan that the observed state cont
 ``contradiction_steps`` in a row (a block moved by hand, a dropped block), is re-planned from the
 observed state, at most ``max_replans`` times; then the goal fails with the reason. A step assigned to
 a human is waited for (its literals observed at rest) up to ``human_steps`` control steps, then the goal
-fails with that reason; a pick is never a person's step. Every edit is checked by
-simulating the remaining steps from the observed state (see :meth:`SemanticPlanner.simulate`); a refused
-edit leaves the plan exactly as it was.
+fails with that reason. A person's pick is their own hand's, which no predicate observes: it is done as it starts,
+and the turn's put is confirmed by what it puts where (``claim`` gives a person a whole turn; ``assign`` a put the
+robot's hand hands over). Every edit is checked by simulating the remaining steps from the observed state (see
+:meth:`SemanticPlanner.simulate`); a refused edit leaves the plan exactly as it was.
+
+In turns (the default) one step is active at a time, in plan order. ``concurrent``: every agent (the robot, each
+person) works at once on its first ready step, one whose predecessors (:meth:`Executive.orderings`) are done, while
+two agents never work on the same block, an agent's hand takes one turn at a time, and the bin takes one robot
+at a time (a person's drop into it is refused while the robot is at it: :meth:`Executive.region_holder`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import copy
 from dataclasses import dataclass, field
 
-from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus
+from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus, agent, is_person
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
 from semgoal_core.vocabulary import LAYOUTS, SCENES, SYMMETRIC_PREDICATES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
 from semgoal_planner.goals import Goal, GoalError, read_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner, in_sequence
 
-EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign")
+EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign", "claim")
+ONE_AGENT_REGIONS = {"put_in_bin": "bin"}
+"""Sub-goal types whose place takes one hand at a time, and that place's name."""
+OVER = (StepStatus.DONE, StepStatus.SKIPPED)
 
 
 @dataclass
@@ -35,6 +45,10 @@ class PlanStep:
     assignee: str = Assignee.ROBOT
     edited: bool = False
     """A person's: inserted, replaced, moved or assigned by an edit. A plan repair keeps it while it can run."""
+    started: int = 0
+    """The control step it became active (its stall and person clocks)."""
+    confirmation: Settling = field(default_factory=Settling, compare=False, repr=False)
+    """Counts the control steps over which a robot step's literals held at rest."""
 
 
 @dataclass
@@ -55,9 +69,13 @@ class Observation:
         values |= {(lit.name, lit.args[::-1]): lit.value for lit in self.literals if lit.name in SYMMETRIC_PREDICATES}
         return all(values.get((lit.name, lit.args), False) == lit.value for lit in literals)
 
-    def settled(self, literals: list[Literal]) -> bool:
-        """The literals hold and the world is at rest for them (:func:`semgoal_core.settling.at_rest`)."""
-        return self.holds(literals) and at_rest(literals, self.moving, self.held)
+    def settled(self, literals: list[Literal], blocks: tuple[str, ...] | None = None) -> bool:
+        """The literals hold and the world is at rest for them (:func:`semgoal_core.settling.at_rest`); ``blocks``:
+        only these need be at rest (a step while other agents work on others)."""
+        moving, held = self.moving, self.held
+        if blocks is not None:
+            moving, held = set(moving) & set(blocks), set(held) & set(blocks)
+        return self.holds(literals) and at_rest(literals, moving, held)
 
     def reached(self, literals: list[Literal]) -> bool:
         """The literals hold and the hand holds no block they do not ask for: what is left is to wait for rest."""
@@ -70,6 +88,43 @@ class Observation:
     @property
     def true_literals(self) -> list[Literal]:
         return [lit for lit in self.literals if lit.value]
+
+
+def blocks_of(subgoal: SubGoal) -> tuple[str, ...]:
+    """The blocks a step works on: the one it moves, its references, those it keeps apart from."""
+    return (*subgoal.args, *subgoal.apart)
+
+
+def turns_of(steps: list[PlanStep]) -> list[int]:
+    """Each step's turn of a hand, numbered from 0: from a pick to the step that lets go."""
+    numbers, number = [], 0
+    for step in steps:
+        numbers.append(number)
+        number += step.subgoal.kind != "pick"
+    return numbers
+
+
+def open_turns(steps: list[PlanStep], turns: list[int]) -> dict[int, list[int]]:
+    """The turns begun and not over, each with its steps' indices: a hand holds its block, or a person carries it."""
+    members: dict[int, list[int]] = {}
+    for index, turn in enumerate(turns):
+        members.setdefault(turn, []).append(index)
+    return {turn: indices for turn, indices in members.items()
+            if steps[indices[0]].status in (StepStatus.DONE, StepStatus.ACTIVE) and steps[indices[-1]].status not in OVER}
+
+
+def rest_of(steps: list[PlanStep], obs: Observation) -> list[int]:
+    """The indices of the steps left, in the order the robot's one hand would run them from ``obs``: not done, less
+    active ones whose literals hold, with the pick of a turn a person carries (their hand, which no predicate
+    observes); the turn the robot's hand holds comes first."""
+    turns = turns_of(steps)
+    begun = open_turns(steps, turns)
+    picked = {turn: steps[busy[0]].assignee for turn, busy in begun.items()
+              if steps[busy[0]].status == StepStatus.DONE and steps[busy[0]].subgoal.kind == "pick"}
+    rest = [i for i, step in enumerate(steps) if step.status not in OVER
+            and not (step.status == StepStatus.ACTIVE and obs.holds(step.subgoal.literals()))]
+    rest += [begun[turn][0] for turn, who in picked.items() if is_person(who) and any(turns[i] == turn for i in rest)]
+    return sorted(rest, key=lambda i: (picked.get(turns[i]) != Assignee.ROBOT, i))
 
 
 @dataclass
@@ -89,6 +144,8 @@ class Executive:
     control steps."""
     require_approval: bool = False
     """New plans (and re-plans) wait for an operator's approve before they execute."""
+    concurrent: bool = False
+    """Every agent works on its first ready step at once; else one step at a time, in plan order (in turns)."""
 
     goal: list[Literal] = field(default_factory=list)
     goal_text: str = ""
@@ -99,10 +156,7 @@ class Executive:
     replans: int = 0
     message: str = ""
     observation: Observation | None = None
-    step_started: int = 0
     contradicted_since: int | None = None
-    confirmation: Settling = field(init=False)
-    """Counts the control steps over which the active step's literals held at rest."""
     goal_settling: Settling = field(init=False)
     """Counts the control steps over which the goal's literals held at rest."""
     last_tick: int = 0
@@ -118,8 +172,10 @@ class Executive:
     blind: str = ""
     """Why the plan is paused for want of a trustworthy state (:meth:`pause_blind`); "" when it is not."""
 
+    _orderings: tuple[tuple, list[tuple[int, ...]]] = field(default=((), []), init=False, repr=False)
+    """The plan's orderings and what they were worked out for (its steps and objects)."""
+
     def __post_init__(self) -> None:
-        self.confirmation = Settling(self.settle_steps)
         self.goal_settling = Settling(self.settle_steps)
 
     # -- goals ---------------------------------------------------------------------------------------
@@ -159,7 +215,7 @@ class Executive:
                            "edited": s.edited} for s in self.steps],
                 "current": self.current, "status": str(self.status), "revision": self.revision,
                 "replans": self.replans, "message": self.message, "goal_steps": self.goal_steps,
-                "step_budget": self.step_budget, "step_started": self.step_started, "last_tick": self.last_tick}
+                "step_budget": self.step_budget, "last_tick": self.last_tick}
 
     def restore(self, snapshot: dict, message: str) -> None:
         """Take up a :meth:`snapshot` (of the same world): the active step is checked against the world again
@@ -167,19 +223,19 @@ class Executive:
         fit this scene."""
         scene = SCENES[self.planner.scene]
         try:
-            steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), Assignee(s["assignee"]),
+            steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), agent(s["assignee"]),
                               bool(s.get("edited", False))) for s in snapshot["steps"]]
             goal = [parse_literal(text) for text in snapshot["goal"]]
             status = PlanStatus(snapshot["status"])
         except (KeyError, TypeError, ValueError) as error:
             raise ValueError(f"the journal's plan does not fit scene {scene.name}: {error}") from None
         self.goal, self.goal_text, self.steps, self.status = goal, str(snapshot["goal_text"]), steps, status
-        for name in ("current", "replans", "goal_steps", "step_budget", "step_started", "last_tick"):
+        for name in ("current", "replans", "goal_steps", "step_budget", "last_tick"):
             setattr(self, name, int(snapshot[name]))
         self.revision = int(snapshot["revision"])
-        if self.current < len(self.steps) and self.steps[self.current].status == StepStatus.ACTIVE:
-            self.steps[self.current].status = StepStatus.PENDING  # re-activated once the world says it is not done
-        self.confirmation.reset()
+        for step in self.steps:
+            if step.status == StepStatus.ACTIVE:
+                step.status = StepStatus.PENDING  # re-activated once the world says it is not done
         self.goal_settling.reset()
         self.contradicted_since = None
         self.message = message
@@ -200,8 +256,7 @@ class Executive:
             self._finish(PlanStatus.FAILED, f"the world now has {', '.join(observation.objects)}: the goal {self.goal_text} "
                                    "was for another world; send it again")
             return
-        confirming = self.confirmation.pending or self.goal_settling.pending
-        if (changed or confirming) and self.status in UNDER_WAY:
+        if (changed or self._confirming) and self.status in UNDER_WAY:
             self._advance()
             if self.status == PlanStatus.EXECUTING:
                 self._check_consistency()
@@ -217,19 +272,28 @@ class Executive:
         self.last_tick = step
         if self.observation is not None:
             self.observation.step = max(self.observation.step, step)
-        if self.status == PlanStatus.EXECUTING and (self.confirmation.pending or self.goal_settling.pending):
+        if self.status == PlanStatus.EXECUTING and self._confirming:
             self._advance()  # may finish the plan, re-plan, or fail the goal
         if self.status != PlanStatus.EXECUTING or self.current >= len(self.steps) or self.settling:
             return
         if self.contradicted_since is not None and step - self.contradicted_since >= self.contradiction_steps:
             self.replan("the observed state contradicts the plan")
-        elif self.steps[self.current].assignee == Assignee.ROBOT and step - self.step_started > self.stall_steps:
-            self.replan(f"step {self.current} {self.steps[self.current].subgoal} made no progress in "
-                        f"{self.stall_steps} control steps")
-        elif self.steps[self.current].assignee == Assignee.HUMAN and step - self.step_started > self.human_steps:
-            self._finish(PlanStatus.FAILED, f"step {self.current} {self.steps[self.current].subgoal} was a person's and was "
-                                   f"not done within {self.human_steps} control steps; assign it to the robot "
-                                   "or send the goal again")
+            return
+        for index in self.working.values():
+            active = self.steps[index]
+            if active.assignee == Assignee.ROBOT and step - active.started > self.stall_steps:
+                self.replan(f"step {index} {active.subgoal} made no progress in {self.stall_steps} control steps")
+                return
+            if is_person(active.assignee) and step - active.started > self.human_steps:
+                whose = "a person's" if active.assignee == Assignee.HUMAN else f"{active.assignee}'s"
+                self._finish(PlanStatus.FAILED, f"step {index} {active.subgoal} was {whose} and was not done within "
+                                       f"{self.human_steps} control steps; assign it to the robot or send the goal "
+                                       "again")
+                return
+
+    @property
+    def _confirming(self) -> bool:
+        return self.goal_settling.pending or any(step.confirmation.pending for step in self.steps)
 
     @property
     def settling(self) -> bool:
@@ -238,50 +302,105 @@ class Executive:
         return self.status == PlanStatus.EXECUTING and obs is not None and obs.reached(self.goal)
 
     @property
+    def working(self) -> dict[str, int]:
+        """Each agent at work now, and the index of its active step."""
+        return {step.assignee: index for index, step in enumerate(self.steps) if step.status == StepStatus.ACTIVE}
+
+    @property
     def active(self) -> PlanStep | None:
         """The step the policy should execute now; None while paused, waiting, settling, done or on a human step."""
-        if self.status != PlanStatus.EXECUTING or self.current >= len(self.steps) or self.settling:
+        index = self.working.get(Assignee.ROBOT)
+        if self.status != PlanStatus.EXECUTING or index is None or self.settling:
             return None
-        step = self.steps[self.current]
-        return step if step.assignee == Assignee.ROBOT else None
+        return self.steps[index]
+
+    def region_holder(self, region: str) -> tuple[str, int] | None:
+        """The agent at ``region`` (``bin``) now, with its step's index: the robot's active step that puts there; a
+        person's drop there waits for it. None while no robot is."""
+        return next(((who, index) for who, index in self.working.items()
+                     if not is_person(who) and ONE_AGENT_REGIONS.get(self.steps[index].subgoal.kind) == region), None)
 
     def orderings(self) -> list[tuple[int, ...]]:
         """For each step, the earlier steps it must follow (:meth:`SemanticPlanner.orderings`): what a person or a
         second agent may do at the same time. In sequence where the world's blocks are not known yet."""
         steps = [step.subgoal for step in self.steps]
-        if self.observation is not None:
-            try:
-                return self.planner.orderings(self.observation.objects, self.goal, steps)
-            except (PlanningError, KeyError, ValueError):  # what only shows the plan never stops the planner
-                pass
-        return in_sequence(len(steps))
+        objects = self.observation.objects if self.observation is not None else None
+        key = (objects, tuple(steps), tuple(self.goal))
+        if self._orderings[0] != key:
+            orderings = in_sequence(len(steps))
+            with contextlib.suppress(PlanningError, KeyError, ValueError):  # an ordering never stops the planner
+                orderings = self.planner.orderings(objects, self.goal, steps) if objects is not None else orderings
+            self._orderings = (key, orderings)
+        return self._orderings[1]
 
     def _advance(self) -> None:
         obs = self.observation
         if obs is None or self.status in FINISHED:
             return
         if self.goal_settling.update(obs.settled(self.goal), obs.step, max(obs.step, self.last_tick)):
-            for step in self.steps[self.current:]:
-                step.status = StepStatus.DONE if obs.holds(step.subgoal.literals()) else StepStatus.SKIPPED
+            for step in self.steps:
+                if step.status not in OVER:
+                    step.status = StepStatus.DONE if obs.holds(step.subgoal.literals()) else StepStatus.SKIPPED
             self.current = len(self.steps)
             self._finish(PlanStatus.SUCCEEDED, f"goal {self.goal_text} holds at rest")
             return
         if self.settling:
             return
-        while self.current < len(self.steps) and self._achieved(self.steps[self.current], obs):
-            self.steps[self.current].status = StepStatus.DONE
-            self._emit(f"step {self.current} {self.steps[self.current].subgoal} done")
-            self.current += 1
-            self.step_started, self.contradicted_since = obs.step, None
-            self.revision += 1
+        while True:
+            candidates = list(self.working.values())
+            if self.status != PlanStatus.EXECUTING and self.current < len(self.steps):
+                candidates.append(self.current)  # paused or awaiting approval: the world may do the next step
+            finished = [index for index in candidates if self._achieved(self.steps[index], obs)]
+            for index in finished:
+                self.steps[index].status = StepStatus.DONE
+                self._emit(f"step {index} {self.steps[index].subgoal} done")
+                self.contradicted_since = None
+                self.revision += 1
+            self.current = next((i for i, s in enumerate(self.steps) if s.status not in OVER), len(self.steps))
+            started = self._start_ready() if self.status == PlanStatus.EXECUTING else False
+            if not finished and not started:
+                break
         if self.current >= len(self.steps):
             self.replan("all steps are done but the goal does not hold")
-        elif self.status == PlanStatus.EXECUTING and self.steps[self.current].status != StepStatus.ACTIVE:
-            self.steps[self.current].status = StepStatus.ACTIVE
-            self.step_started = obs.step
-            self._emit(f"step {self.current} {self.steps[self.current].subgoal} started "
-                       f"({self.steps[self.current].assignee})")
         self._check_reach()
+
+    def _start_ready(self) -> bool:
+        """Start each free agent's first ready step (a person's pick is done as it starts); whether any started."""
+        obs, turns, working = self.observation, turns_of(self.steps), self.working
+        after = self.orderings() if self.concurrent else in_sequence(len(self.steps))
+        ready = [i for i, step in enumerate(self.steps)
+                 if step.status == StepStatus.PENDING and all(self.steps[j].status in OVER for j in after[i])]
+        free = [i for i in ready if self.steps[i].assignee not in working and not self._waits(i, turns, working)]
+        if not free:
+            return False
+        index, step = free[0], self.steps[free[0]]
+        step.status, step.started = StepStatus.ACTIVE, obs.step
+        step.confirmation = Settling(self.settle_steps)
+        if is_person(step.assignee) and step.subgoal.kind == "pick":
+            step.status = StepStatus.DONE
+            self._emit(f"step {index} {step.subgoal}: {step.assignee} takes {step.subgoal.block} up themselves")
+        else:
+            self._emit(f"step {index} {step.subgoal} started ({step.assignee})")
+        return True
+
+    def _waits(self, index: int, turns: list[int], working: dict[str, int]) -> str:
+        """Why the ready step ``index`` may not start yet for its agent ("" when it may): another agent works on
+        one of its blocks, or holds its region, or its hand is in another turn."""
+        step = self.steps[index]
+        for other, busy in open_turns(self.steps, turns).items():
+            hand = self.steps[busy[0]].assignee
+            if turns[index] != other and step.subgoal.kind == "pick" and hand == step.assignee:
+                return f"{hand}'s hand is busy with step {busy[0]}"
+            carried = self.steps[busy[0]].subgoal.block
+            if turns[index] != other and hand != step.assignee and carried in blocks_of(step.subgoal):
+                return f"{hand} has {carried} in hand"
+        region = ONE_AGENT_REGIONS.get(step.subgoal.kind)
+        for who, busy in working.items():
+            if region and not is_person(step.assignee) and self.region_holder(region) == (who, busy):
+                return f"{who} is at the {region}"
+            if set(blocks_of(self.steps[busy].subgoal)) & set(blocks_of(step.subgoal)):
+                return f"{who} works on a block of it"
+        return ""
 
     def _check_reach(self) -> None:
         """Fail at once when the active robot step needs a block that fell off the table: no re-plan can
@@ -292,28 +411,22 @@ class Executive:
         lost = [block for block in step.subgoal.args if block in obs.fallen]
         if lost:
             self._finish(PlanStatus.FAILED, f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
-                                   f"{self.current} {step.subgoal} cannot be done")
+                                   f"{self.steps.index(step)} {step.subgoal} cannot be done")
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
-        holds = obs.settled(step.subgoal.literals())
-        if holds and (step.assignee == Assignee.HUMAN or self.status != PlanStatus.EXECUTING):
+        holds = obs.settled(step.subgoal.literals(), blocks_of(step.subgoal) if self.concurrent else None)
+        if holds and (is_person(step.assignee) or self.status != PlanStatus.EXECUTING):
             return True
-        done = self.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))
-        if done:
-            self.confirmation.reset()
-        return done
+        return step.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))
 
     def _check_consistency(self) -> None:
         """The rest of the plan still runs from the observed state; a step whose literals already hold (still
         settling or being confirmed) is as good as done: the steps after it are checked from here."""
         obs = self.observation
-        first = self.current
-        if first < len(self.steps) and obs.holds(self.steps[first].subgoal.literals()):
-            first += 1
         try:
-            self._simulate([s.subgoal for s in self.steps[first:]])
+            self._simulate(self.steps)
             self.contradicted_since = None
         except PlanningError as error:
             if self.contradicted_since is None:
@@ -335,7 +448,7 @@ class Executive:
         if not by_operator and self.replans >= self.max_replans:
             self._finish(PlanStatus.FAILED, f"{reason}; gave up after {self.replans} re-plans")
             return False, self.message
-        if not by_operator and any(step.edited for step in self.steps[self.current:]):
+        if not by_operator and any(step.edited for step in self._undone()):
             try:
                 return self._repair(reason)
             except PlanningError as error:
@@ -348,12 +461,12 @@ class Executive:
             self._finish(PlanStatus.FAILED, f"{reason}; re-planning failed: {error}")
             return False, self.message
         # a step the operator gave a person stays theirs when the new plan has it too
-        human = {s.subgoal for s in self.steps[self.current:] if s.assignee == Assignee.HUMAN}
-        new = [PlanStep(s, assignee=Assignee.HUMAN if s in human else Assignee.ROBOT) for s in steps]
+        people = {s.subgoal: s.assignee for s in self._undone() if is_person(s.assignee)}
+        new = [PlanStep(s, assignee=people.get(s, Assignee.ROBOT)) for s in steps]
         return self._take_up(new, f"re-planned ({reason})", counted=not by_operator)
 
     def _repair(self, reason: str) -> tuple[bool, str]:
-        obs, rest = self.observation, self.steps[self.current:]
+        obs, rest = self.observation, self._undone()
         mended, dropped = self.planner.repair(obs.objects, obs.true_literals, self.goal, [s.subgoal for s in rest],
                                               frozenset(i for i, step in enumerate(rest) if step.edited))
         kept = [rest[item] for item in mended if isinstance(item, int)]
@@ -370,7 +483,7 @@ class Executive:
         paused plan stays paused."""
         self.replans += counted
         paused = self.status == PlanStatus.PAUSED
-        done = [s for s in self.steps[: self.current] if s.status == StepStatus.DONE]
+        done = [s for s in self.steps if s.status == StepStatus.DONE]
         self._install(done + rest, message, keep=len(done))
         if paused:
             self.status = PlanStatus.PAUSED
@@ -379,17 +492,17 @@ class Executive:
 
     def _install(self, steps: list[PlanStep], message: str, keep: int = 0) -> None:
         self.steps, self.current = steps, keep
-        self.confirmation.reset()
         self.goal_settling.reset()
         self.status = PlanStatus.AWAITING_APPROVAL if self.require_approval else PlanStatus.EXECUTING
         self.contradicted_since = None
-        self.step_started = self.observation.step if self.observation else 0
         self._changed(message)
 
     def _finish(self, status: str, message: str) -> None:
         self.status = status
-        if status == PlanStatus.FAILED and self.current < len(self.steps):
-            self.steps[self.current].status = StepStatus.FAILED
+        if status == PlanStatus.FAILED:
+            failed = list(self.working.values()) or ([self.current] if self.current < len(self.steps) else [])
+            for index in failed:
+                self.steps[index].status = StepStatus.FAILED
         self._changed(message)
 
     def _changed(self, message: str) -> None:
@@ -455,7 +568,8 @@ class Executive:
             return False, f"cannot resume: {self.blind}; the plan resumes by itself once the state can be trusted"
         self.status = PlanStatus.PAUSED if pause else PlanStatus.EXECUTING
         if not pause and self.observation:
-            self.step_started = self.observation.step
+            for index in self.working.values():
+                self.steps[index].started = self.observation.step
         self._changed(message or ("paused" if pause else "resumed"))
         if not pause:
             self._advance()
@@ -463,7 +577,8 @@ class Executive:
 
     def _edit_steps(self, op: str, index: int, to_index: int, action: str) -> tuple[bool, str]:
         steps = copy.deepcopy(self.steps)
-        pending = range(self.current, len(steps))
+        doers = {id(new): old.assignee for new, old in zip(steps, self.steps, strict=True)}
+        pending = [i for i in range(self.current, len(steps)) if steps[i].status not in OVER]
         try:
             if op == "insert":
                 if not self.current <= index <= len(steps):
@@ -481,23 +596,40 @@ class Executive:
             elif op == "replace":
                 steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee, edited=True)
             elif op == "assign":
-                who = action.strip().lower()
-                if who not in list(Assignee):
-                    raise ValueError(f"assign takes {' or '.join(map(repr, map(str, Assignee)))}, got {action!r}")
-                if who == Assignee.HUMAN and steps[index].subgoal.kind == "pick":
+                who = agent(action)
+                if is_person(who) and steps[index].subgoal.kind == "pick":
                     raise ValueError(f"step {index} {steps[index].subgoal} asks the robot's hand to hold a block, which "
-                                     "a person cannot do for it: give the person the put after it")
-                steps[index].assignee, steps[index].edited = Assignee(who), True
-            self._simulate([s.subgoal for s in steps[self.current:]])
+                                     "a person cannot do for it: give the person the put after it, or let them claim "
+                                     "the step to do its whole turn with their own hands")
+                steps[index].assignee, steps[index].edited = who, True
+            elif op == "claim":
+                self._claim(steps, index, agent(action or Assignee.HUMAN))
+            self._simulate(steps)
         except (ValueError, PlanningError) as error:
             return False, f"{op} refused: {error}"
-        for i, step in enumerate(steps):
-            if i >= self.current:
-                step.status = StepStatus.PENDING
         self.steps = steps
+        after = self.orderings() if self.concurrent else in_sequence(len(steps))
+        for i, step in enumerate(steps):  # a step whose agent or predecessors changed is started anew
+            if step.status == StepStatus.ACTIVE and (doers.get(id(step)) != step.assignee
+                                                     or any(steps[j].status not in OVER for j in after[i])):
+                step.status = StepStatus.PENDING
         self._changed(f"{op} applied")
         self._advance()
         return True, self.message
+
+    @staticmethod
+    def _claim(steps: list[PlanStep], index: int, who: str) -> None:
+        """Give ``who`` every step of ``index``'s turn not begun yet (a person's pick is their own hand's); ValueError
+        when another agent is at one of them."""
+        turns = turns_of(steps)
+        turn = [i for i, t in enumerate(turns) if t == turns[index]]
+        busy = [i for i in turn if steps[i].status == StepStatus.ACTIVE and steps[i].assignee != who]
+        if busy:
+            raise ValueError(f"step {busy[0]} {steps[busy[0]].subgoal} of that turn is {steps[busy[0]].assignee}'s "
+                             "under way")
+        for i in turn:
+            if steps[i].status not in OVER:
+                steps[i].assignee, steps[i].edited = who, True
 
     def _subgoal(self, action: str) -> SubGoal:
         try:
@@ -508,6 +640,11 @@ class Executive:
     def _range_text(self) -> str:
         return f"{self.current}..{len(self.steps) - 1}" if self.current < len(self.steps) else "none"
 
-    def _simulate(self, steps: list[SubGoal]) -> None:
+    def _simulate(self, steps: list[PlanStep]) -> None:
+        """Check that ``steps`` (a plan, its done steps with it) run on from the observed state to the goal."""
         obs = self.observation
-        self.planner.simulate(obs.objects, obs.true_literals, self.goal, steps, first_index=self.current)
+        rest = rest_of(steps, obs)
+        self.planner.simulate(obs.objects, obs.true_literals, self.goal, [steps[i].subgoal for i in rest], rest)
+
+    def _undone(self) -> list[PlanStep]:
+        return [step for step in self.steps if step.status not in OVER]

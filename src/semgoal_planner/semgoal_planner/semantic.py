@@ -216,15 +216,17 @@ class SemanticPlanner:
         return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
-                 steps: list[SubGoal], first_index: int = 0) -> None:
+                 steps: list[SubGoal], first_index: int | list[int] = 0) -> None:
         """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError,
-        naming a step by its index in the plan (``first_index`` for the first of ``steps``), as `plan show` does."""
+        naming a step by its index in the plan (``first_index`` for the first of ``steps``, or each one's), as
+        `plan show` does."""
         task = self.task(objects, state, goal)
         choices = [_operators_for(task, step) for step in steps]
         if _runs(task, task.init, choices):
             return
         current = task.init  # no choice of actions runs the steps: say where the first choices fail
-        for number, (step, candidates) in enumerate(zip(steps, choices, strict=True), start=first_index):
+        numbers = range(first_index, first_index + len(steps)) if isinstance(first_index, int) else first_index
+        for number, step, candidates in zip(numbers, steps, choices, strict=True):
             if not candidates:
                 raise PlanningError(f"step {number} {step}: not an action of scene {self.scene} with these objects")
             runnable = next((op for op in candidates if op.applicable(current)), None)

@@ -39,6 +39,7 @@ COMMANDS: dict[str, Entry | dict[str, Entry]] = {
         "goals": ("semgoal_bringup.experiments.goal_eval", "the hierarchical agent on goal families beyond the benchmark"),
         "subgoals": ("semgoal_bringup.experiments.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
         "perception": ("semgoal_bringup.experiments.perception_eval", "the block voter on held-out frames: pose error, literals, latency"),
+        "together": ("semgoal_bringup.experiments.together", "the robot and a scripted person on one plan: in turns and at once"),
     },
     "bench": {
         "sim": ("semgoal_bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),

@@ -46,6 +46,8 @@ BLOCK_COLOURS: dict[str, tuple[float, float, float, float]] = {
 SYMMETRIC_PREDICATES = frozenset({"close"})
 """Predicates whose two arguments may come in either order: the state stores them in object order."""
 PREDICATE_ARITY = {"close": 2, "above": 2, "holding": 1, "in_bin": 1}
+ONE_AGENT_REGIONS = {"put_in_bin": "bin"}
+"""Sub-goal types whose place takes one agent at a time, and that place's name."""
 
 
 @dataclass(frozen=True)

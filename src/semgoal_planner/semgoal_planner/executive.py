@@ -27,13 +27,21 @@ from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus, agent, is_person
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, held_blocks_asked
-from semgoal_core.vocabulary import LAYOUTS, SCENES, SYMMETRIC_PREDICATES, Literal, SubGoal, VocabularyError, parse_literal, parse_subgoal
+from semgoal_core.vocabulary import (
+    LAYOUTS,
+    ONE_AGENT_REGIONS,
+    SCENES,
+    SYMMETRIC_PREDICATES,
+    Literal,
+    SubGoal,
+    VocabularyError,
+    parse_literal,
+    parse_subgoal,
+)
 from semgoal_planner.goals import Goal, GoalError, read_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner, in_sequence
 
 EDIT_OPS = ("insert", "remove", "move", "replace", "approve", "pause", "resume", "replan", "assign", "claim")
-ONE_AGENT_REGIONS = {"put_in_bin": "bin"}
-"""Sub-goal types whose place takes one hand at a time, and that place's name."""
 OVER = (StepStatus.DONE, StepStatus.SKIPPED)
 
 

@@ -51,6 +51,41 @@ def _off_table(xy: np.ndarray) -> str:
     return ""
 
 
+def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[bool, str]:
+    """A person's hand (an operator's intervention, the console, a scripted person): put ``block`` at ``position``
+    (x, y; z is set to rest on the table, or on the bin's floor inside its walls). Refused off the table, on another
+    block or across the bin's walls."""
+    if block not in world.blocks:
+        return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
+    xy = np.asarray(position, dtype=np.float64)[:2]
+    if not np.all(np.isfinite(xy)):
+        return False, "position must be finite"
+    if off := _off_table(xy):
+        return False, off
+    snapshot = world.snapshot()
+    for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
+        if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
+            return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
+    rest_z, where = TABLE_TOP + BLOCK_HALF_SIZE, ""
+    bin_ = world.scene.bin
+    if bin_ is not None:
+        offset = np.abs(xy - np.asarray(bin_.center))
+        inner = np.asarray(bin_.inner_half_size)
+        outer = inner + bin_.wall_thickness + BLOCK_HALF_SIZE
+        if np.all(offset <= inner - BLOCK_HALF_SIZE):  # on the bin's floor
+            rest_z, where = TABLE_TOP + bin_.floor_thickness + BLOCK_HALF_SIZE, " in the bin"
+        elif np.all(offset < outer):  # set there, it would cut into a wall and be thrown off the desk
+            return False, (f"({xy[0]:.3f}, {xy[1]:.3f}) overlaps the bin's walls: put the block inside them "
+                           f"(|x - {bin_.center[0]}| <= {inner[0] - BLOCK_HALF_SIZE:.3f}, "
+                           f"|y - {bin_.center[1]}| <= {inner[1] - BLOCK_HALF_SIZE:.3f}) or clear of them")
+    held = bool(world.semantic_vector(snapshot)[world.layout.index(Literal("holding", (block,)))])
+    world.set_block_pose(block, np.array([*xy, rest_z]))
+    if held:  # taken out of the hand: the hand lets go, so it cannot close on what it held
+        world.open_fingers()
+        where += ", out of the robot's hand (the fingers opened)"
+    return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f}){where}"
+
+
 MAX_START_HEIGHT = 0.3
 """Highest a block may start above the table top (m): a stack of the scene's blocks, and room to spare."""
 
@@ -133,38 +168,8 @@ class SimCore:
         return self.ticks * CONTROL_DT
 
     def move_block(self, block: str, position: np.ndarray) -> tuple[bool, str]:
-        """Operator intervention: put ``block`` at ``position`` (x, y; z is set to rest on the table, or on the
-        bin's floor inside its walls). Refused off the table, on another block or across the bin's walls."""
-        world = self.world
-        if block not in world.blocks:
-            return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
-        xy = np.asarray(position, dtype=np.float64)[:2]
-        if not np.all(np.isfinite(xy)):
-            return False, "position must be finite"
-        if off := _off_table(xy):
-            return False, off
-        snapshot = world.snapshot()
-        for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
-            if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
-                return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
-        rest_z, where = TABLE_TOP + BLOCK_HALF_SIZE, ""
-        bin_ = world.scene.bin
-        if bin_ is not None:
-            offset = np.abs(xy - np.asarray(bin_.center))
-            inner = np.asarray(bin_.inner_half_size)
-            outer = inner + bin_.wall_thickness + BLOCK_HALF_SIZE
-            if np.all(offset <= inner - BLOCK_HALF_SIZE):  # on the bin's floor
-                rest_z, where = TABLE_TOP + bin_.floor_thickness + BLOCK_HALF_SIZE, " in the bin"
-            elif np.all(offset < outer):  # set there, it would cut into a wall and be thrown off the desk
-                return False, (f"({xy[0]:.3f}, {xy[1]:.3f}) overlaps the bin's walls: put the block inside them "
-                               f"(|x - {bin_.center[0]}| <= {inner[0] - BLOCK_HALF_SIZE:.3f}, "
-                               f"|y - {bin_.center[1]}| <= {inner[1] - BLOCK_HALF_SIZE:.3f}) or clear of them")
-        held = bool(world.semantic_vector(snapshot)[world.layout.index(Literal("holding", (block,)))])
-        world.set_block_pose(block, np.array([*xy, rest_z]))
-        if held:  # taken out of the hand: the hand lets go, so it cannot close on what it held
-            world.open_fingers()
-            where += ", out of the robot's hand (the fingers opened)"
-        return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f}){where}"
+        """Operator intervention: :func:`move_block` in this world."""
+        return move_block(self.world, block, position)
 
     def snapshot(self) -> Snapshot:
         return self.world.snapshot()

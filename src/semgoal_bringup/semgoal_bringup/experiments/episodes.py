@@ -18,6 +18,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 import numpy as np
 
@@ -49,6 +50,8 @@ class Outcome:
     (None: not checked)."""
     fell_off: bool = False
     """A block ended the episode off the table."""
+    overlap: int = 0
+    """Control steps over which two agents worked at once (a scripted person beside the robot)."""
 
     @property
     def first_step_success(self) -> bool:
@@ -65,6 +68,14 @@ def observe(world: FetchWorld) -> Observation:
     return Observation(tuple(present), world.layout.decode(vector), world.step_count,
                        tuple(world.fallen_blocks(snapshot)),
                        moving_blocks(world.blocks, snapshot.block_velocities))
+
+
+class Person(Protocol):
+    """Someone working beside the robot in an episode (:class:`~semgoal_bringup.experiments.together.ScriptedPerson`)."""
+
+    def claim(self, executive: Executive) -> None: ...
+
+    def act(self, executive: Executive, world: FetchWorld) -> None: ...
 
 
 class HierarchicalAgent:
@@ -87,31 +98,41 @@ class HierarchicalAgent:
         return self.run_goals(positions, (goal,), seed, budget, label, linger)
 
     def run_goals(self, positions: np.ndarray, goals: Sequence[str], seed: int, budget: int = TASK_STEP_BUDGET,
-                  label: str = "", linger: int = 0) -> Outcome:
+                  label: str = "", linger: int = 0, person: Person | None = None, concurrent: bool = False) -> Outcome:
         """:meth:`run_goal` for goals one after the other, each from where the one before left the world and with
         ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal.
         ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
-        it, then whether the last goal still holds at rest (``linger_holds``)."""
+        it, then whether the last goal still holds at rest (``linger_holds``). ``person``: claims steps of each plan
+        and does them in the world, while the arm holds still without a step of its own, as the policy node does;
+        ``concurrent``: the executive lets them work at once."""
         key = (label, len(positions))
         if key not in self._worlds:
             self._worlds[key] = FetchWorld(self.scene, len(positions))
         world = self._worlds[key]
         world.reset(positions)
-        success, replans, first_held, executive = True, 0, None, None
+        success, replans, first_held, executive, overlap = True, 0, None, None, 0
         decided_before = None  # a goal's first step follows the decision before it, as the policy node does
         for goal in goals:
-            executive = Executive(SemanticPlanner(self.scene))
+            executive = Executive(SemanticPlanner(self.scene), concurrent=concurrent)
             executive.observe(observe(world))
             planned, _ = executive.set_goal(goal, step_budget=budget)
+            if planned and person is not None:
+                person.claim(executive)
             first_held = None
             while planned and executive.status == PlanStatus.EXECUTING:
                 decided_now = (executive.active.subgoal.literals() if executive.active
                                else ([] if executive.settling else None))
                 literals = lockstep_subgoal(decided_before, decided_now)
-                if literals is None:  # a human step: nobody acts in an evaluation
+                if literals is None and person is None:  # a human step: nobody acts in an evaluation
                     break
-                self.controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
+                if literals is None:  # the arm holds still while the person works
+                    self.controller.set_subgoal([], retreat=False)
+                else:
+                    self.controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
                 world.step(self.controller.act(world.observation(), (seed, world.step_count)))
+                if person is not None:
+                    person.act(executive, world)
+                overlap += len(executive.working) > 1
                 decided_before = decided_now
                 executive.tick(world.step_count)
                 executive.observe(observe(world))
@@ -124,7 +145,7 @@ class HierarchicalAgent:
         steps = world.step_count
         linger_holds = self._linger(world, executive.goal, seed, linger) if success and linger and executive else None
         return Outcome(label or " -> ".join(goals), seed, success, steps, replans, first_held, linger_holds,
-                       bool(world.fallen_blocks()))
+                       bool(world.fallen_blocks()), overlap)
 
     def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
         """Run the arm with no step (what the policy node does once a goal is done: it retreats, keeping what the

@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, sentences, unsure_sentences
+from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, region_taken, sentences, unsure_sentences
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
@@ -282,6 +282,9 @@ class Console:
         place = str(request["place"])
         if place not in PLACES:
             return {"ok": False, "message": f"unknown place {place!r}: one of {', '.join(PLACES)}"}
+        steps = [(s.action, s.assignee, s.status) for s in self.plan.steps] if self.plan else []
+        if taken := region_taken(place, steps):
+            return {"ok": False, "message": taken}
         target = place_position(place, str(request["block"]), blocks, SCENES[world.scene].bin, str(request.get("other", "")))
         ok, message = self.client.move_block(str(request["block"]), *target)
         return {"ok": ok, "message": message}

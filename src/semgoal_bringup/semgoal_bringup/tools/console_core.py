@@ -11,7 +11,8 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_core.geometry import MIN_CENTRE_DISTANCE, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP, bin_spot, clear_of, nearest
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry
+from semgoal_core.names import StepStatus, is_person
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, ONE_AGENT_REGIONS, THRESHOLDS, BinGeometry, SubGoal
 
 SENTENCES = {"close": "{0} is near {1}", "above": "{0} is on {1}", "holding": "the robot holds {0}",
              "in_bin": "{0} is in the bin"}
@@ -45,6 +46,25 @@ TABLE_MARGIN = 0.06
 GRID_STEP = 0.02
 
 LOG_FIELDS = ("wall_time", "sim_time", "who", "event", "detail", "outcome")
+STEP_PLACES = {"put_in_bin": "bin", "put_on_table": "table", "put_away": "table", "put_near": "near", "put_on": "on"}
+"""The console's place for each type of step a person does: a put away is put on a free spot of the table, away from
+every other block."""
+
+
+def step_place(subgoal: SubGoal) -> tuple[str, str]:
+    """Where a person's step puts its block through the console: the place and its other block ("" for none)."""
+    place = STEP_PLACES[subgoal.kind]
+    return place, subgoal.references[0] if place in ("near", "on") else ""
+
+
+def region_taken(place: str, steps: Iterable[tuple[str, str, str]]) -> str:
+    """Why a person may not put a block at ``place`` now ("" when they may): a robot's active step is at it. ``steps``:
+    the plan's (action, assignee, status)."""
+    for action, assignee, status in steps:
+        kind = action.split("(")[0]
+        if status == StepStatus.ACTIVE and not is_person(assignee) and ONE_AGENT_REGIONS.get(kind) == place:
+            return f"the {assignee} is putting a block in the {place} ({action}): wait until it is done"
+    return ""
 
 
 def sentences(true_literals: Iterable[tuple[str, tuple[str, ...]]]) -> list[str]:

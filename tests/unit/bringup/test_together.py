@@ -1,0 +1,50 @@
+"""`./semgoal eval together`: the scripted person's claims, the console's places for a person's step, and the robot
+and the person on DC-4 in turns and at once."""
+
+import json
+
+import pytest
+
+from semgoal_bringup.experiments import together
+from semgoal_bringup.tools.console_core import region_taken, step_place
+from semgoal_core.vocabulary import LAYOUTS, Literal, SubGoal
+from semgoal_planner.executive import Executive, Observation
+from semgoal_planner.semantic import SemanticPlanner
+
+FOUR = ("red", "green", "blue", "yellow")
+
+
+def desk_plan(**kwargs) -> Executive:
+    ex = Executive(SemanticPlanner("desk_cleanup"), settle_steps=1, **kwargs)
+    atoms = [(name, args) for name, args in LAYOUTS["desk_cleanup"].atoms if set(args) <= set(FOUR)]
+    ex.observe(Observation(FOUR, [Literal(name, args, False) for name, args in atoms], 0))
+    assert ex.set_goal(" & ".join(f"in_bin({b})" for b in FOUR))[0]
+    return ex
+
+
+@pytest.mark.parametrize(("step_s", "claimed"), [(3.0, 1), (1.0, 2), (10.0, 0)])
+def test_the_person_claims_the_turns_they_can_do_in_the_robots_time(step_s: float, claimed: int) -> None:
+    ex = desk_plan()
+    together.ScriptedPerson(step_s=step_s).claim(ex)
+    assert [s.assignee for s in ex.steps] == ["robot"] * (8 - 2 * claimed) + ["human"] * (2 * claimed)
+
+
+def test_a_persons_step_has_its_place_in_the_console_and_the_bin_takes_one_at_a_time() -> None:
+    assert step_place(SubGoal("put_in_bin", ("red",))) == ("bin", "")
+    assert step_place(SubGoal("put_near", ("red", "green"), ("blue",))) == ("near", "green")
+    assert step_place(SubGoal("put_on", ("red", "green"))) == ("on", "green")
+    assert step_place(SubGoal("put_away", ("red", "green"))) == ("table", "")
+    robot_at_bin = [("put_in_bin(red)", "robot", "active"), ("put_in_bin(green)", "human", "active")]
+    assert "robot is putting a block in the bin (put_in_bin(red))" in region_taken("bin", robot_at_bin)
+    assert region_taken("table", robot_at_bin) == ""
+    assert region_taken("bin", [("put_in_bin(red)", "robot", "pending"), ("pick(green)", "robot", "active")]) == ""
+
+
+@pytest.mark.slow
+def test_the_robot_and_a_person_at_once_finish_sooner_than_in_turns(capsys) -> None:
+    """Two DC-4 starts: both modes succeed at rest, and at once takes fewer control steps, both at work a while."""
+    assert together.main(["--task", "DC-4", "--episodes", "2", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert result["in_turns"]["success"] == result["at_once"]["success"] == 1.0
+    assert result["at_once"]["median_steps"] < result["in_turns"]["median_steps"]
+    assert result["ratio_of_medians"] < 0.8 and result["median_overlap_steps"] >= together.ScriptedPerson().step_steps

@@ -13,10 +13,10 @@ and the turn's put is confirmed by what it puts where (``claim`` gives a person 
 robot's hand hands over). Every edit is checked by simulating the remaining steps from the observed state (see
 :meth:`SemanticPlanner.simulate`); a refused edit leaves the plan exactly as it was.
 
-In turns (the default) one step is active at a time, in plan order. ``concurrent``: every agent (the robot, each
-person) works at once on its first ready step, one whose predecessors (:meth:`Executive.orderings`) are done, while
-two agents never work on the same block, an agent's hand takes one turn at a time, and the bin takes one robot
-at a time (a person's drop into it is refused while the robot is at it: :meth:`Executive.region_holder`).
+``concurrent`` (the default): every agent (the robot, each person) works at once on its first ready step, one whose
+predecessors (:meth:`Executive.orderings`) are done, while two agents never work on the same block, an agent's hand
+takes one turn at a time, and the bin takes one robot at a time (a person's drop into it is refused while the robot
+is at it: :meth:`Executive.region_holder`). In turns, one step is active at a time, in plan order.
 """
 
 from __future__ import annotations
@@ -152,8 +152,9 @@ class Executive:
     control steps."""
     require_approval: bool = False
     """New plans (and re-plans) wait for an operator's approve before they execute."""
-    concurrent: bool = False
-    """Every agent works on its first ready step at once; else one step at a time, in plan order (in turns)."""
+    concurrent: bool = True
+    """Every agent works on its first ready step at once; else one step at a time, in plan order (in turns). The robot
+    alone takes the same steps either way."""
 
     goal: list[Literal] = field(default_factory=list)
     goal_text: str = ""
@@ -424,7 +425,8 @@ class Executive:
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
-        holds = obs.settled(step.subgoal.literals(), blocks_of(step.subgoal) if self.concurrent else None)
+        others = len(self.working) > 1  # the world at large is not at rest while someone else works in it
+        holds = obs.settled(step.subgoal.literals(), blocks_of(step.subgoal) if others else None)
         if holds and (is_person(step.assignee) or self.status != PlanStatus.EXECUTING):
             return True
         return step.confirmation.update(holds, obs.step, max(obs.step, self.last_tick))

@@ -7,7 +7,7 @@
     ./semgoal plan show
     ./semgoal plan insert 2 "pick(red)" | remove 2 | move 3 1 | replace 2 "put_in_bin(red)"
     ./semgoal plan remove 2 --revision 7       ... only if the plan is still at revision 7 (as plan show printed it)
-    ./semgoal plan approve | pause | resume | replan | assign 2 human
+    ./semgoal plan approve | pause | resume | replan | assign 2 human | claim 4 human:alice
 """
 
 from __future__ import annotations
@@ -109,12 +109,12 @@ def _follow(client: GraphClient, text: str, timeout: float, max_steps: int) -> i
 
 
 EDITS_WITH_INDEX = {"insert": ("index", "action"), "remove": ("index",), "move": ("index", "to_index"),
-                    "replace": ("index", "action"), "assign": ("index", "action")}
+                    "replace": ("index", "action"), "assign": ("index", "action"), "claim": ("index", "action")}
 
 
 def plan_main(argv: list[str]) -> int:
-    """`./semgoal plan show | insert I ACTION | remove I | move I J | replace I ACTION | assign I robot|human
-    | approve | pause | resume | replan`: read or edit the plan through planner_node's services."""
+    """`./semgoal plan show | insert I ACTION | remove I | move I J | replace I ACTION | assign I robot|human[:NAME]
+    | claim I human[:NAME] | approve | pause | resume | replan`: read or edit the plan through planner_node's services."""
     parser = argparse.ArgumentParser(prog="semgoal plan", description=plan_main.__doc__)
     parser.add_argument("op", choices=["show", *EDITS_WITH_INDEX, "approve", "pause", "resume", "replan"])
     parser.add_argument("args", nargs="*")

@@ -64,11 +64,11 @@ def subgoal_message(ex: Executive, state: SemanticState | None) -> SubGoal:
     elif ex.status == PlanStatus.SUCCEEDED:
         msg = SubGoal(index=ex.current, status=ex.status, goal=goal)
     elif active is None:
-        waiting = ex.status == PlanStatus.EXECUTING  # executing without an active robot step: a human's turn
+        waiting = ex.status == PlanStatus.EXECUTING  # executing without an active robot step: it waits for others
         msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,
                       assignee=Assignee.HUMAN if waiting else "")
     else:
-        msg = step_message(ex.current, active.subgoal, StepStatus.ACTIVE, Assignee.ROBOT)
+        msg = step_message(ex.working[Assignee.ROBOT], active.subgoal, StepStatus.ACTIVE, Assignee.ROBOT)
     msg.step = state.step if state else 0  # the state this decision answers
     msg.episode = state.episode if state else 0
     return msg

@@ -17,6 +17,8 @@ PARAMS = (
           low=1, high=100_000, runtime=True),
     Param("max_replans", 10, "re-plans before the goal fails with a reason", low=0, high=10_000, runtime=True),
     Param("require_approval", False, "a new plan waits for the operator's approve", runtime=True),
+    Param("concurrent", True, "the robot and people work at once, each on a step whose predecessors are done; false: "
+          "one step at a time, in plan order (in turns)", runtime=True),
     Param("state_wait_s", 5.0, "ExecuteGoal before any semantic state: wait this long for one",
           low=0.0, high=3600.0, runtime=True),
     Param("world_silence_s", 3.0, "a goal under way fails once no semantic state has come for this long (the sim "
@@ -29,5 +31,5 @@ PARAMS = (
     Param("unsure_wait_steps", 25, "control steps the planner holds its decisions for unsure literals before it takes "
           "the state as it is", low=0, high=100_000, runtime=True),
 )
-EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval")
+EXECUTIVE_PARAMS = ("stall_steps", "human_steps", "contradiction_steps", "max_replans", "require_approval", "concurrent")
 """Parameters that are the executive's settings of the same name."""

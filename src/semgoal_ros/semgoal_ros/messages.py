@@ -79,7 +79,7 @@ def plan_markers(plan: Plan):
 
     lines = [(f"goal: {plan.goal or '(none)'} [{plan.status}, revision {plan.revision}]", (1.0, 1.0, 1.0), 0.04)]
     for step in plan.steps:
-        active = step.index == plan.current and plan.status == PlanStatus.EXECUTING
+        active = step.status == StepStatus.ACTIVE and plan.status == PlanStatus.EXECUTING
         colour = (0.2, 1.0, 0.2) if active else (0.6, 0.6, 0.6) if step.status == StepStatus.DONE else (1.0, 1.0, 1.0)
         lines.append((f"{'> ' if active else ''}{step.index}. {step.action} {step.status} {step.assignee} "
                       f"{after_text(step)}".rstrip(), colour, 0.04 if active else 0.03))
@@ -97,12 +97,12 @@ def plan_markers(plan: Plan):
 
 
 def format_plan(plan: Plan) -> str:
-    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks the current; "after
-    1, 2": the steps it must follow)."""
+    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks each agent's active
+    one; "after 1, 2": the steps it must follow)."""
     status = f"{plan.status} ({plan.paused_because})" if plan.paused_because else plan.status
     lines = [f"goal: {plan.goal or '(none)'}   status: {status}   revision {plan.revision}   replans {plan.replans}"]
     for step in plan.steps:
-        marker = ">" if step.index == plan.current and plan.status == PlanStatus.EXECUTING else " "
+        marker = ">" if step.status == StepStatus.ACTIVE and plan.status == PlanStatus.EXECUTING else " "
         lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee:6s} {after_text(step)}"
                      .rstrip())
     return "\n".join(lines)

@@ -48,3 +48,17 @@ def test_the_robot_and_a_person_at_once_finish_sooner_than_in_turns(capsys) -> N
     assert result["in_turns"]["success"] == result["at_once"]["success"] == 1.0
     assert result["at_once"]["median_steps"] < result["in_turns"]["median_steps"]
     assert result["ratio_of_medians"] < 0.8 and result["median_overlap_steps"] >= together.ScriptedPerson().step_steps
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("task", "seed"), [("MC-3", 3_000_001), ("DC-3", 3_000_002), ("Swap-2", 3_000_003)])
+def test_the_robot_alone_takes_the_same_steps_at_once_and_in_turns(task: str, seed: int) -> None:
+    """With no one beside it the robot's first ready step is the plan's next one: concurrent plans change nothing."""
+    from semgoal_bringup.experiments.episodes import make_agent
+    from semgoal_core.tasks import get_task
+
+    spec = get_task(task)
+    agent = make_agent("hierarchical", spec.scene)
+    start = spec.initial_state(seed)[0]
+    at_once, in_turns = (agent.run_goals(start, (task,), seed, concurrent=concurrent) for concurrent in (True, False))
+    assert at_once.success and (at_once.steps, at_once.replans) == (in_turns.steps, in_turns.replans)

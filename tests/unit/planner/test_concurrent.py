@@ -11,7 +11,7 @@ DESK = ("red", "green", "blue")
 
 
 def concurrent(scene: str = "desk_cleanup", start: tuple[str, ...] = (), **kwargs) -> Executive:
-    ex = Executive(SemanticPlanner(scene), settle_steps=1, concurrent=True, **kwargs)
+    ex = Executive(SemanticPlanner(scene), settle_steps=1, **kwargs)
     ex.observe(observe(list(start), scene=scene))
     return ex
 
@@ -43,7 +43,7 @@ def test_the_robot_and_a_person_work_at_once_on_independent_turns() -> None:
 
 
 def test_in_turns_the_same_claim_waits_for_the_robots_steps() -> None:
-    ex = Executive(SemanticPlanner("desk_cleanup"), settle_steps=1)
+    ex = Executive(SemanticPlanner("desk_cleanup"), settle_steps=1, concurrent=False)
     ex.observe(observe([]))
     assert ex.set_goal("in_bin(red) & in_bin(green)")[0] and ex.edit("claim", 3)[0]
     assert doing(ex) == {"robot": "pick(green)"}

@@ -98,13 +98,13 @@ class HierarchicalAgent:
         return self.run_goals(positions, (goal,), seed, budget, label, linger)
 
     def run_goals(self, positions: np.ndarray, goals: Sequence[str], seed: int, budget: int = TASK_STEP_BUDGET,
-                  label: str = "", linger: int = 0, person: Person | None = None, concurrent: bool = False) -> Outcome:
+                  label: str = "", linger: int = 0, person: Person | None = None, concurrent: bool = True) -> Outcome:
         """:meth:`run_goal` for goals one after the other, each from where the one before left the world and with
         ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal.
         ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
         it, then whether the last goal still holds at rest (``linger_holds``). ``person``: claims steps of each plan
         and does them in the world, while the arm holds still without a step of its own, as the policy node does;
-        ``concurrent``: the executive lets them work at once."""
+        ``concurrent``: the executive lets them work at once (else in turns; the robot alone takes the same steps)."""
         key = (label, len(positions))
         if key not in self._worlds:
             self._worlds[key] = FetchWorld(self.scene, len(positions))

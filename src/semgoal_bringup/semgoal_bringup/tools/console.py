@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, region_taken, sentences, unsure_sentences
+from semgoal_core.names import Assignee, StepStatus
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
@@ -50,7 +51,7 @@ RENDERED_VIEW = "rendered from the simulator's poses (no camera in this graph)"
 PUMP_PERIOD_S = 0.005
 MAX_REQUEST_CHARS = 10_000
 """A WebSocket request longer than this is refused unread."""
-OPS = ("approve", "pause", "resume", "replan", "insert", "remove", "move", "replace", "assign")
+OPS = ("approve", "pause", "resume", "replan", "insert", "remove", "move", "replace", "assign", "claim")
 
 
 class SeenByCamera:
@@ -144,9 +145,9 @@ class Console:
         key = (msg.revision, msg.status, msg.current, tuple((s.action, s.assignee, s.status) for s in msg.steps))
         if key != self._logged_plan and self.log is not None:
             self._logged_plan = key
-            active = msg.steps[msg.current].action if msg.current < len(msg.steps) else "-"
+            doing = ", ".join(f"{s.assignee} {s.action}" for s in msg.steps if s.status == StepStatus.ACTIVE) or "-"
             self.log.write(self.sim_time(), "planner", "plan",
-                           f"revision {msg.revision}, step {msg.current} {active}; "
+                           f"revision {msg.revision}, doing: {doing}; "
                            + ", ".join(f"{s.index}. {s.action} ({s.assignee}, {s.status})" for s in msg.steps),
                            msg.status)
 
@@ -174,9 +175,9 @@ class Console:
         steps = []
         if plan is not None:
             steps = [{"index": s.index, "action": s.action, "status": s.status, "assignee": s.assignee,
-                      "after": list(s.after), "active": s.index == plan.current and plan.status in ("executing", "paused")}
+                      "after": list(s.after), "active": s.status == "active" and plan.status in ("executing", "paused")}
                      for s in plan.steps]
-        human = next((s for s in steps if s["active"] and s["assignee"] == "human"), None)
+        human = next((s for s in steps if s["active"] and s["assignee"] == Assignee.HUMAN), None)
         blocks = [b.name for b in world.blocks] if world else []
         return {"type": "state", "scene": world.scene if world else "", "task": world.task if world else "",
                 "episode": world.episode if world else 0, "step": int(world.step) if world else 0,
@@ -188,7 +189,8 @@ class Console:
                 if semantic else [],
                 "plan": {"goal": plan.goal, "status": plan.status, "revision": plan.revision,
                          "replans": plan.replans, "current": plan.current, "steps": steps} if plan else None,
-                "human_step": human, "events": self.events}
+                "human_step": human, "doing": {s["assignee"]: s["action"] for s in steps if s["active"]},
+                "events": self.events}
 
     def camera_jpeg(self) -> bytes:
         """The scene as the sim last published it, rendered offscreen (at most every CAMERA_PERIOD_S)."""

@@ -41,6 +41,10 @@ COMMANDS: dict[str, Entry | dict[str, Entry]] = {
         "perception": ("semgoal_bringup.experiments.perception_eval", "the block voter on held-out frames: pose error, literals, latency"),
         "together": ("semgoal_bringup.experiments.together", "the robot and a scripted person on one plan: in turns and at once"),
     },
+    "study": {
+        "run": ("semgoal_bringup.study.run", "a participant through a study protocol: the graph and the console in study mode"),
+        "report": ("semgoal_bringup.study.report", "a study's tables: per participant and across them (CSV, Markdown)"),
+    },
     "bench": {
         "sim": ("semgoal_bench.sim", "env steps/s per scene beside FetchPickAndPlace-v4"),
         "planner": ("semgoal_bench.planner", "our planner beside pyperplan (throwaway venv): plan lengths, times"),

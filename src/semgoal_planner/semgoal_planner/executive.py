@@ -227,8 +227,8 @@ class Executive:
                 "step_budget": self.step_budget, "last_tick": self.last_tick}
 
     def restore(self, snapshot: dict, message: str) -> None:
-        """Take up a :meth:`snapshot` (of the same world): the active step is checked against the world again
-        on the next observation, and its clocks start from there. Raises ValueError for a snapshot that does not
+        """Take up a :meth:`snapshot` (of the same world): the active steps are checked against the world again
+        on the next observation, and their clocks start from the last control step the snapshot saw. Raises ValueError for a snapshot that does not
         fit this scene."""
         scene = SCENES[self.planner.scene]
         try:
@@ -242,9 +242,8 @@ class Executive:
         for name in ("current", "replans", "goal_steps", "step_budget", "last_tick"):
             setattr(self, name, int(snapshot[name]))
         self.revision = int(snapshot["revision"])
-        for step in self.steps:
-            if step.status == StepStatus.ACTIVE:
-                step.status = StepStatus.PENDING  # re-activated once the world says it is not done
+        for step in self.steps:  # an active step's clocks start again from here, its confirmation too
+            step.started, step.confirmation = self.last_tick, Settling(self.settle_steps)
         self.goal_settling.reset()
         self.contradicted_since = None
         self.message = message

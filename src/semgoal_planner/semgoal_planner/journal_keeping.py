@@ -59,7 +59,7 @@ class JournalKeeping:
             return
         action_goal = bytes(self.action_goal[0].goal_id.uuid).hex() if self.action_goal else ""
         ex, state = self.executive, self.last_state
-        key = (ex.revision, ex.status, ex.current, action_goal, state.episode)
+        key = (ex.revision, ex.status, ex.current, tuple(ex.working.items()), action_goal, state.episode)
         if key == self.last_saved:
             return
         self.last_saved = key

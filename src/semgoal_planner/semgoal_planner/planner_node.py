@@ -192,7 +192,7 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         ex = self.executive
         for line in ex.drain_events():
             self.get_logger().info(line)
-        key = (ex.revision, ex.status, ex.current)
+        key = (ex.revision, ex.status, ex.current, tuple(ex.working.items()))  # a step started changes the plan
         changed = key != self.last_published
         if changed:
             self.last_published = key

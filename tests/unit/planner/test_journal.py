@@ -29,9 +29,7 @@ def test_a_plan_with_edits_comes_back_equal(tmp_path) -> None:
     assert record.world == WORLD and record.action_goal == "ab" * 16
     restored = executive()
     restored.restore(record.executive, "restored")
-    assert restored.snapshot() | {"message": ex.message} == ex.snapshot() | {
-        "steps": [s | {"status": "pending" if s["status"] == "active" else s["status"]}
-                  for s in ex.snapshot()["steps"]]}
+    assert restored.snapshot() | {"message": ex.message} == ex.snapshot()  # the active step stays active
     assert [(str(a.subgoal), a.assignee) for a in restored.steps] == [(str(b.subgoal), b.assignee) for b in ex.steps]
     assert (restored.revision, restored.current, restored.status) == (ex.revision, ex.current, ex.status)
 

@@ -131,6 +131,8 @@ class Console:
         self._painter = None
         self._camera: tuple[float, bytes] = (0.0, b"")
         self._logged_plan: tuple = ()
+        self.study = None
+        """The participant's session in study mode (:class:`~semgoal_bringup.study.console_study.StudyDriver`)."""
 
     def open_log(self, log_dir: Path) -> None:
         self.log = StudyLog(log_dir / time.strftime("console-%Y%m%d-%H%M%S.csv"))
@@ -164,9 +166,11 @@ class Console:
         return world.header.stamp.sec + world.header.stamp.nanosec * 1e-9 if world else 0.0
 
     def pump(self) -> None:
-        """Hand the client's executor whatever has come in (without waiting)."""
+        """Hand the client's executor whatever has come in (without waiting); carry the study on."""
         for _ in range(64):
             self.client.executor.spin_once(timeout_sec=0)
+        if self.study is not None and self.study.tick():
+            self._changed()
 
     # -- what the page shows ---------------------------------------------------------------------------
     def state(self) -> dict:
@@ -190,7 +194,8 @@ class Console:
                 "plan": {"goal": plan.goal, "status": plan.status, "revision": plan.revision,
                          "replans": plan.replans, "current": plan.current, "steps": steps} if plan else None,
                 "human_step": human, "doing": {s["assignee"]: s["action"] for s in steps if s["active"]},
-                "events": self.events}
+                "events": self.events,
+                "study": {**self.study.session.view(), "message": self.study.message} if self.study else None}
 
     def camera_jpeg(self) -> bytes:
         """The scene as the sim last published it, rendered offscreen (at most every CAMERA_PERIOD_S)."""
@@ -227,9 +232,10 @@ class Console:
     def handle(self, request: dict) -> dict:
         """One request of the page, answered: {"ok": bool, "message": str, ...}; every one is logged."""
         op = request.get("op")
-        handler = {"parse": self._parse, "goal": self._goal, "edit": self._edit, "move": self._move}.get(op)
+        handler = {"parse": self._parse, "goal": self._goal, "edit": self._edit, "move": self._move,
+                   "study": self._study, "answers": self._answers}.get(op)
         if handler is None:
-            answer = {"ok": False, "message": f"unknown request {op!r}: parse, goal, edit or move"}
+            answer = {"ok": False, "message": f"unknown request {op!r}: parse, goal, edit, move, study or answers"}
         else:
             try:
                 answer = handler(request)
@@ -270,6 +276,9 @@ class Console:
         op = str(request["edit"])
         if op not in OPS:
             return {"ok": False, "message": f"unknown edit {op!r}: one of {', '.join(OPS)}"}
+        to_person = op == "claim" or (op == "assign" and str(request.get("action", "")).startswith(Assignee.HUMAN))
+        if to_person and (refusal := self._study_refusal()):
+            return {"ok": False, "message": refusal}
         index, to_index = int(request.get("index", 0)), int(request.get("to_index", 0))
         if not (0 <= index < 2 ** 32 and 0 <= to_index < 2 ** 32):
             return {"ok": False, "message": "step numbers are 0 or more"}
@@ -277,6 +286,8 @@ class Console:
         return {"ok": bool(reply.success), "message": reply.message}
 
     def _move(self, request: dict) -> dict:
+        if refusal := self._study_refusal():
+            return {"ok": False, "message": refusal}
         world = self.client.world
         if world is None:
             return {"ok": False, "message": "no world yet: is the sim running?"}
@@ -291,7 +302,31 @@ class Console:
         ok, message = self.client.move_block(str(request["block"]), *target)
         return {"ok": ok, "message": message}
 
+    def _study_refusal(self) -> str:
+        """Why the participant may not take a step in the study's condition now ("" when they may, or no study)."""
+        if self.study is None or self.study.people:
+            return ""
+        condition = self.study.session.condition
+        return (f"in the condition {condition.name!r} the robot works alone: watch it" if condition
+                and self.study.session.phase == "running" else "no condition is under way: press Start first")
+
+    def _study(self, request: dict) -> dict:
+        if self.study is None:
+            return {"ok": False, "message": "this console runs no study (./semgoal study run)"}
+        if str(request.get("action")) != "start":
+            return {"ok": False, "message": "study takes the action start"}
+        ok, message = self.study.start()
+        return {"ok": ok, "message": message}
+
+    def _answers(self, request: dict) -> dict:
+        if self.study is None:
+            return {"ok": False, "message": "this console runs no study (./semgoal study run)"}
+        ok, message = self.study.answer(str(request["questionnaire"]), request["answers"])
+        return {"ok": ok, "message": message}
+
     def close(self) -> None:
+        if self.study is not None and self.study.recorder is not None:
+            self.study.recorder.close()
         if self._painter is not None:
             self._painter[1].close()
         if self.log is not None:
@@ -406,7 +441,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--token", default=os.environ.get("SEMGOAL_CONSOLE_TOKEN", ""),
                         help="the token every request must carry (default: $SEMGOAL_CONSOLE_TOKEN, else a new one)")
     parser.add_argument("--log-dir", help="where the study log CSVs go (default study-logs)")
+    parser.add_argument("--study", type=Path, help="study mode: a protocol (YAML) to walk the participant through")
+    parser.add_argument("--participant", help="study mode: the participant's ID (all that identifies them)")
+    parser.add_argument("--out", type=Path, default=Path("study-results"), help="study mode: where sessions go")
+    parser.add_argument("--row", type=int, help="study mode: the row of the conditions' Latin square (default: "
+                        "from the participant's ID)")
     args, ros_args = parser.parse_known_args(argv)
+    study = None
+    if args.study is not None:
+        from semgoal_bringup.study.protocol import ProtocolError, check_participant, load_protocol
+
+        try:
+            study = (load_protocol(args.study), check_participant(args.participant or ""))
+        except ProtocolError as error:
+            parser.error(str(error))
     overrides = [f"{name}:={value}" for name, value in (("host", args.host), ("port", args.port),
                                                         ("log_dir", args.log_dir)) if value is not None]
     rclpy.init(args=["semgoal_console", *ros_args, *(["--ros-args", *(f for o in overrides for f in ("-p", o))]
@@ -416,6 +464,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         console = Console()
         values = declare(console.client.node, PARAMS)
+        if study is not None:
+            from semgoal_bringup.study.console_study import StudyDriver
+
+            console.study = StudyDriver(console.client, *study, args.out, args.row)
+            values["log_dir"] = str(console.study.session.dir)  # the participant's study log beside their session
         console.open_log(Path(str(values["log_dir"])))
         token = args.token or secrets.token_urlsafe(16)
         asyncio.run(serve(console, token, str(values["host"]), int(values["port"])))

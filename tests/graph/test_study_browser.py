@@ -1,0 +1,118 @@
+"""Study mode end to end in a real browser (Debian's headless Chromium) on real nodes: `./semgoal study run` with a
+two-condition protocol. In the first the robot works alone (a claim is refused); in the second the participant
+claims a step while the robot works, does it in the page, and the plan succeeds. After each condition they answer
+the raw NASA-TLX and the SUS. `./semgoal study report` then has the fluency measures from the recordings and the
+answers' scores."""
+
+import csv
+import subprocess
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import pytest
+from selenium.common.exceptions import StaleElementReferenceException
+from selenium.webdriver.common.by import By
+from selenium.webdriver.support.ui import WebDriverWait
+from test_console_browser import TOKEN, browser  # noqa: F401 (the fixture)
+
+from conftest import ROOT, NodeProcesses, free_port
+from semgoal_bringup.study import report
+
+PROTOCOL = """
+name: together or alone
+conditions:
+  - name: robot alone
+    people: false
+    goals: [{world: DC-3, seed: 6, goal: DC-3}]
+  - name: at once
+    goals: [{world: DC-3, seed: 6, goal: put every block in the bin}]
+"""
+TLX = {"mental": 30, "physical": 10, "temporal": 45, "performance": 20, "effort": 35, "frustration": 5}
+SUS = {f"q{i}": 4 if i % 2 else 2 for i in range(1, 11)}
+"""Answers whose scores are known: raw TLX 24.17, SUS 75."""
+
+
+def start_study(nodes: NodeProcesses, protocol: Path, out: Path, port: int) -> None:
+    log = open(out.parent / "study.log", "w")  # noqa: SIM115
+    command = ["./semgoal", "study", "run", str(protocol), "--participant", "P01", "--out", str(out),
+               "--port", str(port), "--token", TOKEN]
+    nodes.processes.append(("study", subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)))
+    for _ in range(300):
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=1)
+            return
+        except (urllib.error.URLError, ConnectionError):
+            time.sleep(0.2)
+    pytest.fail("study run did not serve the page:\n" + (out.parent / "study.log").read_text()[-3000:])
+
+
+def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, browser, tmp_path: Path) -> None:  # noqa: F811
+    protocol, out, port = tmp_path / "protocol.yaml", tmp_path / "results", free_port()
+    protocol.write_text(PROTOCOL)
+    start_study(nodes, protocol, out, port)
+    wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
+    browser.get(f"http://127.0.0.1:{port}/?token={TOKEN}")
+
+    def where() -> str:
+        return browser.find_element(By.ID, "study-where").text
+
+    def click(selector: str) -> None:
+        for _ in range(20):
+            try:
+                browser.find_element(By.CSS_SELECTOR, selector).click()
+                return
+            except StaleElementReferenceException:
+                time.sleep(0.1)
+        pytest.fail(f"{selector} kept being redrawn")
+
+    def answer(values: dict[str, int]) -> None:
+        for key, value in values.items():
+            radio = browser.find_elements(By.CSS_SELECTOR, f"#study-form input[name='{key}'][value='{value}']")
+            if radio:
+                radio[0].click()
+            else:
+                browser.execute_script("const r = document.querySelector(`#study-form input[name='${arguments[0]}']`);"
+                                       "r.value = arguments[1]; r.dispatchEvent(new Event('input'));", key, value)
+        click("#study-form button.save-answers")
+
+    def questionnaires(title: str) -> None:
+        wait.until(lambda b: "is over" in where() and "NASA" in b.find_element(By.ID, "study-form").text)
+        answer(TLX)
+        wait.until(lambda b: "System Usability" in b.find_element(By.ID, "study-form").text)
+        answer(SUS)
+        wait.until(lambda b: title in where())
+
+    wait.until(lambda b: "Condition 1 of 2: robot alone" in where() and "Press Start" in where())
+    click("#study-start")
+    wait.until(lambda b: "Goal 1 of 1: DC-3" in where() and len(b.find_elements(By.CSS_SELECTOR, "#plan-steps li")) == 6)
+    click("#plan-steps li[data-index='5'] button.claim")
+    wait.until(lambda b: "the robot works alone" in b.find_element(By.ID, "message").text)
+    questionnaires("Condition 2 of 2: at once")
+
+    click("#study-start")
+    wait.until(lambda b: "put every block in the bin" in where()
+               and len(b.find_elements(By.CSS_SELECTOR, "#plan-steps li")) == 6)
+    click("#plan-steps li[data-index='5'] button.claim")  # the last block's turn, while the robot does the first
+    wait.until(lambda b: "you put_in_bin(" in b.find_element(By.ID, "doing").text
+               and "robot " in b.find_element(By.ID, "doing").text)
+    block = browser.find_element(By.ID, "human-action").text.removeprefix("put_in_bin(").rstrip(")")
+    deadline = time.monotonic() + 60
+    while f"{block} is in the bin" not in browser.find_element(By.ID, "holds").text:  # the bin takes one at a time
+        assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
+        click("#human-places button[data-place='bin']")
+        time.sleep(1.0)
+    questionnaires("The study is over")
+
+    assert report.main([str(out)]) == 0
+    rows = {row["condition"]: row for row in csv.DictReader((out / "report" / "P01.csv").open())}
+    assert list(rows) == ["robot alone", "at once"] and all(r["success"] == "1.000" for r in rows.values())
+    alone, together = rows["robot alone"], rows["at once"]
+    assert float(alone["human_idle"]) == 1.0 and float(alone["concurrent_activity"]) == 0.0
+    assert float(together["concurrent_activity"]) > 0 and float(together["human_idle"]) < 1.0
+    assert all(0 <= float(r[m]) <= 1 for r in rows.values() for m in report.MEASURES)
+    assert {r["nasa-tlx"] for r in rows.values()} == {"24.167"} and {r["sus"] for r in rows.values()} == {"75.000"}
+    overall = list(csv.DictReader((out / "report" / "all.csv").open()))
+    assert [r["condition"] for r in overall] == ["robot alone", "at once"] and overall[0]["participants"] == "1"
+    assert len(list((out / "P01").glob("*.mcap"))) == 2 and (out / "P01" / "answers.csv").exists()

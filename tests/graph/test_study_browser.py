@@ -5,6 +5,7 @@ the raw NASA-TLX and the SUS. `./semgoal study report` then has the fluency meas
 answers' scores."""
 
 import csv
+import os
 import subprocess
 import time
 import urllib.error
@@ -15,7 +16,7 @@ import pytest
 from selenium.common.exceptions import StaleElementReferenceException
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
-from test_console_browser import TOKEN, browser  # noqa: F401 (the fixture)
+from test_console_browser import SCREENSHOTS, TOKEN, browser  # noqa: F401 (the fixture)
 
 from conftest import ROOT, NodeProcesses, free_port
 from semgoal_bringup.study import report
@@ -51,6 +52,8 @@ def start_study(nodes: NodeProcesses, protocol: Path, out: Path, port: int) -> N
 def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, browser, tmp_path: Path) -> None:  # noqa: F811
     protocol, out, port = tmp_path / "protocol.yaml", tmp_path / "results", free_port()
     protocol.write_text(PROTOCOL)
+    shots = SCREENSHOTS if os.environ.get("SEMGOAL_SCREENSHOTS") == "1" else tmp_path
+    shots.mkdir(parents=True, exist_ok=True)
     start_study(nodes, protocol, out, port)
     wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
     browser.get(f"http://127.0.0.1:{port}/?token={TOKEN}")
@@ -79,6 +82,7 @@ def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, brows
 
     def questionnaires(title: str) -> None:
         wait.until(lambda b: "is over" in where() and "NASA" in b.find_element(By.ID, "study-form").text)
+        browser.save_screenshot(str(shots / "study-questionnaire.png"))
         answer(TLX)
         wait.until(lambda b: "System Usability" in b.find_element(By.ID, "study-form").text)
         answer(SUS)
@@ -98,6 +102,7 @@ def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, brows
     wait.until(lambda b: "you put_in_bin(" in b.find_element(By.ID, "doing").text
                and "robot " in b.find_element(By.ID, "doing").text)
     block = browser.find_element(By.ID, "human-action").text.removeprefix("put_in_bin(").rstrip(")")
+    browser.save_screenshot(str(shots / "study-at-once.png"))
     deadline = time.monotonic() + 60
     while f"{block} is in the bin" not in browser.find_element(By.ID, "holds").text:  # the bin takes one at a time
         assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
@@ -106,6 +111,7 @@ def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, brows
     questionnaires("The study is over")
 
     assert report.main([str(out)]) == 0
+    print((out / "report" / "P01.md").read_text())
     rows = {row["condition"]: row for row in csv.DictReader((out / "report" / "P01.csv").open())}
     assert list(rows) == ["robot alone", "at once"] and all(r["success"] == "1.000" for r in rows.values())
     alone, together = rows["robot alone"], rows["at once"]

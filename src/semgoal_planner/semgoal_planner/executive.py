@@ -228,8 +228,8 @@ class Executive:
 
     def restore(self, snapshot: dict, message: str) -> None:
         """Take up a :meth:`snapshot` (of the same world): the active steps are checked against the world again
-        on the next observation, and their clocks start from the last control step the snapshot saw. Raises ValueError for a snapshot that does not
-        fit this scene."""
+        on the next observation, and their clocks start from the last control step the snapshot saw. Raises
+        ValueError for a snapshot that does not fit this scene."""
         scene = SCENES[self.planner.scene]
         try:
             steps = [PlanStep(parse_subgoal(s["subgoal"], scene), StepStatus(s["status"]), agent(s["assignee"]),

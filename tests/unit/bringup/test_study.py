@@ -104,3 +104,12 @@ def test_a_session_walks_the_order_keeps_the_answers_and_carries_on_after_a_rest
         StudySession(parse_protocol({**PROTOCOL, "name": "other"}), "P02", tmp_path)
     with pytest.raises(ProtocolError, match="participant ID"):
         StudySession(protocol, "../etc", tmp_path)
+
+
+def test_the_shipped_protocol_runs_every_condition_on_desk_goals() -> None:
+    from semgoal_bringup.study.protocol import load_protocol
+    from semgoal_ros.package_data import share_path
+
+    protocol = load_protocol(share_path("semgoal_bringup", "study", "desk-together.yaml"))
+    assert [(c.people, c.concurrent) for c in protocol.conditions] == [(False, True), (True, False), (True, True)]
+    assert all(len(c.episodes) == 3 for c in protocol.conditions) and protocol.questionnaires == ("nasa-tlx", "sus")

@@ -81,7 +81,7 @@ class StudyDriver:
         if handle is None or not handle.accepted:
             return self._abort(f"the planner did not take the goal {episode.goal!r}")
         self.result = handle.get_result_async()
-        self.message = f"{self.session.condition.name}: {episode.goal} under way"
+        self.message = ""
         return True, self.message
 
     def _abort(self, message: str) -> tuple[bool, str]:

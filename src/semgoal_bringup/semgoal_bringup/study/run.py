@@ -1,4 +1,4 @@
-"""`./semgoal study run PROTOCOL.yaml --participant P [--out DIR] [--port PORT] [--token T] [--row K]`: start the
+"""`./semgoal study run PROTOCOL.yaml|NAME --participant P [--out DIR] [--port PORT] [--token T] [--row K]`: start the
 graph in realtime on the protocol's first world and the console in study mode for participant P, and print the URL
 to open; the page walks them through the conditions in their order. Ctrl-C stops it all; run it again with the
 same ID to carry on where the session stopped. ``./semgoal study report DIR`` makes the tables."""
@@ -13,6 +13,7 @@ from semgoal_bringup.graph import graph_nodes, stop_graph
 from semgoal_bringup.study.protocol import ProtocolError, check_participant, load_protocol
 from semgoal_core.names import Mode
 from semgoal_core.tasks import get_task
+from semgoal_ros.package_data import share_path
 
 
 def main(argv: list[str]) -> int:
@@ -20,13 +21,16 @@ def main(argv: list[str]) -> int:
     from semgoal_bringup.up import start_node
 
     parser = argparse.ArgumentParser(prog="semgoal study run", description=__doc__.split("\n\n")[0])
-    parser.add_argument("protocol", type=Path)
+    parser.add_argument("protocol", type=Path, help="a protocol (YAML), or the name of a shipped one: "
+                        "desk-together")
     parser.add_argument("--participant", required=True)
     parser.add_argument("--out", type=Path, default=Path("study-results"))
     parser.add_argument("--port", type=int, default=8080)
     parser.add_argument("--token", default="")
     parser.add_argument("--row", type=int, help="the Latin square's row (default: from the participant's ID)")
     args = parser.parse_args(argv)
+    if not args.protocol.exists() and args.protocol.suffix == "":  # a shipped protocol, by name
+        args.protocol = share_path("semgoal_bringup", "study", f"{args.protocol}.yaml")
     try:
         protocol, participant = load_protocol(args.protocol), check_participant(args.participant)
     except ProtocolError as error:

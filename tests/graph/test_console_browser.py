@@ -36,20 +36,47 @@ SCREENSHOTS = ROOT / "docs" / "console"
 """Where the screenshots go when SEMGOAL_SCREENSHOTS=1 (the README shows them); else the test's folder."""
 
 
-def start_console(nodes: NodeProcesses, port: int, log_dir: Path):
-    from semgoal_bringup.graph import node_command
-
-    command = [*node_command("semgoal_bringup", "console_node", {"port": port, "log_dir": str(log_dir)}),
-               "--token", TOKEN]
-    log = open(log_dir.parent / "console.log", "w")  # noqa: SIM115
-    nodes.processes.append(("console_node", subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)))
-    for _ in range(150):
+def start_page(nodes: NodeProcesses, name: str, command: list[str], port: int, log_path: Path, wait_s: float = 30) -> None:
+    """Start ``command`` (it serves the console on ``port``) as one of the test's processes; fail with its log when
+    the page does not answer within ``wait_s``."""
+    log = open(log_path, "w")  # noqa: SIM115
+    nodes.processes.append((name, subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)))
+    deadline = time.monotonic() + wait_s
+    while time.monotonic() < deadline:
         try:
             urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=1)
             return
         except (urllib.error.URLError, ConnectionError):
             time.sleep(0.2)
-    pytest.fail("the console did not start:\n" + (log_dir.parent / "console.log").read_text()[-3000:])
+    pytest.fail(f"{name} did not serve the page:\n" + log_path.read_text()[-3000:])
+
+
+def click_now(browser, selector: str) -> None:
+    """Click what ``selector`` finds now (the page redraws a part when its state changes)."""
+    for _ in range(20):
+        try:
+            browser.find_element(By.CSS_SELECTOR, selector).click()
+            return
+        except StaleElementReferenceException:
+            time.sleep(0.1)
+    pytest.fail(f"{selector} kept being redrawn")
+
+
+def drop_in_bin(browser, block: str, wait_s: float = 60) -> None:
+    """The person's step: ``block`` into the bin, asked again while the robot is at it (one at a time)."""
+    deadline = time.monotonic() + wait_s
+    while f"{block} is in the bin" not in browser.find_element(By.ID, "holds").text:
+        assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
+        click_now(browser, "#human-places button[data-place='bin']")
+        time.sleep(1.0)
+
+
+def start_console(nodes: NodeProcesses, port: int, log_dir: Path):
+    from semgoal_bringup.graph import node_command
+
+    command = [*node_command("semgoal_bringup", "console_node", {"port": port, "log_dir": str(log_dir)}),
+               "--token", TOKEN]
+    start_page(nodes, "console_node", command, port, log_dir.parent / "console.log")
 
 
 @pytest.fixture
@@ -96,14 +123,7 @@ def test_a_person_shares_dc3_with_the_robot_in_the_page(nodes: NodeProcesses, br
     assert "after" not in steps[2] and "after 2 ·" in steps[3], steps  # each block's pick and put, apart from the rest
 
     def click(selector: str) -> None:
-        """Click what ``selector`` finds now (the page redraws a part when its state changes)."""
-        for _ in range(20):
-            try:
-                browser.find_element(By.CSS_SELECTOR, selector).click()
-                return
-            except StaleElementReferenceException:
-                time.sleep(0.1)
-        pytest.fail(f"{selector} kept being redrawn")
+        click_now(browser, selector)
 
     def step_button(index: int, kind: str) -> str:
         return f"#plan-steps li[data-index='{index}'] button.{kind}"
@@ -129,11 +149,7 @@ def test_a_person_shares_dc3_with_the_robot_in_the_page(nodes: NodeProcesses, br
     assert chosen.get_attribute("aria-pressed") == "true"  # the step's block is chosen for the person
     time.sleep(1.0)  # a camera frame of the robot at work beside the person's step
     browser.save_screenshot(str(shots / "human-step.png"))
-    deadline = time.monotonic() + 60
-    while f"{block} is in the bin" not in browser.find_element(By.ID, "holds").text:  # the bin takes one at a time
-        assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
-        click("#human-places button[data-place='bin']")
-        time.sleep(1.0)
+    drop_in_bin(browser, block)
     wait.until(lambda b: "plan succeeded" in b.find_element(By.ID, "status").text)
     holds = browser.find_element(By.ID, "holds").text
     assert all(f"{b} is in the bin" in holds for b in ("red", "green", "blue")), holds

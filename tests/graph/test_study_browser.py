@@ -6,19 +6,14 @@ answers' scores."""
 
 import csv
 import os
-import subprocess
-import time
-import urllib.error
-import urllib.request
 from pathlib import Path
 
-import pytest
 from selenium.common.exceptions import StaleElementReferenceException
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
-from test_console_browser import SCREENSHOTS, TOKEN, browser  # noqa: F401 (the fixture)
+from test_console_browser import SCREENSHOTS, TOKEN, browser, click_now, drop_in_bin, start_page  # noqa: F401 (the fixture)
 
-from conftest import ROOT, NodeProcesses, free_port
+from conftest import NodeProcesses, free_port
 from semgoal_bringup.study import report
 
 PROTOCOL = """
@@ -36,17 +31,9 @@ SUS = {f"q{i}": 4 if i % 2 else 2 for i in range(1, 11)}
 
 
 def start_study(nodes: NodeProcesses, protocol: Path, out: Path, port: int) -> None:
-    log = open(out.parent / "study.log", "w")  # noqa: SIM115
     command = ["./semgoal", "study", "run", str(protocol), "--participant", "P01", "--out", str(out),
                "--port", str(port), "--token", TOKEN]
-    nodes.processes.append(("study", subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)))
-    for _ in range(300):
-        try:
-            urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=1)
-            return
-        except (urllib.error.URLError, ConnectionError):
-            time.sleep(0.2)
-    pytest.fail("study run did not serve the page:\n" + (out.parent / "study.log").read_text()[-3000:])
+    start_page(nodes, "study run", command, port, out.parent / "study.log", wait_s=60)
 
 
 def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, browser, tmp_path: Path) -> None:  # noqa: F811
@@ -62,13 +49,7 @@ def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, brows
         return browser.find_element(By.ID, "study-where").text
 
     def click(selector: str) -> None:
-        for _ in range(20):
-            try:
-                browser.find_element(By.CSS_SELECTOR, selector).click()
-                return
-            except StaleElementReferenceException:
-                time.sleep(0.1)
-        pytest.fail(f"{selector} kept being redrawn")
+        click_now(browser, selector)
 
     def answer(values: dict[str, int]) -> None:
         for key, value in values.items():
@@ -103,11 +84,7 @@ def test_a_participant_runs_a_two_condition_protocol(nodes: NodeProcesses, brows
                and "robot " in b.find_element(By.ID, "doing").text)
     block = browser.find_element(By.ID, "human-action").text.removeprefix("put_in_bin(").rstrip(")")
     browser.save_screenshot(str(shots / "study-at-once.png"))
-    deadline = time.monotonic() + 60
-    while f"{block} is in the bin" not in browser.find_element(By.ID, "holds").text:  # the bin takes one at a time
-        assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
-        click("#human-places button[data-place='bin']")
-        time.sleep(1.0)
+    drop_in_bin(browser, block)
     questionnaires("The study is over")
 
     assert report.main([str(out)]) == 0

@@ -163,14 +163,16 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.world.step(action)
         self._steps += 1
         snapshot = self.world.snapshot()  # one read of the world per step: observation, goal and reward
-        obs = self._obs(snapshot)
-        reward, info = self._reward(obs, snapshot)
+        vector = self.world.semantic_vector(snapshot)
+        obs = self._obs(snapshot, vector)
+        reward, info = self._reward(obs, snapshot, vector)
         return obs, reward, False, self._steps >= self.max_steps, info
 
-    def _reward(self, obs: dict[str, np.ndarray], snapshot: Snapshot | None = None) -> tuple[float, dict[str, Any]]:
-        motion = self.world.motion(snapshot)
+    def _reward(self, obs: dict[str, np.ndarray], snapshot: Snapshot | None = None, vector: np.ndarray | None = None
+                ) -> tuple[float, dict[str, Any]]:
+        motion = self.world.motion(snapshot, vector)
         self._achieved = bool(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
-        reward = float(self.compute_reward(obs["achieved_goal"], obs["desired_goal"], {"motion": motion}))
+        reward = float(self._achieved and self.motion_reward.settled(obs["desired_goal"], motion))  # compute_reward
         return reward, {"subgoal": str(self.subgoal), "subgoal_type": self.kind, "is_success": reward > 0,
                         "motion": motion}
 
@@ -396,11 +398,12 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             reasons.append(f"not at rest (moving: {', '.join(moving) or 'none'}; held: {', '.join(held) or 'none'})")
         return reasons
 
-    def _obs(self, snapshot: Snapshot | None = None) -> dict[str, np.ndarray]:
+    def _obs(self, snapshot: Snapshot | None = None, vector: np.ndarray | None = None) -> dict[str, np.ndarray]:
         snapshot = snapshot or self.world.snapshot()
+        vector = self.world.semantic_vector(snapshot) if vector is None else vector
         goal = np.concatenate([self._target, self._mask])
         return {
             "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal),
-            "achieved_goal": layout.achieved_goal(self.world.semantic_vector(snapshot), self._mask),
+            "achieved_goal": layout.achieved_goal(vector, self._mask),
             "desired_goal": goal,
         }

@@ -146,7 +146,7 @@ class TaskEnv(RgbArrayRendering, gym.Env):
                     else self._padded(snapshot.block_positions))
         obs = {"observation": self.world.observation(snapshot), "achieved_goal": achieved,
                "desired_goal": self._desired.copy()}
-        motion = self.world.motion(snapshot)
+        motion = self.world.motion(snapshot, vector)
         settled = self.motion_reward.settled(np.concatenate(self.layout.encode(self.goal_literals)), motion)
         holds = satisfied(self.layout, vector, self.goal_literals)
         return obs, {"task": self.kind, "is_success": holds and bool(settled), "goal_holds": holds, "motion": motion}

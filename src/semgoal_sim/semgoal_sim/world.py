@@ -85,6 +85,9 @@ class FetchWorld:
         self.robot_joint_names = [m.joint(i).name for i in robot]
         """The robot's joints, in model order (what /joint_states names)."""
         self._robot_qpos, self._robot_qvel = m.jnt_qposadr[robot], m.jnt_dofadr[robot]
+        entries, args = self.layout.groundings["holding"]
+        self._holding_entries = entries[np.argsort(args[:, 0])][: len(self.blocks)]
+        """The semantic vector's ``holding(block)`` entry of each block built, in block order."""
         self.step_count = 0
         self._home_state = self._settle_home()
 
@@ -152,7 +155,10 @@ class FetchWorld:
     # -- control -------------------------------------------------------------------------------------
     def step(self, action: np.ndarray, count: bool = True) -> None:
         """One control step. Non-finite entries count as 0; the rest is clipped to [-1, 1]."""
-        action = np.clip(np.nan_to_num(np.asarray(action, dtype=np.float64), nan=0.0, posinf=0.0, neginf=0.0), -1, 1)
+        action = np.asarray(action, dtype=np.float64)
+        if not np.isfinite(action).all():
+            action = np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0)
+        action = np.minimum(np.maximum(action, -1.0), 1.0)
         m, d = self.model, self.data
         target = d.xpos[self._gripper_body] + action[:3] * MAX_DISPLACEMENT
         d.mocap_pos[0] = np.clip(target, WORKSPACE_LOW + (d.xpos[self._gripper_body] - d.site_xpos[self._grip_site]),
@@ -205,11 +211,13 @@ class FetchWorld:
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
                         snapshot.finger_opening, TABLE_TOP, self.present)
 
-    def motion(self, snapshot: Snapshot | None = None) -> np.ndarray:
-        """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`)."""
+    def motion(self, snapshot: Snapshot | None = None, vector: np.ndarray | None = None) -> np.ndarray:
+        """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`);
+        ``vector``: the snapshot's semantic vector, whose ``holding`` entries say what is held."""
         snapshot = snapshot or self.snapshot()
         speeds = np.linalg.norm(snapshot.block_velocities[:, :3], axis=1)
-        held = held_alone(snapshot.block_positions, snapshot.grip_position, snapshot.finger_opening)
+        held = (held_alone(snapshot.block_positions, snapshot.grip_position, snapshot.finger_opening) if vector is None
+                else vector[self._holding_entries])
         return motion_bits(speeds, held, self.scene.max_blocks)
 
     def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:

@@ -190,3 +190,22 @@ def test_moving_a_held_block_out_of_the_hand_lets_it_go() -> None:
         assert "holding(red)" not in world.layout.readable(world.semantic_vector())
     ok, message = core.move_block("green", np.array([1.25, 0.65, 0.0]))
     assert ok and "hand" not in message  # a block that was not held: the fingers stay as they are
+
+
+@pytest.mark.parametrize(("scene", "blocks"), [("two_blocks", None), ("desk_cleanup", 3)])
+def test_motion_from_the_semantic_vector_is_the_motion_from_the_geometry(scene: str, blocks: int | None) -> None:
+    """The env reads what is held off the step's semantic vector instead of working the holding geometry out again:
+    the same bits on every step of the expert picking a block up and carrying it (held, then not)."""
+    from semgoal_sim.expert import expert_action
+
+    world = FetchWorld(scene, blocks)
+    world.reset(np.array([[1.3, 0.7, 0.425], [1.2, 0.9, 0.425], [1.45, 0.55, 0.425]])[: len(world.blocks)])
+    held = 0
+    for subgoal in (SubGoal("pick", (world.blocks[0],)), SubGoal("put_on_table", (world.blocks[0],))):
+        for _ in range(60):
+            world.step(expert_action(subgoal, world.view()))
+            snapshot = world.snapshot()
+            with_vector = world.motion(snapshot, world.semantic_vector(snapshot))
+            assert np.array_equal(with_vector, world.motion(snapshot)), world.step_count
+            held += bool(with_vector[world.scene.max_blocks:].any())
+    assert 0 < held < 120

@@ -1,7 +1,8 @@
 """`./semgoal bench sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4
 (the same random actions, one process each; the median of the repeats), and per scene what the env's own work
 costs: the same actions through ``FetchWorld.step`` alone, and through ``mj_step`` with the world's substeps
-alone (``env_over_world``, ``world_over_physics``: 1.0 is free)."""
+alone (``env_over_world``, ``world_over_physics``: 1.0 is free). Last, the desk's worlds stepped in a batch
+(:class:`~semgoal_sim.batch.WorldBatch`) on one thread and on a thread per core: ``batch_over_one_core``."""
 
 from __future__ import annotations
 
@@ -14,6 +15,8 @@ import time
 from pathlib import Path
 
 import numpy as np
+
+BATCH_WORLDS = 8
 
 
 def main(argv: list[str]) -> int:
@@ -42,6 +45,7 @@ def main(argv: list[str]) -> int:
         physics_rows[label] = _steps_per_second(
             lambda i, world=world: mujoco.mj_step(world.model, world.data, nstep=N_SUBSTEPS), reset, args.steps,
             args.repeats)
+    batched = _batch_rates(actions, args.repeats)
     reference = _reference_rate(args.steps, args.repeats)
     if reference is not None:
         rows["reference:FetchPickAndPlace-v4"] = reference
@@ -50,7 +54,9 @@ def main(argv: list[str]) -> int:
               "world_steps_per_second": {k: round(v, 1) for k, v in world_rows.items()},
               "physics_steps_per_second": {k: round(v, 1) for k, v in physics_rows.items()},
               "env_over_world": {k: round(rows[k] / world_rows[k], 3) for k in world_rows},
-              "world_over_physics": {k: round(world_rows[k] / physics_rows[k], 3) for k in world_rows}}
+              "world_over_physics": {k: round(world_rows[k] / physics_rows[k], 3) for k in world_rows},
+              "batch_steps_per_second": {str(threads): round(rate, 1) for threads, rate in batched.items()},
+              "batch_over_one_core": round(batched[max(batched)] / batched[1], 3)}
     if reference is not None:
         result["ratio_to_reference"] = {k: round(v / reference, 2) for k, v in rows.items() if not k.startswith("ref")}
     out = sys.stderr if args.json else sys.stdout
@@ -58,10 +64,36 @@ def main(argv: list[str]) -> int:
         detail = (f"   (FetchWorld.step {world_rows[name]:7.1f}, mj_step x {N_SUBSTEPS} {physics_rows[name]:7.1f})"
                   if name in world_rows else "")
         print(f"{name:34s} {rate:8.1f} steps/s{detail}", file=out)
+    print(f"desk_cleanup_4 x {BATCH_WORLDS} worlds in a batch: " + ", ".join(
+        f"{threads} thread(s) {rate:7.1f} world steps/s" for threads, rate in batched.items())
+        + f"  ({result['batch_over_one_core']}x one core)", file=out)
     if args.json:
         sys.stderr.flush()
         print(json.dumps(result))
     return 0
+
+
+def _batch_rates(actions: np.ndarray, repeats: int) -> dict[int, float]:
+    """World steps/s of :data:`BATCH_WORLDS` desk worlds stepped together, on one thread and on one per core."""
+    import os
+
+    from semgoal_core.tasks import get_task
+    from semgoal_sim.batch import WorldBatch
+    from semgoal_sim.world import FetchWorld
+
+    worlds = [FetchWorld("desk_cleanup", 4) for _ in range(BATCH_WORLDS)]
+    starts = [get_task("DC-4").initial_state(seed)[0] for seed in range(BATCH_WORLDS)]
+    steps = max(1, len(actions) // BATCH_WORLDS)
+    batch_actions = actions[: steps * BATCH_WORLDS].reshape(steps, BATCH_WORLDS, 4)
+    rates = {}
+    for threads in sorted({1, os.cpu_count() or 1}):
+        with WorldBatch(worlds, threads) as batch:
+            def reset() -> None:
+                for world, start in zip(worlds, starts, strict=True):
+                    world.reset(start)
+            rates[threads] = BATCH_WORLDS * _steps_per_second(lambda i, b=batch: b.step(batch_actions[i]), reset,
+                                                              steps, repeats)
+    return rates
 
 
 def _steps_per_second(step, reset, steps: int, repeats: int) -> float:

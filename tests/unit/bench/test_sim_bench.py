@@ -21,3 +21,4 @@ def test_bench_sim_reports_every_scene_and_the_reference() -> None:
     assert set(result["ratio_to_reference"]) == scenes
     for ratio in ("env_over_world", "world_over_physics"):  # the env's and the world's own work, each in (0, 1.5)
         assert set(result[ratio]) == scenes and all(0.0 < value < 1.5 for value in result[ratio].values()), result
+    assert set(result["batch_steps_per_second"]) >= {"1"} and result["batch_over_one_core"] > 0, result

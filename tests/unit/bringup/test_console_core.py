@@ -92,3 +92,11 @@ def test_the_camera_view_draws_each_estimate_where_it_projects() -> None:
     u, v = (camera.project(np.array([[1.3, 0.75, 0.4]]))[0] + 0.5) * SCALE
     assert tuple(image[int(v), int(u)]) != (200, 200, 200)  # the cross is drawn on the estimate
     assert (image[:, :200] == 200).all()  # and nothing for the block never seen
+
+
+def test_the_console_refuses_a_person_that_is_no_agent_before_it_starts(capsys) -> None:
+    from semgoal_bringup.tools import console
+
+    with pytest.raises(SystemExit) as stopped:
+        console.main(["--person", "robot-arm"])
+    assert stopped.value.code == 2 and "a named person 'human:NAME'" in capsys.readouterr().err

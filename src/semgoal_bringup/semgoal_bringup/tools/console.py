@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, region_taken, sentences, unsure_sentences
-from semgoal_core.names import Assignee, StepStatus
+from semgoal_core.names import Assignee, StepStatus, agent
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
@@ -132,6 +132,8 @@ class Console:
         self._camera: tuple[float, bytes] = (0.0, b"")
         self._logged_plan: tuple = ()
         self.study = None
+        self.person = str(Assignee.HUMAN)
+        """Who the page's person is in the plan: ``human``, or a named person (``human:alice``, ``--person``)."""
         """The participant's session in study mode (:class:`~semgoal_bringup.study.console_study.StudyDriver`)."""
 
     def open_log(self, log_dir: Path) -> None:
@@ -181,7 +183,7 @@ class Console:
             steps = [{"index": s.index, "action": s.action, "status": s.status, "assignee": s.assignee,
                       "after": list(s.after), "active": s.status == "active" and plan.status in ("executing", "paused")}
                      for s in plan.steps]
-        human = next((s for s in steps if s["active"] and s["assignee"] == Assignee.HUMAN), None)
+        human = next((s for s in steps if s["active"] and s["assignee"] == self.person), None)
         blocks = [b.name for b in world.blocks] if world else []
         return {"type": "state", "scene": world.scene if world else "", "task": world.task if world else "",
                 "episode": world.episode if world else 0, "step": int(world.step) if world else 0,
@@ -193,7 +195,7 @@ class Console:
                 if semantic else [],
                 "plan": {"goal": plan.goal, "status": plan.status, "revision": plan.revision,
                          "replans": plan.replans, "current": plan.current, "steps": steps} if plan else None,
-                "human_step": human, "doing": {s["assignee"]: s["action"] for s in steps if s["active"]},
+                "person": self.person, "human_step": human, "doing": {s["assignee"]: s["action"] for s in steps if s["active"]},
                 "events": self.events,
                 "study": {**self.study.session.view(), "message": self.study.message} if self.study else None}
 
@@ -441,12 +443,18 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--token", default=os.environ.get("SEMGOAL_CONSOLE_TOKEN", ""),
                         help="the token every request must carry (default: $SEMGOAL_CONSOLE_TOKEN, else a new one)")
     parser.add_argument("--log-dir", help="where the study log CSVs go (default study-logs)")
+    parser.add_argument("--person", default=Assignee.HUMAN, help="who this page's person is in the plan: human "
+                        "(default) or a named person human:NAME, one console each")
     parser.add_argument("--study", type=Path, help="study mode: a protocol (YAML) to walk the participant through")
     parser.add_argument("--participant", help="study mode: the participant's ID (all that identifies them)")
     parser.add_argument("--out", type=Path, default=Path("study-results"), help="study mode: where sessions go")
     parser.add_argument("--row", type=int, help="study mode: the row of the conditions' Latin square (default: "
                         "from the participant's ID)")
     args, ros_args = parser.parse_known_args(argv)
+    try:
+        person = agent(args.person)
+    except ValueError as error:
+        parser.error(str(error))
     study = None
     if args.study is not None:
         from semgoal_bringup.study.protocol import ProtocolError, check_participant, load_protocol
@@ -463,6 +471,7 @@ def main(argv: list[str] | None = None) -> int:
     console = None
     try:
         console = Console()
+        console.person = person
         values = declare(console.client.node, PARAMS)
         if study is not None:
             from semgoal_bringup.study.console_study import StudyDriver

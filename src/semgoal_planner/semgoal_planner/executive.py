@@ -373,7 +373,8 @@ class Executive:
         self._check_reach()
 
     def _start_ready(self) -> bool:
-        """Start each free agent's first ready step (a person's pick is done as it starts); whether any started."""
+        """Start the first ready step (its predecessors over) whose agent is free and that waits for nothing
+        (:meth:`_waits`); a person's pick is done as it starts. Whether one started: called until none does."""
         obs, turns, working = self.observation, turns_of(self.steps), self.working
         after = self.orderings() if self.concurrent else in_sequence(len(self.steps))
         ready = [i for i, step in enumerate(self.steps)

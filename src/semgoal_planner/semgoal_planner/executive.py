@@ -162,6 +162,9 @@ class Executive:
     current: int = 0
     status: str = PlanStatus.EMPTY
     revision: int = 0
+    steps_revision: int = 0
+    """The revision at which the steps last changed (a plan, a re-plan, an edit): an edit made against an earlier one
+    names steps that may be others now; one made since, while steps were done, names the same steps."""
     replans: int = 0
     message: str = ""
     observation: Observation | None = None
@@ -223,6 +226,7 @@ class Executive:
                 "steps": [{"subgoal": str(s.subgoal), "status": str(s.status), "assignee": str(s.assignee),
                            "edited": s.edited} for s in self.steps],
                 "current": self.current, "status": str(self.status), "revision": self.revision,
+                "steps_revision": self.steps_revision,
                 "replans": self.replans, "message": self.message, "goal_steps": self.goal_steps,
                 "step_budget": self.step_budget, "last_tick": self.last_tick}
 
@@ -242,6 +246,7 @@ class Executive:
         for name in ("current", "replans", "goal_steps", "step_budget", "last_tick"):
             setattr(self, name, int(snapshot[name]))
         self.revision = int(snapshot["revision"])
+        self.steps_revision = int(snapshot.get("steps_revision", self.revision))
         for step in self.steps:  # an active step's clocks start again from here, its confirmation too
             step.started, step.confirmation = self.last_tick, Settling(self.settle_steps)
         self.goal_settling.reset()
@@ -506,6 +511,7 @@ class Executive:
         self.status = PlanStatus.AWAITING_APPROVAL if self.require_approval else PlanStatus.EXECUTING
         self.contradicted_since = None
         self._changed(message)
+        self.steps_revision = self.revision
 
     def _finish(self, status: str, message: str) -> None:
         self.status = status
@@ -531,16 +537,18 @@ class Executive:
     def edit(self, op: str, index: int = 0, to_index: int = 0, action: str = "", revision: int = 0) -> tuple[bool, str]:
         """Apply one operator edit; refuse it (plan unchanged) with the reason when it is invalid.
 
-        ``revision`` (non-zero) is the plan revision the operator saw: step numbers name other steps
-        once a re-plan has rebuilt the plan, so an edit made against an older revision is refused."""
+        ``revision`` (non-zero) is the plan revision the operator saw: step numbers name other steps once a re-plan
+        or an edit has changed the steps, so an edit made against a revision before that is refused. Steps done
+        since change no step's number: a person's claim is not refused because the robot finished a step."""
         op = op.strip().lower()
         if op not in EDIT_OPS:
             return False, f"unknown edit {op!r}; valid: {', '.join(EDIT_OPS)}"
         if self.status in FINISHED:
             return False, f"no plan to edit (plan is {self.status}); send a goal first"
-        if revision and revision != self.revision:
-            return False, (f"{op} refused: it was made against plan revision {revision}, and the plan is at "
-                           f"revision {self.revision} now; look at it again (plan show)")
+        if revision and not self.steps_revision <= revision <= self.revision:
+            return False, (f"{op} refused: it was made against plan revision {revision}, and the plan's steps are "
+                           f"those of revision {self.steps_revision} on (now {self.revision}); look at it again "
+                           "(plan show)")
         if op == "approve":
             if self.status != PlanStatus.AWAITING_APPROVAL:
                 return False, f"nothing to approve: the plan is {self.status}"
@@ -624,6 +632,7 @@ class Executive:
                                                      or any(steps[j].status not in OVER for j in after[i])):
                 step.status = StepStatus.PENDING
         self._changed(f"{op} applied")
+        self.steps_revision = self.revision
         self._advance()
         return True, self.message
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Callable, Iterable
+from operator import itemgetter
 
 Row = tuple[int, ...]
 Template = tuple[int, ...]
@@ -27,24 +28,35 @@ class Relation:
 
     def __init__(self) -> None:
         self.rows: dict[Row, int] = {}
-        self._indices: dict[tuple[int, ...], dict[Row, list[Row]]] = {}
+        self._indices: dict[tuple[int, ...], tuple[Callable[[Row], Row], dict[Row, list[Row]]]] = {}
 
     def add(self, row: Row, arrival: int) -> bool:
         if row in self.rows:
             return False
         self.rows[row] = arrival
-        for positions, index in self._indices.items():
-            index.setdefault(tuple(row[p] for p in positions), []).append(row)
+        for key, index in self._indices.values():
+            index.setdefault(key(row), []).append(row)
         return True
 
     def index(self, positions: tuple[int, ...]) -> dict[Row, list[Row]]:
-        index = self._indices.get(positions)
-        if index is None:
-            index = {}
+        found = self._indices.get(positions)
+        if found is None:
+            key = _picker(positions)
+            index: dict[Row, list[Row]] = {}
             for row in self.rows:
-                index.setdefault(tuple(row[p] for p in positions), []).append(row)
-            self._indices[positions] = index
-        return index
+                index.setdefault(key(row), []).append(row)
+            found = self._indices[positions] = (key, index)
+        return found[1]
+
+
+def _picker(positions: tuple[int, ...]) -> Callable[[Row], Row]:
+    """The tuple of a row's entries at ``positions`` (an index key), as one C call where it can be."""
+    if len(positions) > 1:
+        return itemgetter(*positions)
+    if positions:
+        (position,) = positions
+        return lambda row: (row[position],)
+    return lambda _: ()
 
 
 class Schema:
@@ -208,18 +220,23 @@ class Exploration:
         types = self.schemas[s].types
         rows = step.index.get(tuple(values[a] if a >= 0 else ~a for a in step.key), ())
         arrivals, last = (None, 0) if step.relation is None else (step.relation.rows, seed_arrival - step.earlier)
+        same, binds, filters, last_step = step.same, step.binds, step.filters, k + 1 == len(steps)
         for row in rows:
             if arrivals is not None and arrivals[row] > last:
                 break  # the index lists atoms in arrival order
-            if any(row[p] != row[q] for p, q in step.same):
+            if same and any(row[p] != row[q] for p, q in same):
                 continue
-            for p, a in step.binds:
+            for p, a in binds:
                 allowed = types[a]
                 if allowed is not None and row[p] not in allowed:
                     break
                 values[a] = row[p]
             else:
-                if all(check(values) for check in step.filters):
+                if filters and not all(check(values) for check in filters):
+                    continue
+                if last_step:
+                    self._found(s, tuple(values))
+                else:
                     self._join(s, values, steps, k + 1, seed_arrival)
         for _, a in step.binds:
             values[a] = None

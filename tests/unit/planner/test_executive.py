@@ -203,16 +203,22 @@ def test_valid_edits_apply_and_invalid_ones_change_nothing() -> None:
     assert ex.edit("resume")[0] and ex.active is not None
 
 
-def test_an_edit_made_against_an_older_plan_revision_is_refused() -> None:
+def test_an_edit_made_against_steps_that_changed_since_is_refused() -> None:
+    """A step done since changes no step's number: the edit applies. A re-plan since does: it is refused."""
     ex = executive()
     ex.set_goal("in_bin(red) & in_bin(green)")
     seen = ex.revision
-    ex.observe(observe(["holding(green)"], 20))  # step 0 done: the plan moved on
+    ex.observe(observe(["holding(green)"], 20))  # step 0 done: the plan moved on, its steps as they were
     assert ex.revision > seen
-    before = copy.deepcopy(ex.steps)
     ok, message = ex.edit("assign", 3, action="human", revision=seen)
+    assert ok, message
+    seen = ex.revision
+    assert ex.replan("asked by the operator", by_operator=True)[0]
+    before = copy.deepcopy(ex.steps)
+    ok, message = ex.edit("assign", 3, action="robot", revision=seen)
     assert not ok and f"revision {seen}" in message and "plan show" in message and ex.steps == before
-    ok, message = ex.edit("assign", 3, action="human", revision=ex.revision)
+    assert not ex.edit("assign", 3, action="robot", revision=ex.revision + 1)[0]  # a revision not made yet
+    ok, message = ex.edit("assign", 3, action="robot", revision=ex.revision)
     assert ok, message
 
 

@@ -75,10 +75,13 @@ class NodeProcesses:
     def start(self, package: str, executable: str, params: dict | None = None) -> subprocess.Popen:
         from semgoal_bringup.graph import node_command
 
-        command = node_command(package, executable, params)
-        log = open(self.log_dir / f"{executable}-{len(self.processes)}.log", "w")  # noqa: SIM115
+        return self.run(executable, node_command(package, executable, params))
+
+    def run(self, name: str, command: list[str]) -> subprocess.Popen:
+        """Start ``command`` as one of the test's processes (its log named after ``name``)."""
+        log = open(self.log_dir / f"{name}-{len(self.processes)}.log", "w")  # noqa: SIM115
         process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
-        self.processes.append((executable, process))
+        self.processes.append((name, process))
         return process
 
     def logs(self) -> str:

@@ -25,18 +25,18 @@ from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 REALTIME_HZ = 25.0
 
 
-def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH,
-             record: bool = True) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
+def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH, record: bool = True,
+             composed: bool = False) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
     """(control steps, wall seconds) per episode through the graph seeing by ``sight``, unrecorded and (with
     ``record``) recorded as MCAP (into a scratch folder, as ``eval --via-ros --record`` does): each start once of
     each kind, in turns on the same running graph, so that the ratio does not depend on a graph's start or on
-    what else the machine does."""
+    what else the machine does. ``composed``: the graph's nodes in one process (:mod:`semgoal_bringup.composed`)."""
     import tempfile
     from pathlib import Path
 
     plain, recorded = [], []
     with tempfile.TemporaryDirectory() as scratch, \
-            running_graph(task, seed, client_name="semgoal_bench", watch=False, sight=sight) as client:
+            running_graph(task, seed, client_name="semgoal_bench", watch=False, sight=sight, composed=composed) as client:
         for i in range(episodes):
             kinds = ((plain, None), (recorded, Path(scratch) / f"{i}.mcap")) if record else ((plain, None),)
             for runs, path in kinds:
@@ -90,6 +90,14 @@ def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
             "pixels_steps": [s for s, _ in runs]}
 
 
+def composed_rates(task: str, episodes: int, seed: int, processes_rate: float, local_rate: float) -> dict:
+    """The lockstep episodes again with the graph's nodes in one process, beside four processes and in process."""
+    runs, _ = lockstep(task, episodes, seed, record=False, composed=True)
+    rate = statistics.median(steps / wall for steps, wall in runs if wall > 0)
+    return {"lockstep_composed_steps_per_s": round(rate, 1), "composed_over_in_process": round(rate / local_rate, 3),
+            "composed_over_processes": round(rate / processes_rate, 3)}
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench graph", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default="MC-2")
@@ -97,6 +105,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--seed", type=int, default=3_000_000)
     parser.add_argument("--realtime-s", type=float, default=20.0, help="seconds of realtime running")
     parser.add_argument("--pixels", action="store_true", help="also the lockstep episodes with everything on the camera")
+    parser.add_argument("--composed", action="store_true", help="also the lockstep episodes with the four nodes in one "
+                        "process (graph_node)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     import torch
@@ -116,11 +126,15 @@ def main(argv: list[str]) -> int:
                   for (steps, wall), (plain_steps, plain_wall) in zip(recorded, graph, strict=True)), 3),
               "graph_steps": [s for s, _ in graph], "in_process_steps": [s for s, _ in local],
               **(from_pixels(task, args.episodes, args.seed, rate(graph)) if args.pixels else {}),
+              **(composed_rates(task, args.episodes, args.seed, rate(graph), rate(local)) if args.composed else {}),
               "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
     print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
           f"{args.episodes}); in one process: {result['in_process_steps_per_s']} steps/s; "
           f"ratio {result['graph_over_in_process']}; recording every topic: {result['lockstep_recorded_steps_per_s']} "
           f"steps/s ({result['recorded_over_unrecorded']} of unrecorded, median over the pairs of one start)")
+    if args.composed:
+        print(f"lockstep with the four nodes in one process: {result['lockstep_composed_steps_per_s']} control steps/s, "
+              f"{result['composed_over_in_process']} of in process, {result['composed_over_processes']} of four processes")
     if args.pixels:
         print(f"lockstep from pixels (planner and policy on the camera): {result['lockstep_pixels_steps_per_s']} "
               f"control steps/s, {result['pixels_over_truth']} of ground truth's")

@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+from semgoal_bringup.composed import NODE_NAMES
 from semgoal_core.tasks import get_task
 from semgoal_ros.domains import domain_for_this_process
 
@@ -174,14 +175,34 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "", record: str = "",
-                foxglove: str = "", console: str = "", sight: Sight = TRUTH) -> dict[str, subprocess.Popen]:
+                foxglove: str = "", console: str = "", sight: Sight = TRUTH,
+                composed: bool = False) -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
     ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``, ``console``: ports for the
-    live view and the console; ``sight``: what the planner and the policy see by."""
-    return {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-            for package, executable, params in graph_nodes(task_name, seed, mode, models, record, foxglove, console,
-                                                           sight=sight)
-            if executable not in skip}
+    live view and the console; ``sight``: what the planner and the policy see by; ``composed``: the graph's own
+    nodes in one process (:mod:`semgoal_bringup.composed`), the others apart."""
+    nodes = [node for node in graph_nodes(task_name, seed, mode, models, record, foxglove, console, sight=sight)
+             if node[1] not in skip]
+    together = [node for node in nodes if composed and node[1] in NODE_NAMES]
+    processes = {executable: subprocess.Popen(node_command(package, executable, params, log_level))
+                 for package, executable, params in nodes if (package, executable, params) not in together}
+    if together:
+        processes["graph_node"] = subprocess.Popen(composed_command(together, log_level))
+    return processes
+
+
+def composed_command(nodes: list[tuple[str, str, dict]], log_level: str | None = None) -> list[str]:
+    """`./semgoal run semgoal_bringup graph_node --nodes ... --ros-args --params-file semgoal.yaml -p node:key:=value`:
+    the params file, and over it each node's own values, scoped to its name (a plain ``-p`` would set every node's)."""
+    command = [str(Path(os.environ["SEMGOAL_ROOT"]) / "semgoal"), "run", "semgoal_bringup", "graph_node",
+               "--nodes", ",".join(executable for _, executable, _ in nodes),
+               "--ros-args", "--params-file", str(params_file())]
+    if log_level:
+        command += ["--log-level", log_level]
+    for _, executable, params in nodes:
+        for key, value in params.items():
+            command += ["-p", f"{NODE_NAMES[executable]}:{key}:={value}"]
+    return command
 
 
 def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
@@ -196,14 +217,14 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
 
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
-                  models: str = "", watch: bool = True, sight: Sight = TRUTH) -> Iterator:
+                  models: str = "", watch: bool = True, sight: Sight = TRUTH, composed: bool = False) -> Iterator:
     """The four nodes and a :class:`GraphClient` on a ROS domain of their own (:mod:`semgoal_ros.domains`), ready;
     all stopped on exit. ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do
     not come up."""
     from semgoal_ros.client import GraphClient
 
     with domain_for_this_process():
-        processes = start_graph(task_name, seed, mode=mode, models=models, sight=sight)
+        processes = start_graph(task_name, seed, mode=mode, models=models, sight=sight, composed=composed)
         client = None
         try:
             client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")

@@ -193,27 +193,37 @@ class RecentAnswers:
 def run_node(node_class: type, args: list[str] | None = None) -> None:
     """The executables' main: init, spin until Ctrl-C or shutdown, clean up (rclpy.init returns None on Jazzy).
     A node refusing a start-up parameter value exits with status 2 and the reason."""
+    run_nodes([node_class], args)
+
+
+def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
+    """:func:`run_node` for several nodes in one process, spun by one single-threaded executor: each is still a node
+    of its own, with its own name and parameters."""
     import rclpy
-    from rclpy.executors import ExternalShutdownException
+    from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 
     from semgoal_ros.parameters import ParameterValueError
 
     rclpy.init(args=args)
+    nodes = []
     try:
-        node = node_class()
+        nodes = [node_class() for node_class in node_classes]
     except (KeyboardInterrupt, ExternalShutdownException):
-        _shutdown(rclpy)
+        _destroy(rclpy, nodes)
         return
     except ParameterValueError as error:  # a bad start-up value: one line that says which and why, exit 2
         rclpy.logging.get_logger("semgoal").error(str(error))
-        _shutdown(rclpy)
+        _destroy(rclpy, nodes)
         raise SystemExit(2) from None
     except Exception:
         if rclpy.ok():
             raise
         return  # SIGINT shut the context down while the node built its servers (rcl: context invalid)
+    executor = SingleThreadedExecutor()
+    for node in nodes:
+        executor.add_node(node)
     try:
-        rclpy.spin(node)
+        executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:
@@ -221,8 +231,13 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
             raise
         # SIGINT shut the context down while the executor built its wait set (rclpy raises RCLError there)
     finally:
+        _destroy(rclpy, nodes)
+
+
+def _destroy(rclpy, nodes: list) -> None:
+    for node in nodes:
         node.destroy_node()
-        _shutdown(rclpy)
+    _shutdown(rclpy)
 
 
 def _shutdown(rclpy) -> None:

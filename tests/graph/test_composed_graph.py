@@ -1,0 +1,44 @@
+"""The four nodes in one process (`graph_node`, one executor) are the same graph: the same node names and
+parameters, and in lockstep the steps and re-plans of the in-process episode; `bench graph --composed` measures
+it beside four processes."""
+
+import json
+import subprocess
+
+import pytest
+
+from conftest import ROOT, GraphProbe, NodeProcesses
+from semgoal_bringup.experiments.episodes import make_agent
+from semgoal_bringup.graph import NODES, composed_command, node_params
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_ros.client import GraphClient
+
+TASK, SEED = "MC-3", 3_000_002
+"""A start that re-plans in process (the lockstep graph test's)."""
+
+
+def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    expected = make_agent("hierarchical", get_task(TASK).scene).run(TASK, SEED)
+    params = node_params(TASK, SEED, "lockstep")
+    nodes.run("graph_node", composed_command([(package, exe, params[exe]) for package, exe in NODES]))
+    client = GraphClient("semgoal_test_operator", watch=False)
+    try:
+        assert client.wait_ready(), nodes.logs()
+        names = {name for name, _ in probe.node.get_node_names_and_namespaces()}
+        assert {"sim", "predicates", "planner", "policy"} <= names, names
+        ok, message = client.reset(TASK, SEED)
+        assert ok, message
+        result = client.execute(TASK, max_steps=TASK_STEP_BUDGET)
+    finally:
+        client.close()
+    assert (result.success, result.control_steps, result.replans) == (expected.success, expected.steps,
+                                                                      expected.replans), result.message
+
+
+@pytest.mark.timeout(600)
+def test_bench_graph_runs_the_composed_graph_at_a_tiny_size() -> None:
+    out = subprocess.run([str(ROOT / "semgoal"), "bench", "graph", "--task", "MC-2", "--episodes", "1", "--realtime-s", "2",
+                          "--composed", "--json"], capture_output=True, text=True, timeout=560, check=True, cwd=ROOT)
+    result = json.loads(out.stdout.strip().splitlines()[-1])
+    assert result["lockstep_composed_steps_per_s"] > 0 and result["composed_over_processes"] > 0  # one warm-up episode
+    assert result["graph_over_in_process"] > 0 and result["realtime"]["steps"] > 0

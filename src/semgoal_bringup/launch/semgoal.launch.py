@@ -3,7 +3,8 @@
 Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``models``, ``rviz`` (true | false),
 ``record`` (an MCAP file), ``foxglove`` and ``console`` (ports for the live view and the console), ``state_dir``
 (the planner's journal: a respawned planner carries on with the plan), ``perception`` and ``policy_input``
-(truth | camera: what the planner and the policy see by);
+(truth | camera: what the planner and the policy see by), ``composed`` (true: the graph's nodes in one process,
+``graph_node``);
 ``--show-args`` lists them. The nodes and their parameters come from ``semgoal_bringup.graph``, the
 definition `./semgoal up` starts from, over the installed parameter file; a node that dies is started
 again, as under `./semgoal up`.
@@ -14,7 +15,18 @@ from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_nodes, params_file, run_state_dir, rviz_config, scene_task
+from semgoal_bringup.composed import NODE_NAMES
+from semgoal_bringup.graph import (
+    LAUNCH_ARGUMENTS,
+    Sight,
+    composed_arguments,
+    composed_parameters,
+    graph_nodes,
+    params_file,
+    run_state_dir,
+    rviz_config,
+    scene_task,
+)
 
 
 def generate_launch_description() -> LaunchDescription:
@@ -27,12 +39,15 @@ def launch_nodes(context) -> list[Node]:
     """The nodes for the arguments given (a task of another scene than ``scene`` stops the launch with why)."""
     value = {name: LaunchConfiguration(name).perform(context) for name, _, _ in LAUNCH_ARGUMENTS}
     task = scene_task(value["scene"], value["task"])
-    nodes = [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
-                  parameters=[str(params_file()), params])
-             for package, executable, params in graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"],
-                                                            value["record"], value["foxglove"], value["console"],
-                                                            run_state_dir(value["state_dir"]),
-                                                            Sight(value["perception"], value["policy_input"]))]
+    graph = graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"], value["record"], value["foxglove"],
+                        value["console"], run_state_dir(value["state_dir"]), Sight(value["perception"], value["policy_input"]))
+    together = [node for node in graph if value["composed"].lower() in ("true", "1", "yes") and node[1] in NODE_NAMES]
+    nodes = [Node(package="semgoal_bringup", executable="graph_node", output="screen", respawn=True, respawn_delay=2.0,
+                  arguments=composed_arguments(together), ros_arguments=composed_parameters(together),
+                  parameters=[str(params_file())])] if together else []
+    nodes += [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
+                   parameters=[str(params_file()), params])
+              for package, executable, params in graph if (package, executable, params) not in together]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
     return nodes

@@ -82,6 +82,8 @@ LAUNCH_ARGUMENTS = (
      "(empty: a new temporary folder for this run)"),
     ("perception", "truth", "truth: predicates on the simulator's poses | camera: perception_node on the RGB-D camera"),
     ("policy_input", "truth", "truth: the policy reads the simulator's poses | camera: the perceived ones"),
+    ("composed", "false", "true: the sim, predicates (or perception), planner and policy nodes in one process on one "
+     "executor (graph_node) | false: a process each"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -183,26 +185,36 @@ def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: st
     nodes in one process (:mod:`semgoal_bringup.composed`), the others apart."""
     nodes = [node for node in graph_nodes(task_name, seed, mode, models, record, foxglove, console, sight=sight)
              if node[1] not in skip]
+    return {name: subprocess.Popen(command) for name, command in graph_commands(nodes, composed, log_level).items()}
+
+
+def graph_commands(nodes: list[tuple[str, str, dict]], composed: bool = False, log_level: str | None = None
+                   ) -> dict[str, list[str]]:
+    """The command of each process that runs ``nodes`` (:func:`graph_nodes`), by its name: a process per node, or
+    (``composed``) the graph's own nodes in one, ``graph_node``, and the others a process each."""
     together = [node for node in nodes if composed and node[1] in NODE_NAMES]
-    processes = {executable: subprocess.Popen(node_command(package, executable, params, log_level))
-                 for package, executable, params in nodes if (package, executable, params) not in together}
-    if together:
-        processes["graph_node"] = subprocess.Popen(composed_command(together, log_level))
-    return processes
+    commands = {executable: node_command(package, executable, params, log_level)
+                for package, executable, params in nodes if (package, executable, params) not in together}
+    return {**({"graph_node": composed_command(together, log_level)} if together else {}), **commands}
 
 
 def composed_command(nodes: list[tuple[str, str, dict]], log_level: str | None = None) -> list[str]:
     """`./semgoal run semgoal_bringup graph_node --nodes ... --ros-args --params-file semgoal.yaml -p node:key:=value`:
     the params file, and over it each node's own values, scoped to its name (a plain ``-p`` would set every node's)."""
     command = [str(Path(os.environ["SEMGOAL_ROOT"]) / "semgoal"), "run", "semgoal_bringup", "graph_node",
-               "--nodes", ",".join(executable for _, executable, _ in nodes),
-               "--ros-args", "--params-file", str(params_file())]
-    if log_level:
-        command += ["--log-level", log_level]
-    for _, executable, params in nodes:
-        for key, value in params.items():
-            command += ["-p", f"{NODE_NAMES[executable]}:{key}:={value}"]
-    return command
+               *composed_arguments(nodes), "--ros-args", "--params-file", str(params_file())]
+    return command + (["--log-level", log_level] if log_level else []) + composed_parameters(nodes)
+
+
+def composed_arguments(nodes: list[tuple[str, str, dict]]) -> list[str]:
+    """``graph_node``'s own arguments: which nodes it runs."""
+    return ["--nodes", ",".join(executable for _, executable, _ in nodes)]
+
+
+def composed_parameters(nodes: list[tuple[str, str, dict]]) -> list[str]:
+    """Each node's own values as ROS arguments scoped to its name, ``-p sim:task:=DC-3``."""
+    return [arg for _, executable, params in nodes for key, value in params.items()
+            for arg in ("-p", f"{NODE_NAMES[executable]}:{key}:={value}")]
 
 
 def stop_graph(processes: dict[str, subprocess.Popen]) -> None:

@@ -16,7 +16,7 @@ import shutil
 import subprocess
 import time
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_nodes, node_command, run_state_dir, rviz_config, scene_task, stop_graph
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_commands, graph_nodes, run_state_dir, rviz_config, scene_task, stop_graph
 from semgoal_core.names import Mode
 
 DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
@@ -51,37 +51,37 @@ def main(argv: list[str]) -> int:
                             run_state_dir(args.state_dir), Sight(args.perception, args.policy_input))
     except ValueError as error:
         parser.error(str(error))
-    processes = {executable: start_node(package, executable, params, args.log_level)
-                 for package, executable, params in nodes}
+    commands = graph_commands(nodes, args.composed.lower() in ("true", "1", "yes"), args.log_level)
+    processes = {name: start_process(name, command) for name, command in commands.items()}
     if rviz:
         processes["rviz2"] = subprocess.Popen(["rviz2", "-d", str(rviz_config())])
     print(f"[up] {', '.join(processes)} running (ROS_DOMAIN_ID={os.environ.get('ROS_DOMAIN_ID')}); "
           f"send a goal with ./semgoal goal {task.name}; Ctrl-C stops", flush=True)
-    restarts = {executable: Restarts() for executable in processes}
+    restarts = {name: Restarts() for name in processes}
     try:
         while True:
             time.sleep(0.2)
-            for package, executable, params in nodes:
-                process = processes[executable]
+            for name, command in commands.items():
+                process = processes[name]
                 if process.poll() is None:
                     continue
-                delay = restarts[executable].next_delay()
+                delay = restarts[name].next_delay()
                 if delay is None:
-                    print(f"[up] {executable} keeps dying ({MAX_RESTARTS} restarts within {RESTART_WINDOW_S:.0f} s); "
+                    print(f"[up] {name} keeps dying ({MAX_RESTARTS} restarts within {RESTART_WINDOW_S:.0f} s); "
                           "stopping the graph", flush=True)
                     return 1
-                print(f"[up] {executable} exited with {process.returncode}; restarting it in {delay:.0f} s", flush=True)
+                print(f"[up] {name} exited with {process.returncode}; restarting it in {delay:.0f} s", flush=True)
                 time.sleep(delay)
-                processes[executable] = start_node(package, executable, params, args.log_level)
+                processes[name] = start_process(name, command)
     except KeyboardInterrupt:
         return 0
     finally:
         stop_graph(processes)
 
 
-def start_node(package: str, executable: str, params: dict, log_level: str) -> subprocess.Popen:
-    process = subprocess.Popen(node_command(package, executable, params, log_level))
-    print(f"[up] started {executable} (pid {process.pid})", flush=True)
+def start_process(name: str, command: list[str]) -> subprocess.Popen:
+    process = subprocess.Popen(command)
+    print(f"[up] started {name} (pid {process.pid})", flush=True)
     return process
 
 

@@ -119,3 +119,13 @@ def test_the_rviz_file_shows_topics_the_graph_has() -> None:
     shown = {d["Topic"]["Value"] for d in view["Visualization Manager"]["Displays"] if "Topic" in d}
     assert shown == {topics.MARKERS, topics.PLAN_MARKERS, topics.CAMERA_IMAGE}
     assert view["Visualization Manager"]["Global Options"]["Fixed Frame"] == "world"
+
+
+def test_composed_puts_the_graphs_nodes_in_one_process_with_their_own_values(launch_file) -> None:
+    launched = _launched(launch_file, task="MC-3", seed="7", mode="lockstep", composed="true", console="8080")
+    composed, *others = launched
+    assert composed.kwargs["executable"] == "graph_node" and composed.kwargs["parameters"] == [str(params_file())]
+    assert composed.kwargs["arguments"] == ["--nodes", "sim_node,predicate_node,planner_node,policy_node"]
+    scoped = composed.kwargs["ros_arguments"]
+    assert {"sim:task:=MC-3", "sim:seed:=7", "sim:mode:=lockstep", "planner:scene:=three_blocks"} <= set(scoped)
+    assert [n.kwargs["executable"] for n in others] == ["console_node"]

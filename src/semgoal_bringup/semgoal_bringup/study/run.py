@@ -9,7 +9,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from semgoal_bringup.graph import graph_nodes, stop_graph
+from semgoal_bringup.graph import graph_commands, graph_nodes, stop_graph
 from semgoal_bringup.study.protocol import ProtocolError, check_participant, load_protocol
 from semgoal_core.names import Mode
 from semgoal_core.tasks import get_task
@@ -18,7 +18,7 @@ from semgoal_ros.package_data import share_path
 
 def main(argv: list[str]) -> int:
     from semgoal_bringup.tools import console
-    from semgoal_bringup.up import start_node
+    from semgoal_bringup.up import start_process
 
     parser = argparse.ArgumentParser(prog="semgoal study run", description=__doc__.split("\n\n")[0])
     parser.add_argument("protocol", type=Path, help="a protocol (YAML), or the name of a shipped one: "
@@ -37,7 +37,7 @@ def main(argv: list[str]) -> int:
         parser.error(str(error))
     first = protocol.conditions[0].episodes[0]
     nodes = graph_nodes(get_task(first.world).name, first.seed, Mode.REALTIME)
-    processes = {executable: start_node(package, executable, params, "info") for package, executable, params in nodes}
+    processes = {name: start_process(name, command) for name, command in graph_commands(nodes, log_level="info").items()}
     try:
         return console.main(["--study", str(args.protocol), "--participant", participant, "--out", str(args.out),
                              "--port", str(args.port), *(["--token", args.token] if args.token else []),

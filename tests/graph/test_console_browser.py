@@ -237,10 +237,13 @@ def test_from_pixels_the_page_shows_the_camera_and_marks_what_the_perception_is_
         assert moved, message
     finally:
         client.close()
-    wait.until(lambda b: any("green" in li.text and "red" in li.text
-                             for li in b.find_elements(By.CSS_SELECTOR, "#holds li.unsure")))
-    unsure = browser.find_element(By.CSS_SELECTOR, "#holds li.unsure")
-    assert "sure)" in unsure.text and unsure.value_of_css_property("font-style") == "italic", unsure.text
+    def unsure_line(b) -> tuple[str, str] | None:
+        """The unsure line of green and red, with its style, read at once (the list is redrawn as confidences move)."""
+        lines = [(li.text, li.value_of_css_property("font-style")) for li in b.find_elements(By.CSS_SELECTOR, "#holds li.unsure")]
+        return next((line for line in lines if "green" in line[0] and "red" in line[0]), None)
+
+    text, style = wait.until(unsure_line)
+    assert "sure)" in text and style == "italic", text
     shots = SCREENSHOTS if os.environ.get("SEMGOAL_SCREENSHOTS") == "1" else tmp_path
     shots.mkdir(parents=True, exist_ok=True)
     browser.save_screenshot(str(shots / "camera-unsure.png"))

@@ -381,10 +381,11 @@ class Executive:
         """Start the first ready step (its predecessors over) whose agent is free and that waits for nothing
         (:meth:`_waits`); a person's pick is done as it starts. Whether one started: called until none does."""
         obs, turns, working = self.observation, turns_of(self.steps), self.working
+        begun = open_turns(self.steps, turns)
         after = self.orderings() if self.concurrent else in_sequence(len(self.steps))
         ready = [i for i, step in enumerate(self.steps)
                  if step.status == StepStatus.PENDING and all(self.steps[j].status in OVER for j in after[i])]
-        free = [i for i in ready if self.steps[i].assignee not in working and not self._waits(i, turns, working)]
+        free = [i for i in ready if self.steps[i].assignee not in working and not self._waits(i, turns, begun, working)]
         if not free:
             return False
         index, step = free[0], self.steps[free[0]]
@@ -397,11 +398,11 @@ class Executive:
             self._emit(f"step {index} {step.subgoal} started ({step.assignee})")
         return True
 
-    def _waits(self, index: int, turns: list[int], working: dict[str, int]) -> str:
+    def _waits(self, index: int, turns: list[int], begun: dict[int, list[int]], working: dict[str, int]) -> str:
         """Why the ready step ``index`` may not start yet for its agent ("" when it may): another agent works on
-        one of its blocks, or holds its region, or its hand is in another turn."""
+        one of its blocks, or holds its region, or its hand is in another turn (``begun``: :func:`open_turns`)."""
         step = self.steps[index]
-        for other, busy in open_turns(self.steps, turns).items():
+        for other, busy in begun.items():
             hand = self.steps[busy[0]].assignee
             if turns[index] != other and step.subgoal.kind == "pick" and hand == step.assignee:
                 return f"{hand}'s hand is busy with step {busy[0]}"
@@ -409,9 +410,10 @@ class Executive:
             if turns[index] != other and hand != step.assignee and carried in blocks_of(step.subgoal):
                 return f"{hand} has {carried} in hand"
         region = ONE_AGENT_REGIONS.get(step.subgoal.kind)
+        holder = self.region_holder(region) if region and not is_person(step.assignee) else None
+        if holder is not None:
+            return f"{holder[0]} is at the {region}"
         for who, busy in working.items():
-            if region and not is_person(step.assignee) and self.region_holder(region) == (who, busy):
-                return f"{who} is at the {region}"
             if set(blocks_of(self.steps[busy].subgoal)) & set(blocks_of(step.subgoal)):
                 return f"{who} works on a block of it"
         return ""
@@ -425,7 +427,7 @@ class Executive:
         lost = [block for block in step.subgoal.args if block in obs.fallen]
         if lost:
             self._finish(PlanStatus.FAILED, f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
-                                   f"{self.steps.index(step)} {step.subgoal} cannot be done")
+                                   f"{self.working[Assignee.ROBOT]} {step.subgoal} cannot be done")
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
@@ -510,8 +512,7 @@ class Executive:
         self.goal_settling.reset()
         self.status = PlanStatus.AWAITING_APPROVAL if self.require_approval else PlanStatus.EXECUTING
         self.contradicted_since = None
-        self._changed(message)
-        self.steps_revision = self.revision
+        self._changed(message, steps=True)
 
     def _finish(self, status: str, message: str) -> None:
         self.status = status
@@ -521,8 +522,11 @@ class Executive:
                 self.steps[index].status = StepStatus.FAILED
         self._changed(message)
 
-    def _changed(self, message: str) -> None:
+    def _changed(self, message: str, steps: bool = False) -> None:
+        """A new revision of the plan (``steps``: its steps changed, not only their progress)."""
         self.revision += 1
+        if steps:
+            self.steps_revision = self.revision
         self.message = message
         self._emit(message)
 
@@ -631,8 +635,7 @@ class Executive:
             if step.status == StepStatus.ACTIVE and (doers.get(id(step)) != step.assignee
                                                      or any(steps[j].status not in OVER for j in after[i])):
                 step.status = StepStatus.PENDING
-        self._changed(f"{op} applied")
-        self.steps_revision = self.revision
+        self._changed(f"{op} applied", steps=True)
         self._advance()
         return True, self.message
 

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_bringup.study.session import Phase
 from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, region_taken, sentences, unsure_sentences
 from semgoal_core.names import Assignee, StepStatus, agent
 from semgoal_core.vocabulary import SCENES
@@ -310,7 +311,7 @@ class Console:
             return ""
         condition = self.study.session.condition
         return (f"in the condition {condition.name!r} the robot works alone: watch it" if condition
-                and self.study.session.phase == "running" else "no condition is under way: press Start first")
+                and self.study.session.phase == Phase.RUNNING else "no condition is under way: press Start first")
 
     def _study(self, request: dict) -> dict:
         if self.study is None:

@@ -40,6 +40,7 @@ COMMANDS: dict[str, Entry | dict[str, Entry]] = {
         "subgoals": ("semgoal_bringup.experiments.training:eval_subgoals_main", "success of the shipped actor per sub-goal type"),
         "perception": ("semgoal_bringup.experiments.perception_eval", "the block voter on held-out frames: pose error, literals, latency"),
         "together": ("semgoal_bringup.experiments.together", "the robot and a scripted person on one plan: in turns and at once"),
+        "arms": ("semgoal_bringup.experiments.arms", "one arm and two arms across the table on the same starts"),
     },
     "study": {
         "run": ("semgoal_bringup.study.run", "a participant through a study protocol: the graph and the console in study mode"),

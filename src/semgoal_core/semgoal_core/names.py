@@ -32,24 +32,27 @@ class StepStatus(StrEnum):
 
 
 class Assignee(StrEnum):
-    """Who does a step: the robot, or a person (``human``, or one named: ``human:alice``, :func:`agent`)."""
+    """Who does a step: the robot (a second arm: ``robot:2``), or a person (``human``, or one named: ``human:alice``,
+    :func:`agent`)."""
 
     ROBOT = "robot"
     HUMAN = "human"
 
 
 PERSON_PREFIX = f"{Assignee.HUMAN}:"
+ARM_PREFIX = f"{Assignee.ROBOT}:"
 
 
 def agent(text: str) -> str:
-    """``text`` as an agent's name (``robot``, ``human``, ``human:alice``: letters, digits, ``_`` and ``-`` after
-    the colon), lower case; ValueError naming the valid forms."""
+    """``text`` as an agent's name (``robot``, a second arm ``robot:2``, ``human``, ``human:alice``: letters, digits,
+    ``_`` and ``-`` after the colon), lower case; ValueError naming the valid forms."""
     name = text.strip().lower()
-    person = name.removeprefix(PERSON_PREFIX)
+    person, arm = name.removeprefix(PERSON_PREFIX), name.removeprefix(ARM_PREFIX)
     if name in (Assignee.ROBOT, Assignee.HUMAN) or (
-            name.startswith(PERSON_PREFIX) and person and all(c.isalnum() or c in "_-" for c in person)):
+            name.startswith(PERSON_PREFIX) and person and all(c.isalnum() or c in "_-" for c in person)) or (
+            name.startswith(ARM_PREFIX) and arm.isdigit() and int(arm) >= 2):
         return name
-    raise ValueError(f"an agent is 'robot', 'human' or a named person 'human:NAME', got {text!r}")
+    raise ValueError(f"an agent is 'robot', a second arm 'robot:2', 'human' or a named person 'human:NAME', got {text!r}")
 
 
 def is_person(assignee: str) -> bool:

@@ -314,6 +314,7 @@ def evaluate(
     table_height: float,
     present: np.ndarray | None = None,
     thresholds: Thresholds = THRESHOLDS,
+    other_hands: Sequence[tuple[np.ndarray, float]] = (),
 ) -> np.ndarray:
     """The semantic vector (bool) of one world state.
 
@@ -322,6 +323,7 @@ def evaluate(
     :param finger_opening: sum of both finger joint positions (m).
     :param table_height: z of the table top (m).
     :param present: (N,) bool, False for a block slot the scene was built without (its entries stay false).
+    :param other_hands: grip position and finger opening of each other arm: ``holding`` is in any hand.
     """
     positions = np.asarray(block_positions, dtype=np.float64)
     count = len(layout.objects)
@@ -334,7 +336,10 @@ def evaluate(
         elif name == "above":
             value = rests_on(positions[args[:, 0]], positions[args[:, 1]], thresholds)
         elif name == "holding":
-            value = held_alone(positions, grip_position, finger_opening, present, thresholds)[args[:, 0]]
+            held = held_alone(positions, grip_position, finger_opening, present, thresholds)
+            for grip, opening in other_hands:
+                held = held | held_alone(positions, grip, opening, present, thresholds)
+            value = held[args[:, 0]]
         else:  # in_bin
             value = layout.scene.bin.contains(positions[args[:, 0]], table_height)
         vector[entries] = value & present[args].all(axis=1)

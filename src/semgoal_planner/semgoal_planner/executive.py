@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from semgoal_core.names import FINISHED, UNDER_WAY, Assignee, PlanStatus, StepStatus, agent, is_person
@@ -122,17 +123,17 @@ def open_turns(steps: list[PlanStep], turns: list[int]) -> dict[int, list[int]]:
 
 
 def rest_of(steps: list[PlanStep], obs: Observation) -> list[int]:
-    """The indices of the steps left, in the order the robot's one hand would run them from ``obs``: not done, less
-    active ones whose literals hold, with the pick of a turn a person carries (their hand, which no predicate
-    observes); the turn the robot's hand holds comes first."""
+    """The indices of the steps left, in the order one hand would run them from ``obs``: not done, less active ones
+    whose literals hold, with the pick of a turn a person carries (their hand, which no predicate observes); the
+    turns a robot's hand holds (its pick done, or holding) come first, so two arms' blocks in hand are put down first."""
     turns = turns_of(steps)
     begun = open_turns(steps, turns)
-    picked = {turn: steps[busy[0]].assignee for turn, busy in begun.items()
-              if steps[busy[0]].status == StepStatus.DONE and steps[busy[0]].subgoal.kind == "pick"}
+    picked = {turn: steps[busy[0]].assignee for turn, busy in begun.items() if steps[busy[0]].subgoal.kind == "pick"
+              and (steps[busy[0]].status == StepStatus.DONE or obs.holds(steps[busy[0]].subgoal.literals()))}
     rest = [i for i, step in enumerate(steps) if step.status not in OVER
             and not (step.status == StepStatus.ACTIVE and obs.holds(step.subgoal.literals()))]
     rest += [begun[turn][0] for turn, who in picked.items() if is_person(who) and any(turns[i] == turn for i in rest)]
-    return sorted(rest, key=lambda i: (picked.get(turns[i]) != Assignee.ROBOT, i))
+    return sorted(rest, key=lambda i: (is_person(picked.get(turns[i], Assignee.HUMAN)), i))
 
 
 @dataclass
@@ -155,6 +156,12 @@ class Executive:
     concurrent: bool = True
     """Every agent works on its first ready step at once; else one step at a time, in plan order (in turns). The robot
     alone takes the same steps either way."""
+    robots: tuple[str, ...] = (Assignee.ROBOT,)
+    """The robot arms (:func:`semgoal_core.arms.robot_names`). A step of ``robot`` goes to the first free arm of those
+    that reach its block (:attr:`reach`), which then takes its whole turn; one of ``robot:2`` waits for that arm."""
+    reach: Callable[[str], tuple[str, ...]] | None = None
+    """block -> the arms that may take it up, the nearer first (where the world says where blocks are); None: every
+    arm, in :attr:`robots`' order."""
 
     goal: list[Literal] = field(default_factory=list)
     goal_text: str = ""
@@ -294,7 +301,7 @@ class Executive:
             return
         for index in self.working.values():
             active = self.steps[index]
-            if active.assignee == Assignee.ROBOT and step - active.started > self.stall_steps:
+            if not is_person(active.assignee) and step - active.started > self.stall_steps:
                 self.replan(f"step {index} {active.subgoal} made no progress in {self.stall_steps} control steps")
                 return
             if is_person(active.assignee) and step - active.started > self.human_steps:
@@ -321,8 +328,13 @@ class Executive:
 
     @property
     def active(self) -> PlanStep | None:
-        """The step the policy should execute now; None while paused, waiting, settling, done or on a human step."""
-        index = self.working.get(Assignee.ROBOT)
+        """The step the first arm's policy should execute now: :meth:`active_for`."""
+        return self.active_for(Assignee.ROBOT)
+
+    def active_for(self, robot: str) -> PlanStep | None:
+        """The step ``robot``'s policy should execute now; None while paused, waiting, settling, done or on a
+        person's step."""
+        index = self.working.get(robot)
         if self.status != PlanStatus.EXECUTING or index is None or self.settling:
             return None
         return self.steps[index]
@@ -385,10 +397,18 @@ class Executive:
         after = self.orderings() if self.concurrent else in_sequence(len(self.steps))
         ready = [i for i, step in enumerate(self.steps)
                  if step.status == StepStatus.PENDING and all(self.steps[j].status in OVER for j in after[i])]
-        free = [i for i in ready if self.steps[i].assignee not in working and not self._waits(i, turns, begun, working)]
-        if not free:
+        # an agent's steps it is the first choice for before those it is a second choice for (the nearer arm's)
+        choices = sorted((rank, i, who) for i in ready for rank, who in enumerate(self._doers(i, turns, begun)))
+        free = ((i, who) for _, i, who in choices
+                if who not in working and not self._waits(i, who, turns, begun, working))
+        index, who = next(free, (None, None))
+        if index is None:
             return False
-        index, step = free[0], self.steps[free[0]]
+        step, generic = self.steps[index], self.steps[index].assignee
+        if who != generic:  # a robot's step taken by another arm than the first: that arm's whole turn
+            for i, turn in enumerate(turns):
+                if turn == turns[index] and self.steps[i].status not in OVER and self.steps[i].assignee == generic:
+                    self.steps[i].assignee = who
         step.status, step.started = StepStatus.ACTIVE, obs.step
         step.confirmation = Settling(self.settle_steps)
         if is_person(step.assignee) and step.subgoal.kind == "pick":
@@ -398,41 +418,51 @@ class Executive:
             self._emit(f"step {index} {step.subgoal} started ({step.assignee})")
         return True
 
-    def _waits(self, index: int, turns: list[int], begun: dict[int, list[int]], working: dict[str, int]) -> str:
-        """Why the ready step ``index`` may not start yet for its agent ("" when it may): another agent works on
+    def _doers(self, index: int, turns: list[int], begun: dict[int, list[int]]) -> tuple[str, ...]:
+        """Who may do step ``index``: its agent; for a robot's step, the arm that holds its turn once begun, else the
+        arms that reach its block (:attr:`reach`), the nearer first."""
+        step = self.steps[index]
+        if step.assignee != Assignee.ROBOT:
+            return (step.assignee,)
+        if turns[index] in begun:
+            return (self.steps[begun[turns[index]][0]].assignee,)
+        return self.reach(step.subgoal.block) if self.reach and len(self.robots) > 1 else self.robots
+
+    def _waits(self, index: int, who: str, turns: list[int], begun: dict[int, list[int]], working: dict[str, int]) -> str:
+        """Why the ready step ``index`` may not start yet for agent ``who`` ("" when it may): another agent works on
         one of its blocks, or holds its region, or its hand is in another turn (``begun``: :func:`open_turns`)."""
         step = self.steps[index]
         for other, busy in begun.items():
             hand = self.steps[busy[0]].assignee
-            if turns[index] != other and step.subgoal.kind == "pick" and hand == step.assignee:
+            if turns[index] != other and step.subgoal.kind == "pick" and hand == who:
                 return f"{hand}'s hand is busy with step {busy[0]}"
             carried = self.steps[busy[0]].subgoal.block
-            if turns[index] != other and hand != step.assignee and carried in blocks_of(step.subgoal):
+            if turns[index] != other and hand != who and carried in blocks_of(step.subgoal):
                 return f"{hand} has {carried} in hand"
-        region = ONE_AGENT_REGIONS.get(step.subgoal.kind)
-        holder = self.region_holder(region) if region and not is_person(step.assignee) else None
-        if holder is not None:
-            return f"{holder[0]} is at the {region}"
-        for who, busy in working.items():
+        for worker, busy in working.items():
             if set(blocks_of(self.steps[busy].subgoal)) & set(blocks_of(step.subgoal)):
-                return f"{who} works on a block of it"
+                return f"{worker} works on a block of it"
         return ""
 
     def _check_reach(self) -> None:
         """Fail at once when the active robot step needs a block that fell off the table: no re-plan can
         bring it back (a person can put it back and send the goal again), so the budget is not spent on it."""
-        step, obs = self.active, self.observation
-        if step is None or obs is None or not obs.fallen:
+        obs = self.observation
+        if obs is None or not obs.fallen:
             return
-        lost = [block for block in step.subgoal.args if block in obs.fallen]
-        if lost:
-            self._finish(PlanStatus.FAILED, f"{' and '.join(lost)} fell off the table, out of the arm's reach: step "
-                                   f"{self.working[Assignee.ROBOT]} {step.subgoal} cannot be done")
+        for robot in self.robots:
+            step = self.active_for(robot)
+            lost = [block for block in step.subgoal.args if block in obs.fallen] if step else []
+            if lost:
+                self._finish(PlanStatus.FAILED, f"{' and '.join(lost)} fell off the table, out of the arm's reach: "
+                                       f"step {self.working[robot]} {step.subgoal} cannot be done")
+                return
 
     def _achieved(self, step: PlanStep, obs: Observation) -> bool:
         """The step's literals hold at rest, for ``settle_steps`` control steps in a row if the robot runs it
         (a grasp that only brushes the block, or a block let go in mid-air, does not count yet)."""
-        others = len(self.working) > 1  # the world at large is not at rest while someone else works in it
+        # the world at large is not at rest while someone else works in it, or while another arm holds its block
+        others = len(self.working) > 1 or len(self.robots) > 1
         holds = obs.settled(step.subgoal.literals(), blocks_of(step.subgoal) if others else None)
         if holds and (is_person(step.assignee) or self.status != PlanStatus.EXECUTING):
             return True

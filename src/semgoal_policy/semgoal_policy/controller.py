@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from semgoal_core import features, layout
+from semgoal_core.arms import PARK, ArmFrame
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
 from semgoal_core.settling import REST_SPEED, Settling, at_rest
 from semgoal_core.vocabulary import LAYOUTS, THRESHOLDS, Literal, VocabularyError, held_alone
@@ -52,12 +53,19 @@ mean. Sampling is the default: the deterministic mean can hover in place for goo
 
 
 class SubgoalController:
-    """Wraps an exported actor for one scene; every output is finite and within [-1, 1]."""
+    """Wraps an exported actor for one scene and one arm; every output is finite and within [-1, 1]. Observations
+    and commands are in the world frame; the actor, and every rule here, sees the world in the arm's own frame
+    (:class:`semgoal_core.arms.ArmFrame`: a second arm's is reflected across the table)."""
 
-    def __init__(self, scene: str, model_dir: Path | str | None = None, mode: str = "sample") -> None:
+    def __init__(self, scene: str, model_dir: Path | str | None = None, mode: str = "sample", arm: int = 0,
+                 shared: bool = False) -> None:
         if mode not in ACTION_MODES:
             raise ValueError(f"unknown action mode {mode!r}; valid: {', '.join(ACTION_MODES)}")
         self.scene, self.mode = scene, mode
+        self.frame = ArmFrame(scene, arm)
+        self.shared = shared
+        """The table is shared with another arm: holding still with no block in hand, the arm draws back to
+        :data:`semgoal_core.arms.PARK` instead, out of the other's way."""
         self.layout = LAYOUTS[scene]
         self.model_dir = Path(model_dir or actor_io.models_dir() / scene)
         self.actor, self.meta = actor_io.load(self.model_dir, scene)
@@ -102,8 +110,13 @@ class SubgoalController:
         observation = np.asarray(observation, dtype=np.float32)
         if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
+        key = (*noise_key, self.frame.arm) if self.frame.arm else noise_key  # each arm its own noise
+        return self.frame.action(self._act(self.frame.observation(observation), key))
+
+    def _act(self, observation: np.ndarray, noise_key: tuple[int, ...]) -> np.ndarray:
+        """:meth:`act` in the arm's own frame."""
         if self.goal is None:
-            return self.idle(observation) if self.retreat else self.hold(observation)
+            return self.idle(observation) if self.retreat else self._hold(observation)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
@@ -132,11 +145,22 @@ class SubgoalController:
 
 
     def hold(self, observation: np.ndarray) -> np.ndarray:
-        """Hold still, keeping a block that sits between the closed fingers (``holding``'s geometry)."""
+        """Hold still, keeping a block that sits between the closed fingers (``holding``'s geometry); on a
+        :attr:`shared` table, an empty hand draws back to its park spot."""
         observation = np.asarray(observation, dtype=np.float32)
         if observation.shape != (self.obs_size,) or not np.isfinite(observation).all():
             return HOLD.copy()
-        return (HOLD_GRIP if self._held(observation).any() else HOLD).copy()
+        return self.frame.action(self._hold(self.frame.observation(observation)))
+
+    def _hold(self, observation: np.ndarray) -> np.ndarray:
+        """:meth:`hold` in the arm's own frame."""
+        if self._held(observation).any():
+            return HOLD_GRIP.copy()
+        action = HOLD.copy()
+        if self.shared:
+            grip = layout.arm_state(observation)["grip_position"]
+            action[:3] = np.clip((PARK - grip) * RETREAT_GAIN, -1.0, 1.0)
+        return action
 
     def idle(self, observation: np.ndarray) -> np.ndarray:
         """With nothing to do once a goal is done: where the goal asks to hold a block (:attr:`keep`; the goal

@@ -2,7 +2,9 @@
 
 The Fetch robot, table and materials come from the MJCF that gymnasium-robotics installs (loaded from
 the installed package, never copied; its env classes are not used). Its single ``object0`` block is
-removed and the scene's coloured blocks (and the bin) are added programmatically.
+removed and the scene's coloured blocks (and the bin) are added programmatically. A second arm is a second
+copy of the same robot, attached under the name prefix ``robot2/`` across the table, turned half a turn
+(``semgoal_core.arms``).
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ from pathlib import Path
 
 import mujoco
 
+from semgoal_core.arms import MAX_ARMS, MIRROR_X, arm_namespace
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES, BinGeometry, Scene
 
@@ -26,6 +29,12 @@ physics time."""
 BLOCK_CONTACT_BIT = 2
 """Collision bit that only the floor's type and the blocks' affinity carry: a block knocked off the desk
 lands on the floor, nothing else touches it."""
+REACHING_LINKS = ("shoulder_pan_link", "shoulder_lift_link", "upperarm_roll_link", "elbow_flex_link",
+                  *TOUCHING_LINKS)
+"""The links that can reach over the table, where two arms may meet."""
+ARM_CONTACT_BITS = (4, 8)
+"""Collision bits of each arm's reaching links: an arm's type with its own bit, its affinity with the other's,
+so two arms collide (and are seen to: ``FetchWorld.arm_contacts``) and an arm's links never with each other."""
 
 
 def fetch_asset_dir() -> Path:
@@ -36,6 +45,16 @@ def fetch_asset_dir() -> Path:
     if spec is None or spec.origin is None:
         raise ModuleNotFoundError("gymnasium-robotics is not installed: it provides the Fetch robot assets (make setup)")
     return Path(spec.origin).parent / "envs" / "assets" / "fetch"
+
+
+ROBOT_BASE_Y = 0.2641 + 0.48
+"""y of the first Fetch's base in the world (its body's offset plus the benchmark's slide joint): the second
+stands on the same line across the table."""
+
+
+def arm_prefix(arm: int) -> str:
+    """The name prefix of arm ``arm``'s elements in the model: none for the first, ``robot2/`` for the second."""
+    return f"{arm_namespace(arm)}/" if arm else ""
 
 
 def block_body_name(block: str) -> str:
@@ -85,13 +104,47 @@ def _filter_collisions(spec: mujoco.MjSpec) -> None:
     floor.contype, floor.conaffinity = BLOCK_CONTACT_BIT, 0
 
 
-def build_spec(scene: Scene, blocks: tuple[str, ...]) -> mujoco.MjSpec:
-    """The MjSpec of ``scene`` with ``blocks``: Fetch robot and table from the assets, our objects added."""
+def _fetch_spec() -> mujoco.MjSpec:
+    """The benchmark's Fetch at its table, without its block and target."""
     spec = mujoco.MjSpec.from_file(str(fetch_asset_dir() / "pick_and_place.xml"))
-    spec.modelname = f"semgoal_{scene.name}_{len(blocks)}"
     spec.delete(spec.body("object0"))
     spec.delete(spec.site("target0"))
     _filter_collisions(spec)
+    return spec
+
+
+def _add_arm(spec: mujoco.MjSpec, arm: int) -> None:
+    """Another Fetch (its mocap, weld, finger actuators and contact exclusions with it) across the table: turned half
+    a turn about the vertical through (MIRROR_X, ROBOT_BASE_Y), so its base stands where the first one's reflection
+    about the table's centre line does."""
+    robot = _fetch_spec()
+    for element in (robot.body("floor0"), robot.body("table0"), *robot.lights):
+        robot.delete(element)
+    robot.delete(robot.geom("floor0"))
+    frame = spec.worldbody.add_frame(pos=[2 * MIRROR_X, 2 * ROBOT_BASE_Y, 0.0], quat=[0.0, 0.0, 0.0, 1.0])
+    spec.attach(robot, frame=frame, prefix=arm_prefix(arm))
+
+
+def _arms_collide(spec: mujoco.MjSpec, arms: int) -> None:
+    """Each arm's reaching links collide with the other arm's (:data:`ARM_CONTACT_BITS`)."""
+    for arm in range(arms):
+        own, other = ARM_CONTACT_BITS[arm], ARM_CONTACT_BITS[1 - arm]
+        for link in REACHING_LINKS:
+            geom = spec.geom(f"{arm_prefix(arm)}robot0:{link}")
+            geom.contype, geom.conaffinity = geom.contype | own, geom.conaffinity | other
+
+
+def build_spec(scene: Scene, blocks: tuple[str, ...], arms: int = 1) -> mujoco.MjSpec:
+    """The MjSpec of ``scene`` with ``blocks`` and ``arms`` Fetch arms: robot and table from the assets, our objects
+    added."""
+    if not 1 <= arms <= MAX_ARMS:
+        raise ValueError(f"a scene has 1 to {MAX_ARMS} arms, not {arms}")
+    spec = _fetch_spec()
+    spec.modelname = f"semgoal_{scene.name}_{len(blocks)}" + (f"_{arms}arms" if arms > 1 else "")
+    for arm in range(1, arms):
+        _add_arm(spec, arm)
+    if arms > 1:
+        _arms_collide(spec, arms)
     for block in blocks:
         _add_block(spec, block)
     if scene.bin is not None:
@@ -100,13 +153,14 @@ def build_spec(scene: Scene, blocks: tuple[str, ...]) -> mujoco.MjSpec:
 
 
 @functools.cache
-def build_model(scene_name: str, n_blocks: int | None = None) -> mujoco.MjModel:
+def build_model(scene_name: str, n_blocks: int | None = None, arms: int = 1) -> mujoco.MjModel:
     """Compile the model of a scene (cached: models are immutable in use, data is per world).
 
     :param n_blocks: desk cleanup only: how many of its blocks to build (2 to 4); None = all.
+    :param arms: 1, or 2 for a second arm across the table.
     """
     scene = SCENES[scene_name]
     count = scene.max_blocks if n_blocks is None else n_blocks
     if count != scene.max_blocks and count not in scene.block_counts:
         raise ValueError(f"scene {scene_name!r} cannot have {count} blocks (allowed: {scene.block_counts or scene.max_blocks})")
-    return build_spec(scene, scene.objects[:count]).compile()
+    return build_spec(scene, scene.objects[:count], arms).compile()

@@ -14,12 +14,14 @@ import mujoco
 import numpy as np
 
 from semgoal_core import layout
+from semgoal_core.arms import ArmFrame, arms_for, robot_name
 from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
+from semgoal_sim.arm_guard import ArmGuard
 from semgoal_sim.expert import WorldView
-from semgoal_sim.scene import block_body_name, build_model
+from semgoal_sim.scene import arm_prefix, block_body_name, build_model
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
@@ -28,6 +30,10 @@ GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 """Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
 """Gripper pointing down, fixed orientation (the benchmark's mocap rotation)."""
+CHAIN_LINKS = ("shoulder_pan_link", "elbow_flex_link", "wrist_flex_link", "gripper_link")
+SHARED_HOME_SETBACK = np.array([0.17, 0.0, 0.0])
+"""With two arms, each arm's home is this much nearer its own base: the benchmark's home reaches 4 cm past the
+table's centre line, where the other arm's home would be."""
 INITIAL_QPOS = {"robot0:slide0": 0.405, "robot0:slide1": 0.48, "robot0:slide2": 0.0}
 WORKSPACE_LOW = np.array([1.0, 0.35, TABLE_TOP + 0.005])
 WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_TOP + 0.35])
@@ -53,19 +59,44 @@ class Snapshot:
     grip_velocity: np.ndarray  # (3,)
     finger_positions: np.ndarray  # (2,) right, left joint positions; opening = sum
     finger_velocities: np.ndarray  # (2,)
+    other_hands: tuple[tuple[np.ndarray, float], ...] = ()
+    """Each other arm's grip position and finger opening (a second arm's hand may hold a block too)."""
 
     @property
     def finger_opening(self) -> float:
         return float(self.finger_positions.sum())
 
 
-class FetchWorld:
-    """One scene's physics: seeded placement of blocks, Fetch-style control, state and predicates."""
+@dataclass(frozen=True)
+class _Arm:
+    """Where one arm's parts sit in the model."""
 
-    def __init__(self, scene: str, n_blocks: int | None = None) -> None:
+    mocap: int
+    grip_site: int
+    gripper_body: int
+    base_body: int
+    finger_qpos: np.ndarray
+    finger_qvel: np.ndarray
+    finger_actuators: np.ndarray
+    geoms: np.ndarray
+    """Its geoms' ids: the contacts between two arms' (:attr:`FetchWorld.arm_contacts`)."""
+    chain: np.ndarray
+    """Its shoulder, elbow, wrist and gripper bodies: with the grip site, the chain the guard keeps apart."""
+    quaternion: np.ndarray
+    """The gripper's fixed orientation: pointing down, turned as the arm's base is."""
+
+
+class FetchWorld:
+    """One scene's physics: seeded placement of blocks, Fetch-style control, state and predicates.
+
+    With ``arms=2`` a second Fetch stands across the table (``semgoal_core.arms``): :meth:`step` takes one command per
+    arm, :meth:`snapshot` and :meth:`observation` read any arm's hand, ``holding`` is in either hand, and contacts
+    between the two arms are counted (:attr:`arm_contacts`)."""
+
+    def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1) -> None:
         self.scene = SCENES[scene]
         self.layout = LAYOUTS[scene]
-        self.model = build_model(scene, n_blocks)
+        self.model = build_model(scene, n_blocks, arms)
         self.data = mujoco.MjData(self.model)
         self.blocks = self.scene.objects[: n_blocks or self.scene.max_blocks]
         self.present = np.array([obj in self.blocks for obj in self.scene.objects])
@@ -75,39 +106,77 @@ class FetchWorld:
         self._block_velocity_index = (np.asarray(self._block_qvel, dtype=int)[:, None] + np.arange(6)).reshape(-1)
         """Every block's six velocity entries in ``qvel``, in block order: one gather per snapshot."""
         self._block_body = np.array([m.body(block_body_name(b)).id for b in self.blocks])
-        self._grip_site = m.site("robot0:grip").id
-        self._gripper_body = m.body("robot0:gripper_link").id
-        fingers = ("robot0:r_gripper_finger_joint", "robot0:l_gripper_finger_joint")
-        self._finger_qpos = np.array([m.joint(f).qposadr[0] for f in fingers])
-        self._finger_qvel = np.array([m.joint(f).dofadr[0] for f in fingers])
-        self._finger_actuators = np.array([m.actuator(f).id for f in fingers])
+        self.arms = [self._arm(arm) for arm in range(arms)]
         robot = [i for i in range(m.njnt) if m.joint(i).name.startswith("robot0:")]
         self.robot_joint_names = [m.joint(i).name for i in robot]
-        """The robot's joints, in model order (what /joint_states names)."""
+        """The first robot's joints, in model order (what /joint_states names)."""
         self._robot_qpos, self._robot_qvel = m.jnt_qposadr[robot], m.jnt_dofadr[robot]
         entries, args = self.layout.groundings["holding"]
         self._holding_entries = entries[np.argsort(args[:, 0])][: len(self.blocks)]
         """The semantic vector's ``holding(block)`` entry of each block built, in block order."""
         self.step_count = 0
+        self.arm_contacts = 0
+        """Physics substeps since the last reset with two arms touching."""
+        self._arm_of_geom = np.full(m.ngeom, -1)
+        for index, arm in enumerate(self.arms):
+            self._arm_of_geom[arm.geoms] = index
         self._home_state = self._settle_home()
+        self.guard = ArmGuard(MAX_DISPLACEMENT) if arms == 2 else None
+        """Keeps two arms apart (:mod:`semgoal_sim.arm_guard`)."""
+
+    def _arm(self, arm: int) -> _Arm:
+        m, prefix = self.model, arm_prefix(arm)
+        fingers = [f"{prefix}robot0:{side}_gripper_finger_joint" for side in ("r", "l")]
+        base = m.body(f"{prefix}robot0:base_link").id
+        quaternion = GRIPPER_QUAT.copy()
+        if arm:  # turned half a turn about the vertical, as its base
+            mujoco.mju_mulQuat(quaternion, np.array([0.0, 0.0, 0.0, 1.0]), GRIPPER_QUAT)
+        return _Arm(
+            mocap=int(m.body(f"{prefix}robot0:mocap").mocapid[0]),
+            grip_site=m.site(f"{prefix}robot0:grip").id,
+            gripper_body=m.body(f"{prefix}robot0:gripper_link").id,
+            base_body=base,
+            finger_qpos=np.array([m.joint(f).qposadr[0] for f in fingers]),
+            finger_qvel=np.array([m.joint(f).dofadr[0] for f in fingers]),
+            finger_actuators=np.array([m.actuator(f).id for f in fingers]),
+            geoms=np.flatnonzero(m.body_rootid[m.geom_bodyid] == m.body_rootid[base]),
+            chain=np.array([m.body(f"{prefix}robot0:{link}").id for link in CHAIN_LINKS]),
+            quaternion=quaternion,
+        )
 
     # -- reset ---------------------------------------------------------------------------------------
+    def _shared_home(self) -> tuple[dict[str, float], np.ndarray]:
+        """One arm's joint positions and mocap target at its home set back by :data:`SHARED_HOME_SETBACK`: where two
+        arms start, bent and clear of each other, not stretched out across the table into each other."""
+        alone = FetchWorld(self.scene.name, len(self.blocks))
+        alone.data.mocap_pos[0] -= SHARED_HOME_SETBACK
+        for _ in range(10):
+            mujoco.mj_step(alone.model, alone.data, nstep=N_SUBSTEPS)
+        return (dict(zip(alone.robot_joint_names, alone.robot_joint_state()[0], strict=True)),
+                alone.data.mocap_pos[0].copy())
+
     def _settle_home(self) -> np.ndarray:
-        """Put the arm in the benchmark's home pose once; later resets restore this state."""
+        """Put the arms in the benchmark's home pose once (a second arm in the first's reflection across the table);
+        later resets restore this state."""
         m, d = self.model, self.data
         mujoco.mj_resetData(m, d)
-        weld = m.eq_type == mujoco.mjtEq.mjEQ_WELD  # the mocap weld: no offset between mocap and gripper
+        weld = m.eq_type == mujoco.mjtEq.mjEQ_WELD  # the mocap welds: no offset between mocap and gripper
         m.eq_data[weld, :7] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
-        for name, value in INITIAL_QPOS.items():
-            d.qpos[m.joint(name).qposadr[0]] = value
+        joints, home = self._shared_home() if len(self.arms) > 1 else (INITIAL_QPOS, None)
+        for index in range(len(self.arms)):
+            for name, value in joints.items():
+                d.qpos[m.joint(f"{arm_prefix(index)}{name}").qposadr[0]] = value
         for i, addr in enumerate(self._block_qpos):  # park blocks apart, off the arm's way, during settling
             d.qpos[addr: addr + 7] = [1.1 + 0.1 * i, 0.45, TABLE_TOP + BLOCK_HALF_SIZE, 1, 0, 0, 0]
         mujoco.mj_forward(m, d)
-        d.mocap_pos[0] = d.site_xpos[self._grip_site] + GRIPPER_HOME_OFFSET
-        d.mocap_quat[0] = GRIPPER_QUAT
+        if home is None:
+            home = d.site_xpos[self.arms[0].grip_site] + GRIPPER_HOME_OFFSET
+        for index, arm in enumerate(self.arms):
+            d.mocap_pos[arm.mocap] = ArmFrame(self.scene.name, index).positions(home)
+            d.mocap_quat[arm.mocap] = arm.quaternion
         for _ in range(10):
             mujoco.mj_step(m, d, nstep=N_SUBSTEPS)
-        self.home_grip_position = d.site_xpos[self._grip_site].copy()
+        self.home_grip_position = d.site_xpos[self.arms[0].grip_site].copy()
         state = np.empty(mujoco.mj_stateSize(m, mujoco.mjtState.mjSTATE_INTEGRATION))
         mujoco.mj_getState(m, d, state, mujoco.mjtState.mjSTATE_INTEGRATION)
         return state
@@ -123,7 +192,9 @@ class FetchWorld:
             d.qpos[addr: addr + 7] = [*pos, 1.0, 0.0, 0.0, 0.0]
             d.qvel[dof: dof + 6] = 0.0
         mujoco.mj_forward(m, d)
-        self.step_count = 0
+        self.step_count = self.arm_contacts = 0
+        if self.guard is not None:
+            self.guard.reset()
         for _ in range(settle_steps):
             self.step(np.zeros(4), count=False)
         return self.snapshot()
@@ -137,16 +208,19 @@ class FetchWorld:
         mujoco.mj_forward(self.model, self.data)
 
     def open_fingers(self, opening: float = GRASP_OPENING) -> None:
-        """Open the fingers to ``opening`` (m, both together) at once and keep them there: a hand let go of."""
-        self.data.qpos[self._finger_qpos] = opening / 2
-        self.data.qvel[self._finger_qvel] = 0.0
-        self.data.ctrl[self._finger_actuators] = opening / 2
+        """Open the first arm's fingers to ``opening`` (m, both together) at once and keep them there: a hand let go
+        of."""
+        arm = self.arms[0]
+        self.data.qpos[arm.finger_qpos] = opening / 2
+        self.data.qvel[arm.finger_qvel] = 0.0
+        self.data.ctrl[arm.finger_actuators] = opening / 2
         mujoco.mj_forward(self.model, self.data)
 
     def place_in_gripper(self, block: str, steps: int = 6) -> Snapshot:
-        """Put ``block`` between the fingers and close them on it: start states for put-* sub-goals."""
-        self.set_block_pose(block, self.data.site_xpos[self._grip_site].copy())
-        self.data.qpos[self._finger_qpos] = BLOCK_HALF_SIZE
+        """Put ``block`` between the first arm's fingers and close them on it: start states for put-* sub-goals."""
+        arm = self.arms[0]
+        self.set_block_pose(block, self.data.site_xpos[arm.grip_site].copy())
+        self.data.qpos[arm.finger_qpos] = BLOCK_HALF_SIZE
         mujoco.mj_forward(self.model, self.data)
         for _ in range(steps):
             self.step(np.array([0.0, 0.0, 0.0, -1.0]), count=False)
@@ -154,46 +228,72 @@ class FetchWorld:
 
     # -- control -------------------------------------------------------------------------------------
     def step(self, action: np.ndarray, count: bool = True) -> None:
-        """One control step. Non-finite entries count as 0; the rest is clipped to [-1, 1]."""
-        action = np.asarray(action, dtype=np.float64)
-        if not np.isfinite(action).all():
-            action = np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0)
-        action = np.minimum(np.maximum(action, -1.0), 1.0)
+        """One control step: ``action`` (4,) for the first arm (any other holds still), or (arms, 4), one per arm, each
+        in the world frame. Non-finite entries count as 0; the rest is clipped to [-1, 1]."""
+        given = np.atleast_2d(np.asarray(action, dtype=np.float64))
+        actions = np.zeros((len(self.arms), 4))
+        actions[: len(given)] = given
+        if not np.isfinite(actions).all():
+            actions = np.nan_to_num(actions, nan=0.0, posinf=0.0, neginf=0.0)
+        actions = np.minimum(np.maximum(actions, -1.0), 1.0)
         m, d = self.model, self.data
-        target = d.xpos[self._gripper_body] + action[:3] * MAX_DISPLACEMENT
-        d.mocap_pos[0] = np.clip(target, WORKSPACE_LOW + (d.xpos[self._gripper_body] - d.site_xpos[self._grip_site]),
-                                 WORKSPACE_HIGH)
-        d.mocap_quat[0] = GRIPPER_QUAT
-        d.ctrl[self._finger_actuators] = d.qpos[self._finger_qpos] + action[3]
-        mujoco.mj_step(m, d, nstep=N_SUBSTEPS)
+        if self.guard is not None:
+            grips = d.site_xpos[[arm.grip_site for arm in self.arms]]
+            chains = np.concatenate([d.xpos[[arm.chain for arm in self.arms]], grips[:, None]], axis=1)
+            blocks = d.xpos[self._block_body]
+            holding = [held_alone(blocks, grip, float(d.qpos[arm.finger_qpos].sum())).any()
+                       for grip, arm in zip(grips, self.arms, strict=True)]
+            actions = self.guard(chains, actions, grips[:, 2], np.array(holding))
+        for arm, action in zip(self.arms, actions, strict=True):
+            target = d.xpos[arm.gripper_body] + action[:3] * MAX_DISPLACEMENT
+            d.mocap_pos[arm.mocap] = np.clip(
+                target, WORKSPACE_LOW + (d.xpos[arm.gripper_body] - d.site_xpos[arm.grip_site]), WORKSPACE_HIGH)
+            d.mocap_quat[arm.mocap] = arm.quaternion
+            d.ctrl[arm.finger_actuators] = d.qpos[arm.finger_qpos] + action[3]
+        if len(self.arms) == 1:
+            mujoco.mj_step(m, d, nstep=N_SUBSTEPS)
+        else:  # substep by substep, to see every touch between the arms
+            for _ in range(N_SUBSTEPS):
+                mujoco.mj_step(m, d)
+                arms = self._arm_of_geom[d.contact.geom[: d.ncon]]
+                self.arm_contacts += bool(((arms >= 0).all(axis=1) & (arms[:, 0] != arms[:, 1])).any())
         if count:
             self.step_count += 1
 
     # -- read-out ------------------------------------------------------------------------------------
-    def snapshot(self) -> Snapshot:
-        d = self.data
+    def snapshot(self, arm: int = 0) -> Snapshot:
+        """The world now, with arm ``arm``'s hand (the others' in :attr:`Snapshot.other_hands`)."""
+        d, hand = self.data, self.arms[arm]
         velocities = d.qvel[self._block_velocity_index].reshape(len(self.blocks), 6)
         grip_velocity = np.empty(6)
-        mujoco.mj_objectVelocity(self.model, d, mujoco.mjtObj.mjOBJ_SITE, self._grip_site, grip_velocity, 0)
+        mujoco.mj_objectVelocity(self.model, d, mujoco.mjtObj.mjOBJ_SITE, hand.grip_site, grip_velocity, 0)
         return Snapshot(
             step=self.step_count,
             time=self.step_count * CONTROL_DT,
             block_positions=d.xpos[self._block_body].copy(),
             block_quaternions=d.xquat[self._block_body].copy(),
             block_velocities=velocities,
-            grip_position=d.site_xpos[self._grip_site].copy(),
+            grip_position=d.site_xpos[hand.grip_site].copy(),
             grip_velocity=grip_velocity[3:].copy(),
-            finger_positions=d.qpos[self._finger_qpos].copy(),
-            finger_velocities=d.qvel[self._finger_qvel].copy(),
+            finger_positions=d.qpos[hand.finger_qpos].copy(),
+            finger_velocities=d.qvel[hand.finger_qvel].copy(),
+            other_hands=tuple((d.site_xpos[other.grip_site].copy(), float(d.qpos[other.finger_qpos].sum()))
+                              for other in self.arms if other is not hand),
         )
 
-    def grip_pose(self) -> np.ndarray:
-        """4x4 pose of the grip site in the world (what /tf publishes as the gripper's frame)."""
-        return _pose(self.data.site_xpos[self._grip_site], self.data.site_xmat[self._grip_site])
+    def reach(self, block: str) -> tuple[str, ...]:
+        """The robots that take ``block`` up where it is now, the nearer first (:func:`semgoal_core.arms.arms_for`)."""
+        position = self.data.xpos[self._block_body[self.blocks.index(block)]]
+        return tuple(robot_name(arm) for arm in arms_for(position, len(self.arms)))
 
-    def base_pose(self) -> np.ndarray:
-        """4x4 pose of the robot's base in the world."""
-        body = self.model.body("robot0:base_link").id
+    def grip_pose(self, arm: int = 0) -> np.ndarray:
+        """4x4 pose of an arm's grip site in the world (what /tf publishes as the gripper's frame)."""
+        site = self.arms[arm].grip_site
+        return _pose(self.data.site_xpos[site], self.data.site_xmat[site])
+
+    def base_pose(self, arm: int = 0) -> np.ndarray:
+        """4x4 pose of an arm's base in the world."""
+        body = self.arms[arm].base_body
         return _pose(self.data.xpos[body], self.data.xmat[body])
 
     def robot_joint_state(self) -> tuple[np.ndarray, np.ndarray]:
@@ -209,15 +309,14 @@ class FetchWorld:
     def semantic_vector(self, snapshot: Snapshot | None = None) -> np.ndarray:
         snapshot = snapshot or self.snapshot()
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
-                        snapshot.finger_opening, TABLE_TOP, self.present)
+                        snapshot.finger_opening, TABLE_TOP, self.present, other_hands=snapshot.other_hands)
 
     def motion(self, snapshot: Snapshot | None = None, vector: np.ndarray | None = None) -> np.ndarray:
         """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`);
         ``vector``: the snapshot's semantic vector, whose ``holding`` entries say what is held."""
         snapshot = snapshot or self.snapshot()
         speeds = np.linalg.norm(snapshot.block_velocities[:, :3], axis=1)
-        held = (held_alone(snapshot.block_positions, snapshot.grip_position, snapshot.finger_opening) if vector is None
-                else vector[self._holding_entries])
+        held = (self.semantic_vector(snapshot) if vector is None else vector)[self._holding_entries]
         return motion_bits(speeds, held, self.scene.max_blocks)
 
     def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:
@@ -231,9 +330,17 @@ class FetchWorld:
         return WorldView(dict(zip(self.blocks, snapshot.block_positions, strict=True)), snapshot.grip_position,
                          snapshot.finger_opening, self.scene.bin)
 
-    def observation(self, snapshot: Snapshot | None = None) -> np.ndarray:
-        """The policy observation (layout: :mod:`semgoal_core.layout`)."""
-        snapshot = snapshot or self.snapshot()
+    def observation(self, snapshot: Snapshot | None = None, arm: int = 0) -> np.ndarray:
+        """The policy observation of arm ``arm``'s hand, in the world frame (layout: :mod:`semgoal_core.layout`). A
+        block in another arm's hand is shown at rest on the table under it: the actor never saw a block hang in the
+        air in no hand of its (shown there, one made the first arm let go of its own; left out, too), and it is an
+        obstacle where it will be put down."""
+        snapshot = snapshot or self.snapshot(arm)
+        positions, velocities = snapshot.block_positions, snapshot.block_velocities
+        for grip, opening in snapshot.other_hands:
+            held = held_alone(positions, grip, opening)
+            if held.any():
+                positions, velocities = positions.copy(), velocities.copy()
+                positions[held, 2], velocities[held] = TABLE_TOP + BLOCK_HALF_SIZE, 0.0
         return layout.observation(self.scene.name, snapshot.grip_position, snapshot.grip_velocity,
-                                  snapshot.finger_positions, snapshot.finger_velocities,
-                                  snapshot.block_positions, snapshot.block_velocities)
+                                  snapshot.finger_positions, snapshot.finger_velocities, positions, velocities)

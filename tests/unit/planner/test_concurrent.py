@@ -105,3 +105,33 @@ def test_claims_and_agents_are_checked() -> None:
     assert ex.edit("claim", 2, action="human:bob")[0]
     assert [s.assignee for s in ex.steps][2:] == ["human:bob", "human:bob"]
 
+
+
+def test_two_arms_each_take_a_turn_and_keep_it() -> None:
+    """A robot's pick goes to the first free arm, and its put with it; both arms' blocks in hand are put down first when
+    the rest of the plan is checked, and a step is confirmed at rest for its own blocks while the other arm holds one."""
+    ex = concurrent(robots=("robot", "robot:2"))
+    assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
+    assert doing(ex) == {"robot": "pick(green)", "robot:2": "pick(red)"}
+    assert [s.assignee for s in ex.steps] == ["robot", "robot", "robot:2", "robot:2"]
+    ex.observe(observe(["holding(green)", "holding(red)"], 4))
+    assert doing(ex) == {"robot": "put_in_bin(green)", "robot:2": "put_in_bin(red)"}
+    assert ex.contradicted_since is None
+    assert ex.active_for("robot:2") is ex.steps[3] and ex.active is ex.steps[1]
+    ex.observe(observe(["in_bin(green)", "holding(red)"], 8))
+    assert doing(ex) == {"robot:2": "put_in_bin(red)"} and ex.steps[1].status == "done"
+    ex.observe(observe(["in_bin(green)", "in_bin(red)"], 12))
+    assert ex.status == "succeeded" and ex.replans == 0
+
+
+def test_an_arm_takes_the_blocks_it_reaches_first_and_a_step_given_to_it() -> None:
+    sides = {"red": ("robot",), "green": ("robot",), "blue": ("robot:2", "robot")}
+    ex = concurrent(robots=("robot", "robot:2"), reach=sides.__getitem__)
+    assert ex.set_goal("in_bin(red) & in_bin(green) & in_bin(blue)")[0]
+    assert doing(ex) == {"robot:2": "pick(blue)", "robot": "pick(green)"}  # the second arm reaches only blue
+    ex = concurrent(robots=("robot", "robot:2"), reach=sides.__getitem__)
+    assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
+    assert doing(ex) == {"robot": "pick(green)"}  # neither block is the second arm's to reach
+    ok, message = ex.edit("assign", 2, action="robot:2")
+    assert ok, message
+    assert doing(ex) == {"robot": "pick(green)", "robot:2": "pick(red)"}

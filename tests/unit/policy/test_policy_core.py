@@ -290,3 +290,21 @@ def test_holding_still_keeps_a_held_block(tmp_path) -> None:
         world.step(controller.act(world.observation()))
     assert world.view().holds("red")
     assert np.array_equal(controller.hold(np.full(3, np.nan)), HOLD)
+
+
+def test_the_second_arm_acts_as_the_first_would_in_the_reflected_world() -> None:
+    """The shipped actor drives the arm across the table through the reflection about the table's centre line: its
+    command for a world is the reflection of the first arm's command for the reflected world."""
+    from semgoal_core.arms import ArmFrame
+    from semgoal_sim.world import FetchWorld
+
+    world = FetchWorld("desk_cleanup", 3)
+    world.reset(np.array([[1.2, 0.6, 0.425], [1.4, 0.8, 0.425], [1.3, 1.0, 0.425]]))
+    first, second = SubgoalController("desk_cleanup", mode="mean"), SubgoalController("desk_cleanup", mode="mean", arm=1)
+    for controller in (first, second):
+        controller.set_subgoal([Literal("holding", ("green",))])
+    observation = world.observation()
+    seen = ArmFrame("desk_cleanup", 1).observation(observation)
+    np.testing.assert_allclose(second.act(observation), ArmFrame("desk_cleanup", 1).action(first.act(seen)), atol=1e-5)
+    shared = SubgoalController("desk_cleanup", arm=1, shared=True)
+    assert shared.hold(observation)[0] > 0  # an idle empty hand across the table draws back towards its own side

@@ -23,6 +23,7 @@ from typing import Protocol
 import numpy as np
 
 from semgoal_bringup.experiments.training import make_env
+from semgoal_core.arms import robot_names
 from semgoal_core.lockstep import lockstep_subgoal
 from semgoal_core.names import PlanStatus
 from semgoal_core.settling import Settling, held_blocks_asked, moving_blocks
@@ -51,7 +52,9 @@ class Outcome:
     fell_off: bool = False
     """A block ended the episode off the table."""
     overlap: int = 0
-    """Control steps over which two agents worked at once (a scripted person beside the robot)."""
+    """Control steps over which two agents worked at once (a scripted person or a second arm beside the robot)."""
+    arm_contacts: int = 0
+    """Physics substeps over which two robot arms touched."""
 
     @property
     def first_step_success(self) -> bool:
@@ -81,9 +84,12 @@ class Person(Protocol):
 class HierarchicalAgent:
     """Planner executive + one scene's sub-goal actor, on the benchmark's tasks or on any goal."""
 
-    def __init__(self, scene: str, actor_dir: Path) -> None:
+    def __init__(self, scene: str, actor_dir: Path, arms: int = 1) -> None:
         self.scene = scene
-        self.controller = SubgoalController(scene, actor_dir)
+        self.controllers = [SubgoalController(scene, actor_dir, arm=arm, shared=arms > 1) for arm in range(arms)]
+        """One per arm, each driving the same actor in its arm's frame (:class:`semgoal_core.arms.ArmFrame`)."""
+        self.controller = self.controllers[0]
+        self.robots = robot_names(arms)
         self._worlds: dict[tuple[str, int], FetchWorld] = {}
         """One world per task (or family) and block count, kept between its episodes."""
 
@@ -104,32 +110,37 @@ class HierarchicalAgent:
         ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
         it, then whether the last goal still holds at rest (``linger_holds``). ``person``: claims steps of each plan
         and does them in the world, while the arm holds still without a step of its own, as the policy node does;
-        ``concurrent``: the executive lets them work at once (else in turns; the robot alone takes the same steps)."""
+        ``concurrent``: the executive lets them work at once (else in turns; the robot alone takes the same steps).
+        With two arms each runs its own steps, and a step is done by whichever arm is free first."""
         key = (label, len(positions))
         if key not in self._worlds:
-            self._worlds[key] = FetchWorld(self.scene, len(positions))
+            self._worlds[key] = FetchWorld(self.scene, len(positions), len(self.robots))
         world = self._worlds[key]
         world.reset(positions)
         success, replans, first_held, executive, overlap = True, 0, None, None, 0
-        decided_before = None  # a goal's first step follows the decision before it, as the policy node does
-        for goal in goals:
-            executive = Executive(SemanticPlanner(self.scene), concurrent=concurrent)
+        decided_before: dict[str, list | None] = {}  # a goal's first step follows the decision before it, as the
+        for goal in goals:  # policy node does
+            executive = Executive(SemanticPlanner(self.scene), concurrent=concurrent, robots=self.robots,
+                                  reach=world.reach)
             executive.observe(observe(world))
             planned, _ = executive.set_goal(goal, step_budget=budget)
             if planned and person is not None:
                 person.claim(executive)
             first_held = None
             while planned and executive.status == PlanStatus.EXECUTING:
-                decided_now = (executive.active.subgoal.literals() if executive.active
-                               else ([] if executive.settling else None))
-                literals = lockstep_subgoal(decided_before, decided_now)
-                if literals is None and person is None:  # a human step: nobody acts in an evaluation
-                    break
-                if literals is None:  # the arm holds still while the person works
-                    self.controller.set_subgoal([], retreat=False)
-                else:
-                    self.controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
-                world.step(self.controller.act(world.observation(), (seed, world.step_count)))
+                decided_now = {robot: (executive.active_for(robot).subgoal.literals() if executive.active_for(robot)
+                                       else ([] if executive.settling else None)) for robot in self.robots}
+                followed = [lockstep_subgoal(decided_before.get(robot), decided_now[robot]) for robot in self.robots]
+                if all(literals is None for literals in followed) and person is None:
+                    break  # a human step: nobody acts in an evaluation
+                actions = []
+                for arm, (controller, literals) in enumerate(zip(self.controllers, followed, strict=True)):
+                    if literals is None:  # the arm holds still while others work
+                        controller.set_subgoal([], retreat=False)
+                    else:
+                        controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
+                    actions.append(controller.act(world.observation(arm=arm), (seed, world.step_count)))
+                world.step(np.array(actions))
                 if person is not None:
                     person.act(executive, world)
                 overlap += len(executive.working) > 1
@@ -145,7 +156,7 @@ class HierarchicalAgent:
         steps = world.step_count
         linger_holds = self._linger(world, executive.goal, seed, linger) if success and linger and executive else None
         return Outcome(label or " -> ".join(goals), seed, success, steps, replans, first_held, linger_holds,
-                       bool(world.fallen_blocks()), overlap)
+                       bool(world.fallen_blocks()), overlap, world.arm_contacts)
 
     def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
         """Run the arm with no step (what the policy node does once a goal is done: it retreats, keeping what the
@@ -188,8 +199,9 @@ def _scene_task(task_name: str, scene: str) -> Task:
     return task
 
 
-def make_agent(agent: str, scene: str, actor_dir: Path | None = None) -> HierarchicalAgent | FlatAgent:
-    """The runner for ``agent`` on ``scene``; ``actor_dir`` defaults to the shipped actor."""
+def make_agent(agent: str, scene: str, actor_dir: Path | None = None, arms: int = 1) -> HierarchicalAgent | FlatAgent:
+    """The runner for ``agent`` on ``scene`` (the hierarchical one with ``arms`` arms); ``actor_dir`` defaults to the
+    shipped actor."""
     spec = get_agent(agent)  # KeyError with the valid names
     actor_dir = actor_dir or actor_io.models_dir() / spec.model_name(scene)
-    return HierarchicalAgent(scene, actor_dir) if agent == "hierarchical" else FlatAgent(agent, scene, actor_dir)
+    return HierarchicalAgent(scene, actor_dir, arms) if agent == "hierarchical" else FlatAgent(agent, scene, actor_dir)

@@ -93,19 +93,31 @@ def run_start(task: str, seed: int, step_s: float) -> tuple[Outcome, Outcome]:
                                  concurrent=concurrent) for concurrent in (False, True))
 
 
-def summary(pairs: list[tuple[Outcome, Outcome]]) -> dict:
-    """Success, median steps per mode, the ratios and the steps worked at once, over the starts."""
+def summary(pairs: list[tuple[Outcome, Outcome]], modes: tuple[str, str] = ("in_turns", "at_once")) -> dict:
+    """Success, median steps per mode, the ratios (second mode over first) and the steps worked at once, over the
+    starts."""
     def mode(outcomes: list[Outcome]) -> dict:
         wins = sum(o.success for o in outcomes)
         return {"success": wins / len(outcomes), "interval": wilson_interval(wins, len(outcomes)),
                 "median_steps": statistics.median(o.steps for o in outcomes if o.success) if wins else None}
 
-    turns, at_once = mode([p[0] for p in pairs]), mode([p[1] for p in pairs])
+    first, second = mode([p[0] for p in pairs]), mode([p[1] for p in pairs])
     both = [(a.steps, b.steps, b.overlap) for a, b in pairs if a.success and b.success]
-    return {"episodes": len(pairs), "in_turns": turns, "at_once": at_once,
-            "ratio_of_medians": at_once["median_steps"] / turns["median_steps"] if both else None,
+    return {"episodes": len(pairs), modes[0]: first, modes[1]: second,
+            "ratio_of_medians": second["median_steps"] / first["median_steps"] if both else None,
             "median_ratio": statistics.median(b / a for a, b, _ in both) if both else None,
             "median_overlap_steps": statistics.median(o for *_, o in both) if both else None}
+
+
+def print_summary(result: dict, modes: tuple[str, str]) -> None:
+    """The summary's lines for people: each mode's success and median steps, then the ratios."""
+    for name in modes:
+        row = result[name]
+        low, high = row["interval"]
+        print(f"{name:9s} success {row['success']:.1%} [{low:.1%}, {high:.1%}]  median steps {row['median_steps']}")
+    if result["ratio_of_medians"] is not None:
+        print(f"{modes[1]} / {modes[0]}: ratio of medians {result['ratio_of_medians']:.3f}, median ratio "
+              f"{result['median_ratio']:.3f}; median steps both at work {result['median_overlap_steps']}")
 
 
 def main(argv: list[str]) -> int:
@@ -129,12 +141,7 @@ def main(argv: list[str]) -> int:
                      args.executor, args.jobs, what="start")
     result = {"task": args.task, "person_s": args.person_s, **summary(pairs)}
     if not args.json:
-        for name in ("in_turns", "at_once"):
-            row = result[name]
-            low, high = row["interval"]
-            print(f"{name:9s} success {row['success']:.1%} [{low:.1%}, {high:.1%}]  median steps {row['median_steps']}")
-        print(f"at once / in turns: ratio of medians {result['ratio_of_medians']:.3f}, median ratio "
-              f"{result['median_ratio']:.3f}; median steps both at work {result['median_overlap_steps']}")
+        print_summary(result, ("in_turns", "at_once"))
     print(json.dumps(result))
     return 0
 

@@ -1,0 +1,69 @@
+"""`./semgoal eval arms --task DC-4 --episodes 50 [--seed S] [--jobs J] [--executor E] [--json]`: one arm, then two arms
+(a second Fetch across the table, :mod:`semgoal_core.arms`), on the same starts, in process, by the executive's
+at-rest rule.
+
+With two arms each robot step goes to the free arm on its block's side of the table (the other one takes it only near
+the centre line), each arm works its own steps at once, and the sim's separation guard keeps the arms apart. Per mode:
+success at rest with its 95 % Wilson interval and the median control steps; then the ratio of the medians, the median
+of each start's ratio and the control steps both arms worked at once; then the starts on which the two arms touched
+and the physics substeps they touched for (a touch is a failure of the guard). The last line is one JSON object of
+the same."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from semgoal_bringup.experiments.episodes import Outcome
+from semgoal_bringup.experiments.executors import check_executor, run_jobs
+from semgoal_bringup.experiments.together import DEFAULT_SEED, print_summary, summary
+from semgoal_core.tasks import get_task
+
+MODES = ("one_arm", "two_arms")
+
+
+def run_start(task: str, seed: int) -> tuple[Outcome, Outcome]:
+    """One start with one arm and with two (one job)."""
+    import torch
+
+    from semgoal_bringup.experiments.episodes import make_agent
+
+    torch.set_num_threads(1)
+    spec = get_task(task)
+    positions = spec.initial_state(seed)[0]
+    return tuple(make_agent("hierarchical", spec.scene, arms=arms).run_goals(positions, (spec.name,), seed, label=spec.name)
+                 for arms in (1, 2))
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="semgoal eval arms", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--task", default="DC-4")
+    parser.add_argument("--episodes", type=int, default=50)
+    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (start i: seed + i)")
+    parser.add_argument("--jobs", type=int, default=1, help="starts run at once")
+    parser.add_argument("--executor", default="local", help="local | dask | dask:ADDRESS")
+    parser.add_argument("--json", action="store_true", help="only the JSON line")
+    args = parser.parse_args(argv)
+    try:
+        get_task(args.task)
+        check_executor(args.executor)
+    except (KeyError, ValueError) as error:
+        parser.error(str(error.args[0]))
+    if args.episodes < 1:
+        parser.error("--episodes must be positive")
+    pairs = run_jobs(run_start, [(args.task, args.seed + i) for i in range(args.episodes)], args.executor, args.jobs,
+                     what="start")
+    touched = [two.arm_contacts for _, two in pairs]
+    result = {"task": args.task, **summary(pairs, MODES), "starts_with_contact": sum(c > 0 for c in touched),
+              "contact_substeps": sum(touched)}
+    if not args.json:
+        print_summary(result, MODES)
+        print(f"arm-to-arm contact on {result['starts_with_contact']} of {len(pairs)} starts "
+              f"({result['contact_substeps']} physics substeps)")
+    print(json.dumps(result))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

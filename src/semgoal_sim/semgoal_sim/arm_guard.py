@@ -1,0 +1,116 @@
+"""Two arms at one table keep apart: a separation guard on their commands, below the policies. No MuJoCo.
+
+Each arm is taken, in the table plane, as the segment from its shoulder to its grip site: over random motions of the
+Fetch arm under the mocap, every link from the shoulder to the gripper stayed within 5.3 cm of it (the elbow rises
+above the segment, not beside it). Two arms keep :data:`SEPARATION` between their segments. When a command would
+bring them closer, one arm yields: not one with a block in hand, then not one at work (moving), then the one whose own
+move does it, then the second. It rises off the table and draws back towards its shoulder, its fingers keeping what
+they hold,
+while the other keeps its right of way until the two are :data:`RELEASE` apart again, and holds still in the plane
+where its move would close in on the other before that has drawn back. A yielding arm's step goes on
+afterwards (the executive's stall rule bounds the wait), as a person on a shared bench waits for the other's hand.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from semgoal_core.geometry import TABLE_TOP
+
+SEPARATION = 0.2
+"""Least distance (m) between two arms' segments: two 5.3 cm envelopes, the links' 3 cm half-thickness each, and
+a margin."""
+RELEASE = SEPARATION + 0.04
+"""Distance (m) at which the arm with the right of way gives it up again."""
+DISTAL_POINTS = 3
+"""The chain's points a command moves at once (wrist, gripper, grip site); the shoulder and the elbow follow."""
+STILL = 0.1
+"""A command this small in the table plane (5 mm a step) is an arm holding still: idle, or grasping."""
+YIELD_SPEED = 0.5
+"""A yielding arm draws back at 2.5 cm a step: at full speed a block hanging low in its fingers slid out."""
+CLEAR_HEIGHT = TABLE_TOP + 0.12
+"""A yielding arm first rises to this grip height (m): it draws back over the blocks, not through them."""
+
+
+def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndarray) -> float:
+    """Least distance between the segments p0-p1 and q0-q1 (points in 2-D or 3-D): the closest pair by the clamped
+    closed form (each parameter clamped to [0, 1], the other one recomputed)."""
+    d1, d2, r = p1 - p0, q1 - q0, p0 - q0
+    a, e, f = float(d1 @ d1), float(d2 @ d2), float(d2 @ r)
+    if a < 1e-12 and e < 1e-12:
+        return float(np.linalg.norm(r))
+    if a < 1e-12:
+        s, t = 0.0, np.clip(f / e, 0.0, 1.0)
+    else:
+        c = float(d1 @ r)
+        if e < 1e-12:
+            s, t = np.clip(-c / a, 0.0, 1.0), 0.0
+        else:
+            b = float(d1 @ d2)
+            denominator = a * e - b * b
+            s = np.clip((b * f - c * e) / denominator, 0.0, 1.0) if denominator > 1e-12 else 0.0
+            t = (b * s + f) / e
+            if t < 0.0:
+                s, t = np.clip(-c / a, 0.0, 1.0), 0.0
+            elif t > 1.0:
+                s, t = np.clip((b - c) / a, 0.0, 1.0), 1.0
+    return float(np.linalg.norm(p0 + d1 * s - q0 - d2 * t))
+
+
+def chain_distance(a: np.ndarray, b: np.ndarray) -> float:
+    """Least distance between two polylines (K, 3)."""
+    return min(segment_distance(a[i], a[i + 1], b[j], b[j + 1]) for i in range(len(a) - 1) for j in range(len(b) - 1))
+
+
+@dataclass
+class ArmGuard:
+    """The separation guard of two arms (module doc)."""
+
+    step_size: float
+    """Metres a command of 1 moves the grip in one control step."""
+    distal: int = DISTAL_POINTS
+    right_of_way: int | None = None
+    yields: int = 0
+    """Control steps on which an arm yielded, since :meth:`reset`."""
+
+    def reset(self) -> None:
+        self.right_of_way, self.yields = None, 0
+
+    def _moved(self, chains: np.ndarray, actions: np.ndarray, arms: tuple[int, ...] = (0, 1)) -> np.ndarray:
+        """The chains after ``arms`` move by their commands: their last :attr:`distal` points (wrist to grip)."""
+        moved = chains.copy()
+        for arm in arms:
+            moved[arm, -self.distal:] += actions[arm, :3] * self.step_size
+        return moved
+
+    @staticmethod
+    def apart(chains: np.ndarray) -> float:
+        return chain_distance(chains[0], chains[1])
+
+    def __call__(self, chains: np.ndarray, actions: np.ndarray, heights: np.ndarray, holding: np.ndarray) -> np.ndarray:
+        """The commands (2, 4) to send, given each arm's chain in the table plane (2, K, 2: shoulder first, grip
+        last), its command (2, 4), its grip's height (2,) and whether it holds a block (2,)."""
+        if self.right_of_way is not None and self.apart(chains) >= RELEASE:
+            self.right_of_way = None
+        if self.right_of_way is None and self.apart(self._moved(chains, actions)) >= SEPARATION:
+            return actions
+        if self.right_of_way is None:
+            closes = [self.apart(self._moved(chains, actions, (arm,))) < SEPARATION for arm in (0, 1)]
+            moving = np.linalg.norm(actions[:, :2], axis=1) > STILL
+            # who goes on: the arm with a block in hand, then one at work (moving), then one whose own move keeps
+            # the distance, then the first
+            ranks = [(bool(holding[arm]), bool(moving[arm]), not closes[arm], arm == 0) for arm in (0, 1)]
+            self.right_of_way = int(ranks[1] > ranks[0])
+        first, yielder = self.right_of_way, 1 - self.right_of_way
+        actions = np.array(actions, dtype=np.float64)
+        back = chains[yielder, 0, :2] - chains[yielder, -1, :2]
+        actions[yielder, :2] = YIELD_SPEED * back / max(float(np.linalg.norm(back)), 1e-9)
+        actions[yielder, 2] = 1.0 if heights[yielder] < CLEAR_HEIGHT else 0.0
+        actions[yielder, 3] = -1.0 if holding[yielder] else 0.0
+        apart = self.apart(self._moved(chains, actions))
+        if apart < SEPARATION and apart < self.apart(chains):  # the first waits in the plane until there is room
+            actions[first, :2] = 0.0
+        self.yields += 1
+        return actions

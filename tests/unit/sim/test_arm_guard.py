@@ -1,0 +1,60 @@
+"""The separation guard of two arms: distances between links, who yields, and that it leaves apart arms alone."""
+
+import numpy as np
+import pytest
+
+from semgoal_sim.arm_guard import SEPARATION, ArmGuard, chain_distance, segment_distance
+
+
+def test_segment_distance_is_the_closest_pair_of_points() -> None:
+    rng = np.random.default_rng(3)
+    samples = np.linspace(0.0, 1.0, 401)
+    for _ in range(200):
+        p0, p1, q0, q1 = rng.normal(size=(4, 3))
+        dense = np.linalg.norm((p0 + np.outer(samples, p1 - p0))[:, None] - (q0 + np.outer(samples, q1 - q0))[None], axis=2)
+        assert segment_distance(p0, p1, q0, q1) == pytest.approx(dense.min(), abs=5e-3)
+    crossing = segment_distance(np.array([0.0, 0, 0]), np.array([1.0, 0, 0]), np.array([0.5, -1, 0]), np.array([0.5, 1, 0]))
+    assert crossing == pytest.approx(0.0)
+    point = segment_distance(np.array([0.0, 0, 0]), np.array([0.0, 0, 0]), np.array([1.0, 1, 0]), np.array([1.0, 1, 0]))
+    assert point == pytest.approx(np.sqrt(2))
+
+
+def chains(first_grip_x: float, second_grip_x: float, y: float = 0.75) -> np.ndarray:
+    """Two straight arms reaching from across the table at the grips' x, level."""
+    def arm(shoulder_x: float, grip_x: float) -> np.ndarray:
+        return np.array([[shoulder_x + (grip_x - shoulder_x) * t, y, 0.6] for t in (0.0, 0.4, 0.7, 0.9, 1.0)])
+
+    return np.stack([arm(0.72, first_grip_x), arm(1.88, second_grip_x)])
+
+
+def test_arms_apart_keep_their_commands() -> None:
+    guard = ArmGuard(step_size=0.05)
+    actions = np.array([[0.2, 0.1, -0.3, 0.5], [-0.2, 0.0, 0.1, -1.0]])
+    far = chains(1.1, 1.5)
+    assert chain_distance(far[0], far[1]) > SEPARATION + 0.1
+    np.testing.assert_array_equal(guard(far, actions, np.array([0.5, 0.5]), np.array([False, False])), actions)
+    assert guard.right_of_way is None and guard.yields == 0
+
+
+def test_the_arm_without_a_block_draws_back_and_the_other_waits_for_room() -> None:
+    guard = ArmGuard(step_size=0.05)
+    close = chains(1.25, 1.40)
+    toward = np.array([[1.0, 0.0, 0.0, -1.0], [-1.0, 0.0, 0.0, 0.2]])  # each moves towards the other
+    sent = guard(close, toward, np.array([0.45, 0.45]), np.array([True, False]))
+    assert guard.right_of_way == 0 and guard.yields == 1
+    assert sent[1, 0] > 0 and sent[1, 2] == 1.0  # the second draws back towards its shoulder (+x) and rises
+    assert sent[1, 3] == 0.0  # an empty hand's fingers stay as they are
+    assert sent[0, 0] == 0.0 and sent[0, 3] == -1.0  # the first waits in the plane, squeezing its block
+
+
+def test_the_right_of_way_is_kept_until_the_arms_are_well_apart() -> None:
+    guard = ArmGuard(step_size=0.05)
+    still = np.zeros((2, 4))
+    guard(chains(1.25, 1.40), np.array([[1.0, 0, 0, 0], [0, 0, 0, 0]]), np.array([0.6, 0.6]), np.array([False, False]))
+    assert guard.right_of_way == 0  # the moving one goes on, the still one yields
+    guard(chains(1.2, 1.42), still, np.array([0.6, 0.6]), np.array([False, False]))
+    assert guard.right_of_way == 0
+    guard(chains(1.05, 1.55), still, np.array([0.6, 0.6]), np.array([False, False]))
+    assert guard.right_of_way is None
+    guard.reset()
+    assert (guard.right_of_way, guard.yields) == (None, 0)

@@ -1,0 +1,82 @@
+"""A second Fetch across the table: built, stepped and read per arm, its touches with the first counted, the guard
+keeping them apart, and the shipped actor driving it through the reflection."""
+
+import numpy as np
+import pytest
+
+from semgoal_core import layout
+from semgoal_core.arms import MIRROR_X
+from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, evaluate
+from semgoal_sim.world import FetchWorld
+
+DC4 = TASKS["DC-4"].initial_state(3_000_000)[0]
+
+
+@pytest.fixture(scope="module")
+def world() -> FetchWorld:
+    return FetchWorld("desk_cleanup", 4, arms=2)
+
+
+def test_the_arms_start_clear_of_each_other_one_the_others_reflection(world: FetchWorld) -> None:
+    first, second = world.reset(DC4), world.snapshot(1)
+    assert world.model.nmocap == 2 and world.model.nu == 4 and world.arm_contacts == 0
+    assert first.grip_position[0] + second.grip_position[0] == pytest.approx(2 * MIRROR_X, abs=0.005)
+    assert first.grip_position[1:] == pytest.approx(second.grip_position[1:], abs=0.005)
+    assert second.grip_position[0] - first.grip_position[0] > 0.2
+    assert second.other_hands[0][0] == pytest.approx(first.grip_position)
+
+
+def test_each_arm_takes_its_own_command(world: FetchWorld) -> None:
+    world.reset(DC4)
+    before = [world.snapshot(arm).grip_position for arm in (0, 1)]
+    for _ in range(3):
+        world.step(np.array([[0.0, 0.5, 0.0, 0.0], [0.0, -0.5, 0.0, 0.0]]))
+    after = [world.snapshot(arm).grip_position for arm in (0, 1)]
+    assert after[0][1] - before[0][1] > 0.04 and before[1][1] - after[1][1] > 0.04
+    world.step(np.array([0.0, 0.0, 0.5, 0.0]))  # one command: the first arm's, the second holds still
+    assert world.snapshot(1).grip_position == pytest.approx(after[1], abs=0.003)
+
+
+def test_arms_driven_into_each_other_touch_and_the_guard_keeps_them_apart() -> None:
+    towards = np.array([[1.0, 0.0, -0.3, 0.0], [-1.0, 0.0, -0.3, 0.0]])  # both reach for the table's middle
+    unguarded = FetchWorld("desk_cleanup", 2, arms=2)
+    unguarded.guard = None
+    unguarded.reset(DC4[:2])
+    guarded = FetchWorld("desk_cleanup", 2, arms=2)
+    guarded.reset(DC4[:2])
+    for _ in range(15):
+        unguarded.step(towards)
+        guarded.step(towards)
+    assert unguarded.arm_contacts > 0
+    assert guarded.arm_contacts == 0 and guarded.guard.yields > 0
+    unguarded.reset(DC4[:2])
+    assert unguarded.arm_contacts == 0
+
+
+def test_holding_is_in_either_hand_and_a_block_in_the_others_hand_rests_on_the_table_for_an_arm() -> None:
+    positions = np.array([[1.2, 0.6, 0.6], [1.4, 0.8, TABLE_TOP + BLOCK_HALF_SIZE]])
+    grip, opening = positions[0] + [0.0, 0.0, 0.005], 0.05
+    vector = evaluate(LAYOUTS["desk_cleanup"], np.vstack([positions, np.zeros((2, 3))]), np.array([1.45, 0.75, 0.6]),
+                      0.0, TABLE_TOP, np.array([True, True, False, False]), other_hands=[(grip, opening)])
+    held = [lit.args[0] for lit in LAYOUTS["desk_cleanup"].true_literals(vector) if lit.name == "holding"]
+    assert held == ["red"]
+    world = FetchWorld("desk_cleanup", 2, arms=2)
+    world.reset(DC4[:2])
+    world.place_in_gripper("red")
+    assert "red" in [lit.args[0] for lit in world.layout.true_literals(world.semantic_vector()) if lit.name == "holding"]
+    mine, theirs = (layout.block_slots("desk_cleanup", world.observation(arm=arm))["position"][0] for arm in (0, 1))
+    assert mine[2] > TABLE_TOP + 0.05 and theirs[2] == pytest.approx(TABLE_TOP + BLOCK_HALF_SIZE)
+    assert theirs[:2] == pytest.approx(mine[:2], abs=1e-6)
+
+
+@pytest.mark.slow
+def test_two_arms_bin_a_desk_sooner_than_one_without_touching() -> None:
+    """Two DC-4 starts through the executive: both succeed at rest, in fewer control steps than one arm, untouched."""
+    from semgoal_bringup.experiments import arms
+
+    pairs = [arms.run_start("DC-4", seed) for seed in (3_000_000, 3_000_003)]
+    for one, two in pairs:
+        assert one.success and two.success and two.arm_contacts == 0
+        assert two.steps < 0.8 * one.steps and two.overlap > 20

@@ -4,7 +4,7 @@ Arguments: ``scene``, ``task``, ``seed``, ``mode`` (realtime | lockstep), ``mode
 ``record`` (an MCAP file), ``foxglove`` and ``console`` (ports for the live view and the console), ``state_dir``
 (the planner's journal: a respawned planner carries on with the plan), ``perception`` and ``policy_input``
 (truth | camera: what the planner and the policy see by), ``composed`` (true: the graph's nodes in one process,
-``graph_node``);
+``graph_node``), ``robots`` (2: a second Fetch across the table, its policy node in /robot2);
 ``--show-args`` lists them. The nodes and their parameters come from ``semgoal_bringup.graph``, the
 definition `./semgoal up` starts from, over the installed parameter file; a node that dies is started
 again, as under `./semgoal up`.
@@ -15,11 +15,12 @@ from launch.actions import DeclareLaunchArgument, OpaqueFunction
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
-from semgoal_bringup.composed import NODE_NAMES
 from semgoal_bringup.graph import (
     LAUNCH_ARGUMENTS,
+    NAMESPACE_KEY,
     Sight,
     composed_arguments,
+    composed_nodes,
     composed_parameters,
     graph_nodes,
     params_file,
@@ -27,6 +28,10 @@ from semgoal_bringup.graph import (
     rviz_config,
     scene_task,
 )
+
+
+def without_namespace(params: dict) -> dict:
+    return {key: value for key, value in params.items() if key != NAMESPACE_KEY}
 
 
 def generate_launch_description() -> LaunchDescription:
@@ -40,13 +45,14 @@ def launch_nodes(context) -> list[Node]:
     value = {name: LaunchConfiguration(name).perform(context) for name, _, _ in LAUNCH_ARGUMENTS}
     task = scene_task(value["scene"], value["task"])
     graph = graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"], value["record"], value["foxglove"],
-                        value["console"], run_state_dir(value["state_dir"]), Sight(value["perception"], value["policy_input"]))
-    together = [node for node in graph if value["composed"].lower() in ("true", "1", "yes") and node[1] in NODE_NAMES]
+                        value["console"], run_state_dir(value["state_dir"]), Sight(value["perception"], value["policy_input"]),
+                        int(value["robots"]))
+    together = composed_nodes(graph, value["composed"].lower() in ("true", "1", "yes"))
     nodes = [Node(package="semgoal_bringup", executable="graph_node", output="screen", respawn=True, respawn_delay=2.0,
                   arguments=composed_arguments(together), ros_arguments=composed_parameters(together),
                   parameters=[str(params_file())])] if together else []
     nodes += [Node(package=package, executable=executable, output="screen", respawn=True, respawn_delay=2.0,
-                   parameters=[str(params_file()), params])
+                   namespace=params.get(NAMESPACE_KEY), parameters=[str(params_file()), without_namespace(params)])
               for package, executable, params in graph if (package, executable, params) not in together]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))

@@ -17,6 +17,9 @@ from semgoal_ros.domains import domain_for_this_process
 
 NODES = (("semgoal_sim", "sim_node"), ("semgoal_sim", "predicate_node"),
          ("semgoal_planner", "planner_node"), ("semgoal_policy", "policy_node"))
+NAMESPACE_KEY = "__ns"
+"""A node's namespace among its parameters in :func:`graph_nodes` (the second arm's policy node's): a remapping
+when the node starts, never a parameter."""
 SOURCES = ("truth", "camera")
 """Where the blocks' poses come from: the simulator's (``truth``) or the RGB-D camera's perception."""
 
@@ -84,6 +87,8 @@ LAUNCH_ARGUMENTS = (
     ("policy_input", "truth", "truth: the policy reads the simulator's poses | camera: the perceived ones"),
     ("composed", "false", "true: the sim, predicates (or perception), planner and policy nodes in one process on one "
      "executor (graph_node) | false: a process each"),
+    ("robots", "1", "robot arms at the table: 2 adds a second Fetch across it, driven by a second policy node in "
+     "/robot2 (its topics under /semgoal/robot2/)"),
 )
 """The launch file's arguments (name, default, description); `./semgoal up` takes the same as options."""
 
@@ -108,18 +113,26 @@ def scene_task(scene: str, task_name: str):
 
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
                 foxglove: str = "", console: str = "", state_dir: str = "",
-                sight: Sight = TRUTH) -> list[tuple[str, str, dict[str, object]]]:
+                sight: Sight = TRUTH, robots: int = 1) -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
     ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` or
-    ``console`` (a port each), the live view and the console last. ValueError for a port that is not a number."""
-    params = node_params(task_name, seed, mode, models, state_dir, sight)
+    ``console`` (a port each), the live view and the console last; with ``robots`` 2, a second policy node (its
+    namespace under :data:`NAMESPACE_KEY`). ValueError for a port that is not a number, or two arms that cannot be."""
+    from semgoal_core.arms import MAX_ARMS, arm_namespace
+
+    if not 1 <= robots <= MAX_ARMS or (robots > 1 and sight.policy_input == "camera"):
+        raise ValueError(f"robots must be 1 to {MAX_ARMS}, and the second arm's policy reads the sim's poses")
+    params = node_params(task_name, seed, mode, models, state_dir, sight, robots)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
     views = []
     for name, port, executable in (("foxglove", foxglove, "foxglove_node"), ("console", console, "console_node")):
         if port and not port.isdigit():
             raise ValueError(f"{name} must be a port number, got {port!r}")
         views += [("semgoal_bringup", executable, {"port": int(port)})] if port else []
-    return [*recorder, *((package, executable, params[executable]) for package, executable in sight.nodes()), *views]
+    arms = [("semgoal_policy", "policy_node", {**params["policy_node"], "arm": arm + 1, NAMESPACE_KEY: f"/{arm_namespace(arm)}"})
+            for arm in range(1, robots)]
+    return [*recorder, *((package, executable, params[executable]) for package, executable in sight.nodes()), *arms,
+            *views]
 
 
 def run_state_dir(given: str) -> str:
@@ -138,21 +151,24 @@ def rviz_config() -> Path:
 
 
 def node_params(task_name: str, seed: int, mode: str, models: str = "",
-                state_dir: str = "", sight: Sight = TRUTH) -> dict[str, dict[str, object]]:
+                state_dir: str = "", sight: Sight = TRUTH, robots: int = 1) -> dict[str, dict[str, object]]:
     """The task's own parameters per executable, set on top of :func:`params_file`; ``state_dir``: the planner's
-    journal (empty: none)."""
+    journal (empty: none); ``robots``: the arms at the table (set only when there are two)."""
     from semgoal_ros import interfaces as topics
 
     task = get_task(task_name)
     camera = {"camera": True, "camera_condition": sight.camera_condition} if sight.perception == "camera" else {}
     world = {"world_topic": topics.PERCEIVED_WORLD} if sight.policy_input == "camera" else {}
+    two = robots > 1
     return {
-        "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode, **camera},
+        "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode, **camera,
+                     **({"arms": robots} if two else {})},
         "predicate_node": {},
         "perception_node": {},
-        "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {})},
+        "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {}),
+                         **({"arms": robots} if two else {})},
         "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": f"{models}/{task.scene}"} if models else {}),
-                        **world},
+                        **world, **({"arms": robots} if two else {})},
     }
 
 
@@ -171,7 +187,7 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
     if log_level:
         args += ["--log-level", log_level]
     for key, value in (params or {}).items():
-        args += ["-p", f"{key}:={value}"]
+        args += ["-r", f"__ns:={value}"] if key == NAMESPACE_KEY else ["-p", f"{key}:={value}"]
     return args
 
 
@@ -192,10 +208,21 @@ def graph_commands(nodes: list[tuple[str, str, dict]], composed: bool = False, l
                    ) -> dict[str, list[str]]:
     """The command of each process that runs ``nodes`` (:func:`graph_nodes`), by its name: a process per node, or
     (``composed``) the graph's own nodes in one, ``graph_node``, and the others a process each."""
-    together = [node for node in nodes if composed and node[1] in NODE_NAMES]
-    commands = {executable: node_command(package, executable, params, log_level)
+    together = composed_nodes(nodes, composed)
+    commands = {process_name(executable, params): node_command(package, executable, params, log_level)
                 for package, executable, params in nodes if (package, executable, params) not in together}
     return {**({"graph_node": composed_command(together, log_level)} if together else {}), **commands}
+
+
+def composed_nodes(nodes: list[tuple[str, str, dict]], composed: bool) -> list[tuple[str, str, dict]]:
+    """The nodes ``graph_node`` runs when ``composed``: the graph's own (a second arm's policy node runs apart)."""
+    return [node for node in nodes if composed and node[1] in NODE_NAMES and NAMESPACE_KEY not in node[2]]
+
+
+def process_name(executable: str, params: dict) -> str:
+    """A node's process name: its executable, under its namespace if it has one (``robot2/policy_node``)."""
+    namespace = str(params.get(NAMESPACE_KEY, "")).strip("/")
+    return f"{namespace}/{executable}" if namespace else executable
 
 
 def composed_command(nodes: list[tuple[str, str, dict]], log_level: str | None = None) -> list[str]:

@@ -1,5 +1,5 @@
 """`./semgoal up [--task T] [--scene S] [--seed S] [--mode realtime|lockstep] [--models DIR] [--rviz true]
-[--record FILE] [--foxglove [PORT]] [--console [PORT]] [--state-dir DIR]`: start
+[--record FILE] [--foxglove [PORT]] [--console [PORT]] [--state-dir DIR] [--robots 2]`: start
 the four nodes and stay up; the options are the launch file's arguments (``ros2 launch semgoal_bringup
 semgoal.launch.py``), read from the same definition.
 
@@ -47,8 +47,10 @@ def main(argv: list[str]) -> int:
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
     try:
+        if not args.robots.isdigit():
+            raise ValueError(f"--robots must be 1 or 2, got {args.robots!r}")
         nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console,
-                            run_state_dir(args.state_dir), Sight(args.perception, args.policy_input))
+                            run_state_dir(args.state_dir), Sight(args.perception, args.policy_input), int(args.robots))
     except ValueError as error:
         parser.error(str(error))
     commands = graph_commands(nodes, args.composed.lower() in ("true", "1", "yes"), args.log_level)

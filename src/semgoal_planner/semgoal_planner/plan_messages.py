@@ -54,10 +54,11 @@ def step_message(index: int, subgoal, status: str, assignee: str, after: tuple[i
                    goal=[predicate(lit) for lit in subgoal.literals()], after=list(after))
 
 
-def subgoal_message(ex: Executive, state: SemanticState | None) -> SubGoal:
-    """The active robot step; else an empty goal (the policy holds still) with the reason as status:
-    ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` or the plan's status."""
-    active = ex.active
+def subgoal_message(ex: Executive, state: SemanticState | None, robot: str = Assignee.ROBOT) -> SubGoal:
+    """``robot``'s active step; else an empty goal (the policy holds still) with the reason as status:
+    ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` (others work) or the plan's
+    status."""
+    active = ex.active_for(robot)
     goal = [predicate(lit) for lit in ex.goal]
     if ex.settling:  # the goal's literals: the policy keeps what they ask to hold while the arm retreats
         msg = SubGoal(index=ex.current, status=StepStatus.SETTLING, goal=goal)
@@ -68,7 +69,7 @@ def subgoal_message(ex: Executive, state: SemanticState | None) -> SubGoal:
         msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,
                       assignee=Assignee.HUMAN if waiting else "")
     else:
-        msg = step_message(ex.working[Assignee.ROBOT], active.subgoal, StepStatus.ACTIVE, Assignee.ROBOT)
+        msg = step_message(ex.working[robot], active.subgoal, StepStatus.ACTIVE, robot)
     msg.step = state.step if state else 0  # the state this decision answers
     msg.episode = state.episode if state else 0
     return msg

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import time
 
+import numpy as np
 from action_msgs.msg import GoalStatusArray
 from rclpy.action import ActionServer, GoalResponse
 from rclpy.action.server import ServerGoalHandle
@@ -21,9 +22,10 @@ from rclpy.qos import qos_profile_action_status_default
 from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
+from semgoal_core.arms import arms_for, robot_name, robot_names
 from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal
+from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal, WorldState
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_planner.doubt import Doubt
 from semgoal_planner.executive import Executive
@@ -48,8 +50,12 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
     def __init__(self) -> None:
         super().__init__("planner")
         values = declare(self, PARAMS)
-        self.executive = Executive(SemanticPlanner(values["scene"], values["search"]),
+        robots = robot_names(values["arms"])
+        self.executive = Executive(SemanticPlanner(values["scene"], values["search"]), robots=robots,
+                                   reach=self.reach if len(robots) > 1 else None,
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
+        self.block_positions: dict[str, np.ndarray] = {}
+        """With two arms: where each block is (the world state), for :meth:`reach`."""
         self.state_wait_s = float(values["state_wait_s"])
         self.world_silence_s = float(values["world_silence_s"])
         self.doubt = Doubt(values["min_confidence"], values["unsure_wait_steps"])
@@ -63,7 +69,10 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.create_timer(SILENCE_CHECK_S, self.check_silence, clock=Clock(clock_type=ClockType.STEADY_TIME))
         self.plan_publisher = self.create_publisher(Plan, topics.PLAN, topics.LATCHED)
         self.plan_marker_publisher = self.create_publisher(MarkerArray, topics.PLAN_MARKERS, topics.LATCHED)
-        self.subgoal_publisher = self.create_publisher(SubGoal, topics.SUBGOAL, topics.PER_STEP)
+        self.subgoal_publishers = {robot: self.create_publisher(SubGoal, topics.arm_topic(topics.SUBGOAL, arm),
+                                                                topics.PER_STEP) for arm, robot in enumerate(robots)}
+        if len(robots) > 1:
+            self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.events_pub = self.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS)
         self.action_status_pub = self.create_publisher(GoalStatusArray, topics.action_status(topics.EXECUTE_GOAL),
                                                        qos_profile_action_status_default)
@@ -183,6 +192,17 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         event.header.stamp = self.get_clock().now().to_msg()
         self.events_pub.publish(event)
 
+    def world_callback(self, msg: WorldState) -> None:
+        self.block_positions = {block.name: np.array([block.pose.position.x, block.pose.position.y])
+                                for block in msg.blocks}
+
+    def reach(self, block: str) -> tuple[str, ...]:
+        """The arms that take ``block`` up where the world state last put it, the nearer first; every arm before one
+        came (:func:`semgoal_core.arms.arms_for`)."""
+        if block not in self.block_positions:
+            return self.executive.robots
+        return tuple(robot_name(arm) for arm in arms_for(self.block_positions[block], len(self.executive.robots)))
+
     def plan_now(self) -> Plan:
         return plan_message(self.executive, self.get_clock().now().to_msg())
 
@@ -205,7 +225,8 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
                 else:
                     self.publish_feedback()
         if changed or decided:
-            self.subgoal_publisher.publish(subgoal_message(self.executive, self.last_state))
+            for robot, publisher in self.subgoal_publishers.items():
+                publisher.publish(subgoal_message(self.executive, self.last_state, robot))
         self.save_journal()
 
 

@@ -22,6 +22,7 @@ import time
 import numpy as np
 from rclpy.node import Node
 
+from semgoal_core.arms import MAX_ARMS
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.lockstep import followed_decision
 from semgoal_core.names import Mode, PlanStatus, StepStatus
@@ -42,6 +43,10 @@ PARAMS = (
     Param("rate_hz", 25.0, "realtime mode: commands per second", low=0.1, high=1000.0, runtime=True),
     Param("world_topic", topics.WORLD_STATE, "the world state the actor reads: the sim's, or the camera's "
           f"perception ({topics.PERCEIVED_WORLD})", choices=(topics.WORLD_STATE, topics.PERCEIVED_WORLD)),
+    Param("arm", 1, "the arm this node drives: 1, or 2 for the second Fetch across the table (its topics under "
+          "/semgoal/robot2/)", low=1, high=MAX_ARMS),
+    Param("arms", 1, "robot arms at the table: with 2, an arm without a step of its own answers each step, holding "
+          "still (an empty hand draws back to its side), so the other's steps go on", low=1, high=MAX_ARMS),
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
 )
@@ -58,16 +63,22 @@ class PolicyNode(Node):
         super().__init__("policy")
         values = declare(self, PARAMS)
         self.mode, scene = values["mode"], values["scene"]
+        arm, self.arms = values["arm"] - 1, values["arms"]
+        if arm >= self.arms or (arm and values["world_topic"] != topics.WORLD_STATE):
+            raise ParameterValueError(f"policy: arm {arm + 1} needs arms >= {arm + 1} and the sim's world state (the "
+                                      "camera's perception serves the first arm)")
         try:
-            self.controller = SubgoalController(scene, values["model_dir"] or None, values["action_mode"])
+            self.controller = SubgoalController(scene, values["model_dir"] or None, values["action_mode"], arm,
+                                                shared=self.arms > 1)
         except (FileNotFoundError, ValueError, LayoutMismatchError) as error:  # no actor, or one of another layout
             raise ParameterValueError(f"policy: {error}") from None
         self.get_logger().info(f"actor for {scene} from {self.controller.model_dir}: "
                                f"{self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
-        self.publisher = self.create_publisher(ArmCommand, topics.ARM_COMMAND, topics.STREAM)
-        self.create_subscription(WorldState, values["world_topic"], self.world_callback, topics.STREAM)
-        self.create_subscription(SubGoal, topics.SUBGOAL, self.subgoal_callback, topics.PER_STEP)
+        self.publisher = self.create_publisher(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm), topics.STREAM)
+        self.create_subscription(WorldState, topics.arm_topic(values["world_topic"], arm), self.world_callback,
+                                 topics.STREAM)
+        self.create_subscription(SubGoal, topics.arm_topic(topics.SUBGOAL, arm), self.subgoal_callback, topics.PER_STEP)
         self.latest: WorldState | None = None
         self.decisions: dict[tuple[int, int], SubGoal] = {}
         """The planner's latest answer per (episode, control step), the last ``DECISIONS_KEPT``."""
@@ -164,11 +175,14 @@ class PolicyNode(Node):
         if msg is None or (msg.episode, msg.step) == self.answered:
             return
         decision = followed_decision(self.decisions, msg.episode, msg.step)
-        if decision is None:
+        if decision is None and (self.arms == 1 or (msg.episode, msg.step) not in self.decisions):
             return
-        self.follow(decision)  # a settling decision: no goal, the controller's command is to retreat
         with self.acting.time():
-            action = self.controller.act(msg.observation, (msg.seed, msg.step))
+            if decision is None:  # the planner's answer names no step for this arm: it holds while the other works
+                action = self.controller.hold(np.asarray(msg.observation, dtype=np.float32))
+            else:
+                self.follow(decision)  # a settling decision: no goal, the controller's command is to retreat
+                action = self.controller.act(msg.observation, (msg.seed, msg.step))
         self.publish_command(msg, action)
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:

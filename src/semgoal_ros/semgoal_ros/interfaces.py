@@ -14,6 +14,8 @@ from collections.abc import Callable
 
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
+from semgoal_core.arms import arm_namespace
+
 NAMESPACE = "/semgoal"
 CLOCK = "/clock"
 JOINT_STATES = "/joint_states"
@@ -39,6 +41,12 @@ GET_PLAN = f"{NAMESPACE}/get_plan"
 EDIT_PLAN = f"{NAMESPACE}/edit_plan"
 EXECUTE_GOAL = f"{NAMESPACE}/execute_goal"
 OPERATOR_EVENTS = f"{NAMESPACE}/operator_events"
+
+
+def arm_topic(topic: str, arm: int) -> str:
+    """Arm ``arm``'s own version of a per-arm topic (world state, sub-goal, arm command): the topic itself for the first
+    arm, under ``/semgoal/robot2/`` for the second (:func:`semgoal_core.arms.arm_namespace`)."""
+    return topic if arm == 0 else topic.replace(f"{NAMESPACE}/", f"{NAMESPACE}/{arm_namespace(arm)}/", 1)
 
 
 def action_status(action: str) -> str:

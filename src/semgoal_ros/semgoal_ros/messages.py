@@ -35,11 +35,13 @@ def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
 
 
 def semantic_vector(msg: WorldState) -> np.ndarray:
-    """Evaluate the scene's predicates on a world state message."""
+    """Evaluate the scene's predicates on a world state message (``holding`` in any arm's hand)."""
     positions, present = block_positions(msg)
     g = msg.gripper_position
+    others = [(np.array([p.x, p.y, p.z]), float(opening))
+              for p, opening in zip(msg.other_grippers, msg.other_finger_openings, strict=False)]
     return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
-                    float(sum(msg.finger_positions)), TABLE_TOP, present)
+                    float(sum(msg.finger_positions)), TABLE_TOP, present, other_hands=others)
 
 
 def moving(msg: WorldState) -> tuple[str, ...]:

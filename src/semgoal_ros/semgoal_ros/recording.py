@@ -60,6 +60,10 @@ def recorded_topics(session: bool = False) -> list[tuple[str, str, QoSProfile]]:
         (topics.BLOCK_ESTIMATES, "semgoal_msgs/msg/BlockEstimates", topics.RECORDING),
         (topics.TF, "tf2_msgs/msg/TFMessage", topics.RECORDING),
         (topics.TF_STATIC, "tf2_msgs/msg/TFMessage", latched),
+        # the second arm's slice, sub-goal and commands (a graph with robots 2)
+        (topics.arm_topic(topics.WORLD_STATE, 1), "semgoal_msgs/msg/WorldState", topics.RECORDING),
+        (topics.arm_topic(topics.SUBGOAL, 1), "semgoal_msgs/msg/SubGoal", latched),
+        (topics.arm_topic(topics.ARM_COMMAND, 1), "semgoal_msgs/msg/ArmCommand", topics.RECORDING),
     ]
 
 

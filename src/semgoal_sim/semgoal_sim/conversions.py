@@ -26,8 +26,10 @@ def stamp(seconds: float) -> Time:
 
 
 def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, seed: int = 0,
-                clock_s: float | None = None) -> WorldState:
-    """``clock_s``: the sim clock for the stamp (:attr:`SimCore.clock_s`); else the episode's own time."""
+                clock_s: float | None = None, arm: int = 0) -> WorldState:
+    """``clock_s``: the sim clock for the stamp (:attr:`SimCore.clock_s`); else the episode's own time. ``snapshot``:
+    arm ``arm``'s (:meth:`FetchWorld.snapshot`), its slice of the world: its hand, its observation, the others'
+    hands."""
     msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode, seed=seed)
     msg.header.frame_id = "world"
     msg.header.stamp = stamp(snapshot.time if clock_s is None else clock_s)
@@ -48,7 +50,10 @@ def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, 
     if world.scene.bin is not None:
         msg.has_bin = True
         msg.bin_position = Point(x=world.scene.bin.center[0], y=world.scene.bin.center[1], z=TABLE_TOP)
-    msg.observation = world.observation(snapshot).astype(float).tolist()
+    msg.observation = world.observation(snapshot, arm).astype(float).tolist()
+    msg.other_grippers = [Point(x=float(p[0]), y=float(p[1]), z=float(p[2])) for p, _ in snapshot.other_hands]
+    msg.other_finger_openings = [opening for _, opening in snapshot.other_hands]
+    msg.arm_contacts = world.arm_contacts
     return msg
 
 

@@ -107,10 +107,10 @@ def _bad_start(values: np.ndarray, blocks: int) -> str:
 class SimCore:
     """One scene's world, reset to tasks by seed, stepped by checked commands."""
 
-    def __init__(self, scene: str, task: str = "", seed: int = 0) -> None:
+    def __init__(self, scene: str, task: str = "", seed: int = 0, arms: int = 1) -> None:
         if scene not in SCENES:
             raise ValueError(f"unknown scene {scene!r}: scenes are {', '.join(SCENES)}")
-        self.scene = scene
+        self.scene, self.arms = scene, arms
         self.task = ""
         self.episode = 0
         self.ticks = 0
@@ -144,7 +144,7 @@ class SimCore:
             seed = self._next_seed
         self._next_seed = (seed + 1) % MAX_SEED  # WorldState.seed is an int64: the stream wraps, never overflows
         if task.n_blocks not in self._worlds:
-            self._worlds[task.n_blocks] = FetchWorld(self.scene, task.n_blocks)
+            self._worlds[task.n_blocks] = FetchWorld(self.scene, task.n_blocks, self.arms)
         self._blocks = task.n_blocks
         start, self.goal = task.initial_state(seed)
         self.world.reset(given.reshape(-1, 3) if given.size else start)
@@ -154,12 +154,16 @@ class SimCore:
         return True, f"reset to {task.name} with seed {seed}{' from the positions given' if given.size else ''}"
 
     def step(self, values: list[float] | np.ndarray) -> CommandCheck:
-        """Check a command and, unless dropped, advance one control step."""
+        """Check a command and, unless dropped, advance one control step (a second arm holds still)."""
         check = check_command(values)
         if check.action is not None:
-            self.world.step(check.action)
-            self.ticks += 1
+            self.step_arms([check.action])
         return check
+
+    def step_arms(self, actions: Sequence[np.ndarray]) -> None:
+        """Advance one control step with one checked command per arm (:func:`check_command`)."""
+        self.world.step(np.array(actions))
+        self.ticks += 1
 
     @property
     def clock_s(self) -> float:
@@ -171,5 +175,5 @@ class SimCore:
         """Operator intervention: :func:`move_block` in this world."""
         return move_block(self.world, block, position)
 
-    def snapshot(self) -> Snapshot:
-        return self.world.snapshot()
+    def snapshot(self, arm: int = 0) -> Snapshot:
+        return self.world.snapshot(arm)

@@ -3,7 +3,9 @@
 Publishes /joint_states, /semgoal/world_state and /semgoal/markers; takes /semgoal/arm_command; serves
 /semgoal/reset_world and /semgoal/move_block. In ``lockstep`` mode one command for the step just
 published advances one control step (as fast as the graph goes); in ``realtime`` mode a timer steps at
-``rate_hz`` with the last good command. With ``render`` on, an offscreen camera (OSMesa where there
+``rate_hz`` with the last good command. With ``arms`` 2 a second Fetch stands across the table: its slice of the
+world (its hand, its observation) goes on /semgoal/robot2/world_state and it takes /semgoal/robot2/arm_command; in
+lockstep a step waits for both arms' commands. With ``render`` on, an offscreen camera (OSMesa where there
 is no GPU) publishes /semgoal/camera/image_raw at ``render_hz``: a picture for people.
 
 With ``camera`` on, the RGB-D sensor (``semgoal_sim.camera``) publishes colour, depth and camera info
@@ -12,6 +14,7 @@ the step's world state; the camera's and the base's frames go on /tf_static (aga
 look moves the camera), the grip site's on /tf each step.
 """
 
+import functools
 import time
 
 import numpy as np
@@ -23,6 +26,7 @@ from sensor_msgs.msg import CameraInfo, Image, JointState
 from tf2_msgs.msg import TFMessage
 from visualization_msgs.msg import MarkerArray
 
+from semgoal_core.arms import MAX_ARMS
 from semgoal_core.names import Mode
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import SCENES
@@ -43,6 +47,8 @@ PARAMS = (
     Param("scene", "two_blocks", "the scene to simulate", choices=tuple(SCENES)),
     Param("task", "", f"the task whose start the world takes: {', '.join(TASKS)} (empty: the scene's first)"),
     Param("seed", 0, "initial-state seed of the task", low=0, high=2**31 - 1),
+    Param("arms", 1, "robot arms at the table: 2 adds a second Fetch across it (topics under /semgoal/robot2/)",
+          low=1, high=MAX_ARMS),
     Param("mode", Mode.LOCKSTEP.value, "lockstep: one step per arm command; realtime: a timer at rate_hz",
           choices=tuple(Mode)),
     Param("rate_hz", 25.0, "control rate in realtime mode (the Fetch benchmark's 25 Hz)", low=0.1, high=1000.0,
@@ -72,16 +78,22 @@ class SimNode(Node):
         self.mode, self.rate_hz, self.markers_every = values["mode"], values["rate_hz"], values["markers_every"]
         self.render_size = (values["render_width"], values["render_height"])
         try:
-            self.core = SimCore(values["scene"], values["task"], values["seed"])
+            self.core = SimCore(values["scene"], values["task"], values["seed"], values["arms"])
         except ValueError as error:
             raise ParameterValueError(f"sim: {error}") from None
-        self.held_command = np.zeros(4)
-        self.command_at = time.monotonic()
-        """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""
-        self.world_pub = self.create_publisher(WorldState, topics.WORLD_STATE, topics.STREAM)
+        arms = range(values["arms"])
+        self.held_commands = [np.zeros(4) for _ in arms]
+        self.command_at = [time.monotonic() for _ in arms]
+        """When each arm's last command came (realtime: the watchdog holds an arm still once it is too old)."""
+        self.lockstep_commands: dict[int, np.ndarray] = {}
+        """Lockstep: the arms' commands for the step just published, until every arm's has come."""
+        self.world_pubs = [self.create_publisher(WorldState, topics.arm_topic(topics.WORLD_STATE, arm), topics.STREAM)
+                           for arm in arms]
         self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
         self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED)
-        self.create_subscription(ArmCommand, topics.ARM_COMMAND, self.command_callback, topics.STREAM)
+        for arm in arms:
+            self.create_subscription(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm),
+                                     functools.partial(self.command_callback, arm=arm), topics.STREAM)
         self.create_service(ResetWorld, topics.RESET_WORLD, self.reset_callback)
         self.create_service(MoveBlock, topics.MOVE_BLOCK, self.move_block_callback)
         self.clock_pub = self.create_publisher(Clock, topics.CLOCK, topics.CLOCK_QOS)
@@ -139,12 +151,16 @@ class SimNode(Node):
                                 "episode": self.core.episode, "sim time s": round(self.core.clock_s, 2), **self.counters}
 
     def publish_state(self) -> WorldState:
+        """The world state (each arm's slice on its topic); returns the first arm's."""
         snapshot = self.core.snapshot()
         clock_s = self.core.clock_s
         msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode, self.core.seed,
                                       clock_s)
         self.clock_pub.publish(Clock(clock=msg.header.stamp))
-        self.world_pub.publish(msg)
+        self.world_pubs[0].publish(msg)
+        for arm, publisher in enumerate(self.world_pubs[1:], start=1):
+            publisher.publish(conversions.world_state(self.core.world, self.core.snapshot(arm), self.core.task,
+                                                      self.core.episode, self.core.seed, clock_s, arm))
         self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot, clock_s))
         if snapshot.step % max(1, self.markers_every) == 0:
             self.marker_pub.publish(conversions.markers(msg))
@@ -178,7 +194,7 @@ class SimNode(Node):
             self.renderer = FrameRenderer(self.core.world, *self.render_size)
         self.image_pub.publish(conversions.image(self.renderer.frame(), self.core.world.step_count))
 
-    def command_callback(self, msg: ArmCommand) -> None:
+    def command_callback(self, msg: ArmCommand, arm: int = 0) -> None:
         values = [msg.displacement.x, msg.displacement.y, msg.displacement.z, msg.gripper]
         if self.mode == Mode.LOCKSTEP and msg.step != self.core.world.step_count:
             self.get_logger().warn(f"dropped a stale command for step {msg.step} (now at {self.core.world.step_count})",
@@ -192,10 +208,13 @@ class SimNode(Node):
         if check.action is None:
             return
         if self.mode == Mode.REALTIME:
-            self.held_command, self.command_at = check.action, time.monotonic()
+            self.held_commands[arm], self.command_at[arm] = check.action, time.monotonic()
             return
-        self.core.step(check.action)
-        self.publish_state()
+        self.lockstep_commands[arm] = check.action
+        if len(self.lockstep_commands) == len(self.held_commands):
+            self.core.step_arms([self.lockstep_commands[a] for a in range(len(self.held_commands))])
+            self.lockstep_commands.clear()
+            self.publish_state()
 
     def heartbeat(self) -> None:
         """Republish the world state when lockstep has not moved since the last heartbeat."""
@@ -210,13 +229,14 @@ class SimNode(Node):
             self.counters["late steps"] += 1
         self.last_step_at = now
         self.counters["realtime steps"] += 1
-        if now - self.command_at > WATCHDOG_PERIODS / self.rate_hz and self.held_command[:3].any():
-            # no command for a while (the policy died or stalls): stop moving, keep the fingers' command so
-            # that a held block stays held
-            self.held_command = np.array([0.0, 0.0, 0.0, self.held_command[3]])
-            self.counters["watchdog stops"] += 1
-            self.get_logger().warn(f"no arm command for {WATCHDOG_PERIODS} periods: holding the arm still")
-        self.core.step(self.held_command)
+        for arm, held in enumerate(self.held_commands):
+            if now - self.command_at[arm] > WATCHDOG_PERIODS / self.rate_hz and held[:3].any():
+                # no command for a while (the policy died or stalls): stop moving, keep the fingers' command so
+                # that a held block stays held
+                self.held_commands[arm] = np.array([0.0, 0.0, 0.0, held[3]])
+                self.counters["watchdog stops"] += 1
+                self.get_logger().warn(f"no command for arm {arm + 1} for {WATCHDOG_PERIODS} periods: holding it still")
+        self.core.step_arms(self.held_commands)
         self.publish_state()
 
     def report(self, kind: str, request: str, success: bool, message: str) -> None:
@@ -233,9 +253,9 @@ class SimNode(Node):
         response.success, response.message = self.core.reset(request.task, request.seed, request.positions)
         given = f" from {len(request.positions) // 3} positions" if len(request.positions) else ""
         self.report(OperatorEvent.KIND_RESET, f"{request.task} seed {request.seed}{given}", response.success, response.message)
-        self.held_command = np.zeros(4)
-        self.command_at = time.monotonic()
-        """When the last arm command came (realtime: the watchdog holds the arm still once it is too old)."""
+        self.held_commands = [np.zeros(4) for _ in self.held_commands]
+        self.command_at = [time.monotonic() for _ in self.command_at]
+        self.lockstep_commands.clear()
         response.world = self.publish_state()
         response.state = messages.semantic_state(response.world, messages.semantic_vector(response.world))
         return response

@@ -129,3 +129,13 @@ def test_composed_puts_the_graphs_nodes_in_one_process_with_their_own_values(lau
     scoped = composed.kwargs["ros_arguments"]
     assert {"sim:task:=MC-3", "sim:seed:=7", "sim:mode:=lockstep", "planner:scene:=three_blocks"} <= set(scoped)
     assert [n.kwargs["executable"] for n in others] == ["console_node"]
+
+
+def test_robots_2_adds_the_second_arms_policy_node_in_its_namespace(launch_file) -> None:
+    launched = _launched(launch_file, task="DC-4", mode="lockstep", robots="2")
+    by_name = {(n.kwargs["executable"], n.kwargs["namespace"]): n.kwargs["parameters"][1] for n in launched}
+    assert by_name[("sim_node", None)]["arms"] == 2 and by_name[("planner_node", None)]["arms"] == 2
+    assert by_name[("policy_node", None)]["arms"] == 2 and "arm" not in by_name[("policy_node", None)]
+    assert by_name[("policy_node", "/robot2")] == {**by_name[("policy_node", None)], "arm": 2}
+    with pytest.raises(ValueError, match="robots must be 1 to 2"):
+        _launched(launch_file, robots="3")

@@ -1,0 +1,47 @@
+"""Two robot arms through the graph: the nodes the launch file starts with ``robots:=2`` (a second policy node in
+/robot2) bin DC-4 working at once, succeed at rest, never touch, and take the in-process episode's steps."""
+
+import pytest
+
+from conftest import GraphProbe, NodeProcesses
+from semgoal_bringup.experiments.episodes import make_agent
+from semgoal_bringup.graph import graph_nodes, node_command, process_name
+from semgoal_bringup.study.fluency import recorded_plans
+from semgoal_core.names import StepStatus, is_person
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_ros.client import GraphClient
+
+TASK, SEED = "DC-4", 3_000_000
+
+
+@pytest.mark.timeout(600)
+def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, probe: GraphProbe, tmp_path) -> None:
+    expected = make_agent("hierarchical", get_task(TASK).scene, arms=2).run(TASK, SEED)
+    assert expected.success and expected.arm_contacts == 0
+    for package, executable, params in graph_nodes(TASK, SEED, "lockstep", robots=2):
+        nodes.run(process_name(executable, params).replace("/", "-"), node_command(package, executable, params))
+    client = GraphClient("semgoal_test_operator", watch=False)
+    record = tmp_path / "two_arms.mcap"
+    try:
+        assert client.wait_ready(), nodes.logs()
+        names = set(probe.node.get_node_names_and_namespaces())
+        assert {("policy", "/"), ("policy", "/robot2")} <= names, names
+        ok, message = client.reset(TASK, SEED)
+        assert ok, message
+        with client.recording(record):
+            result = client.execute(TASK, max_steps=TASK_STEP_BUDGET)
+    finally:
+        client.close()
+    assert result.success, result.message
+    plans = recorded_plans(record)
+    at_once = [{step.assignee for step in plan.steps if step.status == StepStatus.ACTIVE} for plan in plans]
+    assert {"robot", "robot:2"} in at_once  # both arms had a step under way at the same time
+    assert not any(is_person(who) for working in at_once for who in working)
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    with record.open("rb") as stream:
+        contacts = [msg.arm_contacts for _, channel, _, msg in make_reader(
+            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages() if channel.topic == "/semgoal/world_state"]
+    assert contacts and max(contacts) == 0
+    assert (result.control_steps, result.replans) == (expected.steps, expected.replans), result.message

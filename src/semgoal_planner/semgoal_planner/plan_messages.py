@@ -65,7 +65,7 @@ def subgoal_message(ex: Executive, state: SemanticState | None, robot: str = Ass
     elif ex.status == PlanStatus.SUCCEEDED:
         msg = SubGoal(index=ex.current, status=ex.status, goal=goal)
     elif active is None:
-        waiting = ex.status == PlanStatus.EXECUTING  # executing without an active robot step: it waits for others
+        waiting = ex.status == PlanStatus.EXECUTING  # executing without a step for this arm: it waits for others
         msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,
                       assignee=Assignee.HUMAN if waiting else "")
     else:

@@ -45,8 +45,9 @@ PARAMS = (
           f"perception ({topics.PERCEIVED_WORLD})", choices=(topics.WORLD_STATE, topics.PERCEIVED_WORLD)),
     Param("arm", 1, "the arm this node drives: 1, or 2 for the second Fetch across the table (its topics under "
           "/semgoal/robot2/)", low=1, high=MAX_ARMS),
-    Param("arms", 1, "robot arms at the table: with 2, an arm without a step of its own answers each step, holding "
-          "still (an empty hand draws back to its side), so the other's steps go on", low=1, high=MAX_ARMS),
+    Param("arms", 1, "robot arms at the table: with 2, while a plan is under way an arm without a step of its own "
+          "answers each step holding still (an empty hand draws back to its side), so the other's steps go on",
+          low=1, high=MAX_ARMS),
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
 )
@@ -175,15 +176,21 @@ class PolicyNode(Node):
         if msg is None or (msg.episode, msg.step) == self.answered:
             return
         decision = followed_decision(self.decisions, msg.episode, msg.step)
-        if decision is None and (self.arms == 1 or (msg.episode, msg.step) not in self.decisions):
+        if decision is None and not self.others_work(msg):
             return
         with self.acting.time():
-            if decision is None:  # the planner's answer names no step for this arm: it holds while the other works
+            if decision is None:  # the plan names no step for this arm now: it holds while the other works
                 action = self.controller.hold(np.asarray(msg.observation, dtype=np.float32))
             else:
                 self.follow(decision)  # a settling decision: no goal, the controller's command is to retreat
                 action = self.controller.act(msg.observation, (msg.seed, msg.step))
         self.publish_command(msg, action)
+
+    def others_work(self, msg: WorldState) -> bool:
+        """With two arms: the planner's answer on this state is a plan under way with no step for this arm (another
+        agent works), so the world must not wait for this arm's command."""
+        decision = self.decisions.get((msg.episode, msg.step))
+        return self.arms > 1 and decision is not None and decision.status == StepStatus.WAITING_FOR_HUMAN
 
     def publish_command(self, msg: WorldState, action: np.ndarray) -> None:
         command = ArmCommand(step=msg.step, gripper=float(action[3]))

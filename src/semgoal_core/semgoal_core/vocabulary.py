@@ -47,7 +47,7 @@ SYMMETRIC_PREDICATES = frozenset({"close"})
 """Predicates whose two arguments may come in either order: the state stores them in object order."""
 PREDICATE_ARITY = {"close": 2, "above": 2, "holding": 1, "in_bin": 1}
 ONE_AGENT_REGIONS = {"put_in_bin": "bin"}
-"""Sub-goal types whose place takes one agent at a time, and that place's name."""
+"""Sub-goal types whose place a person's hand keeps out of while an arm works there, and that place's name."""
 
 
 @dataclass(frozen=True)

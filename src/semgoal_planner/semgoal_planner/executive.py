@@ -13,10 +13,11 @@ and the turn's put is confirmed by what it puts where (``claim`` gives a person 
 robot's hand hands over). Every edit is checked by simulating the remaining steps from the observed state (see
 :meth:`SemanticPlanner.simulate`); a refused edit leaves the plan exactly as it was.
 
-``concurrent`` (the default): every agent (the robot, each person) works at once on its first ready step, one whose
-predecessors (:meth:`Executive.orderings`) are done, while two agents never work on the same block, an agent's hand
-takes one turn at a time, and the bin takes one robot at a time (a person's drop into it is refused while the robot
-is at it: :meth:`Executive.region_holder`). In turns, one step is active at a time, in plan order.
+``concurrent`` (the default): every agent (the robot arms, each person) works at once on its first ready step, one
+whose predecessors (:meth:`Executive.orderings`) are done, while two agents never work on the same block and an
+agent's hand takes one turn at a time; a person's drop into the bin is refused while an arm puts into it
+(:meth:`Executive.region_holder`), and two arms share it, kept apart by the sim's guard. In turns, one step is active
+at a time, in plan order.
 """
 
 from __future__ import annotations
@@ -430,7 +431,7 @@ class Executive:
 
     def _waits(self, index: int, who: str, turns: list[int], begun: dict[int, list[int]], working: dict[str, int]) -> str:
         """Why the ready step ``index`` may not start yet for agent ``who`` ("" when it may): another agent works on
-        one of its blocks, or holds its region, or its hand is in another turn (``begun``: :func:`open_turns`)."""
+        one of its blocks, or has one in hand, or its hand is in another turn (``begun``: :func:`open_turns`)."""
         step = self.steps[index]
         for other, busy in begun.items():
             hand = self.steps[busy[0]].assignee

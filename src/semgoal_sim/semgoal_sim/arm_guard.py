@@ -5,7 +5,7 @@ Fetch arm under the mocap, every link from the shoulder to the gripper stayed wi
 above the segment, not beside it). Two arms keep :data:`SEPARATION` between their segments. When a command would
 bring them closer, one arm yields: not one with a block in hand, then not one at work (moving), then the one whose own
 move does it, then the second. It rises off the table and draws back towards its shoulder, its fingers keeping what
-they hold,
+they hold (a block in hand is drawn back no further than its own table edge),
 while the other keeps its right of way until the two are :data:`RELEASE` apart again, and holds still in the plane
 where its move would close in on the other before that has drawn back. A yielding arm's step goes on
 afterwards (the executive's stall rule bounds the wait), as a person on a shared bench waits for the other's hand.
@@ -13,7 +13,7 @@ afterwards (the executive's stall rule bounds the wait), as a person on a shared
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -70,6 +70,9 @@ class ArmGuard:
 
     step_size: float
     """Metres a command of 1 moves the grip in one control step."""
+    edges: np.ndarray = field(default_factory=lambda: np.full(2, np.nan))
+    """(2,) x (m) of each arm's own table edge, less a margin: a yielding arm with a block in hand draws back no
+    further (drawn back over the edge, a block low in the fingers fell off the table); NaN: no limit."""
     distal: int = DISTAL_POINTS
     right_of_way: int | None = None
     yields: int = 0
@@ -106,7 +109,9 @@ class ArmGuard:
         first, yielder = self.right_of_way, 1 - self.right_of_way
         actions = np.array(actions, dtype=np.float64)
         back = chains[yielder, 0, :2] - chains[yielder, -1, :2]
-        actions[yielder, :2] = YIELD_SPEED * back / max(float(np.linalg.norm(back)), 1e-9)
+        shoulder_x, grip_x, edge = chains[yielder, 0, 0], chains[yielder, -1, 0], self.edges[yielder]
+        at_edge = holding[yielder] and abs(grip_x - shoulder_x) <= abs(edge - shoulder_x)  # NaN: never
+        actions[yielder, :2] = 0.0 if at_edge else YIELD_SPEED * back / max(float(np.linalg.norm(back)), 1e-9)
         actions[yielder, 2] = 1.0 if heights[yielder] < CLEAR_HEIGHT else 0.0
         actions[yielder, 3] = -1.0 if holding[yielder] else 0.0
         apart = self.apart(self._moved(chains, actions))

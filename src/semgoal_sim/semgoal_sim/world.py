@@ -15,7 +15,7 @@ import numpy as np
 
 from semgoal_core import layout
 from semgoal_core.arms import ArmFrame, arms_for, robot_name
-from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP
+from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
@@ -30,6 +30,9 @@ GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 """Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
 """Gripper pointing down, fixed orientation (the benchmark's mocap rotation)."""
+CARRY_EDGE_MARGIN = 0.045
+"""How far inside its own table edge (m) a yielding arm stops drawing back a block in its hand (the policy's
+edge margin, ``semgoal_policy.controller.EDGE_MARGIN``)."""
 CHAIN_LINKS = ("shoulder_pan_link", "elbow_flex_link", "wrist_flex_link", "gripper_link")
 SHARED_HOME_SETBACK = np.array([0.17, 0.0, 0.0])
 """With two arms, each arm's home is this much nearer its own base: the benchmark's home reaches 4 cm past the
@@ -121,7 +124,9 @@ class FetchWorld:
         for index, arm in enumerate(self.arms):
             self._arm_of_geom[arm.geoms] = index
         self._home_state = self._settle_home()
-        self.guard = ArmGuard(MAX_DISPLACEMENT) if arms == 2 else None
+        edge = TABLE_CENTER[0] - TABLE_HALF_SIZE[0] + CARRY_EDGE_MARGIN  # the first arm's; the second's reflected
+        edges = np.array([ArmFrame(scene, arm).positions(np.array([edge, 0.0, 0.0]))[0] for arm in range(arms)])
+        self.guard = ArmGuard(MAX_DISPLACEMENT, edges) if arms == 2 else None
         """Keeps two arms apart (:mod:`semgoal_sim.arm_guard`)."""
 
     def _arm(self, arm: int) -> _Arm:

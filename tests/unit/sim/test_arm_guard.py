@@ -58,3 +58,15 @@ def test_the_right_of_way_is_kept_until_the_arms_are_well_apart() -> None:
     assert guard.right_of_way is None
     guard.reset()
     assert (guard.right_of_way, guard.yields) == (None, 0)
+
+
+def test_a_yielding_arm_keeps_a_block_in_hand_over_its_own_table_edge() -> None:
+    guard = ArmGuard(step_size=0.05, edges=np.array([1.095, 1.505]))
+    close = chains(1.09, 1.27)  # the first arm, at its own edge, yields to the second, which holds a block
+    sent = guard(close, np.array([[0.0, 0.0, 0.0, -1.0], [-1.0, 0.0, 0.0, -1.0]]), np.array([0.45, 0.45]),
+                 np.array([True, True]))
+    assert guard.right_of_way == 1 and sent[0, :2].tolist() == [0.0, 0.0] and sent[0, 2] == 1.0 and sent[0, 3] == -1.0
+    empty = ArmGuard(step_size=0.05, edges=np.array([1.095, 1.505]))
+    sent = empty(close, np.array([[0.0, 0.0, 0.0, 0.0], [-1.0, 0.0, 0.0, -1.0]]), np.array([0.45, 0.45]),
+                 np.array([False, True]))
+    assert sent[0, 0] < 0  # an empty hand draws back over the edge

@@ -1,6 +1,8 @@
 """A second Fetch across the table: built, stepped and read per arm, its touches with the first counted, the guard
 keeping them apart, and the shipped actor driving it through the reflection."""
 
+import json
+
 import numpy as np
 import pytest
 
@@ -72,11 +74,12 @@ def test_holding_is_in_either_hand_and_a_block_in_the_others_hand_rests_on_the_t
 
 
 @pytest.mark.slow
-def test_two_arms_bin_a_desk_sooner_than_one_without_touching() -> None:
-    """Two DC-4 starts through the executive: both succeed at rest, in fewer control steps than one arm, untouched."""
+def test_two_arms_bin_a_desk_sooner_than_one_without_touching(capsys) -> None:
+    """`eval arms` on two DC-4 starts: both succeed at rest, two arms in fewer control steps than one, untouched."""
     from semgoal_bringup.experiments import arms
 
-    pairs = [arms.run_start("DC-4", seed) for seed in (3_000_000, 3_000_003)]
-    for one, two in pairs:
-        assert one.success and two.success and two.arm_contacts == 0
-        assert two.steps < 0.8 * one.steps and two.overlap > 20
+    assert arms.main(["--task", "DC-4", "--episodes", "2", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert result["one_arm"]["success"] == result["two_arms"]["success"] == 1.0
+    assert result["ratio_of_medians"] < 0.8 and result["median_overlap_steps"] > 20
+    assert result["starts_with_contact"] == 0

@@ -11,13 +11,12 @@ the same."""
 
 from __future__ import annotations
 
-import argparse
 import json
 import sys
 
 from semgoal_bringup.experiments.episodes import Outcome
-from semgoal_bringup.experiments.executors import check_executor, run_jobs
-from semgoal_bringup.experiments.together import DEFAULT_SEED, print_summary, summary
+from semgoal_bringup.experiments.executors import run_jobs
+from semgoal_bringup.experiments.together import check_paired, paired_parser, print_summary, summary
 from semgoal_core.tasks import get_task
 
 MODES = ("one_arm", "two_arms")
@@ -37,21 +36,9 @@ def run_start(task: str, seed: int) -> tuple[Outcome, Outcome]:
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal eval arms", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--task", default="DC-4")
-    parser.add_argument("--episodes", type=int, default=50)
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (start i: seed + i)")
-    parser.add_argument("--jobs", type=int, default=1, help="starts run at once")
-    parser.add_argument("--executor", default="local", help="local | dask | dask:ADDRESS")
-    parser.add_argument("--json", action="store_true", help="only the JSON line")
+    parser = paired_parser("semgoal eval arms", __doc__)
     args = parser.parse_args(argv)
-    try:
-        get_task(args.task)
-        check_executor(args.executor)
-    except (KeyError, ValueError) as error:
-        parser.error(str(error.args[0]))
-    if args.episodes < 1:
-        parser.error("--episodes must be positive")
+    check_paired(parser, args)
     pairs = run_jobs(run_start, [(args.task, args.seed + i) for i in range(args.episodes)], args.executor, args.jobs,
                      what="start")
     touched = [two.arm_contacts for _, two in pairs]

@@ -120,23 +120,37 @@ def print_summary(result: dict, modes: tuple[str, str]) -> None:
               f"{result['median_ratio']:.3f}; median steps both at work {result['median_overlap_steps']}")
 
 
-def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(prog="semgoal eval together", description=__doc__.split("\n\n")[0])
+def paired_parser(prog: str, doc: str) -> argparse.ArgumentParser:
+    """The options of two modes compared on the same starts: ``--task``, ``--episodes``, ``--seed``, ``--jobs``,
+    ``--executor``, ``--json``."""
+    parser = argparse.ArgumentParser(prog=prog, description=doc.split("\n\n")[0])
     parser.add_argument("--task", default="DC-4")
     parser.add_argument("--episodes", type=int, default=50)
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (start i: seed + i)")
-    parser.add_argument("--person-s", type=float, default=3.0, help="seconds the person takes over each step")
     parser.add_argument("--jobs", type=int, default=1, help="starts run at once")
     parser.add_argument("--executor", default="local", help="local | dask | dask:ADDRESS")
     parser.add_argument("--json", action="store_true", help="only the JSON line")
-    args = parser.parse_args(argv)
+    return parser
+
+
+def check_paired(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """A parser error for an unknown task or executor, or no episodes."""
     try:
         get_task(args.task)
         check_executor(args.executor)
     except (KeyError, ValueError) as error:
         parser.error(str(error.args[0]))
-    if args.episodes < 1 or args.person_s <= 0:
-        parser.error("--episodes and --person-s must be positive")
+    if args.episodes < 1:
+        parser.error("--episodes must be positive")
+
+
+def main(argv: list[str]) -> int:
+    parser = paired_parser("semgoal eval together", __doc__)
+    parser.add_argument("--person-s", type=float, default=3.0, help="seconds the person takes over each step")
+    args = parser.parse_args(argv)
+    check_paired(parser, args)
+    if args.person_s <= 0:
+        parser.error("--person-s must be positive")
     pairs = run_jobs(run_start, [(args.task, args.seed + i, args.person_s) for i in range(args.episodes)],
                      args.executor, args.jobs, what="start")
     result = {"task": args.task, "person_s": args.person_s, **summary(pairs)}

@@ -21,7 +21,7 @@ from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
 from semgoal_sim.arm_guard import ArmGuard
 from semgoal_sim.expert import WorldView
-from semgoal_sim.scene import arm_prefix, block_body_name, build_model
+from semgoal_sim.scene import REACHING_LINKS, arm_prefix, block_body_name, build_model
 
 N_SUBSTEPS = 20
 MAX_DISPLACEMENT = 0.05
@@ -30,6 +30,8 @@ GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 """Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)
 """Gripper pointing down, fixed orientation (the benchmark's mocap rotation)."""
+CLEARANCE_RANGE = 0.3
+"""How far (m) the arms' links are looked at for :meth:`FetchWorld.arm_clearance`: beyond, the guard needs no more."""
 CARRY_EDGE_MARGIN = 0.045
 """How far inside its own table edge (m) a yielding arm stops drawing back a block in its hand (the policy's
 edge margin, ``semgoal_policy.controller.EDGE_MARGIN``)."""
@@ -127,6 +129,7 @@ class FetchWorld:
         edge = TABLE_CENTER[0] - TABLE_HALF_SIZE[0] + CARRY_EDGE_MARGIN  # the first arm's; the second's reflected
         edges = np.array([ArmFrame(scene, arm).positions(np.array([edge, 0.0, 0.0]))[0] for arm in range(arms)])
         self.guard = ArmGuard(MAX_DISPLACEMENT, edges) if arms == 2 else None
+        self._reaching = [[m.geom(f"{arm_prefix(arm)}robot0:{link}").id for link in REACHING_LINKS] for arm in range(arms)]
         """Keeps two arms apart (:mod:`semgoal_sim.arm_guard`)."""
 
     def _arm(self, arm: int) -> _Arm:
@@ -248,7 +251,7 @@ class FetchWorld:
             blocks = d.xpos[self._block_body]
             holding = [held_alone(blocks, grip, float(d.qpos[arm.finger_qpos].sum())).any()
                        for grip, arm in zip(grips, self.arms, strict=True)]
-            actions = self.guard(chains, actions, grips[:, 2], np.array(holding))
+            actions = self.guard(chains, actions, grips[:, 2], np.array(holding), *self.arm_clearance())
         for arm, action in zip(self.arms, actions, strict=True):
             target = d.xpos[arm.gripper_body] + action[:3] * MAX_DISPLACEMENT
             d.mocap_pos[arm.mocap] = np.clip(
@@ -264,6 +267,19 @@ class FetchWorld:
                 self.arm_contacts += bool(((arms >= 0).all(axis=1) & (arms[:, 0] != arms[:, 1])).any())
         if count:
             self.step_count += 1
+
+    def arm_clearance(self, within: float = CLEARANCE_RANGE) -> tuple[float, np.ndarray]:
+        """The least distance (m) between the two arms' reaching links now (their meshes; ``within`` where they are
+        farther apart than that), and the unit vector from the first arm's nearest point to the second's."""
+        m, d = self.model, self.data
+        best, direction, fromto = within, np.zeros(3), np.zeros(6)
+        for a in self._reaching[0]:
+            for b in self._reaching[1]:
+                distance = mujoco.mj_geomDistance(m, d, a, b, best, fromto)
+                if distance < best:
+                    best, gap = distance, fromto[3:] - fromto[:3]
+                    direction = gap / max(float(np.linalg.norm(gap)), 1e-9)
+        return best, direction
 
     # -- read-out ------------------------------------------------------------------------------------
     def snapshot(self, arm: int = 0) -> Snapshot:

@@ -28,6 +28,8 @@ def test_the_arms_start_clear_of_each_other_one_the_others_reflection(world: Fet
     assert first.grip_position[1:] == pytest.approx(second.grip_position[1:], abs=0.005)
     assert second.grip_position[0] - first.grip_position[0] > 0.2
     assert second.other_hands[0][0] == pytest.approx(first.grip_position)
+    clearance, towards = world.arm_clearance()
+    assert 0.1 < clearance <= 0.3 and towards[0] > 0.9  # the links far apart, the second's across the table (+x)
 
 
 def test_each_arm_takes_its_own_command(world: FetchWorld) -> None:

@@ -650,6 +650,8 @@ class Executive:
                 steps[index] = PlanStep(self._subgoal(action), assignee=steps[index].assignee, edited=True)
             elif op == "assign":
                 who = agent(action)
+                if not is_person(who) and who != Assignee.ROBOT and who not in self.robots:
+                    raise ValueError(f"there is no {who} at this table: the arms are {', '.join(self.robots)}")
                 if is_person(who) and steps[index].subgoal.kind == "pick":
                     raise ValueError(f"step {index} {steps[index].subgoal} asks the robot's hand to hold a block, which "
                                      "a person cannot do for it: give the person the put after it, or let them claim "

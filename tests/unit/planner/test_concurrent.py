@@ -135,3 +135,11 @@ def test_an_arm_takes_the_blocks_it_reaches_first_and_a_step_given_to_it() -> No
     ok, message = ex.edit("assign", 2, action="robot:2")
     assert ok, message
     assert doing(ex) == {"robot": "pick(green)", "robot:2": "pick(red)"}
+
+
+def test_a_step_is_given_only_to_an_arm_at_the_table() -> None:
+    ex = concurrent()
+    assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
+    ok, message = ex.edit("assign", 2, action="robot:2")
+    assert not ok and "there is no robot:2 at this table: the arms are robot" in message
+    assert all(step.assignee == "robot" for step in ex.steps)

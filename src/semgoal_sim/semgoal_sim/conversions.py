@@ -103,8 +103,10 @@ def markers(msg: WorldState) -> MarkerArray:
     for i, block in enumerate(msg.blocks):
         p = block.pose.position
         items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
-    g, opening = msg.gripper_position, float(sum(msg.finger_positions))
-    items.append(_cube(0, "gripper", (g.x, g.y, g.z), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
+    hands = [(msg.gripper_position, float(sum(msg.finger_positions))),
+             *zip(msg.other_grippers, msg.other_finger_openings, strict=False)]  # a second arm's hand too
+    for i, (g, opening) in enumerate(hands):
+        items.append(_cube(i, "gripper", (g.x, g.y, g.z), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
     return MarkerArray(markers=items)
 
 

@@ -1,5 +1,6 @@
 """World -> WorldState -> SemanticState, as the sim and predicates nodes convert them (no ROS graph)."""
 
+import pytest
 from conftest import desk_with_a_fallen_block
 from semgoal_ros import messages
 from semgoal_sim import conversions
@@ -37,6 +38,25 @@ def test_markers_start_with_a_deleteall_and_draw_every_block_and_the_gripper() -
     assert sorted(m.id for m in drawn if m.ns == "blocks") == list(range(len(msg.blocks)))
     gripper = [m for m in drawn if m.ns == "gripper"]
     assert len(gripper) == 1 and abs(gripper[0].pose.position.z - msg.gripper_position.z) < 1e-9
+
+
+def test_a_second_arms_slice_carries_its_hand_the_others_and_the_contacts() -> None:
+    from semgoal_core.tasks import TASKS
+    from semgoal_ros.messages import semantic_vector
+    from semgoal_sim.world import FetchWorld
+
+    world = FetchWorld("desk_cleanup", 2, arms=2)
+    world.reset(TASKS["DC-2"].initial_state(0)[0])
+    world.place_in_gripper("red")  # in the first arm's hand
+    first = conversions.world_state(world, world.snapshot(), "DC-2", episode=1)
+    second = conversions.world_state(world, world.snapshot(1), "DC-2", episode=1, arm=1)
+    assert second.gripper_position == first.other_grippers[0] and first.gripper_position == second.other_grippers[0]
+    assert list(second.observation) == pytest.approx(world.observation(arm=1).tolist())
+    assert first.arm_contacts == second.arm_contacts == world.arm_contacts
+    for msg in (first, second):  # holding is in either hand, whichever slice the predicates read
+        assert "red" in [lit.args[0] for lit in world.layout.true_literals(semantic_vector(msg)) if lit.name == "holding"]
+    grippers = [m for m in conversions.markers(first).markers if m.ns == "gripper"]
+    assert [m.id for m in grippers] == [0, 1] and grippers[1].pose.position.x > 1.3  # the second across the table
 
 
 def test_the_plan_is_drawn_as_text_with_the_active_step_highlighted() -> None:

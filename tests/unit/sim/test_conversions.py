@@ -1,6 +1,7 @@
 """World -> WorldState -> SemanticState, as the sim and predicates nodes convert them (no ROS graph)."""
 
 import pytest
+
 from conftest import desk_with_a_fallen_block
 from semgoal_ros import messages
 from semgoal_sim import conversions

@@ -129,8 +129,9 @@ class FetchWorld:
         edge = TABLE_CENTER[0] - TABLE_HALF_SIZE[0] + CARRY_EDGE_MARGIN  # the first arm's; the second's reflected
         edges = np.array([ArmFrame(scene, arm).positions(np.array([edge, 0.0, 0.0]))[0] for arm in range(arms)])
         self.guard = ArmGuard(MAX_DISPLACEMENT, edges) if arms == 2 else None
-        self._reaching = [[m.geom(f"{arm_prefix(arm)}robot0:{link}").id for link in REACHING_LINKS] for arm in range(arms)]
         """Keeps two arms apart (:mod:`semgoal_sim.arm_guard`)."""
+        self._reaching = [[m.geom(f"{arm_prefix(arm)}robot0:{link}").id for link in REACHING_LINKS] for arm in range(arms)]
+        """Each arm's links that reach over the table: :meth:`arm_clearance` measures between them."""
 
     def _arm(self, arm: int) -> _Arm:
         m, prefix = self.model, arm_prefix(arm)

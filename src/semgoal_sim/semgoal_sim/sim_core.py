@@ -15,7 +15,7 @@ import numpy as np
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.tasks import TASKS, get_task
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, Literal
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES
 from semgoal_sim.world import FetchWorld, Snapshot
 
 MAX_SEED = 2**63
@@ -78,10 +78,10 @@ def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[boo
             return False, (f"({xy[0]:.3f}, {xy[1]:.3f}) overlaps the bin's walls: put the block inside them "
                            f"(|x - {bin_.center[0]}| <= {inner[0] - BLOCK_HALF_SIZE:.3f}, "
                            f"|y - {bin_.center[1]}| <= {inner[1] - BLOCK_HALF_SIZE:.3f}) or clear of them")
-    held = bool(world.semantic_vector(snapshot)[world.layout.index(Literal("holding", (block,)))])
+    holder = world.holder(block)
     world.set_block_pose(block, np.array([*xy, rest_z]))
-    if held:  # taken out of the hand: the hand lets go, so it cannot close on what it held
-        world.open_fingers()
+    if holder is not None:  # taken out of the hand: the hand lets go, so it cannot close on what it held
+        world.open_fingers(arm=holder)
         where += ", out of the robot's hand (the fingers opened)"
     return True, f"moved {block} to ({xy[0]:.3f}, {xy[1]:.3f}){where}"
 

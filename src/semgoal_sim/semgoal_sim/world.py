@@ -216,10 +216,9 @@ class FetchWorld:
         self.data.qvel[dof: dof + 6] = 0.0
         mujoco.mj_forward(self.model, self.data)
 
-    def open_fingers(self, opening: float = GRASP_OPENING) -> None:
-        """Open the first arm's fingers to ``opening`` (m, both together) at once and keep them there: a hand let go
-        of."""
-        arm = self.arms[0]
+    def open_fingers(self, opening: float = GRASP_OPENING, arm: int = 0) -> None:
+        """Open an arm's fingers to ``opening`` (m, both together) at once and keep them there: a hand let go of."""
+        arm = self.arms[arm]
         self.data.qpos[arm.finger_qpos] = opening / 2
         self.data.qvel[arm.finger_qvel] = 0.0
         self.data.ctrl[arm.finger_actuators] = opening / 2
@@ -302,6 +301,12 @@ class FetchWorld:
             other_hands=tuple((d.site_xpos[other.grip_site].copy(), float(d.qpos[other.finger_qpos].sum()))
                               for other in self.arms if other is not hand),
         )
+
+    def holder(self, block: str) -> int | None:
+        """The arm whose hand holds ``block`` now (``holding``'s geometry), or None."""
+        d, i = self.data, self.blocks.index(block)
+        return next((index for index, arm in enumerate(self.arms) if held_alone(
+            d.xpos[self._block_body], d.site_xpos[arm.grip_site], float(d.qpos[arm.finger_qpos].sum()))[i]), None)
 
     def reach(self, block: str) -> tuple[str, ...]:
         """The robots that take ``block`` up where it is now, the nearer first (:func:`semgoal_core.arms.arms_for`)."""

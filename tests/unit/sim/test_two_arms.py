@@ -85,3 +85,19 @@ def test_two_arms_bin_a_desk_sooner_than_one_without_touching(capsys) -> None:
     assert result["one_arm"]["success"] == result["two_arms"]["success"] == 1.0
     assert result["ratio_of_medians"] < 0.8 and result["median_overlap_steps"] > 20
     assert result["starts_with_contact"] == 0
+
+
+def test_a_block_taken_out_of_the_second_arms_hand_opens_that_hand() -> None:
+    from semgoal_sim.sim_core import move_block
+
+    world = FetchWorld("desk_cleanup", 2, arms=2)
+    world.reset(DC4[:2])
+    grip = world.snapshot(1).grip_position
+    world.set_block_pose("green", grip)
+    world.data.qpos[world.arms[1].finger_qpos] = BLOCK_HALF_SIZE
+    for _ in range(6):
+        world.step(np.array([[0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, -1.0]]))
+    assert world.holder("green") == 1 and world.holder("red") is None
+    ok, message = move_block(world, "green", np.array([1.2, 0.6, 0.0]))
+    assert ok and "out of the robot's hand" in message
+    assert world.snapshot(1).finger_opening > 0.07 and world.holder("green") is None

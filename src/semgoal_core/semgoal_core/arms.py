@@ -18,6 +18,7 @@ import numpy as np
 from semgoal_core import layout
 from semgoal_core.geometry import TABLE_CENTER
 from semgoal_core.names import Assignee
+from semgoal_core.vocabulary import held_alone
 
 MAX_ARMS = 2
 MIRROR_X = TABLE_CENTER[0]
@@ -56,6 +57,19 @@ def arms_for(position: np.ndarray, arms: int) -> tuple[int, ...]:
     offset = float(position[0]) - MIRROR_X
     near, far = (0, 1) if offset < 0 else (1, 0)
     return (near, far) if abs(offset) <= REACH_PAST_CENTRE else (near,)
+
+
+def holder_of(block: int, positions: np.ndarray, hands: list[tuple[np.ndarray, float]]) -> int | None:
+    """The arm whose hand holds block ``block`` of ``positions`` (N, 3), by ``holding``'s geometry; ``hands``: each
+    arm's grip position and finger opening. None when no hand holds it."""
+    return next((arm for arm, (grip, opening) in enumerate(hands) if held_alone(positions, grip, opening)[block]), None)
+
+
+def takers(block: int, positions: np.ndarray, hands: list[tuple[np.ndarray, float]]) -> tuple[int, ...]:
+    """The arms that may take a robot's step on block ``block``, the nearer first: the arm that holds it (a put after
+    a re-plan goes to the hand the block is in), else :func:`arms_for`."""
+    holder = holder_of(block, positions, hands)
+    return (holder,) if holder is not None else arms_for(positions[block], len(hands))
 
 
 def arm_namespace(arm: int) -> str:

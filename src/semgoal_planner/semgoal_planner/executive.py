@@ -161,8 +161,8 @@ class Executive:
     """The robot arms (:func:`semgoal_core.arms.robot_names`). A step of ``robot`` goes to the first free arm of those
     that reach its block (:attr:`reach`), which then takes its whole turn; one of ``robot:2`` waits for that arm."""
     reach: Callable[[str], tuple[str, ...]] | None = None
-    """block -> the arms that may take it up, the nearer first (where the world says where blocks are); None: every
-    arm, in :attr:`robots`' order."""
+    """block -> the arms that may take a step on it: the hand it is in, else the nearer first (where the world says
+    where blocks and hands are); None: every arm, in :attr:`robots`' order."""
 
     goal: list[Literal] = field(default_factory=list)
     goal_text: str = ""
@@ -420,14 +420,17 @@ class Executive:
         return True
 
     def _doers(self, index: int, turns: list[int], begun: dict[int, list[int]]) -> tuple[str, ...]:
-        """Who may do step ``index``: its agent; for a robot's step, the arm that holds its turn once begun, else the
-        arms that reach its block (:attr:`reach`), the nearer first."""
+        """Who may do step ``index``: its agent; for a robot's step with several arms, those :attr:`reach` names for its
+        block (the hand it is in, else the nearer first: after a re-plan the done picks of two hands interleave, so
+        the plan's turns no longer say whose hand a block is in); else the arm that holds its turn once begun."""
         step = self.steps[index]
         if step.assignee != Assignee.ROBOT:
             return (step.assignee,)
+        if self.reach and len(self.robots) > 1:
+            return self.reach(step.subgoal.block)
         if turns[index] in begun:
             return (self.steps[begun[turns[index]][0]].assignee,)
-        return self.reach(step.subgoal.block) if self.reach and len(self.robots) > 1 else self.robots
+        return self.robots
 
     def _waits(self, index: int, who: str, turns: list[int], begun: dict[int, list[int]], working: dict[str, int]) -> str:
         """Why the ready step ``index`` may not start yet for agent ``who`` ("" when it may): another agent works on

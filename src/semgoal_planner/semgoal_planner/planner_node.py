@@ -22,7 +22,7 @@ from rclpy.qos import qos_profile_action_status_default
 from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
-from semgoal_core.arms import arms_for, robot_name, robot_names
+from semgoal_core.arms import robot_name, robot_names, takers
 from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal, WorldState
@@ -54,8 +54,8 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.executive = Executive(SemanticPlanner(values["scene"], values["search"]), robots=robots,
                                    reach=self.reach if len(robots) > 1 else None,
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
-        self.block_positions: dict[str, np.ndarray] = {}
-        """With two arms: where each block is (the world state), for :meth:`reach`."""
+        self.last_world: WorldState | None = None
+        """With two arms: the latest world state (where each block and hand is), for :meth:`reach`."""
         self.state_wait_s = float(values["state_wait_s"])
         self.world_silence_s = float(values["world_silence_s"])
         self.doubt = Doubt(values["min_confidence"], values["unsure_wait_steps"])
@@ -193,15 +193,21 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.events_pub.publish(event)
 
     def world_callback(self, msg: WorldState) -> None:
-        self.block_positions = {block.name: np.array([block.pose.position.x, block.pose.position.y])
-                                for block in msg.blocks}
+        self.last_world = msg
 
     def reach(self, block: str) -> tuple[str, ...]:
-        """The arms that take ``block`` up where the world state last put it, the nearer first; every arm before one
-        came (:func:`semgoal_core.arms.arms_for`)."""
-        if block not in self.block_positions:
+        """The arms that may take a step on ``block`` as the world state last had it, the nearer first
+        (:func:`semgoal_core.arms.takers`); every arm before one came."""
+        names = [b.name for b in self.last_world.blocks] if self.last_world is not None else []
+        if block not in names:
             return self.executive.robots
-        return tuple(robot_name(arm) for arm in arms_for(self.block_positions[block], len(self.executive.robots)))
+        msg = self.last_world
+        positions = np.array([[b.pose.position.x, b.pose.position.y, b.pose.position.z] for b in msg.blocks])
+        g = msg.gripper_position
+        hands = [(np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions))),
+                 *((np.array([p.x, p.y, p.z]), float(o)) for p, o in zip(msg.other_grippers, msg.other_finger_openings,
+                                                                       strict=False))]
+        return tuple(robot_name(arm) for arm in takers(names.index(block), positions, hands))
 
     def plan_now(self) -> Plan:
         return plan_message(self.executive, self.get_clock().now().to_msg())

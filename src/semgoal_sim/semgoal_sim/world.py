@@ -14,7 +14,7 @@ import mujoco
 import numpy as np
 
 from semgoal_core import layout
-from semgoal_core.arms import ArmFrame, arms_for, robot_name
+from semgoal_core.arms import ArmFrame, holder_of, robot_name, takers
 from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
@@ -302,16 +302,20 @@ class FetchWorld:
                               for other in self.arms if other is not hand),
         )
 
+    def hands(self) -> list[tuple[np.ndarray, float]]:
+        """Each arm's grip position and finger opening now."""
+        d = self.data
+        return [(d.site_xpos[arm.grip_site].copy(), float(d.qpos[arm.finger_qpos].sum())) for arm in self.arms]
+
     def holder(self, block: str) -> int | None:
         """The arm whose hand holds ``block`` now (``holding``'s geometry), or None."""
-        d, i = self.data, self.blocks.index(block)
-        return next((index for index, arm in enumerate(self.arms) if held_alone(
-            d.xpos[self._block_body], d.site_xpos[arm.grip_site], float(d.qpos[arm.finger_qpos].sum()))[i]), None)
+        return holder_of(self.blocks.index(block), self.data.xpos[self._block_body], self.hands())
 
     def reach(self, block: str) -> tuple[str, ...]:
-        """The robots that take ``block`` up where it is now, the nearer first (:func:`semgoal_core.arms.arms_for`)."""
-        position = self.data.xpos[self._block_body[self.blocks.index(block)]]
-        return tuple(robot_name(arm) for arm in arms_for(position, len(self.arms)))
+        """The robots that may take a step on ``block`` where it is now, the nearer first
+        (:func:`semgoal_core.arms.takers`)."""
+        return tuple(robot_name(arm) for arm in takers(self.blocks.index(block), self.data.xpos[self._block_body],
+                                                       self.hands()))
 
     def grip_pose(self, arm: int = 0) -> np.ndarray:
         """4x4 pose of an arm's grip site in the world (what /tf publishes as the gripper's frame)."""

@@ -54,3 +54,13 @@ def test_each_arm_takes_the_blocks_on_its_side_and_both_those_near_the_centre_li
     assert arms_for(np.array([1.28, 0.7, 0.42]), 2) == (0, 1)
     assert arms_for(np.array([1.33, 0.7, 0.42]), 2) == (1, 0)
     assert arms_for(np.array([1.5, 0.7, 0.42]), 1) == (0,)
+
+
+def test_a_step_on_a_block_in_a_hand_goes_to_that_hand() -> None:
+    from semgoal_core.arms import holder_of, takers
+
+    positions = np.array([[1.2, 0.6, 0.6], [1.45, 0.8, 0.425]])  # red in the first arm's hand, green on the table
+    hands = [(positions[0] + [0.0, 0.0, 0.005], 0.05), (np.array([1.5, 0.75, 0.6]), 0.0)]
+    assert holder_of(0, positions, hands) == 0 and holder_of(1, positions, hands) is None
+    assert takers(0, positions, hands) == (0,)  # though red lies within reach of both
+    assert takers(1, positions, hands) == (1,)

@@ -143,3 +143,13 @@ def test_a_step_is_given_only_to_an_arm_at_the_table() -> None:
     ok, message = ex.edit("assign", 2, action="robot:2")
     assert not ok and "there is no robot:2 at this table: the arms are robot" in message
     assert all(step.assignee == "robot" for step in ex.steps)
+
+
+def test_a_robots_step_goes_to_the_hand_its_block_is_in_whatever_the_plans_turns_say() -> None:
+    """After a re-plan the done picks of two hands interleave: the world's word on whose hand a block is in wins."""
+    hands = {"green": ("robot:2",), "red": ("robot",)}
+    ex = concurrent(robots=("robot", "robot:2"), reach=hands.__getitem__)
+    assert ex.set_goal("in_bin(red) & in_bin(green)")[0]
+    assert doing(ex) == {"robot:2": "pick(green)", "robot": "pick(red)"}
+    ex.observe(observe(["holding(green)", "holding(red)"], 4))
+    assert doing(ex) == {"robot:2": "put_in_bin(green)", "robot": "put_in_bin(red)"}

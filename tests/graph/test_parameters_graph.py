@@ -13,9 +13,14 @@ from semgoal_ros import interfaces as topics
 
 
 def _call(probe: GraphProbe, service_type, name: str, request):
+    """The answer to ``request``, sent again while none comes (Fast DDS drops an answer to a client whose reply reader
+    the server has not matched yet: ``topics.send_until_answered``); describing and setting a value are safe to
+    repeat."""
     client = probe.node.create_client(service_type, name)
     probe.spin_until(client.service_is_ready, 30, name)
-    return probe.spin_future(client.call_async(request), 30, name)
+    answer = topics.send_until_answered(lambda: client.call_async(request), probe.poll)
+    assert answer is not None, f"no answer from {name} after {topics.SEND_ATTEMPTS} tries"
+    return answer
 
 
 def _set(probe: GraphProbe, node: str, name: str, value: ParameterValue):

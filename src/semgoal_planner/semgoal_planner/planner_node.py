@@ -44,6 +44,8 @@ from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
 from semgoal_ros.parameters import apply_changes, declare
 
 SILENCE_CHECK_S = 0.25
+WORLDS_KEPT = 8
+"""World states kept for :meth:`PlannerNode.reach`: the one each semantic state was derived from is among them."""
 
 
 class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
@@ -54,8 +56,8 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.executive = Executive(SemanticPlanner(values["scene"], values["search"]), robots=robots,
                                    reach=self.reach if len(robots) > 1 else None,
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
-        self.last_world: WorldState | None = None
-        """With two arms: the latest world state (where each block and hand is), for :meth:`reach`."""
+        self.worlds: dict[tuple[int, int], WorldState] = {}
+        """With two arms: the latest world states by (episode, step) (where each block and hand is), for :meth:`reach`."""
         self.state_wait_s = float(values["state_wait_s"])
         self.world_silence_s = float(values["world_silence_s"])
         self.doubt = Doubt(values["min_confidence"], values["unsure_wait_steps"])
@@ -193,21 +195,22 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.events_pub.publish(event)
 
     def world_callback(self, msg: WorldState) -> None:
-        self.last_world = msg
+        self.worlds[(msg.episode, msg.step)] = msg
+        if len(self.worlds) > WORLDS_KEPT:
+            del self.worlds[next(iter(self.worlds))]
 
     def reach(self, block: str) -> tuple[str, ...]:
-        """The arms that may take a step on ``block`` as the world state last had it, the nearer first
+        """The arms that may take a step on ``block`` in the world state of the semantic state being decided on (in
+        lockstep the world runs a step or two ahead), else the latest, the nearer first
         (:func:`semgoal_core.arms.takers`); every arm before one came."""
-        names = [b.name for b in self.last_world.blocks] if self.last_world is not None else []
+        state = self.last_state
+        world = self.worlds.get((state.episode, state.step)) if state is not None else None
+        world = world or (self.worlds[next(reversed(self.worlds))] if self.worlds else None)
+        names = [b.name for b in world.blocks] if world is not None else []
         if block not in names:
             return self.executive.robots
-        msg = self.last_world
-        positions = np.array([[b.pose.position.x, b.pose.position.y, b.pose.position.z] for b in msg.blocks])
-        g = msg.gripper_position
-        hands = [(np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions))),
-                 *((np.array([p.x, p.y, p.z]), float(o)) for p, o in zip(msg.other_grippers, msg.other_finger_openings,
-                                                                       strict=False))]
-        return tuple(robot_name(arm) for arm in takers(names.index(block), positions, hands))
+        positions = np.array([[b.pose.position.x, b.pose.position.y, b.pose.position.z] for b in world.blocks])
+        return tuple(robot_name(arm) for arm in takers(names.index(block), positions, messages.hands(world)))
 
     def plan_now(self) -> Plan:
         return plan_message(self.executive, self.get_clock().now().to_msg())

@@ -34,14 +34,19 @@ def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
     return positions, present
 
 
+def hands(msg: WorldState) -> list[tuple[np.ndarray, float]]:
+    """Each arm's grip position and finger opening in a world state: the message's own arm first, then the others."""
+    g = msg.gripper_position
+    return [(np.array([g.x, g.y, g.z]), float(sum(msg.finger_positions))),
+            *((np.array([p.x, p.y, p.z]), float(opening))
+              for p, opening in zip(msg.other_grippers, msg.other_finger_openings, strict=False))]
+
+
 def semantic_vector(msg: WorldState) -> np.ndarray:
     """Evaluate the scene's predicates on a world state message (``holding`` in any arm's hand)."""
     positions, present = block_positions(msg)
-    g = msg.gripper_position
-    others = [(np.array([p.x, p.y, p.z]), float(opening))
-              for p, opening in zip(msg.other_grippers, msg.other_finger_openings, strict=False)]
-    return evaluate(LAYOUTS[msg.scene], positions, np.array([g.x, g.y, g.z]),
-                    float(sum(msg.finger_positions)), TABLE_TOP, present, other_hands=others)
+    (grip, opening), *others = hands(msg)
+    return evaluate(LAYOUTS[msg.scene], positions, grip, opening, TABLE_TOP, present, other_hands=others)
 
 
 def moving(msg: WorldState) -> tuple[str, ...]:

@@ -13,7 +13,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES
 from semgoal_msgs.msg import BlockState, WorldState
-from semgoal_ros.messages import block_positions
+from semgoal_ros.messages import block_positions, hands
 from semgoal_sim.camera import Frame
 from semgoal_sim.expert import WorldView
 from semgoal_sim.world import FetchWorld, Snapshot
@@ -103,10 +103,8 @@ def markers(msg: WorldState) -> MarkerArray:
     for i, block in enumerate(msg.blocks):
         p = block.pose.position
         items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
-    hands = [(msg.gripper_position, float(sum(msg.finger_positions))),
-             *zip(msg.other_grippers, msg.other_finger_openings, strict=False)]  # a second arm's hand too
-    for i, (g, opening) in enumerate(hands):
-        items.append(_cube(i, "gripper", (g.x, g.y, g.z), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
+    for i, (grip, opening) in enumerate(hands(msg)):  # a second arm's hand too
+        items.append(_cube(i, "gripper", tuple(grip), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
     return MarkerArray(markers=items)
 
 

@@ -248,9 +248,7 @@ class FetchWorld:
         if self.guard is not None:
             grips = d.site_xpos[[arm.grip_site for arm in self.arms]]
             chains = np.concatenate([d.xpos[[arm.chain for arm in self.arms]], grips[:, None]], axis=1)
-            blocks = d.xpos[self._block_body]
-            holding = [held_alone(blocks, grip, float(d.qpos[arm.finger_qpos].sum())).any()
-                       for grip, arm in zip(grips, self.arms, strict=True)]
+            holding = [held_alone(d.xpos[self._block_body], grip, opening).any() for grip, opening in self.hands()]
             actions = self.guard(chains, actions, grips[:, 2], np.array(holding), *self.arm_clearance())
         for arm, action in zip(self.arms, actions, strict=True):
             target = d.xpos[arm.gripper_body] + action[:3] * MAX_DISPLACEMENT

@@ -103,13 +103,13 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
     """Latency of one action for one observation, ours and SB3's, on one thread."""
     import torch
 
-    from semgoal_core.vocabulary import SCENES
+    from semgoal_core.vocabulary import PAPER_SCENES
     from semgoal_policy.controller import SubgoalController
     from semgoal_sim.env import SubgoalEnv
 
     torch.set_num_threads(1)
     envs, observations, controllers = {}, {}, {}
-    for scene in SCENES:  # every shipped actor, as the policy node runs it (derived features included)
+    for scene in PAPER_SCENES:  # every shipped actor, as the policy node runs it (derived features included)
         envs[scene] = SubgoalEnv(scene)
         observations[scene] = envs[scene].reset(seed=0, options={"subgoal": "pick(red)"})[0]
         controllers[scene] = SubgoalController(scene)

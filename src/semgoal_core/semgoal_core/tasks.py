@@ -1,4 +1,5 @@
-"""The eight tasks of the paper (Figure 4): seeded initial-state samplers and goal literals. No MuJoCo.
+"""The eight tasks of the paper (Figure 4) and the tabletop's: seeded initial-state samplers and goal literals.
+No MuJoCo.
 
 Initial states are block centres on the table, resting (z = table + half size), never closer than
 :data:`MIN_SEPARATION` (no interpenetration), inside :data:`SPAWN_LOW`..:data:`SPAWN_HIGH` (reachable,
@@ -11,7 +12,7 @@ from __future__ import annotations
 
 import itertools
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -145,6 +146,88 @@ TASKS: dict[str, Task] = {
 }
 
 
+TABLETOP_SPAWN_LOW = np.array([1.12, 0.48])
+TABLETOP_SPAWN_HIGH = np.array([1.48, 0.78])
+"""Where tabletop blocks start: wider than the paper's area in x, for eight blocks; clear of the bin's front wall
+(the bin is deeper than the desk's: two rows)."""
+TABLETOP_SEPARATION = 0.10
+"""Least centre distance (m) of two blocks at a tabletop start: the open fingers, coming down on one, miss the other
+(``semgoal_core.geometry.clear_of``). Closer, they knocked over a tower built on the other."""
+
+
+def spread(rng: np.random.Generator, count: int, min_distance: float = TABLETOP_SEPARATION,
+           low: np.ndarray = TABLETOP_SPAWN_LOW, high: np.ndarray = TABLETOP_SPAWN_HIGH) -> np.ndarray:
+    """``count`` resting block centres, pairwise at least ``min_distance`` apart, placed one by one (eight blocks
+    10 cm apart are too dense for :func:`scatter`'s all-at-once rejection)."""
+    for _ in range(1_000):
+        xy: list[np.ndarray] = []
+        for _ in range(200 * count):
+            spot = rng.uniform(low, high)
+            if all(np.linalg.norm(spot - other) >= min_distance for other in xy):
+                xy.append(spot)
+                if len(xy) == count:
+                    return _resting(np.array(xy))
+    raise RuntimeError(f"cannot place {count} blocks {min_distance} m apart in the spawn area")
+
+
+def tower(rng: np.random.Generator, count: int, low: np.ndarray = TABLETOP_SPAWN_LOW,
+          high: np.ndarray = TABLETOP_SPAWN_HIGH) -> np.ndarray:
+    """``count`` blocks stacked in object order (the first at the bottom), each a few mm off the one below."""
+    positions = [np.array([*rng.uniform(low, high), REST_Z])]
+    while len(positions) < count:
+        positions.append(_on_top(rng, positions[-1][:2]) + np.array([0.0, 0.0, positions[-1][2] - REST_Z]))
+    return np.array(positions)
+
+
+def stacked(blocks: Sequence[str]) -> list[Literal]:
+    """The literals of a tower of ``blocks``, the first at the bottom."""
+    return [Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(blocks)]
+
+
+def _on_table(rng, count):
+    return spread(rng, count)
+
+
+def _tower(rng, blocks):
+    return _on_table(rng, len(blocks)), stacked(blocks)
+
+
+def _two_towers(rng, blocks):
+    half = len(blocks) // 2
+    return _on_table(rng, len(blocks)), stacked(blocks[:half]) + stacked(blocks[half:])
+
+
+def _sort(rng, blocks):
+    """Three blocks in a tower, the rest in the bin."""
+    return _on_table(rng, len(blocks)), stacked(blocks[:3]) + [Literal("in_bin", (block,)) for block in blocks[3:]]
+
+
+def _unstack(rng, blocks):
+    """A tower taken down: no block on another."""
+    return tower(rng, len(blocks)), [Literal("above", pair, False) for pair in itertools.permutations(blocks, 2)]
+
+
+def _clean(rng, blocks):
+    return _on_table(rng, len(blocks)), [Literal("in_bin", (block,)) for block in blocks]
+
+
+TABLETOP_TASKS: dict[str, Task] = {
+    task.name: task
+    for task in (
+        *(Task(f"Tower-{n}", "tabletop", n, f"{n} blocks on the table: build a tower, the first colour at the bottom",
+               _tower) for n in range(3, 8)),
+        Task("Two-towers", "tabletop", 6, "six blocks on the table: two towers of three", _two_towers),
+        Task("Sort", "tabletop", 5, "five blocks on the table: three in a tower, two in the bin", _sort),
+        Task("Unstack-6", "tabletop", 6, "a tower of six: every block on the table", _unstack),
+        *(Task(f"Clean-{n}", "tabletop", n, f"{n} blocks on the table: put them in the bin", _clean)
+          for n in (4, 6, 8)),
+    )
+}
+"""The tabletop's tasks (beyond the paper): Tower-7 and Clean-8 have more blocks than an actor is trained
+with."""
+ALL_TASKS: dict[str, Task] = {**TASKS, **TABLETOP_TASKS}
+
+
 def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
     """The task's goal for the world as it is now: Swap-2 reads which block is on top; the others are fixed."""
     if task.sample is _swap:
@@ -159,13 +242,13 @@ def goal_in_state(task: Task, true_literals: list[Literal]) -> list[Literal]:
 
 
 def scene_tasks(scene: str) -> tuple[str, ...]:
-    """The paper's tasks set in ``scene``, in Table 1's order."""
-    return tuple(name for name, task in TASKS.items() if task.scene == scene)
+    """The tasks set in ``scene``: the paper's in Table 1's order."""
+    return tuple(name for name, task in ALL_TASKS.items() if task.scene == scene)
 
 
 def is_task_name(text: str) -> bool:
-    """Whether ``text`` names one of the paper's tasks (case-insensitive)."""
-    return any(text.strip().lower() == name.lower() for name in TASKS)
+    """Whether ``text`` names a task (case-insensitive)."""
+    return any(text.strip().lower() == name.lower() for name in ALL_TASKS)
 
 
 _SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
@@ -176,7 +259,7 @@ def split_literals(text: str) -> list[str]:
     an empty goal or an empty part."""
     parts = [p.strip() for p in _SEPARATORS.split(text.strip())]
     if not text.strip() or any(not p for p in parts):
-        raise ValueError(f"cannot read goal {text!r}: expected a task ({', '.join(TASKS)}) or literals joined by '&'")
+        raise ValueError(f"cannot read goal {text!r}: expected a task ({', '.join(ALL_TASKS)}) or literals joined by '&'")
     return parts
 
 
@@ -189,8 +272,8 @@ def goal_form(text: str) -> str:
 
 
 def get_task(name: str) -> Task:
-    """Look a task up by its paper name (case-insensitive), or raise with the list of valid names."""
-    for task_name, task in TASKS.items():
+    """Look a task up by its name (case-insensitive), or raise with the list of valid names."""
+    for task_name, task in ALL_TASKS.items():
         if task_name.lower() == name.strip().lower():
             return task
-    raise KeyError(f"unknown task {name!r}: tasks are {', '.join(TASKS)}")
+    raise KeyError(f"unknown task {name!r}: tasks are {', '.join(ALL_TASKS)}")

@@ -40,8 +40,15 @@ BLOCK_COLOURS: dict[str, tuple[float, float, float, float]] = {
     "green": (0.13, 0.70, 0.20, 1.0),
     "blue": (0.15, 0.30, 0.90, 1.0),
     "yellow": (0.95, 0.80, 0.10, 1.0),
+    "orange": (0.98, 0.50, 0.08, 1.0),
+    "purple": (0.55, 0.20, 0.75, 1.0),
+    "cyan": (0.10, 0.80, 0.85, 1.0),
+    "pink": (0.97, 0.55, 0.75, 1.0),
 }
-"""Block names in canonical order, with their RGBA colours."""
+"""Block names in canonical order, with their RGBA colours: the paper's four, then the tabletop's (names an operator
+says, hues apart from the first four's)."""
+PAPER_BLOCKS = 4
+"""The paper's scenes use the first four colours; the camera's randomisation draws a shade for these only."""
 
 SYMMETRIC_PREDICATES = frozenset({"close"})
 """Predicates whose two arguments may come in either order: the state stores them in object order."""
@@ -96,12 +103,26 @@ class BinGeometry:
     :attr:`wall_height`."""
     wall_thickness: float = 0.01
     floor_thickness: float = 0.01
+    rows: int = 1
+    """Rows of :meth:`slots` along y (the tabletop's bin takes two)."""
+    row_slots: int = 4
+    """Slots in a row."""
 
-    def slots(self, count: int = 4) -> np.ndarray:
-        """(count, 2) resting spots for blocks, evenly spaced along x inside the bin."""
-        spacing = 2 * self.inner_half_size[0] / count
-        xs = self.center[0] - self.inner_half_size[0] + spacing * (np.arange(count) + 0.5)
-        return np.column_stack([xs, np.full(count, self.center[1])])
+    def slots(self, count: int | None = None) -> np.ndarray:
+        """(count, 2) resting spots for blocks (all :attr:`rows` x :attr:`row_slots` when None): a row along x,
+        evenly spaced; with more rows, each row's spots between the next row's (fingers opening along y clear a
+        neighbour half a spacing off in x). With one row, ``count`` spots spread over its length."""
+        if self.rows == 1:
+            count = self.row_slots if count is None else count
+            spacing = 2 * self.inner_half_size[0] / count
+            xs = self.center[0] - self.inner_half_size[0] + spacing * (np.arange(count) + 0.5)
+            return np.column_stack([xs, np.full(count, self.center[1])])
+        spacing = 2 * self.inner_half_size[0] / (self.row_slots + 0.5)
+        row_gap = 2 * self.inner_half_size[1] / self.rows
+        spots = [np.column_stack([self.center[0] - self.inner_half_size[0] + spacing * (np.arange(self.row_slots) + 0.5 + 0.5 * (row % 2)),
+                                  np.full(self.row_slots, self.center[1] - self.inner_half_size[1] + row_gap * (row + 0.5))])
+                 for row in range(self.rows)]
+        return np.vstack(spots)[:count]
 
     def interior(self, step: float = 0.005, margin: float = 0.003) -> np.ndarray:
         """(M, 2) grid of block centres at which a block lies on the floor, ``margin`` clear of the walls."""
@@ -117,6 +138,12 @@ class BinGeometry:
         return inside_walls & (positions[:, 2] < rim_top)
 
 
+TABLETOP_BIN = BinGeometry(center=(1.30, 0.955), inner_half_size=(0.18, 0.11), back_wall_height=0.10, rows=2)
+"""The tabletop's bin takes eight blocks: two rows of four, 8 cm apart in a row as on the desk, each row's spots
+between the other's; rows 11 cm apart, so the open fingers (5.5 cm each side of a block) clear a block in the
+other row and the walls. It stands 2.5 cm from the table's far edge, as the desk's does."""
+
+
 @dataclass(frozen=True)
 class Scene:
     """A scene: its blocks, the predicates of its semantic state, its sub-goal types, a bin or not."""
@@ -128,6 +155,9 @@ class Scene:
     bin: BinGeometry | None = None
     block_counts: tuple[int, ...] = field(default=())
     """Numbers of blocks the scene can be built with (desk cleanup: 2 to 4); empty = all objects."""
+    reach_height: float = 0.35
+    """How high above the table top (m) the gripper may be driven: the Fetch benchmark's box; the tabletop's towers
+    of eight need more (the arm reaches 0.67 m above the table there)."""
 
     @property
     def max_blocks(self) -> int:
@@ -145,8 +175,14 @@ SCENES: dict[str, Scene] = {
               ("pick", "put_near", "put_away")),
         Scene("desk_cleanup", ("red", "green", "blue", "yellow"), ("holding", "in_bin"),
               ("pick", "put_on_table", "put_in_bin"), bin=BinGeometry(), block_counts=(2, 3, 4)),
+        # Beyond the paper: one table for every predicate, towers of any height and a bin for eight.
+        Scene("tabletop", tuple(BLOCK_COLOURS), tuple(PREDICATE_ARITY),
+              ("pick", "put_near", "put_away", "put_on", "put_on_table", "put_in_bin"), bin=TABLETOP_BIN,
+              block_counts=tuple(range(2, len(BLOCK_COLOURS) + 1)), reach_height=0.5),
     )
 }
+PAPER_SCENES = ("two_blocks", "three_blocks", "desk_cleanup")
+"""The paper's scenes (Table 1), each with its own trained actor."""
 
 
 @dataclass(frozen=True, order=True)

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from semgoal_core.arms import MAX_ARMS
 from semgoal_core.vocabulary import SCENES
+from semgoal_planner.semantic import AUTO_SEARCH
 from semgoal_ros.parameters import Param
 from strips_planner.search import SEARCHES
 
 PARAMS = (
     Param("scene", "desk_cleanup", "the scene whose vocabulary and domain the planner uses", choices=tuple(SCENES)),
-    Param("search", "bfs", "bfs (shortest plans) | astar | gbfs", choices=SEARCHES),
+    Param("search", AUTO_SEARCH, "auto (the scene's own: A* on the tabletop, else bfs) | bfs (shortest plans) | astar | gbfs",
+          choices=(AUTO_SEARCH, *SEARCHES)),
     Param("stall_steps", 150, "control steps a robot step may take without holding before a re-plan",
           low=1, high=1_000_000, runtime=True),
     Param("human_steps", 3000, "control steps a person's step may take before the goal fails (2 min at 25 Hz)",

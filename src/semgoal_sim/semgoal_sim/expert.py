@@ -73,6 +73,8 @@ class WorldView:
     grip: np.ndarray
     opening: float
     bin: BinGeometry | None = None
+    ceiling: float = np.inf
+    """The highest the grip can go (m): a carry over a tall tower goes no higher."""
 
     def holds(self, block: str) -> bool:
         """``holding(block)``: the closed fingers hold it, alone."""
@@ -158,7 +160,7 @@ def _pick(block: str, world: WorldView) -> np.ndarray:
     grip = world.grip
     if world.holds(block):  # lift clear of everything
         carry_z = max(p[2] for p in world.positions.values()) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE
-        return move_to(grip, np.array([grip[0], grip[1], carry_z]), CLOSE)
+        return move_to(grip, np.array([grip[0], grip[1], min(carry_z, world.ceiling)]), CLOSE)
     xy_error = np.linalg.norm(target[:2] - grip[:2])
     if xy_error > FUNNEL_XY:  # travel over the blocks at no less than the hover height
         safe_z = max(p[2] for p in world.positions.values()) + HOVER
@@ -180,7 +182,7 @@ def _place(subgoal: SubGoal, spot: np.ndarray, world: WorldView) -> np.ndarray:
     offset = grip - block  # keep the block where it sits in the hand
     release = spot + offset + np.array([0.0, 0.0, 0.004])
     obstacles = [p[2] for n, p in world.others(x).items()] or [TABLE_TOP]
-    carry_z = max(max(obstacles) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE, spot[2] + 0.02) + offset[2]
+    carry_z = min(max(max(obstacles) + 2 * BLOCK_HALF_SIZE + CARRY_CLEARANCE, spot[2] + 0.02) + offset[2], world.ceiling)
     xy_error = np.linalg.norm(spot[:2] - block[:2])
     if xy_error > ALIGN_XY:
         if grip[2] < carry_z - 0.02 and xy_error > 0.02:

@@ -6,7 +6,8 @@
 - ``semgoal/SubGoal-SCENE-v0``: :class:`~semgoal_sim.env.SubgoalEnv`, one sub-goal per episode (what the
   hierarchical agent's actor is trained on; the shipped actors: ``semgoal_policy.pretrained``).
 - ``semgoal/Task-SCENE-v0`` and ``semgoal/Task-SCENE-positions-v0``: :class:`~semgoal_sim.task_env.TaskEnv`, a
-  whole benchmark task per episode with a semantic goal or one of block positions (continuous): the flat baselines'.
+  whole benchmark task per episode with a semantic goal or one of block positions (continuous): the flat baselines',
+  for the paper's scenes.
 
 The entry points are strings: registering loads neither MuJoCo nor the envs' modules.
 """
@@ -15,7 +16,7 @@ from __future__ import annotations
 
 import gymnasium as gym
 
-from semgoal_core.vocabulary import SCENES
+from semgoal_core.vocabulary import PAPER_SCENES, SCENES
 
 NAMESPACE = "semgoal"
 
@@ -33,9 +34,8 @@ def register_envs() -> None:
 
 
 def _specs() -> list[tuple[str, str, dict]]:
-    specs = []
-    for scene in SCENES:
-        specs.append((f"SubGoal-{scene}-v0", "semgoal_sim.env:SubgoalEnv", {"scene": scene}))
+    specs = [(f"SubGoal-{scene}-v0", "semgoal_sim.env:SubgoalEnv", {"scene": scene}) for scene in SCENES]
+    for scene in PAPER_SCENES:
         specs.append((f"Task-{scene}-v0", "semgoal_sim.task_env:TaskEnv", {"scene": scene, "goal": "semantic"}))
         specs.append((f"Task-{scene}-positions-v0", "semgoal_sim.task_env:TaskEnv", {"scene": scene, "goal": "positions"}))
     return specs

@@ -47,6 +47,11 @@ def _close_clique(layout: SemanticLayout, vector: np.ndarray, view: WorldView, x
     return (min(partners, key=lambda p: np.linalg.norm(view.positions[p] - view.positions[x])),)
 
 
+def resting_on(resting: dict[str, str], top: str) -> str:
+    """The block ``top`` rests on, given ``resting``: block -> the block on it."""
+    return next(below for below, above in resting.items() if above == top)
+
+
 def expert_next_steps(goal: list[Literal], layout: SemanticLayout, vector: np.ndarray, view: WorldView) -> list[SubGoal]:
     """The expert's next one or two sub-goals toward ``goal`` from the current state (closed loop).
 
@@ -71,9 +76,15 @@ def expert_next_steps(goal: list[Literal], layout: SemanticLayout, vector: np.nd
         put = SubGoal("put_near", (x, *_close_clique(layout, vector, view, x, partners)))
     elif literal.name == "close":
         put = SubGoal("put_away", (a, literal.args[1]))
-    elif literal.name == "above":
-        on_top = [lit.args[0] for lit in layout.true_literals(vector) if lit.name == "above" and lit.args[1] == a]
-        put = SubGoal("put_away", (on_top[0], a)) if on_top else SubGoal("put_on", (a, literal.args[1]))
+    elif literal.name == "above":  # what stands on a goes first, from the top of its pile down
+        resting = {lit.args[1]: lit.args[0] for lit in layout.true_literals(vector) if lit.name == "above"}
+        top = a
+        while top in resting:
+            top = resting[top]
+        if top != a:
+            put = SubGoal("put_away", (top, resting_on(resting, top)))
+        else:
+            put = SubGoal("put_on", (a, literal.args[1])) if literal.value else SubGoal("put_away", (a, literal.args[1]))
     else:  # in_bin
         put = SubGoal("put_in_bin", (a,)) if literal.value else SubGoal("put_on_table", (a,))
     picked = bool(vector[layout.index(Literal("holding", (put.block,)))])
@@ -120,9 +131,11 @@ class EpisodeResult:
 
 
 def run_task(task_name: str, seed: int, controller: Controller = expert_controller,
-             max_steps: int = SUBGOAL_STEPS, max_subgoals: int = 12) -> EpisodeResult:
-    """One episode of a task, the expert choosing sub-goals: success when the task's goal holds."""
+             max_steps: int = SUBGOAL_STEPS, max_subgoals: int | None = None) -> EpisodeResult:
+    """One episode of a task, the expert choosing sub-goals: success when the task's goal holds; at most
+    ``max_subgoals`` (three turns of the hand per block when None)."""
     task = get_task(task_name)
+    max_subgoals = max_subgoals or 6 * task.n_blocks
     world = FetchWorld(task.scene, task.n_blocks)
     positions, goal = task.initial_state(seed)
     world.reset(positions)

@@ -61,7 +61,7 @@ class TaskEnv(RgbArrayRendering, gym.Env):
         self.scene = SCENES[scene]
         self.goal_kind = goal
         self.task_names = tasks.scene_tasks(scene)
-        self.worlds = {n: FetchWorld(scene, n) for n in sorted({tasks.TASKS[t].n_blocks for t in self.task_names})}
+        self.worlds = {n: FetchWorld(scene, n) for n in sorted({tasks.get_task(t).n_blocks for t in self.task_names})}
         self.world = next(iter(self.worlds.values()))
         self.layout = self.world.layout
         self.motion_reward = MotionReward(self.layout)

@@ -39,10 +39,13 @@ CHAIN_LINKS = ("shoulder_pan_link", "elbow_flex_link", "wrist_flex_link", "gripp
 SHARED_HOME_SETBACK = np.array([0.17, 0.0, 0.0])
 """With two arms, each arm's home is this much nearer its own base: the benchmark's home reaches 4 cm past the
 table's centre line, where the other arm's home would be."""
+GRIP_BELOW_BODY = 0.02
+"""The grip site sits about this far (m) below the gripper body, which the workspace box holds."""
 INITIAL_QPOS = {"robot0:slide0": 0.405, "robot0:slide1": 0.48, "robot0:slide2": 0.0}
 WORKSPACE_LOW = np.array([1.0, 0.35, TABLE_TOP + 0.005])
-WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_TOP + 0.35])
-"""The mocap target is kept in this box so the arm never drives into the table or out of reach."""
+WORKSPACE_HIGH = np.array([1.6, 1.15, TABLE_TOP])
+"""The mocap target is kept in this box so the arm never drives into the table or out of reach; its top is the
+scene's ``reach_height`` above this."""
 
 
 def _pose(position: np.ndarray, rotation: np.ndarray) -> np.ndarray:
@@ -100,6 +103,7 @@ class FetchWorld:
 
     def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1) -> None:
         self.scene = SCENES[scene]
+        self._workspace_high = WORKSPACE_HIGH + np.array([0.0, 0.0, self.scene.reach_height])
         self.layout = LAYOUTS[scene]
         self.model = build_model(scene, n_blocks, arms)
         self.data = mujoco.MjData(self.model)
@@ -253,7 +257,7 @@ class FetchWorld:
         for arm, action in zip(self.arms, actions, strict=True):
             target = d.xpos[arm.gripper_body] + action[:3] * MAX_DISPLACEMENT
             d.mocap_pos[arm.mocap] = np.clip(
-                target, WORKSPACE_LOW + (d.xpos[arm.gripper_body] - d.site_xpos[arm.grip_site]), WORKSPACE_HIGH)
+                target, WORKSPACE_LOW + (d.xpos[arm.gripper_body] - d.site_xpos[arm.grip_site]), self._workspace_high)
             d.mocap_quat[arm.mocap] = arm.quaternion
             d.ctrl[arm.finger_actuators] = d.qpos[arm.finger_qpos] + action[3]
         if len(self.arms) == 1:
@@ -357,7 +361,7 @@ class FetchWorld:
         """The expert's view of the world: block centres by name, grip, finger opening, bin."""
         snapshot = snapshot or self.snapshot()
         return WorldView(dict(zip(self.blocks, snapshot.block_positions, strict=True)), snapshot.grip_position,
-                         snapshot.finger_opening, self.scene.bin)
+                         snapshot.finger_opening, self.scene.bin, TABLE_TOP + self.scene.reach_height - GRIP_BELOW_BODY)
 
     def observation(self, snapshot: Snapshot | None = None, arm: int = 0) -> np.ndarray:
         """The policy observation of arm ``arm``'s hand, in the world frame (layout: :mod:`semgoal_core.layout`). A

@@ -9,12 +9,12 @@ import pytest
 
 from conftest import ROOT
 from semgoal_bench.policy import REFERENCE, TRAIN_CONFIGS, inference
-from semgoal_core.vocabulary import SCENES
+from semgoal_core.vocabulary import PAPER_SCENES
 
 
 def test_inference_times_each_scenes_controller_and_the_peers():
     figures = inference(calls=20)
-    expected = {"ours:Actor.act", "sb3:policy.predict", *(f"ours:SubgoalController.act[{s}]" for s in SCENES)}
+    expected = {"ours:Actor.act", "sb3:policy.predict", *(f"ours:SubgoalController.act[{s}]" for s in PAPER_SCENES)}
     assert set(figures) == expected
     for name, row in figures.items():
         assert 0 < row["p50_ms"] <= row["p99_ms"], name

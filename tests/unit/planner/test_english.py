@@ -187,7 +187,8 @@ REFUSALS = [
     ("desk_cleanup", "put it in the bin", "'it' or 'the block' is ambiguous"),
     ("desk_cleanup", "put the block in the bin", "'it' or 'the block' is ambiguous"),
     ("three_blocks", "move a cube next to green", "'it' or 'the block' is ambiguous"),
-    ("desk_cleanup", "put purple in the bin", "unknown word 'purple'"),
+    ("desk_cleanup", "put violet in the bin", "unknown word 'violet'"),
+    ("desk_cleanup", "put purple in the bin", "there is no purple block here"),
     ("desk_cleanup", "swap the blocks", "unknown word 'swap'"),
     ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
     ("three_blocks", "put red in the bin", "'in_bin' is not used in scene 'three_blocks'"),
@@ -243,8 +244,8 @@ def test_a_block_not_present_is_named() -> None:
 
 
 def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() -> None:
-    with pytest.raises(LanguageError, match=r"unknown word 'purple': goals name blocks by colour \(red, green, blue\)"):
-        parse_english("put purple near red", "three_blocks")
+    with pytest.raises(LanguageError, match=r"unknown word 'violet': goals name blocks by colour \(red, green, blue\)"):
+        parse_english("put violet near red", "three_blocks")
 
 
 @pytest.mark.parametrize("scene", list(SCENES))

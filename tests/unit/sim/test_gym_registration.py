@@ -6,13 +6,13 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import semgoal_sim  # noqa: F401  (registers the ids)
-from semgoal_core.vocabulary import SCENES
+from semgoal_core.vocabulary import PAPER_SCENES, SCENES
 from semgoal_sim.registration import env_ids
 
 
 def test_every_scene_has_its_ids() -> None:
-    assert set(env_ids()) == {f"semgoal/{kind}-{scene}-{version}" for scene in SCENES
-                              for kind, version in (("SubGoal", "v0"), ("Task", "v0"), ("Task", "positions-v0"))}
+    assert set(env_ids()) == {f"semgoal/SubGoal-{scene}-v0" for scene in SCENES} | {
+        f"semgoal/Task-{scene}-{version}" for scene in PAPER_SCENES for version in ("v0", "positions-v0")}
     assert set(env_ids()) <= set(gym.registry)
 
 

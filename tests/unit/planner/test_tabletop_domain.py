@@ -1,0 +1,72 @@
+"""The tabletop's domain: towers of any height, the bin and closeness in one plan, from semantic states."""
+
+import itertools
+
+import pytest
+
+from semgoal_core.tasks import TABLETOP_TASKS, stacked
+from semgoal_core.vocabulary import SCENES, Literal, SubGoal
+from semgoal_planner.goals import parse_goal
+from semgoal_planner.semantic import PlanningError, SemanticPlanner
+
+SIX = SCENES["tabletop"].objects[:6]
+PLANNER = SemanticPlanner("tabletop")
+
+
+def _puts(steps: list[SubGoal]) -> list[SubGoal]:
+    return [step for step in steps if step.kind != "pick"]
+
+
+def test_the_tabletop_plans_with_a_star() -> None:
+    assert PLANNER.search == "astar"
+    assert SemanticPlanner("desk_cleanup").search == "bfs"
+
+
+@pytest.mark.parametrize("order", [SIX, SIX[::-1]], ids=["red at the bottom", "purple at the bottom"])
+def test_a_tower_of_six_is_planned_bottom_up_in_either_order(order: tuple[str, ...]) -> None:
+    steps = PLANNER.plan(SIX, [], stacked(order))
+    assert _puts(steps) == [SubGoal("put_on", (top, bottom)) for bottom, top in itertools.pairwise(order)]
+    assert len(steps) == 10
+
+
+def test_a_tower_is_taken_down_from_the_top() -> None:
+    state = stacked(SIX)
+    goal = [Literal("above", pair, False) for pair in itertools.permutations(SIX, 2)]
+    steps = PLANNER.plan(SIX, state, goal)
+    assert [step.block for step in steps if step.kind == "pick"] == list(SIX[:0:-1])
+    assert len(steps) == 10
+
+
+def test_a_block_under_another_is_freed_before_it_moves() -> None:
+    state = stacked(("red", "green", "blue"))
+    steps = PLANNER.plan(SIX, state, [Literal("in_bin", ("red",))])
+    assert [step.block for step in steps if step.kind == "pick"][-1] == "red"
+    assert steps[-1] == SubGoal("put_in_bin", ("red",))
+    assert len(steps) == 6
+
+
+def test_towers_the_bin_and_closeness_in_one_plan() -> None:
+    goal = [*stacked(("red", "green", "blue")), Literal("in_bin", ("yellow",)), Literal("close", ("orange", "red")),
+            Literal("close", ("purple", "yellow"), False)]
+    steps = PLANNER.plan(SIX, [Literal("close", ("purple", "yellow"))], goal)
+    PLANNER.simulate(SIX, [Literal("close", ("purple", "yellow"))], goal, steps)
+    assert {step.kind for step in steps} == {"pick", "put_on", "put_in_bin", "put_near", "put_away"}
+
+
+def test_nothing_is_stacked_on_a_block_in_the_bin() -> None:
+    with pytest.raises(PlanningError, match=r"put_on\(green,red\) cannot run: it needs not in_bin\(red\)"):
+        PLANNER.simulate(SIX, [Literal("in_bin", ("red",))], [Literal("above", ("green", "red"))],
+                         [SubGoal("pick", ("green",)), SubGoal("put_on", ("green", "red"))])
+    steps = PLANNER.plan(SIX, [Literal("in_bin", ("red",))], [Literal("above", ("green", "red"))])
+    assert steps[0] == SubGoal("pick", ("red",)) and steps[-1] == SubGoal("put_on", ("green", "red"))
+    assert len(steps) == 4
+
+
+@pytest.mark.parametrize("name", list(TABLETOP_TASKS))
+def test_every_tabletop_task_is_planned_from_its_start(name: str) -> None:
+    task = TABLETOP_TASKS[name]
+    start = stacked(task.blocks) if name.startswith("Unstack") else []
+    goal = parse_goal(name, task.scene, task.blocks, start)
+    steps = PLANNER.plan(task.blocks, start, goal)
+    PLANNER.simulate(task.blocks, start, goal, steps)
+    assert {step.kind for step in steps} <= set(SCENES["tabletop"].subgoal_types)

@@ -1,0 +1,74 @@
+"""The tabletop scene: its starts, its bin of eight, and the scripted expert building and taking down towers."""
+
+import itertools
+
+import numpy as np
+import pytest
+
+from semgoal_core.geometry import TABLE_TOP, clear_of
+from semgoal_core.tasks import TABLETOP_SEPARATION, TABLETOP_SPAWN_HIGH, TABLETOP_SPAWN_LOW, TABLETOP_TASKS, stacked
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
+from semgoal_sim.rollout import expert_next_steps, hold_until_settled, run_subgoal, run_task, satisfied, settled
+from semgoal_sim.world import FetchWorld
+
+TABLETOP = SCENES["tabletop"]
+
+
+@pytest.mark.parametrize("name", list(TABLETOP_TASKS))
+def test_tabletop_starts_are_reproducible_valid_and_fingers_apart(name: str) -> None:
+    task = TABLETOP_TASKS[name]
+    for seed in range(20):
+        positions, goal = task.initial_state(seed)
+        np.testing.assert_array_equal(positions, task.initial_state(seed)[0])
+        assert np.all(positions[:, :2] >= TABLETOP_SPAWN_LOW - 0.005) and np.all(positions[:, :2] <= TABLETOP_SPAWN_HIGH + 0.005)
+        on_table = positions[np.abs(positions[:, 2] - (TABLE_TOP + BLOCK_HALF_SIZE)) < 0.01]
+        for a, b in itertools.combinations(on_table, 2):
+            assert np.linalg.norm(a[:2] - b[:2]) >= TABLETOP_SEPARATION - 1e-9
+        for literal in goal:
+            LAYOUTS["tabletop"].validate(literal)
+
+
+def test_the_bin_takes_eight_blocks_the_fingers_clear_of_each_other() -> None:
+    slots = TABLETOP.bin.slots()
+    assert len(slots) == 8
+    for i, slot in enumerate(slots):
+        others = [np.array([*other, 0.0]) for j, other in enumerate(slots) if j != i]
+        assert clear_of(slot[None], others)[0]
+    assert np.all(np.abs(slots - TABLETOP.bin.center) + BLOCK_HALF_SIZE < TABLETOP.bin.inner_half_size)
+
+
+def test_the_expert_builds_a_tower_of_six_that_stands() -> None:
+    task = TABLETOP_TASKS["Tower-6"]
+    world = FetchWorld("tabletop", 6)
+    positions, goal = task.initial_state(7)
+    world.reset(positions)
+    for _ in range(12):
+        if satisfied(world.layout, world.semantic_vector(), goal):
+            break
+        for subgoal in expert_next_steps(goal, world.layout, world.semantic_vector(), world.view()):
+            run_subgoal(world, subgoal)
+    assert hold_until_settled(world, goal)[0]
+    for _ in range(50):
+        world.step(np.zeros(4))
+        assert settled(world, stacked(task.blocks))
+    assert world.snapshot().block_positions[:, 2].max() > TABLE_TOP + 5.4 * 2 * BLOCK_HALF_SIZE
+
+
+@pytest.mark.parametrize("name", ["Tower-5", "Unstack-6", "Sort", "Clean-6"])
+def test_the_expert_solves_tabletop_tasks(name: str) -> None:
+    results = [run_task(name, seed) for seed in range(200, 203)]
+    assert all(r.success for r in results), results
+
+
+def test_the_tabletop_reaches_higher_than_the_benchmarks_box() -> None:
+    world = FetchWorld("tabletop", 2)
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(0)[0][:2])
+    for _ in range(40):
+        world.step(np.array([0.0, 0.0, 1.0, 0.0]))
+    assert world.view().grip[2] > TABLE_TOP + 0.45
+    desk = FetchWorld("desk_cleanup", 2)
+    desk.reset(np.array([[1.2, 0.6, 0.425], [1.4, 0.6, 0.425]]))
+    for _ in range(40):
+        desk.step(np.array([0.0, 0.0, 1.0, 0.0]))
+    assert desk.view().grip[2] < TABLE_TOP + 0.35
+    assert Literal("above", ("green", "red")) in stacked(("red", "green"))

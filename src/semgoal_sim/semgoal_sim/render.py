@@ -64,23 +64,33 @@ class RgbArrayRendering:
 
 
 def main(argv: list[str]) -> int:
-    """`./semgoal render --task T [--seed S] --out FILE.png`: a picture of a task's start state."""
+    """`./semgoal render --task T [--seed S] [--solved] --out FILE.png`: a picture of a task's start state; with
+    ``--solved``, beside it the end the scripted expert reaches (no learned actor: a picture of the scene's goal)."""
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     import imageio.v3 as iio
 
     from semgoal_core.tasks import get_task
+    from semgoal_sim.rollout import solve
 
     parser = argparse.ArgumentParser(prog="semgoal render", description=main.__doc__)
     parser.add_argument("--task", required=True)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--solved", action="store_true", help="the expert's end beside the start")
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args(argv)
     task = get_task(args.task)
     world = FetchWorld(task.scene, task.n_blocks)
-    world.reset(task.initial_state(args.seed)[0])
+    positions, goal = task.initial_state(args.seed)
+    world.reset(positions)
     renderer = FrameRenderer(world)
+    frames = [renderer.frame()]
+    if args.solved:
+        result = solve(world, goal)
+        print(f"{task.name} seed {args.seed}: the expert {'reached' if result.success else 'did not reach'} the goal "
+              f"in {result.steps} control steps")
+        frames.append(renderer.frame())
     args.out.parent.mkdir(parents=True, exist_ok=True)
-    iio.imwrite(args.out, renderer.frame())
+    iio.imwrite(args.out, np.concatenate(frames, axis=1))
     renderer.close()
     print(args.out)
     return 0

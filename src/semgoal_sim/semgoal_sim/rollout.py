@@ -130,15 +130,12 @@ class EpisodeResult:
     subgoals: int
 
 
-def run_task(task_name: str, seed: int, controller: Controller = expert_controller,
-             max_steps: int = SUBGOAL_STEPS, max_subgoals: int | None = None) -> EpisodeResult:
-    """One episode of a task, the expert choosing sub-goals: success when the task's goal holds; at most
-    ``max_subgoals`` (three turns of the hand per block when None)."""
-    task = get_task(task_name)
-    max_subgoals = max_subgoals or 6 * task.n_blocks
-    world = FetchWorld(task.scene, task.n_blocks)
-    positions, goal = task.initial_state(seed)
-    world.reset(positions)
+def solve(world: FetchWorld, goal: list[Literal], controller: Controller = expert_controller,
+          max_steps: int = SUBGOAL_STEPS, max_subgoals: int | None = None) -> EpisodeResult:
+    """The expert's high level (:func:`expert_next_steps`) drives ``world`` to ``goal``, ``controller`` doing each
+    sub-goal: success when the goal holds at rest; at most ``max_subgoals`` (three turns of the hand per block when
+    None)."""
+    max_subgoals = max_subgoals or 6 * len(world.blocks)
     steps = subgoals = 0
     while subgoals < max_subgoals and not satisfied(world.layout, world.semantic_vector(), goal):
         for subgoal in expert_next_steps(goal, world.layout, world.semantic_vector(), world.view()):
@@ -146,3 +143,13 @@ def run_task(task_name: str, seed: int, controller: Controller = expert_controll
             subgoals += 1
     success, settle_steps = hold_until_settled(world, goal)
     return EpisodeResult(success, steps + settle_steps, subgoals)
+
+
+def run_task(task_name: str, seed: int, controller: Controller = expert_controller,
+             max_steps: int = SUBGOAL_STEPS, max_subgoals: int | None = None) -> EpisodeResult:
+    """One episode of a task, the expert choosing sub-goals (:func:`solve`)."""
+    task = get_task(task_name)
+    world = FetchWorld(task.scene, task.n_blocks)
+    positions, goal = task.initial_state(seed)
+    world.reset(positions)
+    return solve(world, goal, controller, max_steps, max_subgoals)

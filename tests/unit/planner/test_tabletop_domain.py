@@ -6,6 +6,7 @@ import pytest
 
 from semgoal_core.tasks import TABLETOP_TASKS, stacked
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal
+from semgoal_planner.english import parse_english
 from semgoal_planner.goals import parse_goal
 from semgoal_planner.semantic import PlanningError, SemanticPlanner
 
@@ -70,3 +71,12 @@ def test_every_tabletop_task_is_planned_from_its_start(name: str) -> None:
     steps = PLANNER.plan(task.blocks, start, goal)
     PLANNER.simulate(task.blocks, start, goal, steps)
     assert {step.kind for step in steps} <= set(SCENES["tabletop"].subgoal_types)
+
+
+def test_a_sentence_asks_for_a_tower_and_the_bin_on_the_tabletop() -> None:
+    goal = parse_english("stack green on red, then blue on green, and put purple in the bin", "tabletop", SIX)
+    assert set(goal) == {*stacked(("red", "green", "blue")), Literal("in_bin", ("purple",))}
+    steps = PLANNER.plan(SIX, [], goal)
+    tower = [step for step in _puts(steps) if step.kind == "put_on"]
+    assert tower == [SubGoal("put_on", ("green", "red")), SubGoal("put_on", ("blue", "green"))]
+    assert SubGoal("put_in_bin", ("purple",)) in steps and len(steps) == 6

@@ -277,6 +277,10 @@ class SemanticLayout:
     def index(self, literal: Literal) -> int:
         return self._index[self.canonical(literal.name, literal.args)]
 
+    def index_of_atom(self, atom: tuple[str, tuple[str, ...]]) -> int:
+        """The entry of an atom as stored (:meth:`canonical`)."""
+        return self._index[atom]
+
     def check_state(self, objects: Sequence[str], literals: Iterable[Literal], named: Iterable[str] = ()) -> None:
         """Raise :class:`VocabularyError` unless a semantic state could be one of this scene's: its objects
         distinct blocks of the scene, as many as it is built with, every literal valid in the scene (the vector

@@ -52,8 +52,10 @@ class Normaliser(nn.Module):
         self.register_buffer("var", torch.ones(size, dtype=torch.float64))
 
     def update(self, batch: np.ndarray) -> None:
-        """Chan's parallel update of mean and variance with a batch of observations."""
+        """Chan's parallel update of mean and variance with a batch of observations (none: no change)."""
         x = torch.as_tensor(batch, dtype=torch.float64).reshape(-1, self.mean.numel())
+        if not len(x):
+            return
         n, mean, var = x.shape[0], x.mean(0), x.var(0, unbiased=False)
         delta, total = mean - self.mean, self.count + n
         self.var.copy_((self.var * self.count + var * n + delta**2 * self.count * n / total) / total)
@@ -65,23 +67,12 @@ class Normaliser(nn.Module):
         return torch.clamp((obs - self.mean.float()) / std, -OBS_CLIP, OBS_CLIP)
 
 
-class Actor(nn.Module):
-    """Squashed Gaussian policy over (normalised observation, goal); goals are 0/1 and used as is."""
+class GaussianPolicy(nn.Module):
+    """A squashed Gaussian policy over (observation, goal): subclasses give ``forward`` -> (mean, log_std) of the
+    pre-tanh Gaussian, ``features`` (the critic's input, ``feature_size`` wide), ``net`` (every trained weight)
+    and ``normaliser``."""
 
-    def __init__(self, obs_size: int, goal_size: int, hidden: tuple[int, ...] = HIDDEN,
-                 log_std_max: float = LOG_STD_MAX) -> None:
-        super().__init__()
-        self.obs_size, self.goal_size, self.log_std_max = obs_size, goal_size, log_std_max
-        self.normaliser = Normaliser(obs_size)
-        self.net = mlp(obs_size + goal_size, 8, hidden)
-
-    def features(self, obs: torch.Tensor, goal: torch.Tensor) -> torch.Tensor:
-        return torch.cat([self.normaliser(obs), goal], dim=-1)
-
-    def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        """(mean, log_std) of the pre-tanh Gaussian."""
-        mean, log_std = self.net(self.features(obs, goal)).chunk(2, dim=-1)
-        return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
+    feature_size: int
 
     def sample(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         """(action, log_prob, pre-tanh mean): reparameterised tanh-Gaussian (SAC, appendix C)."""
@@ -102,20 +93,45 @@ class Actor(nn.Module):
         return torch.tanh(mean).numpy()
 
 
-def export(actor: Actor, directory: Path, scene: str, info: dict, goal: str = "semantic",
+class Actor(GaussianPolicy):
+    """Squashed Gaussian policy over (normalised observation, goal); goals are 0/1 and used as is."""
+
+    def __init__(self, obs_size: int, goal_size: int, hidden: tuple[int, ...] = HIDDEN,
+                 log_std_max: float = LOG_STD_MAX) -> None:
+        super().__init__()
+        self.obs_size, self.goal_size, self.log_std_max = obs_size, goal_size, log_std_max
+        self.feature_size = obs_size + goal_size
+        self.normaliser = Normaliser(obs_size)
+        self.net = mlp(obs_size + goal_size, 8, hidden)
+
+    def features(self, obs: torch.Tensor, goal: torch.Tensor) -> torch.Tensor:
+        return torch.cat([self.normaliser(obs), goal], dim=-1)
+
+    def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+        """(mean, log_std) of the pre-tanh Gaussian."""
+        mean, log_std = self.net(self.features(obs, goal)).chunk(2, dim=-1)
+        return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
+
+
+def export(actor: GaussianPolicy, directory: Path, scene: str, info: dict, goal: str = "semantic",
            derived: tuple[str, ...] = ()) -> None:
     """Write ``actor.pt`` and ``actor.json`` (layout + ``info``) into ``directory``; ``derived``: the
     features (``semgoal_core.features``) appended to the observation it was trained on."""
+    from semgoal_policy import object_actor
+
     directory.mkdir(parents=True, exist_ok=True)
     torch.save({k: v.detach().cpu() for k, v in actor.state_dict().items()}, directory / "actor.pt")
     meta = {"layout": layout.describe(scene, goal, features.widths(derived)), "hidden": list(HIDDEN),
             "log_std_max": actor.log_std_max, "feature_versions": {n: features.FEATURE_VERSIONS[n] for n in derived},
             **info}
+    if isinstance(actor, object_actor.ObjectActor):
+        meta |= {"architecture": object_actor.ARCHITECTURE, "token_version": object_actor.TOKEN_VERSION}
     (directory / "actor.json").write_text(json.dumps(meta, indent=2) + "\n")
 
 
-def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
-    """Load an exported actor; refuse it when its layout differs from the current code's."""
+def load(directory: Path | str, scene: str | None = None) -> tuple[GaussianPolicy, dict]:
+    """Load an exported actor; refuse it when its layout differs from the current code's (an object-centric actor
+    loads for any scene: :mod:`semgoal_policy.object_actor`)."""
     directory = Path(directory)
     meta_path, weights_path = directory / "actor.json", directory / "actor.pt"
     if not meta_path.exists() or not weights_path.exists():
@@ -125,6 +141,8 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
     stored = meta["layout"]
     scene = scene or stored["scene"]
     names = derived_features(meta)
+    if meta.get("architecture") == "object":
+        return _load_object_actor(directory, meta, scene, names), meta
     try:
         current = layout.describe(scene, stored.get("goal", "semantic"), features.widths(features.check(scene, names)))
     except ValueError as error:
@@ -145,6 +163,24 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[Actor, dict]:
     actor.load_state_dict(torch.load(weights_path, weights_only=True))
     actor.eval()
     return actor, meta
+
+
+def _load_object_actor(directory: Path, meta: dict, scene: str, names: tuple[str, ...]) -> GaussianPolicy:
+    """An object-centric actor's weights, for ``scene`` whatever scene it was trained on: its tokens must be the
+    code's and the scene must have its derived features."""
+    from semgoal_policy import object_actor
+
+    if meta.get("token_version") != object_actor.TOKEN_VERSION:
+        raise LayoutMismatchError(f"actor in {directory} reads version {meta.get('token_version')} of the block tokens, "
+                                  f"the code version {object_actor.TOKEN_VERSION}; retrain it")
+    try:
+        width = features.width(features.check(scene, names))
+    except ValueError as error:
+        raise LayoutMismatchError(f"actor in {directory}: {error}") from error
+    actor = object_actor.ObjectActor(scene, width, meta.get("log_std_max", LOG_STD_MAX))
+    actor.load_state_dict(torch.load(directory / "actor.pt", weights_only=True))
+    actor.eval()
+    return actor
 
 
 def derived_features(meta: dict) -> tuple[str, ...]:

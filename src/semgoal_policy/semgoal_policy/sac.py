@@ -16,7 +16,9 @@ import numpy as np
 import torch
 from torch import nn
 
-from semgoal_policy.actor import LOG_STD_MAX, Actor, mlp
+from semgoal_core import layout
+from semgoal_policy.actor import LOG_STD_MAX, Actor, GaussianPolicy, mlp
+from semgoal_policy.object_actor import ObjectActor
 from semgoal_policy.replay import Batch
 
 
@@ -50,6 +52,22 @@ class SacConfig:
     gradient vanishes: a quarter to a third of the finger means sit beyond 2.5. The penalty removes that,
     but it did not free three_blocks' put near (it lowered it, ``docs/history.md``), so it stays off:
     the expert's closed-finger labels hold the hand shut there."""
+    architecture: str = "mlp"
+    """``mlp``: the scene's flat actor (:class:`~semgoal_policy.actor.Actor`); ``object``: the object-centric one
+    (:class:`~semgoal_policy.object_actor.ObjectActor`), whose weights serve any scene and number of blocks."""
+
+
+ARCHITECTURES = ("mlp", "object")
+
+
+def make_actor(config: SacConfig, obs_size: int, goal_size: int, scene: str = "") -> GaussianPolicy:
+    """The actor ``config.architecture`` names, for ``obs_size`` / ``goal_size`` (an object-centric one for ``scene``,
+    the derived features being what the observation has past the scene's layout)."""
+    if config.architecture == "mlp":
+        return Actor(obs_size, goal_size, log_std_max=config.log_std_max)
+    if config.architecture == "object":
+        return ObjectActor(scene, obs_size - layout.observation_size(scene), log_std_max=config.log_std_max)
+    raise ValueError(f"unknown actor architecture {config.architecture!r}; valid: {', '.join(ARCHITECTURES)}")
 
 
 class TwinCritic(nn.Module):
@@ -65,14 +83,15 @@ class TwinCritic(nn.Module):
 class SacAgent:
     """Actor, critics, targets, optimisers and the entropy temperature; ``update`` does one gradient step."""
 
-    def __init__(self, obs_size: int, goal_size: int, config: SacConfig) -> None:
+    def __init__(self, obs_size: int, goal_size: int, config: SacConfig, scene: str = "") -> None:
+        """``scene``: the scene trained on, which an object-centric actor reads its layout from."""
         self.config = config
-        self.actor = Actor(obs_size, goal_size, log_std_max=config.log_std_max)
+        self.actor = make_actor(config, obs_size, goal_size, scene)
         self.actor_average = None
         if config.actor_average_rate:
             self.actor_average = copy.deepcopy(self.actor).requires_grad_(False)
             self.actor_average.normaliser = self.actor.normaliser  # one set of observation statistics
-        self.critic = TwinCritic(obs_size + goal_size)
+        self.critic = TwinCritic(self.actor.feature_size)
         self.critic_target = copy.deepcopy(self.critic).requires_grad_(False)
         self.log_alpha = torch.zeros(1, requires_grad=True)
         # fused: one kernel per step instead of one per tensor, 5 % off a whole update on a CPU
@@ -145,7 +164,7 @@ class SacAgent:
         return (per_sample * keep).sum() / keep.sum().clamp(min=1.0), keep.mean().item()
 
     @property
-    def policy(self) -> Actor:
+    def policy(self) -> GaussianPolicy:
         """The actor to evaluate and export: the averaged one when averaging is on, else the live one."""
         return self.actor if self.actor_average is None else self.actor_average
 

@@ -203,7 +203,7 @@ class Trainer:
         probe = self.envs[0].observation_space
         obs_size, goal_size = probe["observation"].shape[0], probe["desired_goal"].shape[0]
         self.kinds = self.spec.kinds(cfg.scene)
-        self.agent = SacAgent(obs_size, goal_size, cfg.sac)
+        self.agent = SacAgent(obs_size, goal_size, cfg.sac, cfg.scene)
         horizon = self.envs[0].max_steps
         motion_size = 2 * SCENES[cfg.scene].max_blocks
         self.replay = EpisodeReplay(cfg.steps // horizon + cfg.n_envs, horizon, obs_size, goal_size,

@@ -55,6 +55,10 @@ PARTIAL_PUT_SHARE = 0.2
 """With three blocks: the share of other puts that name one reference and nothing more, as an operator may
 type them. The rest promise what the planner's steps promise, where the block ends up with respect to every
 other block: ``put_near(x,y,not z)``, ``put_away(x,y,z)``."""
+TOWER_START_SHARE = {"tabletop": 0.35}
+"""Share of starts with a tower among the blocks, in scenes with towers: puts onto towers and picks off them."""
+TALLEST_START_TOWER = 5
+"""The highest tower a start has (a sixth block goes on top of it)."""
 BINNED_START_SHARE = 0.5
 """With a bin: the share of starts with some blocks already in it."""
 FULL_BIN_SHARE = 0.5
@@ -192,6 +196,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             self._bin_some(positions)
             return positions
         kind = rng.uniform()
+        if kind > 1.0 - TOWER_START_SHARE.get(self.scene.name, 0.0):
+            return self._tower_among(count)
         if kind < 0.3 and count >= 2:
             positions = tasks.scatter(rng, count, **area)
             positions[:2] = tasks.cluster(rng, 2, **area)
@@ -209,7 +215,17 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def spawn_area(self) -> dict[str, np.ndarray]:
         """``low`` and ``high`` (x, y) corners of the area blocks start in: the tasks' widened by the margin."""
         widen = np.array([self.spawn_margin, 0.0])
-        return {"low": tasks.SPAWN_LOW - widen, "high": tasks.SPAWN_HIGH + widen}
+        low, high = ((tasks.TABLETOP_SPAWN_LOW, tasks.TABLETOP_SPAWN_HIGH) if self.scene.name in TOWER_START_SHARE
+                     else (tasks.SPAWN_LOW, tasks.SPAWN_HIGH))
+        return {"low": low - widen, "high": high + widen}
+
+    def _tower_among(self, count: int) -> np.ndarray:
+        """A tower of 2 to :data:`TALLEST_START_TOWER` random blocks, the others spread around it, in random order."""
+        rng = self.np_random
+        height = int(rng.integers(2, min(count, TALLEST_START_TOWER) + 1))
+        positions = tasks.spread(rng, count - height + 1, tasks.MIN_SEPARATION, **self.spawn_area())
+        tower = tasks.tower(rng, height, positions[0, :2], positions[0, :2])
+        return np.vstack([tower, positions[1:]])[rng.permutation(count)]
 
     def _bin_some(self, positions: np.ndarray) -> None:
         """Move 1 to count-1 random blocks (see :data:`FULL_BIN_SHARE`) into the bin as a plan's earlier puts leave them:

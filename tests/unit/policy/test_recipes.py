@@ -9,6 +9,7 @@ import pytest
 from semgoal_bringup.experiments.training import checkout_models_dir, train_config, trainer_for
 from semgoal_policy.actor import models_dir
 from semgoal_policy.recipes import RUN_FIELDS, RecipeError, build_config, load_recipe, recipe_names
+from semgoal_policy.sac import SacConfig
 from semgoal_policy.trainer import PHASED_SETTINGS, PROJECT_ROOT, TrainConfig, schedule, settings_at
 
 MODELS_DIR = models_dir()
@@ -44,6 +45,9 @@ def test_the_recipe_reproduces_the_shipped_configuration_and_schedule(name: str)
     newer = rebuilt.keys() - recorded.keys()  # settings added after the actor trained: at the default it trained with
     defaults = {field.name: field.default for field in dataclasses.fields(TrainConfig)}
     assert all(rebuilt[key] == defaults[key] for key in newer), newer
+    newer_sac = rebuilt["sac"].keys() - recorded["sac"].keys()
+    sac_defaults = {field.name: field.default for field in dataclasses.fields(SacConfig)}
+    assert all(rebuilt["sac"].pop(key) == sac_defaults[key] for key in newer_sac), newer_sac
     assert _recipe_part({k: v for k, v in rebuilt.items() if k in recorded}) == _recipe_part(recorded)
     assert rebuilt["seed"] == shipped["seed"]
     ran = shipped.get("schedule") or [{"from_steps": 0, **{k: recorded[k] for k in PHASED_SETTINGS if k in recorded}}]

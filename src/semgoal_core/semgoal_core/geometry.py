@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, BinGeometry
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, BinGeometry, Scene
 
 TABLE_TOP = 0.4
 """z of the table top (m), as in the Fetch benchmark."""
@@ -26,6 +26,16 @@ FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
 FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
 """A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
 finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
+
+
+GRIP_BELOW_BODY = 0.02
+"""The grip site sits about this far (m) below the gripper body, which the sim's workspace box holds."""
+
+
+def grip_ceiling(scene: Scene) -> float:
+    """The highest the grip site goes in ``scene`` (m): its ``reach_height`` above the table, less
+    :data:`GRIP_BELOW_BODY`."""
+    return TABLE_TOP + scene.reach_height - GRIP_BELOW_BODY
 
 
 def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:

@@ -476,6 +476,39 @@ class SubGoal:
         return [Literal("in_bin", (x,)), released]  # put_in_bin
 
 
+def _unordered(literals: Iterable[Literal]) -> set[tuple]:
+    """Literals with the arguments of symmetric predicates in no order."""
+    return {(lit.name, frozenset(lit.args) if lit.name in SYMMETRIC_PREDICATES else lit.args, lit.value)
+            for lit in literals}
+
+
+def subgoal_of(literals: Iterable[Literal]) -> SubGoal:
+    """The sub-goal whose :meth:`SubGoal.literals` these are (in any order): the one ``holding`` literal names the
+    block it moves, the rest its type and references. VocabularyError for literals no sub-goal asks for together."""
+    literals = list(literals)
+    holding = [lit for lit in literals if lit.name == "holding"]
+    if len(holding) != 1:
+        raise VocabularyError(f"{' & '.join(map(str, literals)) or 'no literals'}: a sub-goal names the block it moves "
+                              f"in one holding literal")
+    x = holding[0].args[0]
+    rest = [lit for lit in literals if lit.name != "holding"]
+    other = lambda lit: lit.args[1] if lit.args[0] == x else lit.args[0]  # noqa: E731
+    if holding[0].value and not rest:
+        candidate = SubGoal("pick", (x,))
+    elif any(lit.name == "above" for lit in rest):
+        candidate = SubGoal("put_on", (x, rest[0].args[1]))
+    elif any(lit.name == "in_bin" for lit in rest):
+        candidate = SubGoal("put_in_bin" if rest[0].value else "put_on_table", (x,))
+    elif any(lit.name == "close" and lit.value for lit in rest):
+        candidate = SubGoal("put_near", (x, *(other(lit) for lit in rest if lit.value)),
+                            tuple(other(lit) for lit in rest if not lit.value))
+    else:
+        candidate = SubGoal("put_away", (x, *(other(lit) for lit in rest)))
+    if _unordered(candidate.literals()) != _unordered(literals):
+        raise VocabularyError(f"{' & '.join(map(str, literals))}: no sub-goal asks for exactly these literals")
+    return candidate
+
+
 def parse_subgoal(text: str, scene: Scene | None = None) -> SubGoal:
     """Read ``put_near(red,green)`` or ``put_near(red,green,not blue)``; check the type, the arity and (given a
     scene) type and objects."""

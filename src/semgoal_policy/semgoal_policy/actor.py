@@ -131,7 +131,13 @@ def export(actor: GaussianPolicy, directory: Path, scene: str, info: dict, goal:
 
 def load(directory: Path | str, scene: str | None = None) -> tuple[GaussianPolicy, dict]:
     """Load an exported actor; refuse it when its layout differs from the current code's (an object-centric actor
-    loads for any scene: :mod:`semgoal_policy.object_actor`)."""
+    loads for any scene: :mod:`semgoal_policy.object_actor`). ``expert`` loads the scripted expert
+    (:mod:`semgoal_policy.expert_actor`)."""
+    from semgoal_policy.expert_actor import EXPERT, ExpertActor
+
+    if str(directory) == EXPERT:
+        scene = scene or ""
+        return ExpertActor(scene), {"actor": EXPERT, "layout": layout.describe(scene)}
     directory = Path(directory)
     meta_path, weights_path = directory / "actor.json", directory / "actor.pt"
     if not meta_path.exists() or not weights_path.exists():

@@ -67,7 +67,7 @@ class SubgoalController:
         """The table is shared with another arm: holding still with no block in hand, the arm draws back to
         :data:`semgoal_core.arms.PARK` instead, out of the other's way."""
         self.layout = LAYOUTS[scene]
-        self.model_dir = Path(model_dir or actor_io.models_dir() / scene)
+        self.model_dir = Path(model_dir or actor_io.models_dir() / scene)  # "expert": the scripted expert
         self.actor, self.meta = actor_io.load(self.model_dir, scene)
         self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None

@@ -38,7 +38,8 @@ from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, de
 
 PARAMS = (
     Param("scene", "desk_cleanup", "the scene the actor was trained for", choices=tuple(SCENES)),
-    Param("model_dir", "", "an exported actor's folder (empty: the shipped one for the scene)"),
+    Param("model_dir", "", "an exported actor's folder (empty: the shipped one for the scene; 'expert': the scripted "
+          "expert, the actors' teacher, for a scene with no actor yet)"),
     Param("mode", Mode.LOCKSTEP.value, "must match the sim's: lockstep | realtime", choices=tuple(Mode)),
     Param("rate_hz", 25.0, "realtime mode: commands per second", low=0.1, high=1000.0, runtime=True),
     Param("world_topic", topics.WORLD_STATE, "the world state the actor reads: the sim's, or the camera's "

@@ -15,7 +15,7 @@ import numpy as np
 
 from semgoal_core import layout
 from semgoal_core.arms import ArmFrame, holder_of, robot_name, takers
-from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP, grip_ceiling
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
@@ -361,7 +361,7 @@ class FetchWorld:
         """The expert's view of the world: block centres by name, grip, finger opening, bin."""
         snapshot = snapshot or self.snapshot()
         return WorldView(dict(zip(self.blocks, snapshot.block_positions, strict=True)), snapshot.grip_position,
-                         snapshot.finger_opening, self.scene.bin, TABLE_TOP + self.scene.reach_height - GRIP_BELOW_BODY)
+                         snapshot.finger_opening, self.scene.bin, grip_ceiling(self.scene))
 
     def observation(self, snapshot: Snapshot | None = None, arm: int = 0) -> np.ndarray:
         """The policy observation of arm ``arm``'s hand, in the world frame (layout: :mod:`semgoal_core.layout`). A

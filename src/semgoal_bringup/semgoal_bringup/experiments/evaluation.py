@@ -35,7 +35,8 @@ from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
-from semgoal_core.tasks import TASK_STEP_BUDGET, TASKS, get_task
+from semgoal_core.tasks import TABLETOP_TASKS, TASK_STEP_BUDGET, TASKS, get_task
+from semgoal_policy.expert_actor import EXPERT
 
 if TYPE_CHECKING:
     from semgoal_bringup.experiments.episodes import Outcome
@@ -167,8 +168,11 @@ def wilson_interval(wins: int, n: int, z: float = 1.96) -> tuple[float, float]:
 
 
 def parse_tasks(text: str) -> list[str]:
+    """``all`` (the paper's eight), ``tabletop`` (its tasks) or task names, comma-separated."""
     if text.strip().lower() == "all":
         return list(TASKS)
+    if text.strip().lower() == "tabletop":
+        return list(TABLETOP_TASKS)
     return [get_task(name).name for name in text.split(",") if name.strip()]
 
 
@@ -183,6 +187,10 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
     one first, then the extra training seeds."""
     from semgoal_policy.agents import get_agent
 
+    if models_dir == Path(EXPERT):
+        if agent != "hierarchical":
+            raise FileNotFoundError(f"the scripted expert stands in for the hierarchical agent's actor only, not {agent}")
+        return [models_dir]
     name = get_agent(agent).model_name(scene)
     extra_dir = models_dir / "seeds" / name
     pool_file = extra_dir / POOL_FILE
@@ -217,7 +225,8 @@ def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds:
                                 f"train one with ./semgoal train --scene {scene} --agent {agent}")
     for directory in dirs:
         label = "shipped" if directory.parent == models_dir else directory.name
-        row.seed_steps[label] = {json.loads((directory / "actor.json").read_text())["env_steps"]}
+        expert = directory == models_dir
+        row.seed_steps[label] = {0 if expert else json.loads((directory / "actor.json").read_text())["env_steps"]}
         runner = make_agent(agent, scene, directory)
         for i in episodes:
             row.add(label, runner.run(task_name, seed + i, linger=linger) if agent == "hierarchical"
@@ -280,6 +289,11 @@ def _seeds_text(row: Row, tasks: list[str]) -> str:
     return str(min(counts)) if len(counts) == 1 else f"{min(counts)}-{max(counts)}"
 
 
+def _in_paper(tasks: list[str]) -> bool:
+    """Whether the paper's Table 1 has every one of ``tasks`` (the tabletop's it has not): its rows are shown then."""
+    return set(tasks) <= set(TASKS)
+
+
 def write_markdown(rows: list[Row], tasks: list[str], record: dict, path: Path) -> None:
     header = "| Method | training seeds | training steps | episodes per task and seed | " + " | ".join(tasks) + " |"
     lines = [
@@ -289,15 +303,18 @@ def write_markdown(rows: list[Row], tasks: list[str], record: dict, path: Path) 
         f"{TASK_STEP_BUDGET} control steps each; success when the goal's literals hold with the world at rest "
         f"(every block slower than {REST_SPEED} m/s, none held unless asked) over {SETTLE_STEPS} control steps, "
         "the executive's rule; brackets hold the 95 % (Wilson) interval. "
-        "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds).",
+        "Paper: Table 1 of the paper (2M training steps, 50 episodes, mean of three training seeds), where it has "
+        "the tasks.",
         f"Regenerate: `{record['command']}`",
         f"Produced by {describe(record)}.",
+        *(["The hierarchy's actor: the scripted expert (`--models expert`), not a learned one."]
+          if any(EXPERT in row.per_seed for row in rows) else []),
         "",
         header,
         "|" + "---|" * (4 + len(tasks)),
     ]
     for agent in AGENT_NAMES:
-        if any(r.agent.startswith(agent) for r in rows):
+        if any(r.agent.startswith(agent) for r in rows) and _in_paper(tasks):
             paper = PAPER_TABLE1[agent]
             lines.append(f"| {PAPER_NAMES[agent]} (paper) | 3 | 2000k | 50 | "
                          + " | ".join(f"{paper[t]}" for t in tasks) + " |")
@@ -338,7 +355,7 @@ def write_csv(rows: list[Row], tasks: list[str], record: dict, path: Path) -> No
         writer.writerow(["agent", "source", "task", "success_rate", "episodes", "ci95_low", "ci95_high", "mean_steps",
                          "training_seeds", "training_steps", "median_settled_steps", "first_step_rule_rate", "commit"])
         for agent in AGENT_NAMES:
-            if any(r.agent.startswith(agent) for r in rows):
+            if any(r.agent.startswith(agent) for r in rows) and _in_paper(tasks):
                 for t in tasks:
                     writer.writerow([agent, "paper", t, PAPER_TABLE1[agent][t] / 100, 50, "", "", "", 3, 2_000_000, "", "",
                                      ""])
@@ -375,7 +392,7 @@ def write_chart(rows: list[Row], tasks: list[str], path: Path) -> None:
     series = []
     for agent in AGENT_NAMES:
         ours = [r for r in rows if r.agent.split(" ")[0] == agent]
-        if ours:
+        if ours and _in_paper(tasks):
             series.append((f"{PAPER_NAMES[agent]} (paper)", [PAPER_TABLE1[agent][t] for t in tasks], None,
                            colours[agent], "//"))
         series += [(f"{r.agent} (ours)", [100 * r.rate(t) for t in tasks], _error_bars(r, tasks), colours[r.agent], None)
@@ -410,7 +427,7 @@ def summary(rows: list[Row], task: str) -> dict:
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal eval", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--tasks", default="all", help="comma-separated task names, or all")
+    parser.add_argument("--tasks", default="all", help="comma-separated task names, all (the paper's) or tabletop")
     parser.add_argument("--episodes", type=int, default=50, help="episodes per task and training seed")
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (fixes every start)")
     parser.add_argument("--seeds", type=int, default=3, help="training seeds to average where actors exist")
@@ -418,7 +435,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
     parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
-    parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones)")
+    parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones); 'expert': "
+                        "the scripted expert drives the hierarchy (a scene with no actor yet: the tabletop)")
     add_sight_arguments(parser)
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")

@@ -96,12 +96,12 @@ LAUNCH_ARGUMENTS = (
 def scene_task(scene: str, task_name: str):
     """The task to start: ``task_name`` (in ``scene`` when one is given), else ``scene``'s first; ValueError if
     the two disagree."""
-    from semgoal_core.tasks import TASKS
+    from semgoal_core.tasks import ALL_TASKS
 
     if not task_name:
         if not scene:
             raise ValueError("give a task or a scene")
-        first = next((t for t in TASKS.values() if t.scene == scene), None)
+        first = next((t for t in ALL_TASKS.values() if t.scene == scene), None)
         if first is None:
             raise ValueError(f"unknown scene {scene!r}")
         return first
@@ -167,9 +167,22 @@ def node_params(task_name: str, seed: int, mode: str, models: str = "",
         "perception_node": {},
         "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {}),
                          **({"arms": robots} if two else {})},
-        "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": f"{models}/{task.scene}"} if models else {}),
+        "policy_node": {"scene": task.scene, "mode": mode, **({"model_dir": model_dir} if (model_dir := policy_model_dir(
+                            task.scene, models)) else {}),
                         **world, **({"arms": robots} if two else {})},
     }
+
+
+def policy_model_dir(scene: str, models: str = "") -> str:
+    """The policy node's ``model_dir``: ``expert`` for ``models`` ``expert`` or for a scene with no shipped actor (the
+    tabletop, until its actor ships: the scripted expert, the actors' teacher, drives the arm), else the scene's
+    folder under ``models``, else "" (the shipped actor)."""
+    from semgoal_policy import actor as actor_io
+    from semgoal_policy.expert_actor import EXPERT
+
+    if models == EXPERT or not (models or (actor_io.models_dir() / scene / "actor.json").exists()):
+        return EXPERT
+    return f"{models}/{scene}" if models else ""
 
 
 def params_file() -> Path:

@@ -16,8 +16,19 @@ import shutil
 import subprocess
 import time
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, Sight, graph_commands, graph_nodes, run_state_dir, rviz_config, scene_task, stop_graph
+from semgoal_bringup.graph import (
+    LAUNCH_ARGUMENTS,
+    Sight,
+    graph_commands,
+    graph_nodes,
+    policy_model_dir,
+    run_state_dir,
+    rviz_config,
+    scene_task,
+    stop_graph,
+)
 from semgoal_core.names import Mode
+from semgoal_policy.expert_actor import EXPERT
 
 DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
 """The Foxglove app's default port; the console's."""
@@ -53,6 +64,8 @@ def main(argv: list[str]) -> int:
                             run_state_dir(args.state_dir), Sight(args.perception, args.policy_input), int(args.robots))
     except ValueError as error:
         parser.error(str(error))
+    if policy_model_dir(task.scene, args.models) == EXPERT:
+        print(f"[up] {task.scene} has no trained actor here: the scripted expert drives the arm", flush=True)
     commands = graph_commands(nodes, args.composed.lower() in ("true", "1", "yes"), args.log_level)
     processes = {name: start_process(name, command) for name, command in commands.items()}
     if rviz:

@@ -8,6 +8,10 @@ blocks in the bin already, so that goals must take them out again.
 - ``close-pattern`` (three_blocks): each pair close or not, any of the eight patterns, from MC-3 and MA-3 starts.
 - ``bin-subset`` (desk_cleanup): a subset of the blocks in the bin (perhaps none), the others explicitly out,
   from desks with 2-4 blocks and a random subset of them binned.
+- ``tower`` (tabletop): a tower of two to five random blocks in a random order, from any tabletop task's start (towers
+  to take down among them).
+- ``tower-bin-close`` (tabletop): a tower of two or three, one or two other blocks in the bin, and one more block
+  next to the tower's foot or away from it: every predicate in one goal.
 - ``hold`` (every scene): hold a named block at the end, from any of the scene's task starts.
 - ``chain`` (every scene): two goals of the scene's other families in one episode, the second from where the
   first left the world (a block in the hand, say); the second asks for something the first did not.
@@ -46,7 +50,7 @@ class GoalCase:
 
 def _task_start(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, tuple[str, ...]]:
     """A start from one of the scene's task samplers, and the blocks in it."""
-    task = tasks.TASKS[str(rng.choice(tasks.scene_tasks(scene)))]
+    task = tasks.get_task(str(rng.choice(tasks.scene_tasks(scene))))
     return task.initial_state(seed)[0], SCENES[scene].objects[:task.n_blocks]
 
 
@@ -84,6 +88,25 @@ def _arrange(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarra
     return positions, patterns[rng.integers(len(patterns))]
 
 
+def _tower(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, str]:
+    positions, blocks = _task_start(rng, scene, seed)
+    order = rng.permutation(blocks)[:int(rng.integers(2, min(len(blocks), 5) + 1))]
+    return positions, " & ".join(map(str, tasks.stacked(order)))
+
+
+def _tower_bin_close(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, str]:
+    positions, blocks = _task_start(rng, scene, seed)
+    while len(blocks) < 4:  # a tower, a block in the bin and one beside: at least four blocks
+        positions, blocks = _task_start(rng, scene, seed + 1)
+    order = list(rng.permutation(blocks))
+    height = int(rng.integers(2, min(3, len(blocks) - 2) + 1))
+    binned = int(rng.integers(1, min(2, len(blocks) - height - 1) + 1))
+    tower, bin_blocks, beside = order[:height], order[height:height + binned], order[height + binned]
+    literals = [*map(str, tasks.stacked(tower)), *(f"in_bin({block})" for block in bin_blocks),
+                f"{'' if rng.uniform() < 0.5 else 'not '}close({beside},{tower[0]})"]
+    return positions, " & ".join(literals)
+
+
 def _hold(rng: np.random.Generator, scene: str, seed: int) -> tuple[np.ndarray, str]:
     positions, blocks = _task_start(rng, scene, seed)
     return positions, f"holding({rng.choice(blocks)})"
@@ -107,6 +130,7 @@ FAMILIES: dict[str, dict[str, Draw]] = {
     "two_blocks": {"stack": _stack, "arrange": _arrange, "hold": _hold, "chain": _chain},
     "three_blocks": {"close-pattern": _close_pattern, "hold": _hold, "chain": _chain},
     "desk_cleanup": {"bin-subset": _bin_subset, "hold": _hold, "chain": _chain},
+    "tabletop": {"tower": _tower, "tower-bin-close": _tower_bin_close, "hold": _hold, "chain": _chain},
 }
 
 

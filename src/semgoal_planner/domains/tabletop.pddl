@@ -4,7 +4,9 @@
 ; follows physically (a block put on another is close to it; a block picked up leaves the bin and the block it
 ; stood on). Helpers derived from the semantic state (semgoal_planner.semantic): hand-empty (no holding), clear
 ; (no block above it) and grounded (above no block: on the table or in the bin). Nothing is put on, or near, a
-; block in the bin.
+; block in the bin; a block is put near a lone block on the table (beside a block up a tower it would stand too
+; far below to be close, and beside a tower's foot the hand brushed the tower over). Put on the table comes before the other puts, so that of plans of equal length the
+; search prefers the one that promises least.
 (define (domain tabletop)
   (:requirements :typing :negative-preconditions :equality)
   (:types block)
@@ -26,20 +28,20 @@
     :precondition (and (holding ?x) (clear ?y) (not (in_bin ?y)) (not (= ?x ?y)))
     :effect (and (above ?x ?y) (close ?x ?y) (close ?y ?x) (not (clear ?y)) (hand-empty) (not (holding ?x))))
 
+  (:action put_on_table
+    :parameters (?x - block)
+    :precondition (holding ?x)
+    :effect (and (grounded ?x) (hand-empty) (not (holding ?x))))
+
   (:action put_near
     :parameters (?x - block ?y - block)
-    :precondition (and (holding ?x) (not (in_bin ?y)) (not (= ?x ?y)))
+    :precondition (and (holding ?x) (grounded ?y) (clear ?y) (not (in_bin ?y)) (not (= ?x ?y)))
     :effect (and (close ?x ?y) (close ?y ?x) (grounded ?x) (hand-empty) (not (holding ?x))))
 
   (:action put_away
     :parameters (?x - block ?y - block)
     :precondition (and (holding ?x) (not (= ?x ?y)))
     :effect (and (not (close ?x ?y)) (not (close ?y ?x)) (grounded ?x) (hand-empty) (not (holding ?x))))
-
-  (:action put_on_table
-    :parameters (?x - block)
-    :precondition (holding ?x)
-    :effect (and (grounded ?x) (hand-empty) (not (holding ?x))))
 
   (:action put_in_bin
     :parameters (?x - block)

@@ -31,6 +31,7 @@ from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.actor import LayoutMismatchError
 from semgoal_policy.controller import ACTION_MODES, SubgoalController, VocabularyError
+from semgoal_policy.expert_actor import EXPERT
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
 from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics, Latencies
@@ -74,7 +75,9 @@ class PolicyNode(Node):
                                                 shared=self.arms > 1)
         except (FileNotFoundError, ValueError, LayoutMismatchError) as error:  # no actor, or one of another layout
             raise ParameterValueError(f"policy: {error}") from None
-        self.get_logger().info(f"actor for {scene} from {self.controller.model_dir}: "
+        self.get_logger().info(f"{scene}: the scripted expert drives the arm (no trained actor)"
+                               if self.controller.meta.get("actor") == EXPERT else
+                               f"actor for {scene} from {self.controller.model_dir}: "
                                f"{self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
         self.publisher = self.create_publisher(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm), topics.STREAM)

@@ -259,7 +259,7 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
 
 
 def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None,
-                     sight: Sight = TRUTH) -> Row:
+                     sight: Sight = TRUTH, models: str = "") -> Row:
     from tqdm import tqdm
 
     from semgoal_bringup.experiments.graph_eval import run_via_ros
@@ -267,12 +267,13 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Pa
 
     row = Row(VIA_ROS)
     started = time.perf_counter()
-    outcomes = run_via_ros(task_names, episodes, seed, record=record, sight=sight)
+    outcomes = run_via_ros(task_names, episodes, seed, models, record=record, sight=sight)
+    label = EXPERT if models == EXPERT else "shipped"
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
-        row.add("shipped", outcome, first_step_observed=False)  # the graph runs the shipped actors
+        row.add(label, outcome, first_step_observed=False)  # the graph runs the shipped actors (or the expert)
     for task_name in task_names:
-        meta = json.loads((actor_io.models_dir() / get_task(task_name).scene / "actor.json").read_text())
-        row.seed_steps.setdefault("shipped", set()).add(meta["env_steps"])
+        actor = actor_io.models_dir() / get_task(task_name).scene / "actor.json"
+        row.seed_steps.setdefault(label, set()).add(0 if label == EXPERT else json.loads(actor.read_text())["env_steps"])
     row.wall_s = time.perf_counter() - started
     return row
 
@@ -475,7 +476,8 @@ def main(argv: list[str]) -> int:
     failed = False
     if args.via_ros:
         try:
-            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight))
+            rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight,
+                                         str(args.models) if str(args.models) == EXPERT else ""))
         except RuntimeError as error:  # the in-process rows are still written
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True

@@ -1,0 +1,26 @@
+"""The whole hierarchy on the tabletop, in process: the planner's towers, bin and closeness done at rest by the
+controller with the scripted expert standing in for the actor, on tasks and on goals of the scene's families."""
+
+import pytest
+
+from semgoal_bringup.experiments.episodes import HierarchicalAgent
+from semgoal_core.goal_families import FAMILIES, goal_cases
+from semgoal_policy.expert_actor import EXPERT
+
+
+@pytest.fixture(scope="module")
+def agent() -> HierarchicalAgent:
+    return HierarchicalAgent("tabletop", EXPERT)
+
+
+@pytest.mark.parametrize("task", ["Tower-6", "Unstack-6", "Sort"])
+def test_the_planner_and_the_expert_do_tabletop_tasks_at_rest(agent: HierarchicalAgent, task: str) -> None:
+    outcome = agent.run(task, 3_000_002)
+    assert outcome.success and not outcome.fell_off, outcome
+
+
+@pytest.mark.parametrize("family", list(FAMILIES["tabletop"]))
+def test_tabletop_goal_families_are_reached(agent: HierarchicalAgent, family: str) -> None:
+    case = goal_cases("tabletop", family, 1, 4_000_000)[0]
+    outcome = agent.run_goals(case.positions, case.goals, case.seed, label=family)
+    assert outcome.success, (case.text, outcome)

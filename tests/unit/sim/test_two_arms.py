@@ -87,6 +87,18 @@ def test_two_arms_bin_a_desk_sooner_than_one_without_touching(capsys) -> None:
     assert result["starts_with_contact"] == 0
 
 
+@pytest.mark.slow
+def test_two_arms_clean_the_tabletop_sooner_with_the_expert_for_the_actor(capsys) -> None:
+    """`eval arms --task Clean-6 --models expert`: the tabletop's six blocks binned by two arms, untouched."""
+    from semgoal_bringup.experiments import arms
+
+    assert arms.main(["--task", "Clean-6", "--episodes", "2", "--models", "expert", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out.strip().splitlines()[-1])
+    assert result["actor"] == "expert"
+    assert result["one_arm"]["success"] == result["two_arms"]["success"] == 1.0
+    assert result["ratio_of_medians"] < 0.8 and result["starts_with_contact"] == 0
+
+
 def test_a_block_taken_out_of_the_second_arms_hand_opens_that_hand() -> None:
     from semgoal_sim.sim_core import move_block
 

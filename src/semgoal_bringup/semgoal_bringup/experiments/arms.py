@@ -13,17 +13,19 @@ from __future__ import annotations
 
 import json
 import sys
+from pathlib import Path
 
 from semgoal_bringup.experiments.episodes import Outcome
 from semgoal_bringup.experiments.executors import run_jobs
 from semgoal_bringup.experiments.together import check_paired, paired_parser, print_summary, summary
 from semgoal_core.tasks import get_task
+from semgoal_policy.expert_actor import EXPERT
 
 MODES = ("one_arm", "two_arms")
 
 
-def run_start(task: str, seed: int) -> tuple[Outcome, Outcome]:
-    """One start with one arm and with two (one job)."""
+def run_start(task: str, seed: int, models: str = "") -> tuple[Outcome, Outcome]:
+    """One start with one arm and with two (one job); ``models``: ``expert`` for the scripted expert as the actor."""
     import torch
 
     from semgoal_bringup.experiments.episodes import make_agent
@@ -31,19 +33,23 @@ def run_start(task: str, seed: int) -> tuple[Outcome, Outcome]:
     torch.set_num_threads(1)
     spec = get_task(task)
     positions = spec.initial_state(seed)[0]
-    return tuple(make_agent("hierarchical", spec.scene, arms=arms).run_goals(positions, (spec.name,), seed, label=spec.name)
+    actor = Path(models) if models else None
+    return tuple(make_agent("hierarchical", spec.scene, actor, arms=arms).run_goals(positions, (spec.name,), seed,
+                                                                                   label=spec.name)
                  for arms in (1, 2))
 
 
 def main(argv: list[str]) -> int:
     parser = paired_parser("semgoal eval arms", __doc__)
+    parser.add_argument("--models", default="", choices=("", EXPERT),
+                        help="expert: the scripted expert drives both arms (a scene with no actor yet: the tabletop)")
     args = parser.parse_args(argv)
     check_paired(parser, args)
-    pairs = run_jobs(run_start, [(args.task, args.seed + i) for i in range(args.episodes)], args.executor, args.jobs,
-                     what="start")
+    pairs = run_jobs(run_start, [(args.task, args.seed + i, args.models) for i in range(args.episodes)], args.executor,
+                     args.jobs, what="start")
     touched = [two.arm_contacts for _, two in pairs]
-    result = {"task": args.task, **summary(pairs, MODES), "starts_with_contact": sum(c > 0 for c in touched),
-              "contact_substeps": sum(touched)}
+    result = {"task": args.task, "actor": args.models or "shipped", **summary(pairs, MODES),
+              "starts_with_contact": sum(c > 0 for c in touched), "contact_substeps": sum(touched)}
     if not args.json:
         print_summary(result, MODES)
         print(f"arm-to-arm contact on {result['starts_with_contact']} of {len(pairs)} starts "

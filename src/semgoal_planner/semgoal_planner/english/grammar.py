@@ -203,8 +203,10 @@ class Clauses(lark.Transformer):
     def group_near(self, items: list) -> Clause:
         return replace(items[1], subjects=items[0])
 
-    def stack_unsaid(self, _: list) -> Clause:
-        raise LanguageError("say which block goes on which: e.g. 'stack red on green'")
+    def stack_unsaid(self, items: list) -> Clause:
+        """'stack red, green and blue', 'build a tower of red, green and blue': a tower, the first named at the
+        bottom (the resolver refuses blocks not named one by one: they say nothing of the order)."""
+        return Clause("tower", subjects=items[0])
 
     def separate_from(self, items: list) -> Clause:
         return Clause("away", subjects=items[0], objects=items[1])

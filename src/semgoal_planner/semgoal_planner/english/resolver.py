@@ -77,6 +77,9 @@ class Resolver:
                 clause = replace(clause, subjects=clause.subjects or before.subjects, elliptic=False)
             else:  # "... but not green": the relation of the clause before
                 clause = replace(before, subjects=clause.subjects, negated=before.negated != clause.negated)
+        if clause.kind == "tower" and (len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)):
+            raise LanguageError("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks "
+                                "from the bottom up: 'build a tower of red, green and blue'")
         subjects = self.subjects_of(clause)
         if not subjects:
             raise LanguageError(f"say which block: {', '.join(self.blocks)}")
@@ -133,6 +136,8 @@ class Resolver:
             return (Literal("above", p if kind == "on" else p[::-1]) for p in pairs)
         if kind == "off":
             return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
+        if kind == "tower":  # the first named at the bottom
+            return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))
         if kind == "unstack":
             return (Literal("above", (s, o), False) for s in subjects for o in others(s))
         if kind in ("together", "apart"):

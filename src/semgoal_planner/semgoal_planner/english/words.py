@@ -21,6 +21,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
+    (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
     (r"by (itself|themselves)|on (its|their) own|all alone", "apart"),
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
@@ -131,7 +132,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
-    words = _joined([w for w in text.split() if w not in FILLERS])
+    words = _tower_in_order(_joined([w for w in text.split() if w not in FILLERS]))
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
@@ -143,6 +144,26 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if not words:
         raise LanguageError(f"the goal says nothing to do: e.g. {examples(scene, blocks)}")
     return words
+
+
+def _tower_in_order(words: list[str]) -> list[str]:
+    """'stack red then green then blue': the blocks of a tower named in order, not clauses after one another."""
+    joined = []
+    for i, word in enumerate(words):
+        in_tower = (word == "then" and 0 < i < len(words) - 1 and words[i + 1] in BLOCK_COLOURS
+                    and _listing_after_stack(words[:i]))
+        joined.append("and" if in_tower else word)
+    return joined
+
+
+def _listing_after_stack(words: list[str]) -> bool:
+    """Whether ``words`` end in 'stack' and a list of colours only."""
+    for word in reversed(words):
+        if word == "stack":
+            return True
+        if word not in BLOCK_COLOURS and word not in ("and", "then"):
+            return False
+    return False
 
 
 NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}

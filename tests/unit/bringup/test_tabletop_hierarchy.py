@@ -24,3 +24,11 @@ def test_tabletop_goal_families_are_reached(agent: HierarchicalAgent, family: st
     case = goal_cases("tabletop", family, 1, 4_000_000)[0]
     outcome = agent.run_goals(case.positions, case.goals, case.seed, label=family)
     assert outcome.success, (case.text, outcome)
+
+
+def test_the_graph_runs_the_tabletop_with_the_expert_until_its_actor_ships() -> None:
+    from semgoal_bringup.graph import node_params
+
+    assert node_params("Tower-5", 0, "lockstep")["policy_node"]["model_dir"] == EXPERT
+    assert "model_dir" not in node_params("DC-3", 0, "lockstep")["policy_node"]
+    assert node_params("DC-3", 0, "lockstep", models=EXPERT)["policy_node"]["model_dir"] == EXPERT

@@ -147,9 +147,9 @@ TASKS: dict[str, Task] = {
 
 
 TABLETOP_SPAWN_LOW = np.array([1.12, 0.48])
-TABLETOP_SPAWN_HIGH = np.array([1.48, 0.78])
-"""Where tabletop blocks start: wider than the paper's area in x, for eight blocks; clear of the bin's front wall
-(the bin is deeper than the desk's: two rows)."""
+TABLETOP_SPAWN_HIGH = np.array([1.48, 0.75])
+"""Where tabletop blocks start: wider than the paper's area in x, for eight blocks; the open fingers clear the bin's
+front wall (the bin is deeper than the desk's: two rows; at y 0.777 they stood on it)."""
 TABLETOP_SEPARATION = 0.10
 """Least centre distance (m) of two blocks at a tabletop start: the open fingers, coming down on one, miss the other
 (``semgoal_core.geometry.clear_of``). Closer, they knocked over a tower built on the other."""
@@ -170,10 +170,24 @@ def spread(rng: np.random.Generator, count: int, min_distance: float = TABLETOP_
     raise RuntimeError(f"cannot place {count} blocks {min_distance} m apart in the spawn area")
 
 
+HOME_GRIP_XY = np.array([1.342, 0.749])
+"""Where the gripper waits at the start of an episode, in the table plane (the benchmark's home pose), 0.13 m above the
+table: a tower there stands in its way."""
+HOME_CLEARANCE = 0.12
+"""Least distance (m) in the table plane of a starting tower from :data:`HOME_GRIP_XY`: nearer, the hand at home
+knocked a tower of six over as the episode began."""
+
+
 def tower(rng: np.random.Generator, count: int, low: np.ndarray = TABLETOP_SPAWN_LOW,
           high: np.ndarray = TABLETOP_SPAWN_HIGH) -> np.ndarray:
-    """``count`` blocks stacked in object order (the first at the bottom), each a few mm off the one below."""
-    positions = [np.array([*rng.uniform(low, high), REST_Z])]
+    """``count`` blocks stacked in object order (the first at the bottom), each a few mm off the one below, clear of
+    the gripper's home (:data:`HOME_CLEARANCE`) when the area leaves room."""
+    base = rng.uniform(low, high)
+    for _ in range(1_000):
+        if np.linalg.norm(base - HOME_GRIP_XY) >= HOME_CLEARANCE or np.array_equal(low, high):
+            break
+        base = rng.uniform(low, high)
+    positions = [np.array([*base, REST_Z])]
     while len(positions) < count:
         positions.append(_on_top(rng, positions[-1][:2]) + np.array([0.0, 0.0, positions[-1][2] - REST_Z]))
     return np.array(positions)

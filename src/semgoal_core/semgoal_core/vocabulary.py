@@ -105,6 +105,8 @@ class BinGeometry:
     floor_thickness: float = 0.01
     rows: int = 1
     """Rows of :meth:`slots` along y (the tabletop's bin takes two)."""
+    keep_out: float = 0.06
+    """How far outside the inner walls (m) a block put on the table stays (the expert's table spots)."""
     row_slots: int = 4
     """Slots in a row."""
 
@@ -138,10 +140,12 @@ class BinGeometry:
         return inside_walls & (positions[:, 2] < rim_top)
 
 
-TABLETOP_BIN = BinGeometry(center=(1.30, 0.955), inner_half_size=(0.18, 0.11), back_wall_height=0.10, rows=2)
+TABLETOP_BIN = BinGeometry(center=(1.30, 0.955), inner_half_size=(0.18, 0.11), back_wall_height=0.10, rows=2,
+                           keep_out=0.1)
 """The tabletop's bin takes eight blocks: two rows of four, 8 cm apart in a row as on the desk, each row's spots
 between the other's; rows 11 cm apart, so the open fingers (5.5 cm each side of a block) clear a block in the
-other row and the walls. It stands 2.5 cm from the table's far edge, as the desk's does."""
+other row and the walls. It stands 2.5 cm from the table's far edge, as the desk's does. Table puts stay 10 cm off
+its inner walls: at 6 cm the open fingers, coming down on a block there, stood on the front wall."""
 
 
 @dataclass(frozen=True)

@@ -208,7 +208,9 @@ class SemanticPlanner:
         conditions = tuple(Condition(Atom(lit.name, lit.args), lit.value) for lit in goal)
         if not held_blocks_asked(goal):  # a goal is achieved at rest: no block left in the hand it does not ask for
             conditions += (Condition(Atom(HAND_EMPTY, ()), True),)
-        return Problem(f"{self.scene}-now", self.domain.name, dict.fromkeys(objects, "block"), init, conditions)
+        problem = Problem(f"{self.scene}-now", self.domain.name, dict.fromkeys(objects, "block"), init, conditions)
+        problem.minimise_cost = ":action-costs" in self.domain.requirements  # the tabletop's puts near and away
+        return problem
 
     def task(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> Task:
         return ground(self.domain, self.problem(objects, state, goal))

@@ -139,7 +139,7 @@ def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tupl
     if towers:  # the hand coming down beside a tower brushes it over: keep well clear of its column
         ok &= np.all(np.linalg.norm(points[:, None, :] - np.array(towers)[None, :, :2], axis=2) >= TOWER_CLEARANCE, axis=1)
     if world.bin is not None:  # never on or in the bin when a table spot is asked for
-        ok &= np.any(np.abs(points - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + 0.06, axis=1)
+        ok &= np.any(np.abs(points - np.array(world.bin.center)) > np.array(world.bin.inner_half_size) + world.bin.keep_out, axis=1)
     spread = np.zeros(len(points))
     if subgoal.kind == "put_near":
         for ref in subgoal.references:

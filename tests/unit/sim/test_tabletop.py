@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 
 from semgoal_core.geometry import TABLE_TOP, clear_of
-from semgoal_core.tasks import TABLETOP_SEPARATION, TABLETOP_SPAWN_HIGH, TABLETOP_SPAWN_LOW, TABLETOP_TASKS, stacked
+from semgoal_core.tasks import (
+    HOME_CLEARANCE,
+    HOME_GRIP_XY,
+    TABLETOP_SEPARATION,
+    TABLETOP_SPAWN_HIGH,
+    TABLETOP_SPAWN_LOW,
+    TABLETOP_TASKS,
+    stacked,
+)
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_sim.rollout import run_task, settled, solve
 from semgoal_sim.world import FetchWorld
@@ -26,6 +34,8 @@ def test_tabletop_starts_are_reproducible_valid_and_fingers_apart(name: str) -> 
             assert np.linalg.norm(a[:2] - b[:2]) >= TABLETOP_SEPARATION - 1e-9
         for literal in goal:
             LAYOUTS["tabletop"].validate(literal)
+        if name.startswith("Unstack"):  # the hand waits at home as the episode begins: not in the tower's way
+            assert np.linalg.norm(positions[0, :2] - HOME_GRIP_XY) >= HOME_CLEARANCE
 
 
 def test_the_bin_takes_eight_blocks_the_fingers_clear_of_each_other() -> None:

@@ -8,6 +8,7 @@ import numpy as np
 from sensor_msgs.msg import Image, JointState
 
 from conftest import GraphProbe, NodeProcesses, desk_with_a_fallen_block
+from semgoal_core.expert import expert_action
 from semgoal_core.vocabulary import SubGoal
 from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
@@ -15,7 +16,6 @@ from semgoal_ros import interfaces as topics
 from semgoal_ros.messages import block_positions
 from semgoal_sim import conversions
 from semgoal_sim.conversions import world_view
-from semgoal_sim.expert import expert_action
 
 
 def command(step: int, values) -> ArmCommand:

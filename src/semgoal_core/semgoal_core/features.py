@@ -6,7 +6,7 @@ sim's observation, the flat baselines and older actors stay as they are.
 
 ``bin_target`` (desk cleanup): where the block between the fingers goes in the bin, relative to the grip
 (x, y; zeros when no spot is free): the free slot nearest the grip, else the nearest free floor spot, as
-the scripted expert chooses it (:func:`semgoal_sim.expert.bin_spot`). Desk actors were weak at DC-4's
+the scripted expert chooses it (:func:`semgoal_core.geometry.bin_spot`). Desk actors were weak at DC-4's
 last put, three blocks binned: they hovered over the middle of the bin instead of the free end, though
 the free spot is a function of the block positions they see.
 

@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 
 from semgoal_core import layout
+from semgoal_core.expert import WorldView, expert_action
 from semgoal_core.geometry import TABLE_TOP, grip_ceiling
 from semgoal_core.vocabulary import LAYOUTS, SCENES, evaluate, subgoal_of
-from semgoal_sim.expert import WorldView, expert_action
 
 EXPERT = "expert"
 """The ``model_dir`` that names the scripted expert instead of an exported actor."""

@@ -10,12 +10,12 @@ from geometry_msgs.msg import Point, TransformStamped, Vector3
 from sensor_msgs.msg import CameraInfo, Image, JointState
 from visualization_msgs.msg import Marker, MarkerArray
 
+from semgoal_core.expert import WorldView
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES
 from semgoal_msgs.msg import BlockState, WorldState
 from semgoal_ros.messages import block_positions, hands
 from semgoal_sim.camera import Frame
-from semgoal_sim.expert import WorldView
 from semgoal_sim.world import FetchWorld, Snapshot
 
 

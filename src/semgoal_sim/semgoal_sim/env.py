@@ -23,9 +23,9 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_core import features, layout, tasks
+from semgoal_core.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_core.settling import MotionReward, at_rest, info_motion, moving_blocks
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal, SubGoal, parse_subgoal, rests_on
-from semgoal_sim.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import held_blocks, run_subgoal, satisfied
 from semgoal_sim.world import FetchWorld, Snapshot

@@ -8,10 +8,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from semgoal_core.expert import WorldView, expert_action
 from semgoal_core.settling import SETTLE_STEPS, Settling, at_rest, moving_blocks
 from semgoal_core.tasks import get_task
 from semgoal_core.vocabulary import Literal, SemanticLayout, SubGoal
-from semgoal_sim.expert import WorldView, expert_action
 from semgoal_sim.world import FetchWorld
 
 SUBGOAL_STEPS = 60

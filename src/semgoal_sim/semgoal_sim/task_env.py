@@ -23,9 +23,9 @@ import gymnasium as gym
 import numpy as np
 
 from semgoal_core import layout, tasks
+from semgoal_core.expert import expert_action
 from semgoal_core.settling import MotionReward, info_motion
 from semgoal_core.vocabulary import SCENES, Literal, SubGoal
-from semgoal_sim.expert import expert_action
 from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import SUBGOAL_STEPS, expert_next_steps, satisfied
 from semgoal_sim.world import FetchWorld

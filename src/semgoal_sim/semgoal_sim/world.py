@@ -15,12 +15,12 @@ import numpy as np
 
 from semgoal_core import layout
 from semgoal_core.arms import ArmFrame, holder_of, robot_name, takers
+from semgoal_core.expert import WorldView
 from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP, grip_ceiling
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
 from semgoal_sim.arm_guard import ArmGuard
-from semgoal_sim.expert import WorldView
 from semgoal_sim.scene import REACHING_LINKS, arm_prefix, block_body_name, build_model
 
 N_SUBSTEPS = 20

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from semgoal_bringup.experiments.episodes import make_agent
+from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import THRESHOLDS, Literal
 from semgoal_policy.controller import EDGE_MARGIN, EDGE_NUDGE, HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
-from semgoal_sim.expert import move_to
 from semgoal_sim.rollout import held_blocks
 from semgoal_sim.world import FetchWorld
 

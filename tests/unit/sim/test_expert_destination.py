@@ -7,9 +7,9 @@ import itertools
 
 import numpy as np
 
+from semgoal_core.expert import PLACE_HEIGHT, RELEASE, WorldView, destination, expert_action
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, SubGoal
-from semgoal_sim.expert import PLACE_HEIGHT, RELEASE, WorldView, destination, expert_action
 
 BIN = SCENES["desk_cleanup"].bin
 REST_Z = TABLE_TOP + BLOCK_HALF_SIZE

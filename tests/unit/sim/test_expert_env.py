@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
+from semgoal_core.expert import expert_action
 from semgoal_core.layout import goal_reward, observation_size
 from semgoal_core.tasks import SPAWN_HIGH, SPAWN_LOW, TABLE_TOP, TASKS
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE
 from semgoal_sim import env as env_module
 from semgoal_sim.env import SubgoalEnv
-from semgoal_sim.expert import expert_action
 from semgoal_sim.rollout import run_task
 
 

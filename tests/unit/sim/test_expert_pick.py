@@ -5,9 +5,9 @@ descend, and actors stalled over blocks 1 to 1.5 cm off in xy)."""
 import numpy as np
 import pytest
 
+from semgoal_core.expert import ALIGN_XY, CLOSE, FUNNEL_XY, GRASP_OPENING, HOVER, WorldView, expert_action
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SubGoal
-from semgoal_sim.expert import ALIGN_XY, CLOSE, FUNNEL_XY, GRASP_OPENING, HOVER, WorldView, expert_action
 
 BLOCK = np.array([1.40, 0.83, TABLE_TOP + BLOCK_HALF_SIZE])
 PICK = SubGoal("pick", ("red",))

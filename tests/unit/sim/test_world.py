@@ -4,10 +4,10 @@ import mujoco
 import numpy as np
 import pytest
 
+from semgoal_core.expert import move_to
 from semgoal_core.geometry import GRASP_OPENING, TABLE_TOP
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import Literal, SubGoal
-from semgoal_sim.expert import move_to
 from semgoal_sim.rollout import run_subgoal
 from semgoal_sim.scene import build_model
 from semgoal_sim.sim_core import SimCore, check_command
@@ -196,7 +196,7 @@ def test_moving_a_held_block_out_of_the_hand_lets_it_go() -> None:
 def test_motion_from_the_semantic_vector_is_the_motion_from_the_geometry(scene: str, blocks: int | None) -> None:
     """The env reads what is held off the step's semantic vector instead of working the holding geometry out again:
     the same bits on every step of the expert picking a block up and carrying it (held, then not)."""
-    from semgoal_sim.expert import expert_action
+    from semgoal_core.expert import expert_action
 
     world = FetchWorld(scene, blocks)
     world.reset(np.array([[1.3, 0.7, 0.425], [1.2, 0.9, 0.425], [1.45, 0.55, 0.425]])[: len(world.blocks)])

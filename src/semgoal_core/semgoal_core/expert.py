@@ -59,8 +59,8 @@ BYSTANDER_CLEARANCE = THRESHOLDS.close_distance + 0.03
 block; put_near: those the step keeps apart from), 1 cm beyond :data:`AWAY_DROP_DISTANCE`, so the block
 may be let go on the way to it."""
 TOWER_CLEARANCE = 0.12
-"""Least distance (m) in the table plane of a put's table spot from a block the third or higher in a tower: lowering a
-block beside a tower of six, 5.5 cm off it, the hand knocked it over (the paper's scenes have no such towers)."""
+"""Least distance (m) in the table plane of a put's table spot from a block resting on another: lowering a block
+beside a tower of six, 5.5 cm off it, the hand knocked it over, and beside one of two, off the table's edge."""
 SLOT_TOLERANCE = 0.02
 """put_in_bin lets go over the bin once the block is within this of its free slot (xy): a neighbour let go
 that far off its own slot still leaves the next slot free (slots are 8 cm apart, blocks need 5.8)."""
@@ -135,7 +135,7 @@ def _table_spots(points: np.ndarray, subgoal: SubGoal, world: WorldView) -> tupl
     their summed distance to the references (how compact the group they make is)."""
     others = world.others(subgoal.block)
     ok = clear_of(points, list(others.values()))
-    towers = [p for p in others.values() if p[2] > TABLE_TOP + BLOCK_HALF_SIZE + 3 * BLOCK_HALF_SIZE]
+    towers = [p for p in others.values() if p[2] > TABLE_TOP + 2 * BLOCK_HALF_SIZE + BLOCK_HALF_SIZE]
     if towers:  # the hand coming down beside a tower brushes it over: keep well clear of its column
         ok &= np.all(np.linalg.norm(points[:, None, :] - np.array(towers)[None, :, :2], axis=2) >= TOWER_CLEARANCE, axis=1)
     if world.bin is not None:  # never on or in the bin when a table spot is asked for

@@ -1,7 +1,7 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
 1. Objects and fluent predicates (those some action changes) are numbered in sorted name order.
-2. A relaxed exploration (:mod:`strips_planner.exploration`) finds every action's bindings whose positive
+2. A relaxed exploration (the C module ``_explore``) finds every action's bindings whose positive
    preconditions, static ones included, can ever hold together, by joining them over the atoms reached from
    the initial state; no binding is enumerated that a precondition rules out. Static atoms never enter the state.
 3. The C module ``_ground`` instantiates the fluent atoms of those bindings, numbers the facts in sorted order,
@@ -10,12 +10,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from functools import cached_property
 from typing import NamedTuple
 
-from strips_planner import _core, _ground
-from strips_planner.exploration import Exploration, Schema
+from strips_planner import _core, _explore, _ground
 from strips_planner.pddl import Action, Atom, Condition, Domain, PddlError, Problem
 
 
@@ -77,7 +75,7 @@ class _Grounder:
         self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
         self.index = {name: i for i, name in enumerate(self.objects)}
         self.static = {self._key(a, name=True) for a in problem.init if a.predicate not in self.predicate_index}
-        self._types: dict[str, frozenset[int] | None] = {}
+        self._types: dict[str, tuple[int, ...] | None] = {}
 
     def _key(self, atom: Atom, name: bool = False) -> tuple:
         """The atom over object indices: (predicate index, *objects), or (predicate name, *objects)."""
@@ -88,34 +86,32 @@ class _Grounder:
         truth = atom[1] == atom[2] if atom[0] == "=" else atom in self.static
         return truth == positive
 
-    def _objects_of(self, kind: str) -> frozenset[int] | None:
+    def _objects_of(self, kind: str) -> tuple[int, ...] | None:
         """The objects of a type, or None when every object is one (nothing to check)."""
         if kind not in self._types:
-            members = frozenset(i for i, name in enumerate(self.objects)
-                                if self.domain.is_subtype(self.problem.objects[name], kind))
+            members = tuple(i for i, name in enumerate(self.objects)
+                            if self.domain.is_subtype(self.problem.objects[name], kind))
             self._types[kind] = None if len(members) == len(self.objects) else members
         return self._types[kind]
 
-    def _schema(self, action: Action) -> Schema:
-        """The action as the relaxed exploration reads it."""
+    def _schema(self, action: Action, number: dict[str, int]) -> tuple:
+        """The action as :func:`_explore.explore` reads it: per parameter the objects it may take, its positive
+        preconditions, its checks (equalities and negative static preconditions) and its add effects, over
+        ``number``'s predicate indices."""
         position = {v: i for i, (v, _) in enumerate(action.parameters)}
+
+        def arguments(atom: Atom) -> tuple[int, ...]:
+            return tuple(position[a] if a in position else ~self.index[a] for a in atom.args)
+
         joined, filters = [], []
         for cond in action.precondition:
-            atom = cond.atom
-            args = tuple(position[a] if a in position else ~self.index[a] for a in atom.args)
-            if cond.positive and atom.predicate != "=":
-                joined.append((atom.predicate, args))
-            elif atom.predicate == "=" or atom.predicate not in self.predicate_index:
-                filters.append((frozenset(a for a in args if a >= 0), self._static_check(atom.predicate, args, cond.positive)))
-        adds = [(a.predicate, tuple(position[x] if x in position else ~self.index[x] for x in a.args)) for a in action.add]
-        return Schema(action.name, tuple(self._objects_of(kind) for _, kind in action.parameters), tuple(joined),
-                      tuple(filters), tuple(adds))
-
-    def _static_check(self, predicate: str, args: tuple[int, ...], positive: bool) -> Callable[[list], bool]:
-        """A check of an equality or a negative static precondition on a binding (a list of object indices)."""
-        def atom(values: list) -> tuple:
-            return (predicate, *(values[a] if a >= 0 else ~a for a in args))
-        return lambda values: self._static_holds(atom(values), positive)
+            predicate = cond.atom.predicate
+            if cond.positive and predicate != "=":
+                joined.append((number[predicate], *arguments(cond.atom)))
+            elif predicate == "=" or predicate not in self.predicate_index:
+                filters.append((cond.positive, -1 if predicate == "=" else number[predicate], *arguments(cond.atom)))
+        return (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters,
+                [(number[a.predicate], *arguments(a)) for a in action.add])
 
     def _action(self, action: Action, bindings: list[tuple[int, ...]]) -> tuple:
         """The action as :func:`_ground.ground` takes it: its name, parameter count, bindings and the
@@ -162,8 +158,18 @@ class _Grounder:
         return tuple(costs)
 
     def _reachable_bindings(self) -> list[list[tuple[int, ...]]]:
-        init = [(a.predicate, tuple(map(self.index.__getitem__, a.args))) for a in self.problem.init]
-        return Exploration(map(self._schema, self.domain.actions), init, len(self.objects)).run()
+        """Per action, its bindings whose positive preconditions can hold together, sorted."""
+        actions = self.domain.actions
+        mentioned = {a.predicate for a in self.problem.init} | {c.atom.predicate for action in actions
+                                                                for c in action.precondition} \
+            | {a.predicate for action in actions for a in action.add}
+        names = sorted((set(self.domain.predicates) | mentioned) - {"="})
+        number = {name: i for i, name in enumerate(names)}
+        init = [(number[a.predicate], *map(self.index.__getitem__, a.args)) for a in self.problem.init]
+        arity = max((len(t) - 1 for t in init), default=0)
+        arity = max(arity, *map(len, self.domain.predicates.values()), 0)
+        return _explore.explore(len(names), len(self.objects), 1 + arity, init,
+                                [self._schema(action, number) for action in actions])
 
     def _unsolvable_reason(self, unreached: set[Condition]) -> str:
         """Why the goal can never hold: its first literal that is static and false, or not reachable."""

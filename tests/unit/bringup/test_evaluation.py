@@ -128,3 +128,20 @@ def test_training_steps_read_in_thousands() -> None:
     """A run stops at the first whole batch of episodes past its budget: 300480 steps is a 300k run."""
     assert evaluation._steps_text({300_000, 300_480}) == "300k"
     assert evaluation._steps_text({300_000, 600_000}) == "300k-600k"
+
+
+def test_the_graphs_episodes_are_compared_with_the_same_starts_in_process(capsys) -> None:
+    from semgoal_bringup.experiments.episodes import Outcome
+
+    in_process, via_ros = evaluation.Row("hierarchical"), evaluation.Row(evaluation.VIA_ROS)
+    for seed, steps in ((7, 120), (8, 95)):
+        in_process.add("shipped", Outcome("Tower-4", seed, True, steps))
+    via_ros.add("shipped", Outcome("Tower-4", 7, True, 120), first_step_observed=False)
+    via_ros.add("shipped", Outcome("Tower-4", 8, True, 96), first_step_observed=False)
+    via_ros.add("shipped", Outcome("Tower-4", 9, False, 600), first_step_observed=False)
+    counts = evaluation.compare_with_graph([in_process, via_ros], ["Tower-4"], "shipped", evaluation.TRUTH)
+    assert counts == {"Tower-4": {"same": 1, "episodes": 3}}
+    said = capsys.readouterr().err
+    assert "1 of 3 episodes ended as in process" in said
+    assert "seed 8: via ROS succeeded after 96 steps, in process succeeded after 95 steps" in said
+    assert "seed 9: not run in process" in said

@@ -72,6 +72,9 @@ class Tally:
     """...and of those, the ones whose goal still held at rest."""
     fell_off: int | None = 0
     """Episodes that ended with a block off the table (None: not observed, via ROS)."""
+    ends: dict[int, tuple[bool, int]] = field(default_factory=dict)
+    """Per task seed: how its episode ended (success at rest, control steps), to compare the graph's episodes
+    with the same starts in process."""
 
     def add(self, other: Tally) -> None:
         """Count ``other``'s episodes too (the same seed and task, other episodes: another job's chunk)."""
@@ -81,6 +84,7 @@ class Tally:
         self.first_step_wins = (None if self.first_step_wins is None or other.first_step_wins is None
                                 else self.first_step_wins + other.first_step_wins)
         self.settled_steps += other.settled_steps
+        self.ends.update(other.ends)
 
 
 @dataclass
@@ -105,6 +109,7 @@ class Row:
         tally.wins += int(outcome.success)
         tally.episodes += 1
         tally.steps += outcome.steps
+        tally.ends[outcome.seed] = (outcome.success, outcome.steps)
         if outcome.success:
             tally.settled_steps.append(outcome.steps)
         if not first_step_observed or tally.first_step_wins is None:
@@ -158,6 +163,23 @@ class Row:
         """95 % Wilson score interval of the rate: unlike the normal approximation it stays wide at 0 and
         1 (10 of 10 episodes still admit a rate near 72 %)."""
         return wilson_interval(self.wins(task), self.episodes(task))
+
+
+def unlike_in_process(in_process: Row, via_ros: Row, label: str, task: str) -> list[str]:
+    """The graph's episodes of ``task`` that did not end as the same start did in process (success at rest and
+    control steps), each said in words; the graph runs ``label``'s actors (the shipped ones or the expert)."""
+    ran = in_process.per_seed.get(label, {}).get(task, Tally()).ends
+    unlike = []
+    for seed, (success, steps) in sorted(via_ros.per_seed[label][task].ends.items()):
+        if seed not in ran:
+            unlike.append(f"{task} from seed {seed}: not run in process")
+        elif ran[seed] != (success, steps):
+            unlike.append(f"{task} from seed {seed}: via ROS {_ending(success, steps)}, in process {_ending(*ran[seed])}")
+    return unlike
+
+
+def _ending(success: bool, steps: int) -> str:
+    return f"{'succeeded' if success else 'failed'} after {steps} steps"
 
 
 def wilson_interval(wins: int, n: int, z: float = 1.96) -> tuple[float, float]:
@@ -473,14 +495,17 @@ def main(argv: list[str]) -> int:
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2
-    failed = False
+    failed, as_in_process = False, {}
     if args.via_ros:
+        graph_models = str(args.models) if str(args.models) == EXPERT else ""
         try:
             rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight,
-                                         str(args.models) if str(args.models) == EXPERT else ""))
+                                         graph_models))
         except RuntimeError as error:  # the in-process rows are still written
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True
+        else:
+            as_in_process = compare_with_graph(rows, tasks, EXPERT if graph_models else "shipped", sight)
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
@@ -494,5 +519,25 @@ def main(argv: list[str]) -> int:
                                                          indent=2) + "\n")
         print(f"wrote {args.out}/table1.md, table1.csv, table1.json, table1.png", file=sys.stderr)
     if args.json:
-        print(json.dumps({t: summary(rows, t) for t in tasks}))
+        print(json.dumps({t: {**summary(rows, t), **({"via_ros_as_in_process": as_in_process[t]} if as_in_process else {})}
+                          for t in tasks}))
     return 1 if failed else 0
+
+
+def compare_with_graph(rows: list[Row], tasks: list[str], label: str, sight: Sight) -> dict[str, dict[str, int]]:
+    """Print how many of the graph's episodes ended as the same starts did in process, and each that did not; per
+    task ``{"same": k, "episodes": n}`` (on ground truth the two agree episode for episode: the graph runs in
+    lockstep). Empty where there is nothing to compare (no in-process hierarchical row, or the graph saw by camera)."""
+    in_process = next((row for row in rows if row.agent == "hierarchical"), None)
+    if in_process is None or sight != TRUTH:
+        return {}
+    via_ros, counts, unlike_all = rows[-1], {}, []
+    for task in tasks:
+        unlike = unlike_in_process(in_process, via_ros, label, task)
+        counts[task] = {"same": via_ros.episodes(task) - len(unlike), "episodes": via_ros.episodes(task)}
+        unlike_all += unlike
+    same, total = (sum(c[key] for c in counts.values()) for key in ("same", "episodes"))
+    print(f"via ROS: {same} of {total} episodes ended as in process (success at rest and control steps)", file=sys.stderr)
+    for line in unlike_all:
+        print(f"    {line}", file=sys.stderr)
+    return counts

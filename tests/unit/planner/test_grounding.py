@@ -1,5 +1,5 @@
-"""Grounding against a naive reference (every binding, then a relaxed fixpoint), and the C grounder's
-refusal of malformed input."""
+"""Grounding against a naive reference (every binding, then a relaxed fixpoint), and the C exploration's and
+grounder's refusal of malformed input."""
 
 import itertools
 import time
@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
-from strips_planner import _ground
+from strips_planner import _explore, _ground
 from strips_planner.grounding import Task, ground
 from strips_planner.pddl import Atom, Domain, Problem, parse_domain, parse_problem
 
@@ -213,6 +213,37 @@ def test_the_c_grounder_builds_masks_and_constants() -> None:
     assert facts == [("on", ("a", "a")), ("on", ("a", "b")), ("on", ("b", "b"))]
     assert (init, goal, goal_neg, unreached) == (0b110, 0b100, 0, [0])  # (on b a) is never reached
     assert operators == [("toggle", ("a",), 0b010, 0, 0b001, 0b010), ("toggle", ("b",), 0b100, 0, 0b100, 0)]
+
+
+# explore(npredicates, nobjects, width, init, schemas): a schema is (types, joined, filters, adds)
+MOVE_SCHEMA = ((None, None), [(0, 0, 1)], [(False, -1, 0, 1)], [(0, 1, 0)])
+
+
+@pytest.mark.parametrize(("arguments", "error", "words"), [
+    ((1, 2, 0, [], [MOVE_SCHEMA]), ValueError, "width"),
+    ((1, 2, 40, [], [MOVE_SCHEMA]), ValueError, "width"),
+    ((1, 2, 3, [(1, 0, 1)], [MOVE_SCHEMA]), ValueError, "initial atom"),
+    ((1, 2, 3, [(0, 0, 2)], [MOVE_SCHEMA]), ValueError, "initial atom"),
+    ((1, 2, 3, [(0, "a", 1)], [MOVE_SCHEMA]), TypeError, "integer"),
+    ((1, 2, 3, [], [((None,), [(0, 0, 1)], [], [])]), ValueError, "precondition"),
+    ((1, 2, 3, [], [((None, None), [(0, 0, ~2)], [], [])]), ValueError, "precondition"),
+    ((1, 2, 3, [], [((None, None), [(0, 0, 1)], [(True, -1, 0)], [])]), ValueError, "filter"),
+    ((1, 2, 3, [], [((None, None), [(0, 0, 1)], [(True,)], [])]), ValueError, "filter"),
+    ((1, 2, 3, [], [((None, (0, 5)), [(0, 0, 1)], [], [])]), ValueError, "out of range"),
+    ((1, 2, 3, [], [((None,) * 33, [], [], [])]), ValueError, "at most 32"),
+    ((1, 2, 3, [], [([None], [], [], [])]), TypeError, "tuple"),
+])
+def test_the_c_exploration_refuses_malformed_input_with_a_message(arguments: tuple, error: type, words: str) -> None:
+    with pytest.raises(error, match=words):
+        _explore.explore(*arguments)
+
+
+def test_the_c_exploration_joins_checks_and_ranges_free_parameters() -> None:
+    """move(x, y) needs on(x, y) and x != y, and adds on(y, x); mark(z), of a type {b, c}, needs nothing and adds
+    marked(z): from on(a, b) and on(c, c), move(a, b), then move(b, a); on(c, c) is ruled out by the inequality."""
+    move = ((None, None), [(0, 0, 1)], [(False, -1, 0, 1)], [(0, 1, 0)])
+    mark = (((1, 2),), [], [], [(1, 0)])
+    assert _explore.explore(2, 3, 3, [(0, 0, 1), (0, 2, 2)], [move, mark]) == [[(0, 1), (1, 0)], [(1,), (2,)]]
 
 
 @settings(max_examples=150, deadline=None)

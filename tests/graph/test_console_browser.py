@@ -257,3 +257,42 @@ def test_from_pixels_the_page_shows_the_camera_and_marks_what_the_perception_is_
         pytest.fail("the goal from the page did not succeed; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
     holds = browser.find_element(By.ID, "holds").text
     assert "green is on red" in holds, holds
+
+
+def test_on_the_tabletop_a_person_tops_the_robots_tower_from_the_page(nodes: NodeProcesses, browser, tmp_path: Path) -> None:
+    """A tower said in English, its top block claimed by the person and put on from the page ("on green") while
+    the robot builds the rest with the expert in its actor's place; the plan succeeds with the tower standing."""
+    port = free_port()
+    for package, executable, params in graph_nodes("Tower-3", 3_000_000, "realtime"):
+        nodes.start(package, executable, params={**params, **({"require_approval": True} if executable == "planner_node" else {})})
+    start_console(nodes, port, tmp_path / "logs")
+    wait = WebDriverWait(browser, 60, ignored_exceptions=(StaleElementReferenceException,))
+    browser.get(f"http://127.0.0.1:{port}/?token={TOKEN}")
+    wait.until(expected_conditions.text_to_be_present_in_element((By.ID, "status"), "tabletop Tower-3"))
+
+    browser.find_element(By.ID, "goal-text").send_keys("build a tower with red at the bottom, then green, then blue")
+    browser.find_element(By.ID, "goal-send").click()
+    wait.until(lambda b: "awaiting_approval" in b.find_element(By.ID, "status").text)
+    steps = browser.execute_script("return [...document.querySelectorAll('#plan-steps .step-text')].map(e => e.textContent)")
+    top = next(i for i, text in enumerate(steps) if text.startswith("put_on(blue,green)"))
+    click_now(browser, f"#plan-steps li[data-index='{top}'] button.claim")
+    wait.until(lambda b: b.find_elements(By.CSS_SELECTOR, "#plan-steps li .who")[top].text == "you")
+    browser.find_element(By.ID, "approve").click()
+    wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
+    try:
+        wait.until(expected_conditions.visibility_of_element_located((By.ID, "human")))
+    except TimeoutException:
+        pytest.fail("the person's step never came; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    assert browser.find_element(By.ID, "human-action").text == "put_on(blue,green)"
+    wait.until(lambda b: "green is on red" in b.find_element(By.ID, "holds").text)  # the robot's part of the tower
+    click_now(browser, "#human-blocks button[data-block='blue']")
+    click_now(browser, "#human-places button[data-place='on:green']")
+    try:
+        wait.until(lambda b: "plan succeeded" in b.find_element(By.ID, "status").text)
+    except TimeoutException:
+        pytest.fail("the tower did not get done; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    holds = browser.find_element(By.ID, "holds").text
+    assert "green is on red" in holds and "blue is on green" in holds, holds
+    rows = list(csv.DictReader(next((tmp_path / "logs").glob("console-*.csv")).open()))
+    moves = [r for r in rows if r["who"] == "person" and r["event"] == "move"]
+    assert moves and moves[-1]["outcome"].startswith("ok") and '"place": "on"' in moves[-1]["detail"], moves

@@ -51,10 +51,16 @@ def _off_table(xy: np.ndarray) -> str:
     return ""
 
 
+STACK_ALIGNMENT = 0.01
+"""Metres: a block put within this of the centre of the block under it goes on top of it (a tower); further off
+and it would hang over the edge and fall."""
+
+
 def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[bool, str]:
     """A person's hand (an operator's intervention, the console, a scripted person): put ``block`` at ``position``
-    (x, y; z is set to rest on the table, or on the bin's floor inside its walls). Refused off the table, on another
-    block or across the bin's walls."""
+    (x, y; z is set to rest on the table, on the bin's floor inside its walls, or on top of the block or tower
+    centred there). Refused off the table, half on another block, across the bin's walls, or for a block with
+    another resting on it (the one on top would fall)."""
     if block not in world.blocks:
         return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
     xy = np.asarray(position, dtype=np.float64)[:2]
@@ -63,12 +69,22 @@ def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[boo
     if off := _off_table(xy):
         return False, off
     snapshot = world.snapshot()
-    for other, pos in zip(world.blocks, snapshot.block_positions, strict=True):
-        if other != block and np.linalg.norm(pos[:2] - xy) < 2 * BLOCK_HALF_SIZE + 0.005:
-            return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}"
+    positions = dict(zip(world.blocks, snapshot.block_positions, strict=True))
+    here = positions.pop(block)
+    width = 2 * BLOCK_HALF_SIZE
+    if on_top := [other for other, pos in positions.items()
+                  if np.linalg.norm(pos[:2] - here[:2]) < width and 0 < pos[2] - here[2] < 1.5 * width]:
+        return False, f"{on_top[0]} rests on {block}: move {on_top[0]} first"
+    column = {other: pos for other, pos in positions.items() if np.linalg.norm(pos[:2] - xy) < width + 0.005}
+    if any(np.linalg.norm(pos[:2] - xy) > STACK_ALIGNMENT for pos in column.values()):
+        other = next(o for o, pos in column.items() if np.linalg.norm(pos[:2] - xy) > STACK_ALIGNMENT)
+        return False, f"({xy[0]:.3f}, {xy[1]:.3f}) is taken by {other}: put {block} on its centre or clear of it"
     rest_z, where = TABLE_TOP + BLOCK_HALF_SIZE, ""
     bin_ = world.scene.bin
-    if bin_ is not None:
+    if column:
+        top = max(column, key=lambda o: column[o][2])
+        rest_z, where = column[top][2] + width + 0.002, f" on {top}"
+    elif bin_ is not None:
         offset = np.abs(xy - np.asarray(bin_.center))
         inner = np.asarray(bin_.inner_half_size)
         outer = inner + bin_.wall_thickness + BLOCK_HALF_SIZE

@@ -160,6 +160,27 @@ def test_move_block_sets_a_block_in_the_bin_and_refuses_the_walls() -> None:
     assert not core.world.fallen_blocks()
 
 
+def test_a_person_puts_a_block_on_a_tower_and_it_stands() -> None:
+    """The console's "on green" put the block on the table under green's tower (refused: "taken by red"); centred on
+    a tower it goes on top and stays at rest, half over a block it is refused, and a block with another on it
+    stays put (the top one would fall)."""
+    core = SimCore("tabletop", "Tower-4", seed=3_000_000)
+    world = core.world
+    red = core.snapshot().block_positions[world.blocks.index("red")]
+    assert core.move_block("green", red)[1].endswith(" on red")
+    ok, message = core.move_block("blue", red)
+    assert ok and message.endswith(" on green"), message
+    for _ in range(50):
+        world.step(np.zeros(4))
+    assert {"above(green,red)", "above(blue,green)"} <= set(world.layout.readable(world.semantic_vector()).split(" & "))
+    np.testing.assert_allclose(core.snapshot().block_positions[world.blocks.index("blue"), :2], red[:2], atol=0.005)
+    ok, message = core.move_block("yellow", red + np.array([0.03, 0.0, 0.0]))
+    assert not ok and "taken by" in message and "centre" in message
+    ok, message = core.move_block("green", np.array([1.2, 0.55, 0.0]))
+    assert not ok and message == "blue rests on green: move blue first"
+    assert not world.fallen_blocks()
+
+
 def test_a_reset_to_given_positions_starts_there_and_refuses_what_no_world_can_hold() -> None:
     """The goal families' starts through ResetWorld.positions: checked, the world unchanged on refusal."""
     core = SimCore("three_blocks", "MC-3", seed=0)

@@ -3,11 +3,12 @@
 Each arm is taken, in the table plane, as the segment from its shoulder to its grip site: over random motions of the
 Fetch arm under the mocap, every link from the shoulder to the gripper stayed within 5.3 cm of it (the elbow rises
 above the segment, not beside it). Two arms keep :data:`SEPARATION` between their segments. When a command would
-bring them closer, one arm yields: not one with a block in hand, then not one at work (moving), then the one whose own
-move does it, then the second. It rises off the table and draws back towards its shoulder, its fingers keeping what
-they hold (a block in hand is drawn back no further than its own table edge),
-while the other keeps its right of way until the two are :data:`RELEASE` apart again, and holds still in the plane
-where its move would close in on the other before that has drawn back. A yielding arm's step goes on
+bring them closer, one arm yields: not one with a block in hand, then not one at work (reaching, or going down to
+grasp: two arms reaching for blocks nearer together than the separation took turns drawing back, each one's descent
+counted as holding still), then the one whose own move does it, then the second. It rises off the table and draws
+back towards its shoulder, its fingers keeping what they hold (a block in hand is drawn back no further than its own
+table edge), while the other keeps its right of way until the two are :data:`RELEASE` apart again, and holds still in
+the plane where its move would close in on the other before that has drawn back. A yielding arm's step goes on
 afterwards (the executive's stall rule bounds the wait), as a person on a shared bench waits for the other's hand.
 """
 
@@ -30,7 +31,7 @@ MIN_GAP = 0.06
 DISTAL_POINTS = 3
 """The chain's points a command moves at once (wrist, gripper, grip site); the shoulder and the elbow follow."""
 STILL = 0.1
-"""A command this small in the table plane (5 mm a step) is an arm holding still: idle, or grasping."""
+"""A command this small (5 mm a step) is an arm holding still: idle, or closing its fingers."""
 YIELD_SPEED = 0.5
 """A yielding arm draws back at 2.5 cm a step: at full speed a block hanging low in its fingers slid out."""
 CLEAR_HEIGHT = TABLE_TOP + 0.12
@@ -114,7 +115,7 @@ class ArmGuard:
             return actions
         if self.right_of_way is None:
             closes = [self._too_close(self._moved(chains, actions, (arm,)), False) for arm in (0, 1)]
-            moving = np.linalg.norm(actions[:, :2], axis=1) > STILL
+            moving = np.linalg.norm(actions[:, :3], axis=1) > STILL  # reaching, or going down to grasp
             # who goes on: the arm with a block in hand, then one at work (moving), then one whose own move keeps
             # the distance, then the first
             ranks = [(bool(holding[arm]), bool(moving[arm]), not closes[arm], arm == 0) for arm in (0, 1)]

@@ -28,6 +28,13 @@ class ExpertActor:
         self.ceiling = grip_ceiling(SCENES[scene])
 
     def act(self, observation: np.ndarray, goal: np.ndarray, noise: np.ndarray | None = None) -> np.ndarray:
+        """The command for one row, or one per row of a batch (as the learned actors take them)."""
+        observation, goal = np.asarray(observation), np.asarray(goal)
+        if observation.ndim == 2:
+            return np.stack([self._act_one(o, g) for o, g in zip(observation, goal, strict=True)])
+        return self._act_one(observation, goal)
+
+    def _act_one(self, observation: np.ndarray, goal: np.ndarray) -> np.ndarray:
         size = self.layout.size
         subgoal = subgoal_of(self.layout.decode(goal[:size], goal[size:]))
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)

@@ -32,3 +32,15 @@ def test_the_graph_runs_the_tabletop_with_the_expert_until_its_actor_ships() -> 
     assert node_params("Tower-5", 0, "lockstep")["policy_node"]["model_dir"] == EXPERT
     assert "model_dir" not in node_params("DC-3", 0, "lockstep")["policy_node"]
     assert node_params("DC-3", 0, "lockstep", models=EXPERT)["policy_node"]["model_dir"] == EXPERT
+
+
+def test_eval_subgoals_runs_the_expert_per_type_on_a_batch(capsys) -> None:
+    """`eval subgoals --model-dir expert` hands the expert a batch of rows, as it does the learned actors (it took one
+    row only, and the command crashed)."""
+    import json
+
+    from semgoal_bringup.experiments.training import eval_subgoals_main
+
+    assert eval_subgoals_main(["--scene", "tabletop", "--episodes", "2", "--model-dir", EXPERT, "--json"]) == 0
+    rates = json.loads(capsys.readouterr().out.strip().splitlines()[-1])["per_subgoal"]
+    assert set(rates) >= {"pick", "put_on", "put_in_bin", "take_out"} and all(0.0 <= r <= 1.0 for r in rates.values())

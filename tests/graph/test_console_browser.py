@@ -71,6 +71,17 @@ def drop_in_bin(browser, block: str, wait_s: float = 60) -> None:
         time.sleep(1.0)
 
 
+def approve_and_await_the_persons_step(browser) -> WebDriverWait:
+    """Approve the plan, then wait until the page asks the person to do their step; the wait (2 min) to go on with."""
+    browser.find_element(By.ID, "approve").click()
+    wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
+    try:
+        wait.until(expected_conditions.visibility_of_element_located((By.ID, "human")))
+    except TimeoutException:
+        pytest.fail("the person's step never came; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    return wait
+
+
 def start_console(nodes: NodeProcesses, port: int, log_dir: Path):
     from semgoal_bringup.graph import node_command
 
@@ -135,12 +146,7 @@ def test_a_person_shares_dc3_with_the_robot_in_the_page(nodes: NodeProcesses, br
 
     click(step_button(3, "claim"))  # the person does the second block's whole turn
     wait.until(lambda b: [e.text for e in b.find_elements(By.CSS_SELECTOR, "#plan-steps li .who")][2:4] == ["you", "you"])
-    browser.find_element(By.ID, "approve").click()
-    wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
-    try:
-        wait.until(expected_conditions.visibility_of_element_located((By.ID, "human")))
-    except TimeoutException:
-        pytest.fail("the person's step never came; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    wait = approve_and_await_the_persons_step(browser)
     block = steps[3][len("put_in_bin("):].split(")")[0]
     assert browser.find_element(By.ID, "human-action").text == f"put_in_bin({block})"
     wait.until(lambda b: "robot " in b.find_element(By.ID, "doing").text and f"you put_in_bin({block})" in
@@ -277,12 +283,7 @@ def test_on_the_tabletop_a_person_tops_the_robots_tower_from_the_page(nodes: Nod
     top = next(i for i, text in enumerate(steps) if text.startswith("put_on(blue,green)"))
     click_now(browser, f"#plan-steps li[data-index='{top}'] button.claim")
     wait.until(lambda b: b.find_elements(By.CSS_SELECTOR, "#plan-steps li .who")[top].text == "you")
-    browser.find_element(By.ID, "approve").click()
-    wait = WebDriverWait(browser, 120, ignored_exceptions=(StaleElementReferenceException,))
-    try:
-        wait.until(expected_conditions.visibility_of_element_located((By.ID, "human")))
-    except TimeoutException:
-        pytest.fail("the person's step never came; the page said:\n" + browser.find_element(By.TAG_NAME, "body").text)
+    wait = approve_and_await_the_persons_step(browser)
     assert browser.find_element(By.ID, "human-action").text == "put_on(blue,green)"
     wait.until(lambda b: "green is on red" in b.find_element(By.ID, "holds").text)  # the robot's part of the tower
     click_now(browser, "#human-blocks button[data-block='blue']")

@@ -145,3 +145,12 @@ def test_the_graphs_episodes_are_compared_with_the_same_starts_in_process(capsys
     assert "1 of 3 episodes ended as in process" in said
     assert "seed 8: via ROS succeeded after 96 steps, in process succeeded after 95 steps" in said
     assert "seed 9: not run in process" in said
+
+
+@pytest.mark.slow
+def test_a_table_of_tasks_the_paper_has_not_is_not_called_table_1(tmp_path) -> None:
+    code = evaluation.main(["--tasks", "Tower-3", "--episodes", "1", "--models", "expert", "--jobs", "1",
+                            "--out", str(tmp_path)])
+    assert code == 0
+    table = (tmp_path / "table1.md").read_text()
+    assert table.startswith("# Task completion (%)") and "Table 1" not in table and "not the paper's" in table

@@ -34,7 +34,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--max-steps", type=int, default=TASK_STEP_BUDGET,
                         help="control steps the goal may take before it fails, as in the evaluation (0: no limit)")
     parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped "
-                        "ones (expert: the scripted expert, as for a scene with no actor yet)")
+                        "ones (expert: the scripted expert, the actors' teacher)")
     parser.add_argument("--gif", type=Path, help="where to write the episode GIF (default results/demo-TASK.gif)")
     parser.add_argument("--no-gif", action="store_true")
     parser.add_argument("--record", type=Path, help="where to record the episode as MCAP (default results/demo-TASK.mcap)")

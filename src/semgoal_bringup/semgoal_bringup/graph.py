@@ -175,7 +175,7 @@ def node_params(task_name: str, seed: int, mode: str, models: str = "",
 
 def policy_model_dir(scene: str, models: str = "") -> str:
     """The policy node's ``model_dir``: ``expert`` for ``models`` ``expert`` or for a scene with no shipped actor (the
-    tabletop, until its actor ships: the scripted expert, the actors' teacher, drives the arm), else the scene's
+    scripted expert, the actors' teacher, drives the arm), else the scene's
     folder under ``models``, else "" (the shipped actor)."""
     from semgoal_policy import actor as actor_io
     from semgoal_policy.expert_actor import EXPERT

@@ -1,6 +1,6 @@
 """The scripted expert as an actor: the teacher the learned actors imitate, behind the same interface.
 
-A scene with no trained actor yet (the tabletop, while its object-centric actor trains) still runs whole: the
+A scene with no trained actor (the tabletop ran this way while its object-centric actor trained) still runs whole: the
 planner, the predicates and the sim as they are, the policy node's safety rules as they are, the expert choosing
 each command from the observation and the sub-goal's literals (``model_dir: expert``). It reads what an actor
 reads, nothing more: the goal's literals give the sub-goal (:func:`semgoal_core.vocabulary.subgoal_of`) and the

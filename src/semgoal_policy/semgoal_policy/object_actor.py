@@ -105,7 +105,10 @@ class ObjectActor(GaussianPolicy):
         return torch.cat([tokens.flatten(1), context], dim=-1)
 
     def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
-        """(mean, log_std) of the pre-tanh Gaussian."""
+        """(mean, log_std) of the pre-tanh Gaussian, for a batch or one row (as the controller acts)."""
+        if obs.dim() == 1:
+            mean, log_std = self.forward(obs.unsqueeze(0), goal.unsqueeze(0))
+            return mean[0], log_std[0]
         tokens, context, present, subject = self.tokens(obs, goal)
         expanded = context.unsqueeze(1).expand(-1, tokens.shape[1], -1)
         embedded = self.net["token"](torch.cat([tokens, expanded], dim=-1))

@@ -40,7 +40,7 @@ from semgoal_ros.parameters import Param, ParameterValueError, apply_changes, de
 PARAMS = (
     Param("scene", "desk_cleanup", "the scene the actor was trained for", choices=tuple(SCENES)),
     Param("model_dir", "", "an exported actor's folder (empty: the shipped one for the scene; 'expert': the scripted "
-          "expert, the actors' teacher, for a scene with no actor yet)"),
+          "expert, the actors' teacher)"),
     Param("mode", Mode.LOCKSTEP.value, "must match the sim's: lockstep | realtime", choices=tuple(Mode)),
     Param("rate_hz", 25.0, "realtime mode: commands per second", low=0.1, high=1000.0, runtime=True),
     Param("world_topic", topics.WORLD_STATE, "the world state the actor reads: the sim's, or the camera's "
@@ -75,7 +75,7 @@ class PolicyNode(Node):
                                                 shared=self.arms > 1)
         except (FileNotFoundError, ValueError, LayoutMismatchError) as error:  # no actor, or one of another layout
             raise ParameterValueError(f"policy: {error}") from None
-        self.get_logger().info(f"{scene}: the scripted expert drives the arm (no trained actor)"
+        self.get_logger().info(f"{scene}: the scripted expert drives the arm (model_dir: expert)"
                                if self.controller.meta.get("actor") == EXPERT else
                                f"actor for {scene} from {self.controller.model_dir}: "
                                f"{self.controller.meta.get('env_steps')} training steps, "

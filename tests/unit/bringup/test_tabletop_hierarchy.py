@@ -26,10 +26,11 @@ def test_tabletop_goal_families_are_reached(agent: HierarchicalAgent, family: st
     assert outcome.success, (case.text, outcome)
 
 
-def test_the_graph_runs_the_tabletop_with_the_expert_until_its_actor_ships() -> None:
+def test_the_graph_runs_the_tabletop_with_its_shipped_actor_and_the_expert_when_asked() -> None:
     from semgoal_bringup.graph import node_params
 
-    assert node_params("Tower-5", 0, "lockstep")["policy_node"]["model_dir"] == EXPERT
+    assert "model_dir" not in node_params("Tower-5", 0, "lockstep")["policy_node"]
+    assert node_params("Tower-5", 0, "lockstep", models=EXPERT)["policy_node"]["model_dir"] == EXPERT
     assert "model_dir" not in node_params("DC-3", 0, "lockstep")["policy_node"]
     assert node_params("DC-3", 0, "lockstep", models=EXPERT)["policy_node"]["model_dir"] == EXPERT
 

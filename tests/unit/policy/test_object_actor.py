@@ -76,3 +76,11 @@ def test_sac_trains_the_object_actor_with_a_critic_over_its_tokens() -> None:
     np.testing.assert_allclose(resumed.policy(obs, goal)[0].detach(), agent.policy(obs, goal)[0].detach())
     with pytest.raises(ValueError, match="unknown actor architecture"):
         SacAgent(obs.shape[1], goal.shape[1], SacConfig(architecture="transformer"), "tabletop")
+
+
+def test_the_object_actor_acts_on_one_row_as_the_controller_asks(policy: ObjectActor) -> None:
+    """The policy's controller hands the actor one observation, not a batch (the shipped tabletop actor crashed on it)."""
+    obs, goal = _inputs("tabletop", SPOTS[:5], SubGoal("put_in_bin", ("blue",)))
+    one = policy.act(obs[0].numpy(), goal[0].numpy())
+    assert one.shape == (4,)
+    np.testing.assert_allclose(one, policy.act(obs.numpy(), goal.numpy())[0], atol=1e-6)

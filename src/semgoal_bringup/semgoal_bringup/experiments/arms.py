@@ -42,7 +42,7 @@ def run_start(task: str, seed: int, models: str = "") -> tuple[Outcome, Outcome]
 def main(argv: list[str]) -> int:
     parser = paired_parser("semgoal eval arms", __doc__)
     parser.add_argument("--models", default="", choices=("", EXPERT),
-                        help="expert: the scripted expert drives both arms (a scene with no actor yet: the tabletop)")
+                        help="expert: the scripted expert, the actors' teacher, drives both arms")
     args = parser.parse_args(argv)
     check_paired(parser, args)
     pairs = run_jobs(run_start, [(args.task, args.seed + i, args.models) for i in range(args.episodes)], args.executor,

@@ -461,7 +461,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones); 'expert': "
-                        "the scripted expert drives the hierarchy (a scene with no actor yet: the tabletop)")
+                        "the scripted expert, the actors' teacher, drives the hierarchy")
     add_sight_arguments(parser)
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")

@@ -29,6 +29,7 @@ COMMANDS: dict[str, Entry | dict[str, Entry]] = {
     "train": {
         "actor": ("semgoal_bringup.experiments.training:train_main", "train a goal-conditioned SAC+HER actor for a scene and export it"),
         "perception": ("semgoal_bringup.experiments.perception_training", "render labelled camera frames and train the block voter"),
+        "dagger": ("semgoal_bringup.experiments.dagger", "fine-tune an actor by DAgger: it drives, the expert labels where it goes"),
     },
     "sweep": ("semgoal_bringup.experiments.sweep", "train a recipe on many seeds, each a job (local or Dask), resumed if it dies"),
     "ablation": ("semgoal_bringup.experiments.ablation", "train the recipe's variants side by side: what expert supervision buys"),

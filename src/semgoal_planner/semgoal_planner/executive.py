@@ -368,7 +368,11 @@ class Executive:
                 if step.status not in OVER:
                     step.status = StepStatus.DONE if obs.holds(step.subgoal.literals()) else StepStatus.SKIPPED
             self.current = len(self.steps)
-            self._finish(PlanStatus.SUCCEEDED, f"goal {self.goal_text} holds at rest")
+            if obs.fallen:  # what is done stays done: a goal holds only with every block on the table
+                self._finish(PlanStatus.FAILED, f"goal {self.goal_text} holds at rest, but {' and '.join(obs.fallen)} "
+                                                f"fell off the table: put it back and send the goal again")
+            else:
+                self._finish(PlanStatus.SUCCEEDED, f"goal {self.goal_text} holds at rest")
             return
         if self.settling:
             return

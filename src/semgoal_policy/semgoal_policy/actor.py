@@ -150,7 +150,7 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[GaussianPolic
     if meta.get("architecture") == "object":
         return _load_object_actor(directory, meta, scene, names), meta
     try:
-        current = layout.describe(scene, stored.get("goal", "semantic"), features.widths(features.check(scene, names)))
+        current = layout.describe(scene, stored.get("goal", "semantic"), features.widths(features.check(names)))
     except ValueError as error:
         raise LayoutMismatchError(f"actor in {directory}: {error}") from error
     if stored != current:
@@ -173,14 +173,14 @@ def load(directory: Path | str, scene: str | None = None) -> tuple[GaussianPolic
 
 def _load_object_actor(directory: Path, meta: dict, scene: str, names: tuple[str, ...]) -> GaussianPolicy:
     """An object-centric actor's weights, for ``scene`` whatever scene it was trained on: its tokens must be the
-    code's and the scene must have its derived features."""
+    code's and its derived features known."""
     from semgoal_policy import object_actor
 
     if meta.get("token_version") != object_actor.TOKEN_VERSION:
         raise LayoutMismatchError(f"actor in {directory} reads version {meta.get('token_version')} of the block tokens, "
                                   f"the code version {object_actor.TOKEN_VERSION}; retrain it")
     try:
-        width = features.width(features.check(scene, names))
+        width = features.width(features.check(names))
     except ValueError as error:
         raise LayoutMismatchError(f"actor in {directory}: {error}") from error
     actor = object_actor.ObjectActor(scene, width, meta.get("log_std_max", LOG_STD_MAX))

@@ -117,7 +117,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.spawn_margin = spawn_margin
         self.missed_put_share = missed_put_share
         self.scene = SCENES[scene]
-        self.derived = features.check(scene, derived)
+        self.derived = features.check(derived)
         counts = self.scene.block_counts or (self.scene.max_blocks,)
         self.block_counts = (n_blocks,) if n_blocks else counts
         self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from semgoal_core import features, layout
+from semgoal_core.layout import observation_size
 from semgoal_core.tasks import TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_sim.env import SubgoalEnv
@@ -52,9 +53,11 @@ def test_augment_appends_the_named_features_and_check_refuses_bad_names() -> Non
     assert augmented.dtype == np.float32 and augmented.shape == (obs.size + features.width(("bin_target",)),)
     assert np.array_equal(augmented[obs.size:], features.bin_target(SCENE, obs))
     with pytest.raises(ValueError, match="unknown derived feature 'colour'"):
-        features.check(SCENE, ("colour",))
-    with pytest.raises(ValueError, match="needs a bin"):
-        features.check("two_blocks", ("bin_target",))
+        features.check(("colour",))
+
+def test_bin_target_is_zero_in_a_scene_without_a_bin() -> None:
+    obs = np.ones(observation_size("two_blocks"), np.float32)
+    assert np.array_equal(features.augment("two_blocks", obs, ("bin_target",))[obs.size:], np.zeros(2))
 
 
 def test_the_env_appends_derived_features_to_its_observations() -> None:

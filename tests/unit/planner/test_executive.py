@@ -155,6 +155,17 @@ def test_a_step_that_needs_a_fallen_block_fails_at_once_with_the_reason() -> Non
     assert ex.steps[2].status == "failed"
 
 
+def test_a_goal_that_holds_with_a_block_off_the_table_fails() -> None:
+    """Unstack's goal, no block on another, also holds when the tower falls: not a success (what is done stays
+    done), and the reason says how to carry on."""
+    ex = executive(settle_steps=3)
+    ex.set_goal("in_bin(green)")
+    for step in range(3):
+        ex.observe(observe(["in_bin(green)"], 10 + step, fallen=["red"]))
+    assert ex.status == "failed"
+    assert ex.message == "goal in_bin(green) holds at rest, but red fell off the table: put it back and send the goal again"
+
+
 def test_a_fallen_block_does_not_fail_a_step_a_human_does() -> None:
     ex = executive()
     ex.set_goal("in_bin(red)")

@@ -184,8 +184,9 @@ class FlatAgent:
             obs, _, _, _, info = self.env.step(action)
             if first_held is None and info["goal_holds"]:
                 first_held = step
-            if settling.update(info["is_success"], step):
-                return Outcome(task.name, seed, True, step, first_held=first_held, fell_off=self._fell_off())
+            if settling.update(info["is_success"], step):  # as the executive: only with every block on the table
+                fell_off = self._fell_off()
+                return Outcome(task.name, seed, not fell_off, step, first_held=first_held, fell_off=fell_off)
         return Outcome(task.name, seed, False, budget, first_held=first_held, fell_off=self._fell_off())
 
     def _fell_off(self) -> bool:

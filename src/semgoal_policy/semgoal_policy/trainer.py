@@ -72,6 +72,9 @@ class TrainConfig:
     missed_put_share: float = 0.0
     """Share of put_near episodes that start from a put that let go just out of reach (``SubgoalEnv``;
     hierarchical agent only), so that actors pick the block again. Evaluation during training starts none."""
+    tower_share: float | None = None
+    """Share of training starts with a tower among the blocks (``SubgoalEnv``; scenes with towers, hierarchical agent
+    only; None: the scene's own share). Evaluation during training keeps the scene's own."""
     curriculum: bool = True
     """Sample sub-goal types more often the lower their recent success (else uniformly)."""
     eval_every: int = 10_000
@@ -101,7 +104,8 @@ class TrainConfig:
     settings replace the run's own (:data:`PHASED_SETTINGS` only)."""
 
 
-PHASED_SETTINGS = ("updates_per_step", "demo_fraction", "demo_noise", "spawn_margin", "missed_put_share", "curriculum")
+PHASED_SETTINGS = ("updates_per_step", "demo_fraction", "demo_noise", "spawn_margin", "missed_put_share", "tower_share",
+                   "curriculum")
 """What a phase may change: how the data is drawn and how much is learnt from it, never the networks' shape."""
 
 
@@ -145,6 +149,11 @@ def schedule(config: TrainConfig, until: int | None = None) -> list[dict]:
         at = settings_at(config, start)
         rows.append({"from_steps": start, **{name: getattr(at, name) for name in PHASED_SETTINGS}})
     return rows
+
+
+def _shapes_starts(settings: dict) -> bool:
+    """Whether phased ``settings`` (a :func:`schedule` row) draw training starts that evaluation does not."""
+    return bool(settings["spawn_margin"] or settings["missed_put_share"] or settings["tower_share"] is not None)
 
 
 def recorded_config(config: TrainConfig) -> dict:
@@ -192,8 +201,8 @@ class Trainer:
         torch.set_num_threads(cfg.torch_threads)
         torch.manual_seed(cfg.seed)
         self.spec: AgentSpec = AGENTS[cfg.agent]
-        if not self.spec.subgoals and any(row["spawn_margin"] or row["missed_put_share"] for row in schedule(cfg)):
-            raise ValueError("a phase's spawn margin or missed puts are for the hierarchical agent only")
+        if not self.spec.subgoals and any(_shapes_starts(row) for row in schedule(cfg)):
+            raise ValueError("a spawn margin, missed puts and a tower share are for the hierarchical agent only")
         self.rng = np.random.default_rng(cfg.seed)
         # training envs draw from seeds below EVAL_SEED_BASE; evaluation from above it
         self.envs = [make_env() for _ in range(cfg.n_envs)]
@@ -317,11 +326,13 @@ class Trainer:
         tqdm.write(f"from {self.env_steps} env steps: " + ", ".join(f"{k} {v}" for k, v in changed.items()), file=sys.stderr)
 
     def _set_training_starts(self, on: bool) -> None:
-        """The starts only training draws (spawn margin, missed puts), on or off: evaluation keeps to the tasks'."""
-        if any(row["spawn_margin"] or row["missed_put_share"] for row in schedule(self.base_config)):
+        """The starts only training draws (spawn margin, missed puts, more towers), on or off: evaluation keeps to
+        the tasks'."""
+        if any(_shapes_starts(row) for row in schedule(self.base_config)):
             for env in self.envs:
                 env.spawn_margin = self.config.spawn_margin if on else 0.0
                 env.missed_put_share = self.config.missed_put_share if on else 0.0
+                env.tower_share = self.config.tower_share if on else None
 
     def run(self, resume: bool = False) -> dict[str, float]:
         cfg = self.config

@@ -56,7 +56,10 @@ PARTIAL_PUT_SHARE = 0.2
 type them. The rest promise what the planner's steps promise, where the block ends up with respect to every
 other block: ``put_near(x,y,not z)``, ``put_away(x,y,z)``."""
 TOWER_START_SHARE = {"tabletop": 0.35}
-"""Share of starts with a tower among the blocks, in scenes with towers: puts onto towers and picks off them."""
+"""Share of starts with a tower among the blocks, in scenes with towers: puts onto towers and picks off them.
+Training may draw more (``tower_share``); evaluation draws these."""
+MAX_TOWER_SHARE = 0.8
+"""Largest ``tower_share``: starts with the blocks scattered stay a fifth of the draws."""
 TALLEST_START_TOWER = 5
 """The highest tower a start has (a sixth block goes on top of it)."""
 BINNED_START_SHARE = 0.5
@@ -100,7 +103,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
-                 missed_put_share: float = 0.0, render_mode: str | None = None) -> None:
+                 missed_put_share: float = 0.0, tower_share: float | None = None, render_mode: str | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
@@ -108,6 +111,9 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         :param missed_put_share: share of put_near episodes that start where a put that let go just out of
             reach left the world (:meth:`_miss`), so that actors learn to pick the block again instead of
             hovering over it. Evaluation sets it to 0.
+        :param tower_share: share of starts with a tower among the blocks (None: the scene's
+            :data:`TOWER_START_SHARE`), so that training meets tall towers more often than the sub-goal types alone
+            bring them. Scenes with towers only; evaluation sets it to None.
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
@@ -117,6 +123,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.spawn_margin = spawn_margin
         self.missed_put_share = missed_put_share
         self.scene = SCENES[scene]
+        self.tower_share = tower_share
         self.derived = features.check(derived)
         counts = self.scene.block_counts or (self.scene.max_blocks,)
         self.block_counts = (n_blocks,) if n_blocks else counts
@@ -163,6 +170,18 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         obs = self._obs()
         return obs, self._reward(obs)[1]
 
+    @property
+    def tower_share(self) -> float | None:
+        return self._tower_share
+
+    @tower_share.setter
+    def tower_share(self, share: float | None) -> None:
+        """A share is for scenes with towers, at most :data:`MAX_TOWER_SHARE` (a training phase sets it too)."""
+        if share is not None and (self.scene.name not in TOWER_START_SHARE or not 0.0 <= share <= MAX_TOWER_SHARE):
+            raise ValueError(f"tower_share {share} needs a scene with towers ({', '.join(TOWER_START_SHARE)}) and a value "
+                             f"in [0, {MAX_TOWER_SHARE}]")
+        self._tower_share = share
+
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
@@ -196,7 +215,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             self._bin_some(positions)
             return positions
         kind = rng.uniform()
-        if kind > 1.0 - TOWER_START_SHARE.get(self.scene.name, 0.0):
+        towers = TOWER_START_SHARE.get(self.scene.name, 0.0) if self.tower_share is None else self.tower_share
+        if kind > 1.0 - towers:
             return self._tower_among(count)
         if kind < 0.3 and count >= 2:
             positions = tasks.scatter(rng, count, **area)

@@ -179,7 +179,28 @@ def test_a_phase_begins_at_its_step_and_a_resumed_run_starts_in_it(tmp_path) -> 
     assert {env.missed_put_share for env in trainer.envs} == {0.25}
 
 
-@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25},
+def test_a_tower_share_phase_shapes_training_starts_but_not_evaluation(tmp_path) -> None:
+    phased = replace(config(tmp_path, 400), scene="tabletop", n_envs=2, phases=(Phase(200, {"tower_share": 0.8}),))
+    trainer = trainer_for(phased)
+    trainer._enter_phase()
+    assert {env.tower_share for env in trainer.envs} == {None}
+    trainer.env_steps = 200
+    trainer._enter_phase()
+    assert {env.tower_share for env in trainer.envs} == {0.8}
+    seen = []
+    original = type(trainer.envs[0])._sample_positions
+
+    def spy(env, binned: bool = False):
+        seen.append(env.tower_share)
+        return original(env, binned)
+
+    for env in trainer.envs:
+        env._sample_positions = spy.__get__(env)
+    trainer.evaluate(1)
+    assert seen and set(seen) == {None} and {env.tower_share for env in trainer.envs} == {0.8}
+
+
+@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25}, {"tower_share": 0.5},
                                      {"phases": (Phase(200, {"missed_put_share": 0.25}),)}])
 def test_flat_baselines_refuse_training_only_starts(tmp_path, setting: dict) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):

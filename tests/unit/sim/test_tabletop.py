@@ -77,3 +77,20 @@ def test_the_tabletop_reaches_higher_than_the_benchmarks_box() -> None:
         desk.step(np.array([0.0, 0.0, 1.0, 0.0]))
     assert desk.view().grip[2] < TABLE_TOP + 0.35
     assert Literal("above", ("green", "red")) in stacked(("red", "green"))
+
+
+def test_training_may_draw_more_tower_starts_on_the_tabletop_only() -> None:
+    from semgoal_sim.env import MAX_TOWER_SHARE, TOWER_START_SHARE, SubgoalEnv
+
+    def towers(env: SubgoalEnv, draws: int = 200) -> float:
+        env.reset(seed=0)
+        return np.mean([(env._sample_positions()[:, 2] > TABLE_TOP + 3 * BLOCK_HALF_SIZE).any() for _ in range(draws)])
+
+    env = SubgoalEnv("tabletop")
+    default = towers(env)
+    env.tower_share = MAX_TOWER_SHARE
+    assert abs(default - TOWER_START_SHARE["tabletop"]) < 0.1 and towers(env) > default + 0.3
+    with pytest.raises(ValueError, match="needs a scene with towers"):
+        SubgoalEnv("two_blocks", tower_share=0.5)
+    with pytest.raises(ValueError, match=r"in \[0, 0.8\]"):
+        env.tower_share = 0.9

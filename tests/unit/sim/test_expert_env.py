@@ -48,6 +48,20 @@ def test_expert_labels_keep_a_put_achieved_to_the_end_of_the_episode(kind: str) 
     assert held_at_end >= 5
 
 
+def test_the_expert_is_not_done_while_a_block_lies_off_the_table() -> None:
+    """The rule every success here follows: the goal at rest and every block on the table."""
+    from semgoal_core.vocabulary import Literal
+    from semgoal_sim.rollout import solve
+    from semgoal_sim.world import FetchWorld
+
+    world = FetchWorld("desk_cleanup", 2)
+    world.reset(TASKS["DC-2"].initial_state(0)[0])
+    goal = [Literal("in_bin", ("red",), False)]
+    assert solve(world, goal).success
+    world.set_block_pose("green", np.array([1.3, 0.2, BLOCK_HALF_SIZE]))  # on the floor beside the table
+    assert world.fallen_blocks() == ["green"] and not solve(world, goal).success
+
+
 def test_env_contract_and_her_reward() -> None:
     env = SubgoalEnv("three_blocks")
     check_env(env, skip_render_check=True)

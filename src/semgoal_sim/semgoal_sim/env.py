@@ -103,7 +103,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
 
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
-                 missed_put_share: float = 0.0, tower_share: float | None = None, render_mode: str | None = None) -> None:
+                 missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
+                 render_mode: str | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
@@ -114,6 +115,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         :param tower_share: share of starts with a tower among the blocks (None: the scene's
             :data:`TOWER_START_SHARE`), so that training meets tall towers more often than the sub-goal types alone
             bring them. Scenes with towers only; evaluation sets it to None.
+        :param max_blocks: the most blocks an episode has (None: every count the scene allows), so that tasks with
+            more (the tabletop's Tower-7 and Clean-8) test an actor on counts it never met.
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
@@ -125,8 +128,10 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.scene = SCENES[scene]
         self.tower_share = tower_share
         self.derived = features.check(derived)
-        counts = self.scene.block_counts or (self.scene.max_blocks,)
-        self.block_counts = (n_blocks,) if n_blocks else counts
+        counts = (n_blocks,) if n_blocks else self.scene.block_counts or (self.scene.max_blocks,)
+        self.block_counts = tuple(count for count in counts if max_blocks is None or count <= max_blocks)
+        if not self.block_counts:
+            raise ValueError(f"max_blocks {max_blocks} leaves no episode: scene {scene!r} has {', '.join(map(str, counts))}")
         self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}
         self.world = self.worlds[self.block_counts[-1]]
         self.layout = self.world.layout

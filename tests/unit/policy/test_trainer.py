@@ -200,7 +200,7 @@ def test_a_tower_share_phase_shapes_training_starts_but_not_evaluation(tmp_path)
     assert seen and set(seen) == {None} and {env.tower_share for env in trainer.envs} == {0.8}
 
 
-@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25}, {"tower_share": 0.5},
+@pytest.mark.parametrize("setting", [{"spawn_margin": 0.05}, {"missed_put_share": 0.25}, {"tower_share": 0.5}, {"max_blocks": 2},
                                      {"phases": (Phase(200, {"missed_put_share": 0.25}),)}])
 def test_flat_baselines_refuse_training_only_starts(tmp_path, setting: dict) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):

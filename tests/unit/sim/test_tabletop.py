@@ -94,3 +94,17 @@ def test_training_may_draw_more_tower_starts_on_the_tabletop_only() -> None:
         SubgoalEnv("two_blocks", tower_share=0.5)
     with pytest.raises(ValueError, match=r"in \[0, 0.8\]"):
         env.tower_share = 0.9
+
+
+def test_training_may_keep_to_six_blocks_so_seven_and_eight_stay_unseen() -> None:
+    from semgoal_sim.env import SubgoalEnv
+
+    env = SubgoalEnv("tabletop", max_blocks=6)
+    assert env.block_counts == (2, 3, 4, 5, 6)
+    drawn = set()
+    for seed in range(40):
+        env.reset(seed=seed)
+        drawn.add(len(env.world.blocks))
+    assert max(drawn) <= 6 and len(drawn) > 2
+    with pytest.raises(ValueError, match="max_blocks 1 leaves no episode"):
+        SubgoalEnv("tabletop", max_blocks=1)

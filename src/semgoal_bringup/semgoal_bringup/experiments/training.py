@@ -15,7 +15,7 @@ from semgoal_core.vocabulary import SCENES
 
 
 def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
-             missed_put_share: float = 0.0, tower_share: float | None = None):
+             missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None):
     """The env ``agent`` learns in: sub-goal episodes for the hierarchy, whole tasks for the flat baselines
     (semantic goals, or block positions for flat-continuous)."""
     from semgoal_policy.agents import get_agent
@@ -25,12 +25,12 @@ def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin
     spec = get_agent(agent)
     if spec.subgoals:
         return SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin, missed_put_share=missed_put_share,
-                          tower_share=tower_share)
+                          tower_share=tower_share, max_blocks=max_blocks)
     if derived:
         raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
-    if spawn_margin or missed_put_share or tower_share is not None:
-        raise ValueError("a spawn margin, missed puts and a tower share are for the hierarchical agent only (task starts "
-                         "are the paper's)")
+    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None:
+        raise ValueError("a spawn margin, missed puts, a tower share and a block limit are for the hierarchical agent "
+                         "only (task starts are the paper's)")
     return TaskEnv(scene, spec.goal)
 
 
@@ -46,7 +46,7 @@ def trainer_for(config):
     from semgoal_policy.trainer import Trainer
 
     return Trainer(config, partial(make_env, config.agent, config.scene, tuple(config.derived_features),
-                                   config.spawn_margin, config.missed_put_share, config.tower_share))
+                                   config.spawn_margin, config.missed_put_share, config.tower_share, config.max_blocks))
 
 
 def train_main(argv: list[str]) -> int:

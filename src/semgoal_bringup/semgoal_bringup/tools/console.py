@@ -309,9 +309,11 @@ class Console:
         """Why the participant may not take a step in the study's condition now ("" when they may, or no study)."""
         if self.study is None or self.study.people:
             return ""
-        condition = self.study.session.condition
-        return (f"in the condition {condition.name!r} the robot works alone: watch it" if condition
-                and self.study.session.phase == Phase.RUNNING else "no condition is under way: press Start first")
+        condition, phase = self.study.session.condition, self.study.session.phase
+        if condition is None or phase not in (Phase.RUNNING, Phase.QUESTIONNAIRE):
+            return "no condition is under way: press Start first"
+        # a claim that reaches the console just after the robot finished still gets the condition's reason
+        return f"in the condition {condition.name!r} the robot works alone" + (": watch it" if phase == Phase.RUNNING else "")
 
     def _study(self, request: dict) -> dict:
         if self.study is None:

@@ -1,8 +1,8 @@
-"""Metadata is declared in setup.cfg; only the C extensions need code: grounding's exploration and inner loop, and the
-searches and heuristics, in C (parsing stays in Python)."""
+"""Metadata is declared in setup.cfg; only the C extensions need code: the PDDL reader's fast pass, grounding's
+exploration and inner loop, and the searches and heuristics, in C (the reader's checks stay in Python)."""
 
 from setuptools import Extension, setup
 
 setup(ext_modules=[Extension(f"strips_planner.{name}", [f"strips_planner/{name}.c"],
                              depends=["strips_planner/_support.h", "strips_planner/_atoms.h"], extra_compile_args=["-O2", "-std=c11"])
-                   for name in ("_core", "_explore", "_ground")])
+                   for name in ("_core", "_explore", "_ground", "_sexpr")])

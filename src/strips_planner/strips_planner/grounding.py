@@ -1,6 +1,7 @@
 """Grounding: a parsed domain and problem -> a compact STRIPS task over int bitsets.
 
-1. Objects and fluent predicates (those some action changes) are numbered in sorted name order.
+1. Objects are numbered in sorted name order, and predicates too, the fluent ones (those some action changes)
+   first; every action's atoms become integer templates once, for both C passes.
 2. A relaxed exploration (the C module ``_explore``) finds every action's bindings whose positive
    preconditions, static ones included, can ever hold together, by joining them over the atoms reached from
    the initial state; no binding is enumerated that a precondition rules out. Static atoms never enter the state.
@@ -14,7 +15,7 @@ from functools import cached_property
 from typing import NamedTuple
 
 from strips_planner import _core, _explore, _ground
-from strips_planner.pddl import Action, Atom, Condition, Domain, PddlError, Problem
+from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, Problem
 
 
 class Operator(NamedTuple):
@@ -67,76 +68,87 @@ class Task:
 
 
 class _Grounder:
+    """Numbers predicates, objects and every action's atoms once. Fluent predicates come first, so a fluent
+    atom's key is the same for the exploration, which reads every predicate, and for ``_ground``, which reads
+    only the fluent ones."""
+
     def __init__(self, domain: Domain, problem: Problem) -> None:
         self.domain, self.problem = domain, problem
-        fluent = sorted({a.predicate for action in domain.actions for a in (*action.add, *action.delete)})
+        actions = domain.actions
+        fluent = sorted({a.predicate for action in actions for a in (*action.add, *action.delete)})
+        mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in actions
+                                                           for c in action.precondition}
+        static = sorted((set(domain.predicates) | mentioned) - set(fluent) - {"="})
         self.predicates = tuple(fluent)
-        self.predicate_index = {name: i for i, name in enumerate(fluent)}
+        self.number = {name: i for i, name in enumerate((*fluent, *static))}
         self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
         self.index = {name: i for i, name in enumerate(self.objects)}
-        self.static = {self._key(a, name=True) for a in problem.init if a.predicate not in self.predicate_index}
+        self.init = [self._key(a) for a in problem.init]
         self._types: dict[str, tuple[int, ...] | None] = {}
 
-    def _key(self, atom: Atom, name: bool = False) -> tuple:
-        """The atom over object indices: (predicate index, *objects), or (predicate name, *objects)."""
-        predicate = atom.predicate if name else self.predicate_index[atom.predicate]
-        return (predicate, *map(self.index.__getitem__, atom.args))
+    def is_fluent(self, predicate: str) -> bool:
+        return self.number.get(predicate, len(self.predicates)) < len(self.predicates)
 
-    def _static_holds(self, atom: tuple, positive: bool) -> bool:
-        truth = atom[1] == atom[2] if atom[0] == "=" else atom in self.static
-        return truth == positive
+    def _key(self, atom: Atom) -> tuple[int, ...]:
+        """The atom over indices: (predicate number, *object indices)."""
+        return (self.number[atom.predicate], *map(self.index.__getitem__, atom.args))
 
     def _objects_of(self, kind: str) -> tuple[int, ...] | None:
         """The objects of a type, or None when every object is one (nothing to check)."""
+        if kind == ROOT_TYPE:
+            return None
         if kind not in self._types:
             members = tuple(i for i, name in enumerate(self.objects)
                             if self.domain.is_subtype(self.problem.objects[name], kind))
             self._types[kind] = None if len(members) == len(self.objects) else members
         return self._types[kind]
 
-    def _schema(self, action: Action, number: dict[str, int]) -> tuple:
-        """The action as :func:`_explore.explore` reads it: per parameter the objects it may take, its positive
-        preconditions, its checks (equalities and negative static preconditions) and its add effects, over
-        ``number``'s predicate indices."""
+    def _templates(self, action: Action) -> tuple[tuple, tuple]:
+        """The action as :func:`_explore.explore` reads it (per parameter the objects it may take, its positive
+        preconditions, its checks: equalities and negative static preconditions, and its add effects) and as
+        :func:`_ground.ground` takes it (its fluent preconditions and effects), each atom a template:
+        (predicate number, *arguments), an argument being a parameter's position or ~object for a constant."""
         position = {v: i for i, (v, _) in enumerate(action.parameters)}
+        index = self.index
 
         def arguments(atom: Atom) -> tuple[int, ...]:
-            return tuple(position[a] if a in position else ~self.index[a] for a in atom.args)
+            return tuple(position[a] if a in position else ~index[a] for a in atom.args)
 
-        joined, filters = [], []
+        def template(atom: Atom) -> tuple[int, ...]:
+            return (self.number[atom.predicate], *arguments(atom))
+
+        joined, filters, pre, pre_neg = [], [], [], []
         for cond in action.precondition:
             predicate = cond.atom.predicate
-            if cond.positive and predicate != "=":
-                joined.append((number[predicate], *arguments(cond.atom)))
-            elif predicate == "=" or predicate not in self.predicate_index:
-                filters.append((cond.positive, -1 if predicate == "=" else number[predicate], *arguments(cond.atom)))
-        return (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters,
-                [(number[a.predicate], *arguments(a)) for a in action.add])
-
-    def _action(self, action: Action, bindings: list[tuple[int, ...]]) -> tuple:
-        """The action as :func:`_ground.ground` takes it: its name, parameter count, bindings and the
-        templates of its fluent preconditions and effects."""
-        position = {v: i for i, (v, _) in enumerate(action.parameters)}
-        pre = [self._template(c.atom, position) for c in action.precondition
-               if c.positive and c.atom.predicate in self.predicate_index]
-        pre_neg = [self._template(c.atom, position) for c in action.precondition
-                   if not c.positive and c.atom.predicate in self.predicate_index]
-        return (action.name, len(position), bindings, pre, pre_neg,
-                [self._template(a, position) for a in action.add], [self._template(a, position) for a in action.delete])
-
-    def _template(self, atom: Atom, position: dict[str, int]) -> tuple[int, ...]:
-        """(predicate index, *arguments): a parameter's position, or ~object for a constant."""
-        return (self.predicate_index[atom.predicate],
-                *(position[a] if a in position else ~self.index[a] for a in atom.args))
+            if predicate == "=":
+                filters.append((cond.positive, -1, *arguments(cond.atom)))
+                continue
+            atom = template(cond.atom)
+            if self.is_fluent(predicate):
+                (pre if cond.positive else pre_neg).append(atom)
+            if cond.positive:
+                joined.append(atom)
+            elif not self.is_fluent(predicate):
+                filters.append((False, *atom))
+        add = [template(a) for a in action.add]
+        schema = (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters, add)
+        return schema, (action.name, len(position), pre, pre_neg, add, [template(a) for a in action.delete])
 
     def ground(self) -> Task:
-        fluent = [c for c in self.problem.goal if c.atom.predicate in self.predicate_index]
+        templates = [self._templates(action) for action in self.domain.actions]
+        arity = max((len(key) - 1 for key in self.init), default=0)
+        width = 1 + max(arity, *map(len, self.domain.predicates.values()), 0)
+        bindings = _explore.explore(len(self.number), len(self.objects), width, self.init,
+                                    [schema for schema, _ in templates])
+        fluent = [c for c in self.problem.goal if self.is_fluent(c.atom.predicate)]
         positive = [c for c in fluent if c.positive]
+        nfluent = len(self.predicates)
         facts, init, goal, goal_neg, unreached, operators = _ground.ground(
-            self.predicates, self.objects, 1 + max(map(len, self.domain.predicates.values()), default=0),
-            [self._key(a) for a in self.problem.init if a.predicate in self.predicate_index],
+            self.predicates, self.objects, width, [key for key in self.init if key[0] < nfluent],
             [self._key(c.atom) for c in positive], [self._key(c.atom) for c in fluent if not c.positive],
-            list(map(self._action, self.domain.actions, self._reachable_bindings())), Atom, Operator)
+            [(name, nparams, found, *atoms) for (_, (name, nparams, *atoms)), found in zip(templates, bindings,
+                                                                                           strict=True)],
+            Atom, Operator)
         costs = self._costs(operators) if self.problem.minimise_cost else None
         return Task(tuple(facts), init, goal, goal_neg, tuple(operators),
                     self._unsolvable_reason({positive[i] for i in unreached}), costs)
@@ -173,12 +185,16 @@ class _Grounder:
 
     def _unsolvable_reason(self, unreached: set[Condition]) -> str:
         """Why the goal can never hold: its first literal that is static and false, or not reachable."""
+        static_init = set(self.init)
         for cond in self.problem.goal:
             if cond in unreached:
                 return f"goal {cond.atom} is not reachable from the initial state"
-            if cond.atom.predicate not in self.predicate_index and not self._static_holds(self._key(cond.atom, name=True),
-                                                                                          cond.positive):
-                return f"goal {'' if cond.positive else 'not '}{cond.atom} can never hold (static)"
+            atom = cond.atom
+            if not self.is_fluent(atom.predicate):
+                holds = (atom.args[0] == atom.args[1] if atom.predicate == "=" else
+                         atom.predicate in self.number and self._key(atom) in static_init)
+                if holds != cond.positive:
+                    return f"goal {'' if cond.positive else 'not '}{atom} can never hold (static)"
         return ""
 
 

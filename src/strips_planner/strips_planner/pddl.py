@@ -8,9 +8,10 @@ Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` o
 (f ?x ...))`` in an effect, with ``(= (f a ...) N)`` in ``:init``; they count when the problem says
 ``(:metric minimize (total-cost))``, and an action without an increase then costs 0.
 
-Valid input is read fast: tokens are plain strings and lists plain lists. Only when that first pass
-finds an error is the text read again with every token and list knowing its line and column, and the
-same check, now located, raises the :class:`PddlError`.
+Valid input is read fast: the C module ``_sexpr`` turns the text into plain lists of plain strings (Python's
+own pass does where the text is not ASCII). Only when that first pass finds an error is the text read again
+with every token and list knowing its line and column, and the same check, now located, raises the
+:class:`PddlError`.
 """
 
 from __future__ import annotations
@@ -18,6 +19,8 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from typing import NamedTuple, TypeVar
+
+from strips_planner import _sexpr
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
 TOTAL_COST = "total-cost"
@@ -125,7 +128,8 @@ Parsed = TypeVar("Parsed")
 def _read(text: str, reader: Callable[[list], Parsed]) -> Parsed:
     """``reader`` on the fast pass; on an error, on the located pass, which raises it located."""
     try:
-        return reader(parse_sexpr(text))
+        root = _sexpr.sexpr(text)
+        return reader(parse_sexpr(text) if root is None else root)
     except _UnlocatedError:
         try:
             return reader(parse_sexpr(text, located=True))
@@ -255,32 +259,40 @@ def _check_type(domain: Domain, kind: str, token: str) -> None:
 
 def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
           functions: bool = False) -> Atom:
-    """A predicate's atom, checked against its declaration; with ``functions``, a numeric function's term."""
+    """A predicate's atom, checked against its declaration; with ``functions``, a numeric function's term.
+    Called for every atom of a domain and a problem, so the checks are inline."""
     if not expr:
         raise _error(expr, "empty atom ()")
-    predicate = _name(expr[0], "a function name" if functions else "a predicate name")
+    predicate = expr[0]
+    if isinstance(predicate, list):
+        raise _error(predicate, f"expected {'a function name' if functions else 'a predicate name'}, "
+                                "found a parenthesised list")
     args = tuple(expr[1:])
-    declared = domain.functions if functions else domain.predicates
     if predicate == "=" and not functions:
         if ":equality" not in domain.requirements and variables is not None:
             _warn(domain, "(= ...) is used without :equality in the domain's :requirements")
         if len(args) != 2:
             raise _error(expr, f"(= ...) takes 2 arguments, got {len(args)}")
         expected: tuple[str, ...] = (ROOT_TYPE, ROOT_TYPE)
-    elif predicate not in declared:
-        raise _error(expr, f"unknown {'function' if functions else 'predicate'} {predicate!r}")
     else:
-        expected = declared[predicate]
+        expected = (domain.functions if functions else domain.predicates).get(predicate)
+        if expected is None:
+            raise _error(expr, f"unknown {'function' if functions else 'predicate'} {predicate!r}")
         if len(args) != len(expected):
             raise _error(expr, f"{predicate} takes {len(expected)} argument(s), got {len(args)}")
     for arg, kind in zip(args, expected, strict=True):
-        scope = variables if _name(arg, "an argument")[0] == "?" else objects
+        if isinstance(arg, list):
+            raise _error(arg, "expected an argument, found a parenthesised list")
+        scope = variables if arg[0] == "?" else objects
         if scope is None or arg not in scope:
             what = "variable" if arg[0] == "?" else "object or constant"
             raise _error(arg, f"unknown {what} {arg!r}")
-        if kind != ROOT_TYPE and not domain.is_subtype(scope[arg], kind):
+        if kind != ROOT_TYPE and scope[arg] != kind and not domain.is_subtype(scope[arg], kind):
             raise _error(arg, f"{arg!r} is a {scope[arg]}, but {predicate} expects a {kind}")
     return Atom(predicate, args)
+
+
+_NOT_STRIPS = frozenset(("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"))
 
 
 def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
@@ -288,9 +300,22 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
     """A conjunction of (possibly negated) atoms; ``()`` is the empty conjunction."""
     if not expr:
         return []
+    if expr[0] != "and":
+        return [_literal(expr, domain, variables, objects, what)]
+    result = []
+    for part in expr[1:]:
+        part = _sub(part, what)
+        if part and part[0] == "and":
+            result += _literals(part, domain, variables, objects, what)
+        elif part:
+            result.append(_literal(part, domain, variables, objects, what))
+    return result
+
+
+def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
+             what: str) -> Condition:
+    """An atom or a negated one (``expr`` is not empty)."""
     head = _name(expr[0], "a predicate or 'and'")
-    if head == "and":
-        return [c for part in expr[1:] for c in _literals(_sub(part, what), domain, variables, objects, what)]
     if head == "not":
         if len(expr) != 2:
             raise _error(expr, "(not ...) takes exactly one atom")
@@ -298,12 +323,12 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
         if inner and _name(inner[0], "an atom") in ("and", "not", "or"):
             raise _error(inner, f"only atoms can be negated in a {what}")
         if (what == "precondition" and ":negative-preconditions" not in domain.requirements
-                and inner and _name(inner[0], "") != "="):
+                and inner and inner[0] != "="):
             _warn(domain, "negative preconditions are used without :negative-preconditions in :requirements")
-        return [Condition(_atom(inner, domain, variables, objects), positive=False)]
-    if head in ("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"):
+        return Condition(_atom(inner, domain, variables, objects), positive=False)
+    if head in _NOT_STRIPS:
         raise _unsupported(expr, f"{head!r} is not STRIPS: only conjunctions of literals are supported")
-    return [Condition(_atom(expr, domain, variables, objects))]
+    return Condition(_atom(expr, domain, variables, objects))
 
 
 def _warn(domain: Domain, message: str) -> None:
@@ -437,23 +462,25 @@ def _action(section: list, domain: Domain) -> Action:
     effect = _literals(effect_expr, domain, variables, domain.constants, "effect")
     if len(costs) > 1:
         raise _unsupported(costs[1], f"action {name}: more than one (increase (total-cost) ...)")
-    if any(c.atom.predicate == "=" for c in effect):
-        raise _error(section, f"action {name}: equality cannot be an effect")
-    return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre),
-                  tuple(c.atom for c in effect if c.positive), tuple(c.atom for c in effect if not c.positive),
+    add, delete = [], []
+    for literal in effect:
+        if literal.atom.predicate == "=":
+            raise _error(section, f"action {name}: equality cannot be an effect")
+        (add if literal.positive else delete).append(literal.atom)
+    return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre), tuple(add), tuple(delete),
                   _cost(costs[0], domain, variables) if costs else 0)
 
 
 def _without_increase(effect: list) -> tuple[list, list[list]]:
     """The effect without its ``(increase ...)`` parts, and those parts."""
-    def is_increase(part: object) -> bool:
-        return isinstance(part, list) and bool(part) and part[0] == "increase"
-    if is_increase(effect):
+    if effect and effect[0] == "increase":
         return [], [effect]
-    if effect and effect[0] == "and":
-        kept = [part for part in effect[1:] if not is_increase(part)]
-        return [effect[0], *kept], [part for part in effect[1:] if is_increase(part)]
-    return effect, []
+    if not effect or effect[0] != "and":
+        return effect, []
+    kept, increases = [effect[0]], []
+    for part in effect[1:]:
+        (increases if isinstance(part, list) and part and part[0] == "increase" else kept).append(part)
+    return kept, increases
 
 
 def parse_problem(text: str, domain: Domain) -> Problem:

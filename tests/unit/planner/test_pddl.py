@@ -1,12 +1,16 @@
 """The PDDL reader: valid domains and problems, and malformed input named by line and column."""
 
+import random
 from pathlib import Path
 
 import pytest
 
-from strips_planner.pddl import PddlError, parse_domain, parse_problem
+from semgoal_planner.blocksworld import DOMAIN_PATH
+from strips_planner import _sexpr
+from strips_planner.pddl import PddlError, _UnlocatedError, parse_domain, parse_problem, parse_sexpr
 
 FIXTURES = Path(__file__).parent / "fixtures"
+DOMAINS = Path(DOMAIN_PATH).parent
 
 
 def test_reads_typed_domain_with_constants() -> None:
@@ -53,3 +57,35 @@ def test_malformed_problem_names_the_problem() -> None:
         parse_problem("(define (problem p) (:domain other) (:objects a) (:init) (:goal (clear a)))", domain)
     with pytest.raises(PddlError, match=":goal"):
         parse_problem("(define (problem p) (:domain blocksworld) (:objects a) (:init))", domain)
+
+
+def _python_pass(text: str) -> list | None:
+    """The reader's Python fast pass, None where it finds the text malformed."""
+    try:
+        return parse_sexpr(text)
+    except (PddlError, _UnlocatedError):
+        return None
+
+
+def test_the_c_pass_reads_every_shipped_and_fixture_file_as_the_python_pass_does() -> None:
+    files = sorted(FIXTURES.glob("*.pddl")) + sorted(DOMAINS.glob("*.pddl"))
+    assert len(files) >= 10
+    for path in files:
+        text = path.read_text()
+        assert _sexpr.sexpr(text) == parse_sexpr(text), path.name
+
+
+def test_the_c_pass_agrees_with_the_python_pass_on_random_text() -> None:
+    """Tokens, comments, `?` splits, Python's ASCII whitespace (0x1c-0x1f included) and every structural
+    error (None from C where Python raises)."""
+    pieces = ["(", ")", "?", ";", "\n", " ", "\t", "\x0b", "\x1c", "\x1f", "a", "B", "-", "x?y", "define", "?Z;"]
+    rng = random.Random(0)
+    for _ in range(20000):
+        text = "".join(rng.choice(pieces) for _ in range(rng.randint(0, 12)))
+        assert _sexpr.sexpr(text) == _python_pass(text), repr(text)
+
+
+def test_non_ascii_text_is_left_to_the_python_pass() -> None:
+    text = "; café\n(define (domain d) (:predicates (p)))"
+    assert _sexpr.sexpr(text) is None
+    assert parse_domain(text).predicates == {"p": ()}

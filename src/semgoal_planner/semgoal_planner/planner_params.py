@@ -10,7 +10,7 @@ from strips_planner.search import SEARCHES
 
 PARAMS = (
     Param("scene", "desk_cleanup", "the scene whose vocabulary and domain the planner uses", choices=tuple(SCENES)),
-    Param("search", AUTO_SEARCH, "auto (the scene's own: A* on the tabletop, else bfs) | bfs (shortest plans) | astar | gbfs",
+    Param("search", AUTO_SEARCH, "auto (the scene's own: A* on the tabletop, else bfs) | bfs (shortest plans) | astar | gbfs | lazy",
           choices=(AUTO_SEARCH, *SEARCHES)),
     Param("stall_steps", 150, "control steps a robot step may take without holding before a re-plan",
           low=1, high=1_000_000, runtime=True),

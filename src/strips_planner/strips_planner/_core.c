@@ -1,4 +1,4 @@
-/* The planner's hot loop in C: forward searches (breadth-first, A*, greedy best-first) and the
+/* The planner's hot loop in C: forward searches (breadth-first, A*, greedy best-first, eager and lazy) and the
  * delete-relaxation heuristics (blind, hmax, hFF, LM-cut) over a grounded STRIPS task.
  *
  * Parsing stays in Python (strips_planner.pddl), grounding in Python and _ground.c; this module gets the
@@ -166,10 +166,9 @@ static int offer(TaskObject *t, int o, int value) {
     return 0;
 }
 
-/* hmax costs of all facts from state `s` under LM-cut's operator costs t->cost: Dijkstra over facts.
-   Facts pop in order of cost (ties: lower fact first), so an operator's last precondition to pop is a
-   costliest one: its supporter. */
-static int relaxed_costs(TaskObject *t, const word *s) {
+/* The start of a Dijkstra over facts from state `s`: the facts of `s` and "true" cost 0 and wait in the heap, the
+   others are unreached, and every operator misses all its preconditions (op_max 0, no supporter yet). */
+static int dijkstra_start(TaskObject *t, const word *s) {
     int nf = t->nfacts + 2, nr = t->nops + 1, truth = t->nfacts + 1;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) {
@@ -185,7 +184,14 @@ static int relaxed_costs(TaskObject *t, const word *s) {
             if (heap_push(&t->heap, 0, f, f)) return -1;
         }
     t->fact_cost[truth] = 0;
-    if (heap_push(&t->heap, 0, truth, truth)) return -1;
+    return heap_push(&t->heap, 0, truth, truth);
+}
+
+/* hmax costs of all facts from state `s` under LM-cut's operator costs t->cost: Dijkstra over facts.
+   Facts pop in order of cost (ties: lower fact first), so an operator's last precondition to pop is a
+   costliest one: its supporter. */
+static int relaxed_costs(TaskObject *t, const word *s) {
+    if (dijkstra_start(t, s)) return -1;
     while (t->heap.n) {
         Entry e = heap_pop(&t->heap);
         if (e.key > t->fact_cost[e.item]) continue;
@@ -253,10 +259,33 @@ static int h_hmax(TaskObject *t, const word *s) {
 
 static int in_state(const word *s, int f) { return (int)(s[f / 64] >> (f % 64) & 1); }
 
-/* hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever, traced back from the
-   goal fact (its size where every operator costs 1). */
+static int add_costs(int x, int y) { return x > COST_INF - y ? COST_INF : x + y; }
+
+/* hadd costs and cheapest achievers of the facts from state `s`: an operator costs its own cost plus the sum of
+   its preconditions' (Bonet & Geffner 2001). A Dijkstra over facts offers an operator once its last
+   precondition pops. It stops when the goal fact pops: every fact a relaxed plan can need is final then (any
+   later offer costs at least the goal's). */
+static int additive_costs(TaskObject *t, const word *s) {
+    int goal = t->nfacts, *sum = t->op_max; /* per operator, its popped preconditions' costs so far */
+    if (dijkstra_start(t, s)) return -1;
+    while (t->heap.n) {
+        Entry e = heap_pop(&t->heap);
+        if (e.key > t->fact_cost[e.item]) continue;
+        if (e.item == goal) break;
+        for (int k = t->consumers.start[e.item]; k < t->consumers.start[e.item + 1]; k++) {
+            int o = t->consumers.items[k];
+            sum[o] = add_costs(sum[o], e.key);
+            if (--t->missing[o] == 0 && offer(t, o, add_costs(sum[o], t->base_cost[o]))) return -1;
+        }
+    }
+    return 0;
+}
+
+/* hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever under hadd (as Fast Downward's
+   FF heuristic takes them; Keyder & Geffner 2008), traced back from the goal fact (its size where every
+   operator costs 1). */
 static int h_hff(TaskObject *t, const word *s) {
-    if (hmax_costs(t, s)) return -1;
+    if (additive_costs(t, s)) return -1;
     int goal = t->nfacts, truth = t->nfacts + 1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int epoch = next_epoch(t), size = 0, top = 0;
@@ -501,7 +530,7 @@ typedef struct {
     long expanded, generated;
 } Outcome;
 
-typedef enum { S_BFS, S_ASTAR, S_GBFS } SearchKind;
+typedef enum { S_BFS, S_ASTAR, S_GBFS, S_LAZY } SearchKind;
 
 /* Adds state `s` reached from `parent` by `op` at depth g; returns its index, or -1 with an error set.
    *added says whether it is new. */
@@ -684,6 +713,76 @@ done:
     return status;
 }
 
+/* Lazy greedy best-first (deferred evaluation; Richter & Helmert 2009, Fast Downward's lazy_greedy): a state's
+   successors wait in the open lists as (state, operator) under the state's own h, and each is made, evaluated and
+   expanded only when it is taken and new. So h is computed once per state expanded, not once per state
+   generated, which pays where states have many successors. With hFF the successors by a helpful operator also
+   wait in the second list, and the lists take turns as in run_greedy. Goal test on expansion. */
+static int run_lazy(TaskObject *t, Store *st, int heuristic, word *child, int *ops, Outcome *out) {
+    enum { BOOST = 1000 };
+    Heap open[2] = {{0}, {0}}; /* every waiting successor; those by a helpful operator */
+    int added, status = -1, turns[2] = {0, 0}, best_h = COST_INF;
+    int64_t counter = 0;
+    int *edge_parent = NULL, *edge_op = NULL; /* the waiting successors: (state, operator) */
+    size_t nedges = 0, room = 0, nw = (size_t)st->nwords;
+    long s = 0; /* the state to expand: the initial state first */
+    for (;;) {
+        const word *state = st->states + (size_t)s * nw;
+        int stop = expanding(t, state, s, out);
+        if (stop) {
+            status = stop > 0 ? 0 : -1;
+            goto done;
+        }
+        int h = evaluate(t, heuristic, state);
+        if (h < 0) goto done;
+        st->h[s] = h;
+        out->generated++;
+        if (h != COST_INF) {
+            if (h < best_h) {
+                if (best_h != COST_INF) turns[1] -= BOOST;
+                best_h = h;
+            }
+            int nops = applicable_ops(t, state, ops);
+            if (nedges + (size_t)nops > room) {
+                room = 2 * (nedges + (size_t)nops) + 1024;
+                if (room > INT_MAX || grow((void **)&edge_parent, room * sizeof(int)) ||
+                    grow((void **)&edge_op, room * sizeof(int)))
+                    goto oom;
+            }
+            for (int k = 0; k < nops; k++, nedges++) {
+                edge_parent[nedges] = (int)s;
+                edge_op[nedges] = ops[k];
+                counter++;
+                if (heap_push(&open[0], h, counter, (int)nedges)) goto oom;
+                if (heuristic == H_HFF && t->op_mark[ops[k]] == t->epoch &&
+                    heap_push(&open[1], h, counter, (int)nedges))
+                    goto oom;
+            }
+        }
+        for (added = 0; !added;) { /* the next waiting successor that is a new state */
+            if (!open[0].n && !open[1].n) {
+                status = 0;
+                goto done;
+            }
+            int q = open[1].n && (!open[0].n || turns[1] <= turns[0]);
+            turns[q]++;
+            int e = heap_pop(&open[q]).item;
+            long p = edge_parent[e];
+            apply_op(t, st->states + (size_t)p * nw, edge_op[e], child);
+            s = meet(st, child, p, edge_op[e], st->g[p] + 1, &added);
+            if (s < 0) goto done;
+        }
+    }
+oom:
+    PyErr_NoMemory();
+done:
+    free(open[0].a);
+    free(open[1].a);
+    free(edge_parent);
+    free(edge_op);
+    return status;
+}
+
 /* -- Python glue ------------------------------------------------------------------------------------- */
 
 static int heuristic_id(const char *name) {
@@ -702,6 +801,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
     if (!strcmp(search, "bfs")) kind = S_BFS;
     else if (!strcmp(search, "astar")) kind = S_ASTAR;
     else if (!strcmp(search, "gbfs")) kind = S_GBFS;
+    else if (!strcmp(search, "lazy")) kind = S_LAZY;
     else return PyErr_Format(PyExc_ValueError, "unknown search %R", PyTuple_GET_ITEM(args, 0));
 
     Store st;
@@ -722,7 +822,8 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
         status = run_bfs(t, &st, child, ops, &out);
     } else {
         status = kind == S_ASTAR ? run_astar(t, &st, heuristic, child, ops, &out)
-                                 : run_greedy(t, &st, heuristic, child, ops, &out);
+                 : kind == S_GBFS ? run_greedy(t, &st, heuristic, child, ops, &out)
+                                  : run_lazy(t, &st, heuristic, child, ops, &out);
     }
     if (status) goto done;
     PyObject *plan = Py_None;

@@ -26,9 +26,11 @@ either types).
 
 options:
   --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),
-                  gbfs (greedy best-first: fast, not shortest); with (:metric minimize (total-cost)),
-                  shortest means cheapest and bfs searches by cost (uniform-cost)
-  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs)
+                  gbfs (greedy best-first: fast, not shortest), lazy (greedy best-first evaluating a
+                  state only when it expands it: faster where states have many successors); with
+                  (:metric minimize (total-cost)), shortest means cheapest and bfs searches by cost
+                  (uniform-cost)
+  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs, lazy)
   --stats         print expanded and generated states and the search time to stderr
 
 exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL"""

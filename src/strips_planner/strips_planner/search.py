@@ -1,18 +1,19 @@
-"""Forward state-space searches over a grounded task: breadth-first, A*, greedy best-first.
+"""Forward state-space searches over a grounded task: breadth-first, A*, greedy best-first (eager and lazy).
 
 The searches run in C (``_core.c``) on the task's bit masks; this module names them and maps the plan's
 operator indices back to operators. Breadth-first and A* with an admissible heuristic return shortest
 plans, or cheapest where the task has action costs (breadth-first then runs as uniform-cost search);
-greedy best-first is fast and not optimal. Successors come in a fixed order, so a search returns the same
-plan every time.
+greedy best-first is fast and not optimal: ``gbfs`` evaluates every state it generates, ``lazy`` only the
+states it expands (their successors wait under the parent's h), as Fast Downward's lazy search does.
+Successors come in a fixed order, so a search returns the same plan every time.
 """
 
 from __future__ import annotations
 
 from strips_planner.grounding import Operator, Task
 
-SEARCHES = ("bfs", "astar", "gbfs")
-DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff"}
+SEARCHES = ("bfs", "astar", "gbfs", "lazy")
+DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff", "lazy": "hff"}
 
 
 class SearchStats:

@@ -14,7 +14,8 @@ from strips_planner.planner import solve_pddl, solve_task
 from strips_planner.search import successors
 
 FIXTURES = Path(__file__).parent / "fixtures"
-COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff")]
+COMBOS = [("bfs", "blind"), ("astar", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"), ("lazy", "hff"),
+          ("lazy", "hmax")]
 
 
 def fixture(name: str) -> str:
@@ -39,8 +40,38 @@ def validate(domain_text: str, problem_text: str, plan) -> bool:
 def test_every_search_finds_a_valid_plan(search, heuristic, domain, problem_name, optimal) -> None:
     result = solve_pddl(fixture(domain), fixture(problem_name), search, heuristic)
     assert validate(fixture(domain), fixture(problem_name), result.plan)
-    if search != "gbfs":
+    if search not in ("gbfs", "lazy"):
         assert len(result.plan) == optimal
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_lazy_search_evaluates_only_the_states_it_expands(seed: int) -> None:
+    """Eager greedy search evaluates every state it generates; lazy search one per expansion, the goal
+    state's test included, and it still finds valid plans."""
+    text = problem(9, seed)
+    eager, lazy = (solve_pddl(DOMAIN_PATH.read_text(), text, search, "hff") for search in ("gbfs", "lazy"))
+    assert validate(DOMAIN_PATH.read_text(), text, lazy.plan)
+    assert lazy.stats.generated == lazy.stats.expanded
+    assert lazy.stats.generated < eager.stats.generated
+
+
+def test_the_relaxed_plan_takes_each_fact_s_cheapest_achiever_by_hadd() -> None:
+    """The goal: by `wide` after three one-step facts (hmax 2, hadd 4) or by `deep` after a chain of two (hmax 3,
+    hadd 3). Achievers by hmax give a relaxed plan of 4 steps; by hadd, as Fast Downward takes them, of 3."""
+    domain_text = """(define (domain choice) (:requirements :strips)
+      (:predicates (p1) (p2) (p3) (q1) (q2) (done))
+      (:action a1 :parameters () :precondition () :effect (p1))
+      (:action a2 :parameters () :precondition () :effect (p2))
+      (:action a3 :parameters () :precondition () :effect (p3))
+      (:action wide :parameters () :precondition (and (p1) (p2) (p3)) :effect (done))
+      (:action b1 :parameters () :precondition () :effect (q1))
+      (:action b2 :parameters () :precondition (q1) :effect (q2))
+      (:action deep :parameters () :precondition (q2) :effect (done)))"""
+    problem_text = "(define (problem p) (:domain choice) (:init) (:goal (done)))"
+    domain = parse_domain(domain_text)
+    task = ground(domain, parse_problem(problem_text, domain))
+    assert heuristics.heuristic(task, "hmax")(task.init) == 2
+    assert heuristics.heuristic(task, "hff")(task.init) == 3
 
 
 def test_grounding_prunes_unreachable_operators() -> None:

@@ -6,7 +6,6 @@
 import json
 import sys
 import time
-from pathlib import Path
 
 from strips_planner.planner import solve_pddl
 
@@ -15,12 +14,18 @@ def main(domain: str, problem: str, search: str, heuristic: str, repeats: str) -
     times, front, result = [], [], None
     for _ in range(int(repeats)):
         start = time.perf_counter()  # both runners read the files inside the timing, as pyperplan's parser does
-        result = solve_pddl(Path(domain).read_text(), Path(problem).read_text(), search, heuristic)
+        result = solve_pddl(_read(domain), _read(problem), search, heuristic)
         times.append(time.perf_counter() - start)
         front.append(times[-1] - result.seconds)  # result.seconds: the heuristic's set-up and the search
     plan = None if result.plan is None else [f"({' '.join((op.name, *op.args))})" for op in result.plan]
     print(json.dumps({"length": None if plan is None else len(plan), "plan": plan, "seconds": times,
                       "front_seconds": front}))
+
+
+def _read(path: str) -> str:
+    """As pyperplan's parser reads a file (``open`` with UTF-8), not through the locale's encoding."""
+    with open(path, encoding="utf-8") as file:
+        return file.read()
 
 
 if __name__ == "__main__":

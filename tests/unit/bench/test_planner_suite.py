@@ -37,8 +37,9 @@ def test_the_suite_layout_pairs_each_problem_with_its_domain(tmp_path) -> None:
 
 
 @pytest.mark.slow
-def test_every_problem_is_solved_and_every_plan_validated(tmp_path) -> None:
-    result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search="gbfs", heuristic="hff")
+@pytest.mark.parametrize("search", ["gbfs", "lazy"])
+def test_every_problem_is_solved_and_every_plan_validated(tmp_path, search: str) -> None:
+    result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search=search, heuristic="hff")
     assert result["problems"] == 5 and result["coverage"] == {"ours": 5} and result["invalid_plans"] == {"ours": 0}
     assert result["errors"] == {"ours": 0}
     assert all(row["ours"]["median_s"] > 0 for row in result["domains"].values())

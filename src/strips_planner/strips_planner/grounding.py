@@ -191,8 +191,7 @@ class _Grounder:
                 return f"goal {cond.atom} is not reachable from the initial state"
             atom = cond.atom
             if not self.is_fluent(atom.predicate):
-                holds = (atom.args[0] == atom.args[1] if atom.predicate == "=" else
-                         atom.predicate in self.number and self._key(atom) in static_init)
+                holds = atom.args[0] == atom.args[1] if atom.predicate == "=" else self._key(atom) in static_init
                 if holds != cond.positive:
                     return f"goal {'' if cond.positive else 'not '}{atom} can never hold (static)"
         return ""

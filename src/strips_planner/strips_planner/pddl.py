@@ -265,8 +265,7 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
         raise _error(expr, "empty atom ()")
     predicate = expr[0]
     if isinstance(predicate, list):
-        raise _error(predicate, f"expected {'a function name' if functions else 'a predicate name'}, "
-                                "found a parenthesised list")
+        _name(predicate, "a function name" if functions else "a predicate name")  # raises
     args = tuple(expr[1:])
     if predicate == "=" and not functions:
         if ":equality" not in domain.requirements and variables is not None:
@@ -282,7 +281,7 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
             raise _error(expr, f"{predicate} takes {len(expected)} argument(s), got {len(args)}")
     for arg, kind in zip(args, expected, strict=True):
         if isinstance(arg, list):
-            raise _error(arg, "expected an argument, found a parenthesised list")
+            _name(arg, "an argument")  # raises
         scope = variables if arg[0] == "?" else objects
         if scope is None or arg not in scope:
             what = "variable" if arg[0] == "?" else "object or constant"

@@ -3,6 +3,8 @@ exploration and inner loop, and the searches and heuristics, in C (the reader's 
 
 from setuptools import Extension, setup
 
-setup(ext_modules=[Extension(f"strips_planner.{name}", [f"strips_planner/{name}.c"],
-                             depends=["strips_planner/_support.h", "strips_planner/_atoms.h"], extra_compile_args=["-O2", "-std=c11"])
+HEADERS = ["strips_planner/_support.h", "strips_planner/_atoms.h", "strips_planner/_landmarks.h"]
+
+setup(ext_modules=[Extension(f"strips_planner.{name}", [f"strips_planner/{name}.c"], depends=HEADERS,
+                             extra_compile_args=["-O2", "-std=c11"])
                    for name in ("_core", "_explore", "_ground", "_sexpr")])

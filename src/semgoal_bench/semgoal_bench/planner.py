@@ -89,8 +89,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--domains", help="with --suite: only these comma-separated domain folders")
     parser.add_argument("--planners", default="ours,pyperplan,fast-downward",
                         help=f"with --suite: any of {', '.join(PLANNERS)}")
-    parser.add_argument("--search", default="lazy/hff", help="with --suite: SEARCH/HEURISTIC (lazy/hff: ours beside "
-                        "Fast Downward's lama-first, itself a lazy search)")
+    parser.add_argument("--search", default="lazy/hff+lmcount", help="with --suite: SEARCH/HEURISTIC (lazy/hff+lmcount: "
+                        "ours beside Fast Downward's lama-first, the same pair in a lazy search)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     if args.suite:

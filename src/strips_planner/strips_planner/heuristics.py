@@ -1,4 +1,5 @@
-"""Delete-relaxation heuristics: blind, hmax (admissible), hFF (informative), LM-cut (admissible).
+"""Heuristics: blind, the delete relaxation's hmax (admissible), hFF (informative) and LM-cut (admissible), and
+the landmark count.
 
 They run in C (``_core.c``) inside the searches; :func:`heuristic` evaluates one on a single state, for
 tests and for inspecting a task. All of them ignore delete effects, negative preconditions and negative
@@ -10,6 +11,13 @@ Hoffmann & Nebel 2001; Helmert & Domshlak 2009). Actions cost 1, or their own co
 - hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever, traced back from the goal.
 - LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts, with the
   incremental hmax update between cuts.
+- lmcount: LAMA's landmark count (Richter & Westphal 2010): of the facts every plan makes true at some point
+  (Zhu & Givan's landmarks, found once from the initial state), those not yet true anywhere on the path to a
+  state, plus the goals among the others that are false again. It depends on the path, so it guides the greedy
+  searches only; :func:`heuristic` takes the state as the path's only state.
+
+The greedy searches take several heuristics joined by ``+`` (``hff+lmcount``, LAMA's pair): one open list each,
+taking turns.
 """
 
 from __future__ import annotations
@@ -18,7 +26,8 @@ from collections.abc import Callable
 
 from strips_planner.grounding import Task
 
-HEURISTICS = ("blind", "hmax", "hff", "lmcut")
+HEURISTICS = ("blind", "hmax", "hff", "lmcut", "lmcount")
+GREEDY_ONLY = ("lmcount",)
 Heuristic = Callable[[int], float]
 
 

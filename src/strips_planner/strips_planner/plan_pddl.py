@@ -18,7 +18,7 @@ from strips_planner.planner import check_choice, solve_pddl
 from strips_planner.search import SEARCHES
 
 USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHES)}}}] "
-         f"[--heuristic {{{','.join(HEURISTICS)}}}] [--stats]")
+         f"[--heuristic {{{','.join(HEURISTICS)}}}[+...]] [--stats]")
 HELP = f"""{USAGE}
 
 Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
@@ -30,7 +30,9 @@ options:
                   state only when it expands it: faster where states have many successors); with
                   (:metric minimize (total-cost)), shortest means cheapest and bfs searches by cost
                   (uniform-cost)
-  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs, lazy)
+  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs), hff+lmcount (lazy); the greedy searches
+                  take several joined by '+', one open list each, in turn; lmcount (the landmark
+                  count) guides only them
   --stats         print expanded and generated states and the search time to stderr
 
 exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL"""

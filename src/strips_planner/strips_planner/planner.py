@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 
 from strips_planner.grounding import Operator, Task, ground
-from strips_planner.heuristics import HEURISTICS
+from strips_planner.heuristics import GREEDY_ONLY, HEURISTICS
 from strips_planner.pddl import parse_domain, parse_problem
 from strips_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
 
@@ -27,8 +27,16 @@ def check_choice(search: str, heuristic: str | None) -> str:
     if search not in SEARCHES:
         raise ValueError(f"unknown search {search!r}; valid: {', '.join(SEARCHES)}")
     heuristic = heuristic or DEFAULT_HEURISTIC[search]
-    if heuristic not in HEURISTICS:
-        raise ValueError(f"unknown heuristic {heuristic!r}; valid: {', '.join(HEURISTICS)}")
+    names = heuristic.split("+")
+    for name in names:
+        if name not in HEURISTICS:
+            raise ValueError(f"unknown heuristic {name!r}; valid: {', '.join(HEURISTICS)}, or several joined by '+' "
+                             "for gbfs and lazy")
+    if len(set(names)) < len(names):
+        raise ValueError(f"{heuristic!r} names a heuristic twice")
+    greedy = search in ("gbfs", "lazy")
+    if not greedy and (len(names) > 1 or set(names) & set(GREEDY_ONLY)):
+        raise ValueError(f"{heuristic!r} guides only the greedy searches (gbfs, lazy), not {search}")
     return heuristic
 
 

@@ -4,7 +4,8 @@ The searches run in C (``_core.c``) on the task's bit masks; this module names t
 operator indices back to operators. Breadth-first and A* with an admissible heuristic return shortest
 plans, or cheapest where the task has action costs (breadth-first then runs as uniform-cost search);
 greedy best-first is fast and not optimal: ``gbfs`` evaluates every state it generates, ``lazy`` only the
-states it expands (their successors wait under the parent's h), as Fast Downward's lazy search does.
+states it expands (their successors wait under the parent's h), as Fast Downward's lazy search does; by default
+``lazy`` takes LAMA's pair, hFF and the landmark count in turn (``hff+lmcount``).
 Successors come in a fixed order, so a search returns the same plan every time.
 """
 
@@ -13,7 +14,7 @@ from __future__ import annotations
 from strips_planner.grounding import Operator, Task
 
 SEARCHES = ("bfs", "astar", "gbfs", "lazy")
-DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff", "lazy": "hff"}
+DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff", "lazy": "hff+lmcount"}
 
 
 class SearchStats:

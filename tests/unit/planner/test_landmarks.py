@@ -1,0 +1,73 @@
+"""The landmark count: Zhu & Givan's landmarks, its value on a state, and hFF and it taking turns in greedy search."""
+
+import pytest
+
+from semgoal_planner.blocksworld import DOMAIN_PATH, problem
+from strips_planner import _core, heuristics
+from strips_planner.grounding import Task, ground
+from strips_planner.pddl import parse_domain, parse_problem
+from strips_planner.planner import solve_pddl, solve_task
+
+# one-way roads a -> b -> c, a -> d -> c, c -> e, and a spur a -> f that leads nowhere
+ROADS = """(define (domain roads) (:requirements :strips)
+  (:predicates (at ?x) (road ?x ?y))
+  (:action walk :parameters (?x ?y) :precondition (and (at ?x) (road ?x ?y)) :effect (and (at ?y) (not (at ?x)))))"""
+
+
+def roads(goal: str = "(at e)", last_road: str = "(road c e)") -> Task:
+    text = f"""(define (problem p) (:domain roads) (:objects a b c d e f)
+      (:init (at a) (road a b) (road b c) (road a d) (road d c) {last_road} (road a f)) (:goal {goal}))"""
+    domain = parse_domain(ROADS)
+    return ground(domain, parse_problem(text, domain))
+
+
+def state_at(task: Task, place: str) -> int:
+    return next(1 << i for i, fact in enumerate(task.facts) if str(fact) == f"(at {place})")
+
+
+def test_the_landmarks_are_the_facts_on_every_path_to_the_goal() -> None:
+    """Every way to e passes c (b and d are alternatives, f a spur): the landmarks are at a, at c and at e. On its
+    own a state is the path's only state, so the count is the landmarks false in it."""
+    task = roads()
+    count = heuristics.heuristic(task, "lmcount")
+    assert count(task.init) == 2  # at c, at e
+    assert count(state_at(task, "b")) == 3  # at a no longer holds either
+    assert count(state_at(task, "c")) == 2
+    assert count(state_at(task, "e")) == 2  # at a, at c: a path from e alone never passed them
+
+
+def test_a_goal_unreachable_even_relaxed_has_an_infinite_count() -> None:
+    """Grounding already refuses such a goal; the compiled task, given one, says so rather than count nothing."""
+    task = roads(last_road="(road e c)")  # one way, from e
+    assert task.unsolvable_reason
+    unreachable = 1 << len(task.facts)  # a fact no operator adds
+    compiled = _core.Task(len(task.facts) + 1, task.operators, task.init, unreachable, 0)
+    assert compiled.heuristic("lmcount", task.init) == float("inf")
+    assert compiled.search("lazy", "hff+lmcount")[0] is None
+    assert heuristics.heuristic(roads("(at a)"), "lmcount")(task.init) == 0  # the goal holds: nothing to reach
+
+
+@pytest.mark.parametrize(("search", "heuristic"), [("gbfs", "lmcount"), ("lazy", "lmcount"), ("gbfs", "hff+lmcount"),
+                                                   ("lazy", "hff+lmcount"), ("lazy", "lmcount+hff+hmax")])
+@pytest.mark.parametrize("seed", range(3))
+def test_greedy_searches_guided_by_landmarks_find_valid_plans(search: str, heuristic: str, seed: int) -> None:
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(8, seed), domain))
+    plan = solve_task(task, search, heuristic).plan
+    state = task.init
+    for op in plan:
+        assert op.applicable(state)
+        state = op.apply(state)
+    assert task.goal_reached(state)
+
+
+@pytest.mark.parametrize(("search", "heuristic", "message"), [
+    ("astar", "lmcount", "greedy searches"), ("bfs", "hff+lmcount", "greedy searches"),
+    ("lazy", "hff+hff", "twice"), ("gbfs", "hff+hadd", "unknown heuristic 'hadd'"), ("lazy", "hff+", "unknown")])
+def test_bad_combinations_are_refused_with_a_message(search: str, heuristic: str, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        solve_pddl(DOMAIN_PATH.read_text(), problem(4, 0), search, heuristic)
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(4, 0), domain))
+    with pytest.raises(ValueError):  # the C search refuses them too, whoever calls it
+        task.compiled.search(search, heuristic)

@@ -101,8 +101,6 @@ typedef struct {
     int epoch;
     Heap heap;
     word *landmarks;    /* Zhu & Givan's, from the initial state; NULL until a search or an evaluation needs them */
-    word *goal_labels;  /* with them, per goal fact: the landmarks ordered before it (its label) */
-    word *needed;       /* the landmark count's workspace: the landmarks needed again */
     int goal_reachable; /* in the relaxed task from the initial state; set with the landmarks */
 } TaskObject;
 
@@ -434,29 +432,24 @@ static int h_lmcut(TaskObject *t, const word *s) {
 /* The task's landmarks, found on first use; -1 when out of memory. */
 static int find_landmarks(TaskObject *t) {
     if (t->landmarks) return 0;
-    size_t ngoals = 0, nw = (size_t)t->nwords;
-    for (int i = 0; i < t->nwords; i++) ngoals += (size_t)__builtin_popcountll(t->goal[i]);
-    word *found = malloc(sizeof(word) * nw), *labels = malloc(sizeof(word) * nw * (ngoals ? ngoals : 1));
-    t->needed = malloc(sizeof(word) * nw);
-    int reachable = found && labels && t->needed ? zhu_givan_landmarks(t->nfacts, t->nwords, t->nops, &t->rpre, &t->radd,
-                                                          &t->consumers, t->init, t->goal, found, labels)
-                                    : -1;
+    word *found = malloc(sizeof(word) * (size_t)t->nwords);
+    int reachable = found ? zhu_givan_landmarks(t->nfacts, t->nwords, t->nops, &t->rpre, &t->radd, &t->consumers,
+                                                t->init, found)
+                          : -1;
     if (reachable < 0) {
         free(found);
-        free(labels);
         return -1;
     }
     t->landmarks = found;
-    t->goal_labels = labels;
     t->goal_reachable = reachable;
     return 0;
 }
 
 /* The landmark count (LAMA's, Richter & Westphal 2010): the landmarks not yet accepted on the path to state `s`,
-   plus the accepted ones false in `s` that are needed again: goals, and those ordered before a goal not yet
-   accepted (Fast Downward's greedy-necessary orderings). `accepted` holds the landmarks true in some state of the
-   path (the searches keep it per state); NULL takes `s` as the path's only state. Inadmissible: one operator can
-   add several landmarks. */
+   plus the accepted goals false in `s` again (Zhu & Givan's orderings before a goal are natural ones, which need
+   nothing again, as in Fast Downward). `accepted` holds the landmarks true in some state of the path (the searches
+   keep it per state); NULL takes `s` as the path's only state. Inadmissible: one operator can add several
+   landmarks. */
 static int h_lmcount(TaskObject *t, const word *s, const word *accepted) {
     if (find_landmarks(t)) return -1;
     if (!t->goal_reachable) return COST_INF;
@@ -1046,8 +1039,6 @@ static void Task_dealloc(TaskObject *t) {
     free(t->cut);
     free(t->heap.a);
     free(t->landmarks);
-    free(t->goal_labels);
-    free(t->needed);
     Py_TYPE(t)->tp_free((PyObject *)t);
 }
 

@@ -5,19 +5,16 @@
  * operator's label is the union of its preconditions' labels, and a fact's label is the intersection, over the
  * operators that add it, of their labels plus the fact itself. Labels only shrink once set, so a work list
  * reaches the fixed point. GOAL's label is the landmarks: facts true at some point of every plan (relaxed plans
- * included). Fast Downward's lm_zg computes the same set, and orders each landmark in a goal fact's label before
- * that goal (greedy-necessary: it must be true just before the goal first is). */
+ * included). Fast Downward's lm_zg computes the same set. */
 #ifndef SEMGOAL_PLANNER_LANDMARKS_H
 #define SEMGOAL_PLANNER_LANDMARKS_H
 
 #include "_support.h"
 
-/* The landmarks of reaching GOAL from `init` into `out` (nwords words over the facts), and into `labels` each
-   goal fact's label (nwords words per goal fact, lowest fact first): 1, or 0 when the relaxed task cannot reach
-   GOAL at all (no landmarks then), -1 when out of memory. */
+/* The landmarks of reaching GOAL from `init` into `out` (nwords words over the facts): 1, or 0 when the relaxed
+   task cannot reach GOAL at all (no landmarks then), -1 when out of memory. */
 static inline int zhu_givan_landmarks(int nfacts, int nwords, int nops, const Rows *rpre, const Rows *radd,
-                                      const Rows *consumers, const word *init, const word *goal_facts, word *out,
-                                      word *labels) {
+                                      const Rows *consumers, const word *init, word *out) {
     int nf = nfacts + 2, goal = nfacts, truth = nfacts + 1, top = 0, status = -1;
     size_t nw = (size_t)nwords;
     word *label = calloc((size_t)nf * nw, sizeof(word)), *op_label = malloc(nw * sizeof(word));
@@ -62,11 +59,6 @@ static inline int zhu_givan_landmarks(int nfacts, int nwords, int nops, const Ro
         counted[f] = 1;
     }
     memcpy(out, label + (size_t)goal * nw, nw * sizeof(word));
-    for (int f = 0; f < nfacts; f++)
-        if (goal_facts[f / 64] >> (f % 64) & 1) {
-            memcpy(labels, label + (size_t)f * nw, nw * sizeof(word));
-            labels += nw;
-        }
     status = reached[goal];
 done:
     free(label);

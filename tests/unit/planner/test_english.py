@@ -186,6 +186,23 @@ PHRASES = [
     ("desk_cleanup", "all blocks in the box besides red and yellow",
      "in_bin(green) & in_bin(blue) & not in_bin(red) & not in_bin(yellow)"),
     ("three_blocks", "keep every block apart from green", "not close(red,green) & not close(green,blue)"),
+    ("tabletop", "throw everything away except the red block",
+     "in_bin(green) & in_bin(blue) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"
+     " & not in_bin(red)"),
+    ("tabletop", "toss the orange, pink and cyan blocks away", "in_bin(orange) & in_bin(pink) & in_bin(cyan)"),
+    ("tabletop", "put red away from blue", "not close(red,blue)"),
+    ("three_blocks", "throw red away", "not close(red,green) & not close(red,blue)"),
+    ("tabletop", "build a tower with blue on top of green on top of red", "above(blue,green) & above(green,red)"),
+    ("tabletop", "stack pink on cyan on yellow on orange",
+     "above(pink,cyan) & above(cyan,yellow) & above(yellow,orange)"),
+    ("tabletop", "make a tower: red, green, blue from bottom to top", "above(green,red) & above(blue,green)"),
+    ("tabletop", "stack red, green and blue from top to bottom", "above(red,green) & above(green,blue)"),
+    ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
+     "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
+    ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
+    ("tabletop", "put yellow on orange that is on top of pink", "above(yellow,orange) & above(orange,pink)"),
+    ("two_blocks", "I'd like green stacked on red", "above(green,red)"),
+    ("desk_cleanup", "I want red and blue placed in the bin", "in_bin(red) & in_bin(blue)"),
 ]
 
 REFUSALS = [
@@ -218,6 +235,8 @@ REFUSALS = [
     ("two_blocks", "stack red on green but keep red away from green", "a block resting on another is close to it"),
     ("desk_cleanup", "Only green should stay on the table.", "leaves red and blue and yellow unclear"),
     ("three_blocks", "put red on top", "a block goes on one block"),
+    ("tabletop", "stack all blocks into one tower", "say which block goes on which"),
+    ("tabletop", "put red in the bin from top to bottom", "'from top to bottom' orders a tower's blocks"),
 ]
 
 

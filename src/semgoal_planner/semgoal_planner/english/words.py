@@ -8,6 +8,8 @@ from collections.abc import Sequence
 
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS
 
+TOP_DOWN = "topdown"
+"""The mark 'from top to bottom' leaves: the tower's blocks are named from the top (:func:`_top_down`)."""
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
 
@@ -20,6 +22,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
+    (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
+    (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
+    (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
     (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
     (r"by (itself|themselves)|on (its|their) own|all alone", "apart"),
@@ -32,6 +37,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
+    (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
+     r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
@@ -123,16 +130,19 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    text = " " + re.sub(r"[,.!?:]+", lambda m: " " if m.group() == ":" else " and ", text.lower()) + " "
+    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text.lower()) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
+    text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
+    if "in_bin" in LAYOUTS[scene].scene.predicates:
+        text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
     text = re.sub(r"&+", " and ", text)
     text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
-    words = _tower_in_order(_joined([w for w in text.split() if w not in FILLERS]))
+    words = _top_down(_chained_on(_tower_in_order(_joined([w for w in text.split() if w not in FILLERS]))))
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
@@ -154,6 +164,43 @@ def _tower_in_order(words: list[str]) -> list[str]:
                     and _listing_after_stack(words[:i]))
         joined.append("and" if in_tower else word)
     return joined
+
+
+def _chained_on(words: list[str]) -> list[str]:
+    """'blue on green on red': each block on the next, 'blue on green and green on red'."""
+    chained = list(words[:2])
+    for i in range(2, len(words)):
+        if (words[i] == "on" and words[i - 1] in BLOCK_COLOURS and words[i - 2] == "on"
+                and i + 1 < len(words) and words[i + 1] in BLOCK_COLOURS):
+            chained += ["and", words[i - 1]]
+        chained.append(words[i])
+    return chained
+
+
+def _top_down(words: list[str]) -> list[str]:
+    """'stack red, green and blue from top to bottom': the tower's colours reversed, so the first is at the bottom
+    as everywhere else; the mark may stand before or after the list that follows 'stack'."""
+    while TOP_DOWN in words:
+        mark = words.index(TOP_DOWN)
+        words = words[:mark] + words[mark + 1:]
+        start = mark
+        while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("and", "then")):
+            start -= 1
+        ahead = mark
+        while ahead < len(words) and words[ahead] == "and":  # "from the top down, build a tower of ..."
+            ahead += 1
+        if (start == 0 or words[start - 1] != "stack") and ahead < len(words) and words[ahead] == "stack":
+            start = ahead + 1
+        elif start == 0 or words[start - 1] != "stack":
+            raise LanguageError("'from top to bottom' orders a tower's blocks: say 'stack red, green and blue from "
+                                "top to bottom'")
+        end = start
+        while end < len(words) and (words[end] in BLOCK_COLOURS or words[end] in ("and", "then")):
+            end += 1
+        listing = words[start:end]
+        colours = iter([w for w in listing if w in BLOCK_COLOURS][::-1])
+        words[start:end] = [next(colours) if w in BLOCK_COLOURS else w for w in listing]
+    return words
 
 
 def _listing_after_stack(words: list[str]) -> bool:
@@ -186,6 +233,11 @@ _EXCEPTION_AFTER_ALL = re.compile(
     r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+ *$)")
 """'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
 where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
+_RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
+                          r"(?:which|that) +(?:(?:is|sits|stands|rests|lies) +)?(?=(?:on|upon|atop|onto)\b)")
+"""'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
+_THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)")
+"""'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
 
 

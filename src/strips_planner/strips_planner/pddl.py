@@ -23,6 +23,10 @@ from typing import NamedTuple, TypeVar
 from strips_planner import _sexpr
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
+CHECKED_PER_CONSTRUCT = {":adl", ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
+                         ":quantified-preconditions", ":conditional-effects", ":derived-predicates"}
+"""Requirements a domain may declare without using: many IPC domains declare ``:adl`` and stay STRIPS. The reader
+refuses the construct itself where one is used (``forall``, ``when``, a ``:derived`` section), with its place."""
 TOTAL_COST = "total-cost"
 ROOT_TYPE = "object"
 EITHER = "either("
@@ -319,6 +323,8 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
         if len(expr) != 2:
             raise _error(expr, "(not ...) takes exactly one atom")
         inner = _sub(expr[1], what)
+        if inner and inner[0] in _NOT_STRIPS:
+            raise _unsupported(inner, f"{inner[0]!r} is not STRIPS: only conjunctions of literals are supported")
         if inner and _name(inner[0], "an atom") in ("and", "not", "or"):
             raise _error(inner, f"only atoms can be negated in a {what}")
         if (what == "precondition" and ":negative-preconditions" not in domain.requirements
@@ -387,7 +393,7 @@ def _domain(root: list) -> Domain:
         body = section[1:]
         if key == ":requirements":
             domain.requirements = {_name(r, "a requirement") for r in body}
-            unsupported = domain.requirements - SUPPORTED_REQUIREMENTS
+            unsupported = domain.requirements - SUPPORTED_REQUIREMENTS - CHECKED_PER_CONSTRUCT
             if unsupported:
                 raise _unsupported(section, f"unsupported requirement(s) {', '.join(sorted(unsupported))}; "
                                       f"supported: {', '.join(sorted(SUPPORTED_REQUIREMENTS))}")

@@ -42,11 +42,25 @@ DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates
     (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (and (q) (assign (f) 1))))", "3:47", "not STRIPS"),
     ("(define (domain d) (:requirements :fluents))", "1:20", "unsupported requirement"),
     (DOMAIN_HEAD + " (:action a :parameters (?x - thing) :effect (q)))", "3:26", "unknown type"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (not (exists (?y) (p ?y))) :effect (q)))", "3:49",
+     "'exists' is not STRIPS"),
+    ("(define (domain d) (:requirements :adl)\n (:predicates (p))\n (:action a :parameters () :precondition (p)"
+     " :effect (when (p) (not (p)))))", "3:54", "'when' is not STRIPS"),
 ])
 def test_malformed_domain_names_line_and_column(text: str, where: str, words: str) -> None:
     with pytest.raises(PddlError) as error:
         parse_domain(text)
     assert str(error.value).startswith(where) and words in str(error.value)
+
+
+@pytest.mark.parametrize("requirement", [":adl", ":conditional-effects", ":quantified-preconditions",
+                                         ":derived-predicates"])
+def test_a_declared_requirement_that_the_domain_does_not_use_is_read(requirement: str) -> None:
+    """Many IPC domains declare :adl and stay STRIPS: the reader refuses a construct where it is used, not the
+    declaration."""
+    domain = parse_domain(f"(define (domain d) (:requirements :strips {requirement}) (:predicates (p ?x) (q))"
+                          " (:action a :parameters (?x) :precondition (p ?x) :effect (q)))")
+    assert [a.name for a in domain.actions] == ["a"]
 
 
 def test_malformed_problem_names_the_problem() -> None:

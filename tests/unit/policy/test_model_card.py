@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from semgoal_policy.model_card import model_card
+from semgoal_policy.model_card import model_card, steps_to_reach
 
 MODELS = Path(__file__).parents[3] / "src" / "semgoal_policy" / "models"
 ACTORS = sorted(path.parent for path in MODELS.rglob("actor.json"))
@@ -19,3 +19,11 @@ def test_the_card_is_current(directory: Path) -> None:
 
 def test_there_are_actors_to_check() -> None:
     assert len(ACTORS) >= 9
+
+
+def test_steps_to_reach_count_a_rate_held_over_three_evaluations_not_one_lucky_one() -> None:
+    rates = {"pick": [0.5, 0.95, 0.6, 0.9, 0.9, 0.95], "put_on": [0.2, 0.3, 0.95, 0.4, 0.5, 0.6]}
+    rows = [{"env_steps": str(10_000 * (i + 1)), "eval/success/overall": "0", **{f"eval/success/{k}": str(v[i])
+             for k, v in rates.items()}} for i in range(6)]
+    assert steps_to_reach(rows) == {"pick": 60_000, "put_on": None}
+    assert steps_to_reach(rows, window=1) == {"pick": 20_000, "put_on": 30_000}

@@ -530,9 +530,9 @@ static int grow(void **p, size_t size) {
     return 0;
 }
 
-/* The index of state `s`, added (with *added = 1) if new; -1 when out of memory. */
-static long store_find_or_add(Store *st, const word *s, int *added) {
-    size_t nw = (size_t)st->nwords, i = hash_state(s, st->nwords) & (st->nslots - 1);
+/* The index of state `s` (whose hash_state is `hash`), added (with *added = 1) if new; -1 when out of memory. */
+static long store_find_or_add(Store *st, const word *s, uint64_t hash, int *added) {
+    size_t nw = (size_t)st->nwords, i = hash & (st->nslots - 1);
     for (; st->slots[i]; i = (i + 1) & (st->nslots - 1)) {
         size_t k = (size_t)st->slots[i] - 1;
         if (!memcmp(st->states + k * nw, s, nw * sizeof(word))) {
@@ -573,10 +573,10 @@ typedef struct {
 
 typedef enum { S_BFS, S_ASTAR, S_GBFS, S_LAZY } SearchKind;
 
-/* Adds state `s` reached from `parent` by `op` at depth g; returns its index, or -1 with an error set.
-   *added says whether it is new. */
-static long meet(Store *st, const word *s, long parent, int op, int g, int *added) {
-    long k = store_find_or_add(st, s, added);
+/* Adds state `s` (whose hash_state is `hash`) reached from `parent` by `op` at depth g; returns its index, or -1
+   with an error set. *added says whether it is new. */
+static long meet_hashed(Store *st, const word *s, uint64_t hash, long parent, int op, int g, int *added) {
+    long k = store_find_or_add(st, s, hash, added);
     if (k < 0) {
         PyErr_NoMemory();
         return -1;
@@ -594,25 +594,57 @@ static long meet(Store *st, const word *s, long parent, int op, int g, int *adde
     return k;
 }
 
-/* Breadth-first: the store's insertion order is the queue; goal test on generation. */
-static int run_bfs(TaskObject *t, Store *st, word *child, int *ops, Outcome *out) {
-    int added;
-    for (size_t next = 0; next < st->n; next++) {
-        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) return -1;
-        int nops = applicable_ops(t, st->states + next * (size_t)st->nwords, ops);
+static long meet(Store *st, const word *s, long parent, int op, int g, int *added) {
+    return meet_hashed(st, s, hash_state(s, st->nwords), parent, op, g, added);
+}
+
+/* Breadth-first: the store's insertion order is the queue; goal test on generation. A state's children are
+   built and hashed first, and their slots, then the states in those slots, prefetched: the lookups that follow
+   (most children are states seen before) then overlap their waits on memory instead of taking them one by one
+   (blocksworld with 10 blocks: 4 million states, about two cache misses per lookup). */
+static int run_bfs(TaskObject *t, Store *st, int *ops, Outcome *out) {
+    size_t nw = (size_t)t->nwords, room = (size_t)(t->nops ? t->nops : 1);
+    word *kids = malloc(sizeof(word) * nw * room);
+    uint64_t *hashes = malloc(sizeof(uint64_t) * room);
+    int added, status = 0;
+    if (!kids || !hashes) {
+        PyErr_NoMemory();
+        status = -1;
+    }
+    for (size_t next = 0; !status && next < st->n; next++) {
+        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) {
+            status = -1;
+            break;
+        }
+        int nops = applicable_ops(t, st->states + next * nw, ops);
         for (int k = 0; k < nops; k++) {
-            apply_op(t, st->states + next * (size_t)st->nwords, ops[k], child);
-            long c = meet(st, child, (long)next, ops[k], st->g[next] + 1, &added);
-            if (c < 0) return -1;
+            apply_op(t, st->states + next * nw, ops[k], kids + (size_t)k * nw);
+            hashes[k] = hash_state(kids + (size_t)k * nw, t->nwords);
+            __builtin_prefetch(st->slots + (hashes[k] & (st->nslots - 1)));
+        }
+        for (int k = 0; k < nops; k++) {
+            int32_t slot = st->slots[hashes[k] & (st->nslots - 1)];
+            if (slot) __builtin_prefetch(st->states + (size_t)(slot - 1) * nw);
+        }
+        for (int k = 0; k < nops; k++) {
+            const word *child = kids + (size_t)k * nw;
+            long c = meet_hashed(st, child, hashes[k], (long)next, ops[k], st->g[next] + 1, &added);
+            if (c < 0) {
+                status = -1;
+                break;
+            }
             if (!added) continue;
             out->generated++;
             if (goal_reached(t, child)) {
                 out->goal_state = c;
-                return 0;
+                goto done;
             }
         }
     }
-    return 0;
+done:
+    free(kids);
+    free(hashes);
+    return status;
 }
 
 /* The searches' goal test on expansion: 1 when state `s` satisfies the goal (recorded in `out`), -1 when a
@@ -948,7 +980,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
         out.goal_state = 0;
         status = 0;
     } else if (kind == S_BFS) {
-        status = run_bfs(t, &st, child, ops, &out);
+        status = run_bfs(t, &st, ops, &out);
     } else {
         status = kind == S_ASTAR ? run_astar(t, &st, heuristic, child, ops, &out)
                  : kind == S_GBFS ? run_greedy(t, &st, &guide, child, ops, &out)

@@ -66,6 +66,13 @@ class Task:
         """This task for the C searches and heuristics (built on first use)."""
         return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, self.costs)
 
+    @cached_property
+    def compiled_unit_cost(self) -> _core.Task:
+        """This task with every action costing 1, which the greedy searches are guided by (:mod:`.search`)."""
+        if self.costs is None:
+            return self.compiled
+        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, None)
+
 
 class _Grounder:
     """Numbers predicates, objects and every action's atoms once. Fluent predicates come first, so a fluent

@@ -29,7 +29,8 @@ options:
                   gbfs (greedy best-first: fast, not shortest), lazy (greedy best-first evaluating a
                   state only when it expands it: faster where states have many successors); with
                   (:metric minimize (total-cost)), shortest means cheapest and bfs searches by cost
-                  (uniform-cost)
+                  (uniform-cost), while the greedy ones are guided as if every action cost 1 (as
+                  LAMA's first iteration) and print the plan's real cost
   --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs), hff+lmcount (lazy); the greedy searches
                   take several joined by '+', one open list each, in turn; lmcount (the landmark
                   count) guides only them

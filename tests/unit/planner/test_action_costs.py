@@ -38,6 +38,14 @@ def test_greedy_search_finds_a_valid_plan_and_says_its_cost() -> None:
     assert result.cost == plan_cost(domain, problem_, plan) >= 6
 
 
+@pytest.mark.parametrize("search", ["gbfs", "lazy"])
+def test_greedy_search_is_guided_as_if_every_action_cost_one_and_reports_the_real_cost(search: str) -> None:
+    """As LAMA's first iteration: the ferry (one step, cost 50) looks nearer than the road (four steps, cost 6)."""
+    result = solve_pddl(ROADS, DETOUR, search, "hff")
+    assert [str(op) for op in result.plan] == ["(ferry a d)"]
+    assert result.cost == 50
+
+
 def test_without_the_metric_every_action_costs_one() -> None:
     result = solve_pddl(ROADS, DETOUR.replace("(:metric minimize (total-cost))", ""), "bfs")
     assert [str(op) for op in result.plan] == ["(ferry a d)"]

@@ -16,7 +16,9 @@ import csv
 import json
 import os
 import shlex
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
@@ -93,7 +95,8 @@ class TrainConfig:
     """Also write every progress row as TensorBoard scalars, same keys, x = env steps (``run_dir/tensorboard``:
     ``tensorboard --logdir runs``)."""
     max_wall_s: float = 2 * 3600
-    """Stop (and export) after this much wall time across resumes."""
+    """Stop (and export) after this much wall time across resumes, the time the run stood paused not counted
+    (:class:`RunningClock`)."""
     torch_threads: int = 1
     """CPU threads for torch (1: small networks gain nothing from more, and runs share the cores)."""
     sac: SacConfig = field(default_factory=SacConfig)
@@ -190,6 +193,37 @@ class Curriculum:
     def record(self, kinds: list[str], success: np.ndarray) -> None:
         for kind, ok in zip(kinds, success, strict=True):
             self.success[kind] += self.rate * (float(ok) - self.success[kind])
+
+
+class RunningClock:
+    """Wall time a process ran, summed over :meth:`tick` calls: time it stood stopped (SIGSTOP, as a training run is
+    paused while CI runs beside it) is not counted. SIGCONT ends a pause, and the interval it falls in is dropped
+    (with the little work done in it: one collection cycle, or one evaluation)."""
+
+    def __init__(self, start: float = 0.0) -> None:
+        self.total = start
+        self._last = time.perf_counter()
+        self._paused = False
+        self._previous = None
+        if hasattr(signal, "SIGCONT") and threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGCONT, self._continued)
+
+    def _continued(self, *_) -> None:
+        self._paused = True
+
+    def tick(self) -> float:
+        """The running time so far (s)."""
+        now = time.perf_counter()
+        if not self._paused:
+            self.total += now - self._last
+        self._paused, self._last = False, now
+        return self.total
+
+    def close(self) -> None:
+        """Give SIGCONT back to whoever handled it before."""
+        if self._previous is not None:
+            signal.signal(signal.SIGCONT, self._previous)
+            self._previous = None
 
 
 class Trainer:
@@ -348,14 +382,14 @@ class Trainer:
         csv_path = self.run_dir / "progress.csv"
         bar = tqdm(total=cfg.steps, initial=self.env_steps, unit="step", desc=f"{cfg.scene}/{cfg.agent}",
                    file=sys.stderr, mininterval=5, dynamic_ncols=True)
-        session_start, wall_at_start = time.perf_counter(), self.wall_s
+        clock = RunningClock(self.wall_s)
         self._enter_phase()
         self.refill(lambda steps: bar.set_postfix_str(f"refilling the replay buffer: {self.replay.transitions}"))
         next_eval = (self.env_steps // cfg.eval_every + 1) * cfg.eval_every
         while self.env_steps < cfg.steps and self.wall_s < cfg.max_wall_s:
             self._enter_phase()
             bar.update(self.cycle())
-            self.wall_s = wall_at_start + time.perf_counter() - session_start
+            self.wall_s = clock.tick()
             if self.env_steps >= next_eval:
                 rates = self.evaluate(cfg.eval_episodes)
                 self._log(csv_path, rates)
@@ -365,6 +399,7 @@ class Trainer:
                 self.save()
                 next_eval += cfg.eval_every
         bar.close()
+        clock.close()
         self.save()
         final = self.evaluate(cfg.final_eval_episodes)
         self._export(final)

@@ -1,6 +1,9 @@
 """The trainer end to end on a tiny budget: it learns-and-logs, checkpoints, resumes and exports."""
 
 import csv
+import os
+import signal
+import time
 from dataclasses import replace
 
 import numpy as np
@@ -11,7 +14,7 @@ from semgoal_bringup.experiments.training import trainer_for
 from semgoal_policy.actor import load
 from semgoal_policy.replay import Batch
 from semgoal_policy.sac import SacAgent, SacConfig
-from semgoal_policy.trainer import Phase, TrainConfig
+from semgoal_policy.trainer import Phase, RunningClock, TrainConfig
 
 
 def config(tmp_path, steps: int) -> TrainConfig:
@@ -205,3 +208,19 @@ def test_a_tower_share_phase_shapes_training_starts_but_not_evaluation(tmp_path)
 def test_flat_baselines_refuse_training_only_starts(tmp_path, setting: dict) -> None:
     with pytest.raises(ValueError, match="hierarchical agent only"):
         trainer_for(replace(config(tmp_path, 400), agent="flat-semantic", **setting))
+
+
+def test_the_running_clock_leaves_out_a_pause_that_sigcont_ends() -> None:
+    """A run paused (SIGSTOP) while CI runs beside it does not spend its wall-time cap standing still."""
+    clock = RunningClock(100.0)
+    try:
+        time.sleep(0.05)
+        assert 100.04 < clock.tick() < 101.0
+        time.sleep(0.2)  # standing stopped, as far as the clock can tell
+        os.kill(os.getpid(), signal.SIGCONT)
+        paused = clock.tick()
+        time.sleep(0.05)
+        assert paused < 100.2 and 0.04 < clock.tick() - paused < 0.2
+    finally:
+        clock.close()
+    assert signal.getsignal(signal.SIGCONT) in (signal.SIG_DFL, None)

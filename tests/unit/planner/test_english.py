@@ -202,6 +202,15 @@ PHRASES = [
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
     ("tabletop", "put yellow on orange that is on top of pink", "above(yellow,orange) & above(orange,pink)"),
     ("two_blocks", "I'd like green stacked on red", "above(green,red)"),
+    ("tabletop", "build two towers: red on green, and blue on yellow", "above(red,green) & above(blue,yellow)"),
+    ("two_blocks", "take everything off the tower", "not above(red,green) & not above(green,red)"),
+    ("three_blocks", "put the blue block somewhere near red", "close(red,blue)"),
+    ("tabletop", "blue goes on top of red which goes on top of green", "above(blue,red) & above(red,green)"),
+    ("desk_cleanup", "put red, then blue, then green into the bin", "in_bin(red) & in_bin(blue) & in_bin(green)"),
+    ("desk_cleanup", "take red then green out of the bin", "not in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "clean the table but leave red and yellow",
+     "in_bin(green) & in_bin(blue) & not in_bin(red) & not in_bin(yellow)"),
+    ("three_blocks", "put green in the middle of red and blue", "close(red,green) & close(green,blue)"),
     ("desk_cleanup", "I want red and blue placed in the bin", "in_bin(red) & in_bin(blue)"),
 ]
 

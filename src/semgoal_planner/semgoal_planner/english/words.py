@@ -23,6 +23,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
     (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
+    (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
+    (r"(take|remove|get|lift) (everything|all( the blocks| the cubes)?|them all|every block) (off|from|down from) "
+     r"(the|that|this|your) (tower|stack|pile)", "unstack"),
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
@@ -42,6 +45,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
+    (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|blocks|cube|cubes|one))+"
+     r"( then\b|$))", "except"),  # "clean the table but leave red and yellow"
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
@@ -54,8 +59,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"over to", "to"),
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
-    (r"next to|close to|near to|adjacent to|beside|besides|alongside|nearby|by the side of|right by|near|with|"
-     r"towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
+    (r"in the middle of|midway between|next to|close to|near to|adjacent to|beside|besides|alongside|nearby|"
+     r"by the side of|right by|near|with|towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
      r"closer to|closer", "near"),
     (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
@@ -95,7 +100,7 @@ FILLERS = frozenset({
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
-    "stand", "stands", "standing",
+    "stand", "stands", "standing", "somewhere", "anywhere",
 })
 """Words that carry nothing for the goal."""
 
@@ -142,7 +147,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
-    words = _top_down(_chained_on(_tower_in_order(_joined([w for w in text.split() if w not in FILLERS]))))
+    words = _top_down(_chained_on(_listing_in_order(_joined([w for w in text.split() if w not in FILLERS]))))
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
@@ -156,13 +161,19 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     return words
 
 
-def _tower_in_order(words: list[str]) -> list[str]:
-    """'stack red then green then blue': the blocks of a tower named in order, not clauses after one another."""
+LISTING_VERBS = frozenset({"stack", "put", "clean", "take", "remove", "bin", "group", "separate"})
+"""Verbs whose blocks may be named in order ('put red, then blue, then green in the bin'): one action on all of them.
+Not 'pick' ('pick up red, then green' ends with green in the hand)."""
+
+
+def _listing_in_order(words: list[str]) -> list[str]:
+    """'stack red then green then blue', 'put red, then blue, then green in the bin': the blocks of one action named
+    in order (a tower's from the bottom), not clauses after one another."""
     joined = []
     for i, word in enumerate(words):
-        in_tower = (word == "then" and 0 < i < len(words) - 1 and words[i + 1] in BLOCK_COLOURS
-                    and _listing_after_stack(words[:i]))
-        joined.append("and" if in_tower else word)
+        listed = (word == "then" and 0 < i < len(words) - 1 and words[i + 1] in BLOCK_COLOURS
+                  and _listing_after_verb(words[:i]))
+        joined.append("and" if listed else word)
     return joined
 
 
@@ -203,10 +214,10 @@ def _top_down(words: list[str]) -> list[str]:
     return words
 
 
-def _listing_after_stack(words: list[str]) -> bool:
-    """Whether ``words`` end in 'stack' and a list of colours only."""
+def _listing_after_verb(words: list[str]) -> bool:
+    """Whether ``words`` end in one of :data:`LISTING_VERBS` and a list of colours only."""
     for word in reversed(words):
-        if word == "stack":
+        if word in LISTING_VERBS:
             return True
         if word not in BLOCK_COLOURS and word not in ("and", "then"):
             return False
@@ -234,7 +245,8 @@ _EXCEPTION_AFTER_ALL = re.compile(
 """'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
 where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
 _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
-                          r"(?:which|that) +(?:(?:is|sits|stands|rests|lies) +)?(?=(?:on|upon|atop|onto)\b)")
+                          r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
+                          r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""

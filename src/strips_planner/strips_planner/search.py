@@ -6,9 +6,9 @@ plans, or cheapest where the task has action costs (breadth-first then runs as u
 greedy best-first is fast and not optimal: ``gbfs`` evaluates every state it generates, ``lazy`` only the
 states it expands (their successors wait under the parent's h), as Fast Downward's lazy search does; by default
 ``lazy`` takes LAMA's pair, hFF and the landmark count in turn (``hff+lmcount``). Under action costs the greedy
-searches count every action as 1, as LAMA's first iteration does (Richter & Westphal, JAIR 2010: ignoring costs finds
-plans more often): on 66 problems of 22 IPC domains with costs (the first three of each, 10 s) this solved 57
-against 50 with the costs; the plan's cost is still the one reported.
+searches count every action as 1, as LAMA's first iteration does (Fast Downward's ``lama-first``: its heuristics and
+its search with ``cost_type=one``): on 66 problems of 22 IPC domains with costs (the first three of each, 10 s) this
+solved 57 against 50 with the costs; the plan's cost is still the one reported.
 Successors come in a fixed order, so a search returns the same plan every time.
 """
 

@@ -1,8 +1,9 @@
-"""`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--stats]`: our planner on any STRIPS PDDL.
+"""`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--time-limit T] [--stats]`: our planner on any
+STRIPS PDDL.
 
 Exit 0 with the plan (one action a line, then ``; cost = N`` where the problem minimises total-cost), 1
 unsolvable, 2 bad PDDL, an unreadable file or a bad command line, 3 valid PDDL outside the supported fragment
-(the message names the construct).
+(the message names the construct), 4 no plan within the time limit.
 
 The command starts in a bare interpreter (see ./semgoal), and it reads its few arguments by hand: argparse,
 with the gettext, locale and shutil it loads, would be about a tenth of its whole start-up.
@@ -18,7 +19,7 @@ from strips_planner.planner import check_choice, solve_pddl
 from strips_planner.search import SEARCHES
 
 USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHES)}}}] "
-         f"[--heuristic {{{','.join(HEURISTICS)}}}[+...]] [--stats]")
+         f"[--heuristic {{{','.join(HEURISTICS)}}}[+...]] [--time-limit SECONDS] [--stats]")
 HELP = f"""{USAGE}
 
 Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
@@ -34,19 +35,26 @@ options:
   --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs), hff+lmcount (lazy); the greedy searches
                   take several joined by '+', one open list each, in turn; lmcount (the landmark
                   count) guides only them
+  --time-limit T  give up after T seconds of parsing, grounding and search (exit 4); default: none
   --stats         print expanded and generated states and the search time to stderr
 
-exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL"""
+exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL, 4 no plan
+      within the time limit"""
 
 
 class UsageError(ValueError):
     """A command line that names no task or an unknown option; the message says which."""
 
 
-def parse_arguments(argv: list[str]) -> tuple[str, str, str, str | None, bool]:
-    """(domain, problem, search, heuristic or None for the search's default, stats) from the command line."""
+class TimeLimitError(Exception):
+    """The time limit ran out (raised by the alarm's handler, inside the search's periodic signal check)."""
+
+
+def parse_arguments(argv: list[str]) -> tuple[str, str, str, str | None, bool, float | None]:
+    """(domain, problem, search, heuristic or None for the search's default, stats, time limit or None) from the
+    command line."""
     files: list[str] = []
-    options: dict[str, str | None] = {"--search": "bfs", "--heuristic": None}
+    options: dict[str, str | None] = {"--search": "bfs", "--heuristic": None, "--time-limit": None}
     stats = False
     arguments = iter(argv)
     for argument in arguments:
@@ -68,7 +76,19 @@ def parse_arguments(argv: list[str]) -> tuple[str, str, str, str | None, bool]:
         check_choice(options["--search"], options["--heuristic"])
     except ValueError as error:
         raise UsageError(str(error)) from None
-    return files[0], files[1], options["--search"], options["--heuristic"], stats
+    return files[0], files[1], options["--search"], options["--heuristic"], stats, _seconds(options["--time-limit"])
+
+
+def _seconds(text: str | None) -> float | None:
+    if text is None:
+        return None
+    try:
+        seconds = float(text)
+    except ValueError:
+        seconds = float("nan")
+    if not 0 < seconds < 10**7:  # NaN fails too
+        raise UsageError(f"--time-limit takes a positive number of seconds, not {text!r}")
+    return seconds
 
 
 def main(argv: list[str]) -> int:
@@ -76,12 +96,16 @@ def main(argv: list[str]) -> int:
         print(HELP)
         return 0
     try:
-        domain, problem, search, heuristic, stats = parse_arguments(argv)
+        domain, problem, search, heuristic, stats, limit = parse_arguments(argv)
     except UsageError as error:
         print(f"{USAGE}\nsemgoal plan-pddl: {error}", file=sys.stderr)
         return 2
     try:
-        result = solve_pddl(_read(domain), _read(problem), search, heuristic)
+        with _Alarm(limit):
+            result = solve_pddl(_read(domain), _read(problem), search, heuristic)
+    except TimeLimitError:
+        print(f"semgoal plan-pddl: no plan within the time limit of {limit:g} s", file=sys.stderr)
+        return 4
     except OSError as error:
         print(f"semgoal plan-pddl: {error}", file=sys.stderr)
         return 2
@@ -105,6 +129,37 @@ def main(argv: list[str]) -> int:
     if result.cost is not None:
         print(f"; cost = {result.cost}")
     return 0
+
+
+class _Alarm:
+    """Raise :class:`TimeLimitError` in this thread after ``seconds`` (None: never); the searches check for signals
+    every few hundred expansions. An alarm set before (a test runner's timeout) gets its handler and the rest of its
+    time back."""
+
+    def __init__(self, seconds: float | None) -> None:
+        self.seconds = seconds
+
+    def __enter__(self) -> None:
+        if self.seconds is not None:
+            import signal
+            import time
+
+            def expire(*_) -> None:
+                raise TimeLimitError
+
+            self.previous = signal.signal(signal.SIGALRM, expire)
+            self.previous_timer, self.started = signal.setitimer(signal.ITIMER_REAL, self.seconds), time.monotonic()
+
+    def __exit__(self, *_) -> None:
+        if self.seconds is not None:
+            import signal
+            import time
+
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, self.previous)
+            delay, interval = self.previous_timer
+            if delay > 0:
+                signal.setitimer(signal.ITIMER_REAL, max(delay - (time.monotonic() - self.started), 1e-3), interval)
 
 
 def _read(path: str) -> str:

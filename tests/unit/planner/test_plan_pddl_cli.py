@@ -1,8 +1,10 @@
 """The `./semgoal plan-pddl` contract: a plan line per action and exit 0, `unsolvable` and exit 1, exit 2
 with a message on bad PDDL or a missing file."""
 
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -140,7 +142,8 @@ def test_a_bad_command_line_exits_2_with_the_usage_and_what_is_wrong(argv: list[
 def test_help_names_every_search_heuristic_and_exit_code(capsys) -> None:
     assert plan_pddl_main(["--help"]) == 0
     out = capsys.readouterr().out
-    assert all(word in out for word in ("bfs", "astar", "gbfs", "blind", "hmax", "hff", "lmcut", "--stats", "3 unsupported"))
+    assert all(word in out for word in ("bfs", "astar", "gbfs", "blind", "hmax", "hff", "lmcut", "--stats", "3 unsupported",
+                                        "--time-limit", "4 no plan"))
 
 
 def test_options_come_in_either_spelling_and_anywhere(capsys) -> None:
@@ -148,3 +151,26 @@ def test_options_come_in_either_spelling_and_anywhere(capsys) -> None:
     assert plan_pddl_main(["--search=astar", KEYS, "--heuristic", "hmax", problem, "--stats"]) == 0
     captured = capsys.readouterr()
     assert len(captured.out.splitlines()) == 9 and captured.err.startswith("expanded ")
+
+
+def test_a_time_limit_stops_a_long_search_with_exit_4(tmp_path: Path, capsys) -> None:
+    """Breadth-first search on twelve blocks runs for minutes; the limit stops it within its signal checks."""
+    from semgoal_planner.blocksworld import DOMAIN_PATH, problem
+
+    (tmp_path / "p.pddl").write_text(problem(12, seed=1))
+    handler, started = signal.getsignal(signal.SIGALRM), time.perf_counter()
+    assert plan_pddl_main([str(DOMAIN_PATH), str(tmp_path / "p.pddl"), "--time-limit", "0.3"]) == 4
+    assert time.perf_counter() - started < 3.0
+    assert "no plan within the time limit of 0.3 s" in capsys.readouterr().err
+    assert signal.getsignal(signal.SIGALRM) is handler  # a test runner's own alarm keeps working
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "nan", "soon"])
+def test_a_time_limit_must_be_a_positive_number(value: str, capsys) -> None:
+    assert plan_pddl_main([KEYS, str(FIXTURES / "keys-vault.pddl"), "--time-limit", value]) == 2
+    assert "--time-limit takes a positive number of seconds" in capsys.readouterr().err
+
+
+def test_a_time_limit_that_is_not_reached_changes_nothing(capsys) -> None:
+    assert plan_pddl_main([KEYS, str(FIXTURES / "keys-vault.pddl"), "--time-limit=60"]) == 0
+    assert len(capsys.readouterr().out.splitlines()) == 9

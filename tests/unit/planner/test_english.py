@@ -245,6 +245,8 @@ REFUSALS = [
     ("desk_cleanup", "Only green should stay on the table.", "leaves red and blue and yellow unclear"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "stack all blocks into one tower", "say which block goes on which"),
+    ("desk_cleanup", "put gren in the bin", "unknown word 'gren' .did you mean 'green'.."),
+    ("tabletop", "stak red on blue", "unknown word 'stak' .did you mean 'stack'.."),
     ("tabletop", "put red in the bin from top to bottom", "'from top to bottom' orders a tower's blocks"),
 ]
 

@@ -3,6 +3,7 @@ dropped, counted references ('the two blocks') spelled out; an unknown word is r
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Sequence
 
@@ -150,8 +151,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     words = _top_down(_chained_on(_listing_in_order(_joined([w for w in text.split() if w not in FILLERS]))))
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
-        raise LanguageError(f"unknown word {unknown[0]!r}: goals name blocks by colour ({', '.join(blocks)}) "
-                            f"and say where they go, e.g. {examples(scene, blocks)}")
+        raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
+                            f"({', '.join(blocks)}) and say where they go, e.g. {examples(scene, blocks)}")
     while words and words[0] in ("and", "then"):
         words.pop(0)
     while words and words[-1] in ("and", "then"):
@@ -164,6 +165,22 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
 LISTING_VERBS = frozenset({"stack", "put", "clean", "take", "remove", "bin", "group", "separate"})
 """Verbs whose blocks may be named in order ('put red, then blue, then green in the bin'): one action on all of them.
 Not 'pick' ('pick up red, then green' ends with green in the hand)."""
+
+
+def _did_you_mean(word: str) -> str:
+    """' (did you mean 'green'?)' for a word a letter or two away from one the reader knows, else ''."""
+    import difflib
+
+    known = _known_words()
+    close = difflib.get_close_matches(word, known, n=1, cutoff=0.75) if len(word) > 2 else []
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+@functools.cache
+def _known_words() -> tuple[str, ...]:
+    """Every word the reader takes: colours, canonical words, fillers and the words of its phrases."""
+    phrased = {word for pattern, _ in PHRASES for word in re.findall(r"[a-z]{3,}", pattern)}
+    return tuple(sorted(set(BLOCK_COLOURS) | CANONICAL | FILLERS | phrased))
 
 
 def _listing_in_order(words: list[str]) -> list[str]:

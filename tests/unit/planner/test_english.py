@@ -211,6 +211,13 @@ PHRASES = [
     ("desk_cleanup", "clean the table but leave red and yellow",
      "in_bin(green) & in_bin(blue) & not in_bin(red) & not in_bin(yellow)"),
     ("three_blocks", "put green in the middle of red and blue", "close(red,green) & close(green,blue)"),
+    ("tabletop", "I'd like a tower: green at the bottom, then blue, then red on top", "above(blue,green) & above(red,blue)"),
+    ("tabletop", "build a 3-block tower: red, green, blue", "above(green,red) & above(blue,green)"),
+    ("tabletop", "make a tower of four blocks: pink, cyan, red and green",
+     "above(cyan,pink) & above(red,cyan) & above(green,red)"),
+    ("tabletop", "put red on the green block and keep blue far from both",
+     "above(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("two_blocks", "put both side by side", "close(red,green)"),
     ("desk_cleanup", "I want red and blue placed in the bin", "in_bin(red) & in_bin(blue)"),
 ]
 
@@ -245,6 +252,8 @@ REFUSALS = [
     ("desk_cleanup", "Only green should stay on the table.", "leaves red and blue and yellow unclear"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "stack all blocks into one tower", "say which block goes on which"),
+    ("tabletop", "build a tower", "say which block goes on which"),
+    ("desk_cleanup", "put both in the bin", "'both' is ambiguous: say which two blocks"),
     ("desk_cleanup", "put gren in the bin", "unknown word 'gren' .did you mean 'green'.."),
     ("tabletop", "stak red on blue", "unknown word 'stak' .did you mean 'stack'.."),
     ("tabletop", "put red in the bin from top to bottom", "'from top to bottom' orders a tower's blocks"),

@@ -28,7 +28,7 @@ action: ("put" | "keep") refs dest          -> put
       | "put" refs                           -> release
       | ("put" refs "down" | "put" "down" refs | "release" refs?) -> release
       | "stack" refs dest_on                 -> put
-      | "stack" refs                         -> stack_unsaid
+      | "stack" refs?                        -> stack_unsaid
       | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
       | "take" refs ("off" refs? | "from" refs) -> off
       | "take" refs dest_to                   -> put
@@ -77,7 +77,7 @@ refs: ref ("and" ref)*
 ref: COLOUR                      -> colour
    | "only" COLOUR               -> only
    | "all" ("except" refs)?      -> all
-   | "both"                      -> all
+   | "both"                      -> both
    | "other"                     -> other
    | "it"                        -> it
    | "them"                      -> them
@@ -95,7 +95,8 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 
 @dataclass(frozen=True)
 class Ref:
-    """A reference to blocks before the world is known: colours, ``all`` (minus some), ``other``, ``it``, ``them``."""
+    """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
+    ``them``."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -206,7 +207,7 @@ class Clauses(lark.Transformer):
     def stack_unsaid(self, items: list) -> Clause:
         """'stack red, green and blue', 'build a tower of red, green and blue': a tower, the first named at the
         bottom (the resolver refuses blocks not named one by one: they say nothing of the order)."""
-        return Clause("tower", subjects=items[0])
+        return Clause("tower", subjects=items[0] if items else ())
 
     def separate_from(self, items: list) -> Clause:
         return Clause("away", subjects=items[0], objects=items[1])
@@ -263,6 +264,9 @@ class Clauses(lark.Transformer):
 
     def all(self, items: list) -> Ref:
         return Ref("all", excluded=items[0] if items else ())
+
+    def both(self, _: list) -> Ref:
+        return Ref("both")
 
     def other(self, _: list) -> Ref:
         return Ref("other")

@@ -42,6 +42,13 @@ class Resolver:
         if ref.kind == "all":
             excluded = set(self.blocks_of(ref.excluded))
             return tuple(b for b in self.blocks if b not in excluded)
+        if ref.kind == "both":  # "red next to green and blue away from both": the two the clause before named
+            pair = tuple(b for b in self.last_named if b not in besides)
+            if len(pair) == 2:
+                return pair
+            if len(self.blocks) == 2:
+                return self.blocks
+            raise LanguageError(f"'both' is ambiguous: say which two blocks ({', '.join(self.blocks)})")
         if ref.kind == "other":  # not the blocks named before, nor the clause's own ("red on top") where some remain
             unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
             others = tuple(b for b in unnamed if b not in besides) or unnamed

@@ -140,6 +140,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
+    text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
@@ -148,7 +149,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
-    words = _top_down(_chained_on(_listing_in_order(_joined([w for w in text.split() if w not in FILLERS]))))
+    words = [w for w in text.split() if w not in FILLERS]
+    for rewrite in (_joined, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
+        words = rewrite(words)
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
@@ -172,8 +175,8 @@ def _did_you_mean(word: str) -> str:
     import difflib
 
     known = _known_words()
-    close = difflib.get_close_matches(word, known, n=1, cutoff=0.75) if len(word) > 2 else []
-    return f" (did you mean {close[0]!r}?)" if close else ""
+    close = [w for w in difflib.get_close_matches(word, known, n=2, cutoff=0.75) if w != word] if len(word) > 2 else []
+    return f" (did you mean {close[0]!r}?)" if close else ""  # a word known only inside a phrase is not offered
 
 
 @functools.cache
@@ -192,6 +195,23 @@ def _listing_in_order(words: list[str]) -> list[str]:
                   and _listing_after_verb(words[:i]))
         joined.append("and" if listed else word)
     return joined
+
+
+def _top_named_last(words: list[str]) -> list[str]:
+    """'a tower: green at the bottom, then blue, then red on top': the last of a tower's blocks named in order is its
+    top, not a block on some other one ('on top' alone reads 'on the other block')."""
+    kept, i = [], 0
+    while i < len(words):
+        if words[i:i + 2] == ["on", "other"] and (i + 2 == len(words) or words[i + 2] in ("and", "then")):
+            start = i
+            while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("and", "then")):
+                start -= 1
+            if start > 0 and words[start - 1] == "stack" and sum(w in BLOCK_COLOURS for w in words[start:i]) >= 2:
+                i += 2
+                continue
+        kept.append(words[i])
+        i += 1
+    return kept
 
 
 def _chained_on(words: list[str]) -> list[str]:
@@ -261,6 +281,10 @@ _EXCEPTION_AFTER_ALL = re.compile(
     r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+ *$)")
 """'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
 where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
+_TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|cube|storey|story|level)s?[- ]"
+                         r"(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) (?P<of>of) (?:\d+|"
+                         + "|".join(NUMBERS) + r")(?: blocks| cubes)?)\b")
+"""A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...'): the blocks named say it."""
 _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")

@@ -13,6 +13,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from strips_planner.adl import holds
 from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain, parse_problem
 
 
@@ -31,6 +32,10 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
     actions = {action.name: action for action in domain.actions}
     objects = {**domain.constants, **problem.objects}
     state = set(problem.init)
+
+    def of_type(kind: str) -> list[str]:
+        return [name for name, own in objects.items() if domain.is_subtype(own, kind)]
+
     for number, (name, *args) in enumerate(plan, 1):
         action = actions.get(name)
         if action is None or len(args) != len(action.parameters):
@@ -42,8 +47,13 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
         unmet = [c for c in action.precondition if not _holds(Condition(_bind(c.atom, binding), c.positive), state)]
         if unmet:
             return f"step {number} ({name} {' '.join(args)}): precondition {unmet[0]} does not hold"
+        if action.condition is not None and not holds(action.condition, binding, state.__contains__, of_type):
+            return f"step {number} ({name} {' '.join(args)}): its precondition's condition does not hold"
         state = (state - {_bind(a, binding) for a in action.delete}) | {_bind(a, binding) for a in action.add}
     unmet = [c for c in problem.goal if not _holds(c, state)]
+    if not unmet and problem.goal_condition is not None and not holds(problem.goal_condition, {}, state.__contains__,
+                                                                      of_type):
+        return "the goal's condition does not hold at the end"
     return f"the goal {unmet[0]} does not hold at the end" if unmet else None
 
 

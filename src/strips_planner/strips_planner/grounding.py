@@ -14,8 +14,8 @@ from __future__ import annotations
 from functools import cached_property
 from typing import NamedTuple
 
-from strips_planner import _core, _explore, _ground
-from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, Problem
+from strips_planner import _core, _explore, _ground, adl
+from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, PddlUnsupportedError, Problem
 
 
 class Operator(NamedTuple):
@@ -81,7 +81,13 @@ class _Grounder:
 
     def __init__(self, domain: Domain, problem: Problem) -> None:
         self.domain, self.problem = domain, problem
-        actions = domain.actions
+        self.actions = [copy for action in domain.actions for copy in adl.lifted_split(action)]
+        """The domain's actions, one per way an ADL condition's ``or``s go (:func:`adl.lifted_split`)."""
+        self.conditional = {f"{a.name}#{i}": a for i, a in enumerate(self.actions) if a.condition is not None
+                            or sum(b.name == a.name for b in self.actions) > 1}
+        """The actions whose operators :meth:`_with_conditions` finishes, under a name of their own while grounded
+        ('#' is no PDDL name's)."""
+        actions = self.actions
         fluent = sorted({a.predicate for action in actions for a in (*action.add, *action.delete)})
         mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in actions
                                                            for c in action.precondition}
@@ -142,23 +148,92 @@ class _Grounder:
         return schema, (action.name, len(position), pre, pre_neg, add, [template(a) for a in action.delete])
 
     def ground(self) -> Task:
-        templates = [self._templates(action) for action in self.domain.actions]
+        own = {id(action): name for name, action in self.conditional.items()}
+        templates = [(schema, (own.get(id(action), action.name), *rest))
+                     for action in self.actions for schema, (_, *rest) in [self._templates(action)]]
         arity = max((len(key) - 1 for key in self.init), default=0)
         width = 1 + max(arity, *map(len, self.domain.predicates.values()), 0)
         bindings = _explore.explore(len(self.number), len(self.objects), width, self.init,
                                     [schema for schema, _ in templates])
-        fluent = [c for c in self.problem.goal if self.is_fluent(c.atom.predicate)]
+        goal, never = self.problem.goal, ""
+        if self.problem.goal_condition is not None:
+            literals = self._goal_literals()
+            if literals is None:
+                never = "the goal's condition can never hold: the static facts rule out every way to it"
+            goal = (*goal, *(literals or ()))
+        fluent = [c for c in goal if self.is_fluent(c.atom.predicate)]
         positive = [c for c in fluent if c.positive]
         nfluent = len(self.predicates)
-        facts, init, goal, goal_neg, unreached, operators = _ground.ground(
+        facts, init, goal_mask, goal_neg, unreached, operators = _ground.ground(
             self.predicates, self.objects, width, [key for key in self.init if key[0] < nfluent],
             [self._key(c.atom) for c in positive], [self._key(c.atom) for c in fluent if not c.positive],
             [(name, nparams, found, *atoms) for (_, (name, nparams, *atoms)), found in zip(templates, bindings,
                                                                                            strict=True)],
             Atom, Operator)
+        if self.conditional:
+            operators = self._with_conditions(operators, facts)
         costs = self._costs(operators) if self.problem.minimise_cost else None
-        return Task(tuple(facts), init, goal, goal_neg, tuple(operators),
-                    self._unsolvable_reason({positive[i] for i in unreached}), costs)
+        return Task(tuple(facts), init, goal_mask, goal_neg, tuple(operators),
+                    never or self._unsolvable_reason({positive[i] for i in unreached}, goal), costs)
+
+    # -- ADL conditions (strips_planner.adl) ------------------------------------------------------------
+    def _static_truth(self, atom: Atom) -> bool | None:
+        """An atom's truth where its predicate never changes (from ``:init``), else None."""
+        if self.is_fluent(atom.predicate):
+            return None
+        return atom.predicate in self.number and self._key(atom) in self._static_init
+
+    @cached_property
+    def _static_init(self) -> set[tuple[int, ...]]:
+        return set(self.init)
+
+    def _objects_of_type(self, kind: str) -> tuple[str, ...]:
+        members = self._objects_of(kind)
+        return self.objects if members is None else tuple(self.objects[i] for i in members)
+
+    def _goal_literals(self) -> tuple[Condition, ...] | None:
+        """The goal condition's literals: it has to come to one conjunction once static atoms are decided; None
+        where it never holds."""
+        options = adl.disjuncts(self.problem.goal_condition, {}, self._static_truth, self._objects_of_type)
+        if not options:
+            return None
+        if len(options) > 1:
+            raise PddlUnsupportedError(f"?:?: the goal leaves a choice ({len(options)} ways to reach it once static "
+                                       "facts are known): only goals that come to one conjunction are supported")
+        return tuple(sorted(options[0]))
+
+    def _with_conditions(self, operators: list[Operator], facts: list[Atom]) -> list[Operator]:
+        """Each operator of an action with an ADL condition as one operator per way its condition can hold (its
+        disjuncts over fluent literals), none where it never can, under its action's name; the others as they
+        are."""
+        index = {fact: i for i, fact in enumerate(facts)}
+        result = []
+        for operator in operators:
+            action = self.conditional.get(operator.name)
+            if action is None:
+                result.append(operator)
+                continue
+            operator = operator._replace(name=action.name)
+            if action.condition is None:
+                result.append(operator)
+                continue
+            binding = dict(zip((variable for variable, _ in action.parameters), operator.args, strict=True))
+            for conjunction in adl.disjuncts(action.condition, binding, self._static_truth, self._objects_of_type):
+                pre, pre_neg = operator.pre, operator.pre_neg
+                for literal in conjunction:
+                    bit = index.get(literal.atom)
+                    if bit is None:  # a fluent atom never reached: never true
+                        if literal.positive:
+                            break
+                        continue
+                    if literal.positive:
+                        pre |= 1 << bit
+                    else:
+                        pre_neg |= 1 << bit
+                else:
+                    if not pre & pre_neg:
+                        result.append(operator._replace(pre=pre, pre_neg=pre_neg))
+        return result
 
     def _costs(self, operators: list[Operator]) -> tuple[int, ...]:
         """Each operator's cost: its action's amount, a function term's value looked up in ``:init``."""
@@ -190,10 +265,10 @@ class _Grounder:
         return _explore.explore(len(names), len(self.objects), 1 + arity, init,
                                 [self._schema(action, number) for action in actions])
 
-    def _unsolvable_reason(self, unreached: set[Condition]) -> str:
+    def _unsolvable_reason(self, unreached: set[Condition], goal: tuple[Condition, ...]) -> str:
         """Why the goal can never hold: its first literal that is static and false, or not reachable."""
         static_init = set(self.init)
-        for cond in self.problem.goal:
+        for cond in goal:
             if cond in unreached:
                 return f"goal {cond.atom} is not reachable from the initial state"
             atom = cond.atom

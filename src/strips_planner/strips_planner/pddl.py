@@ -1,8 +1,9 @@
-"""A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, :action-costs, objects and constants.
+"""A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, :action-costs, objects and constants,
+and ADL's conditions (``or``, ``imply``, ``forall``, ``exists``) in preconditions and goals.
 
-Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (``or``,
-``forall``, ``when``, numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that
-names the line and column, so a user knows what to rewrite.
+Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (``when``, ``forall``
+in an effect, numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that names the line
+and column, so a user knows what to rewrite.
 
 Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` or ``(increase (total-cost)
 (f ?x ...))`` in an effect, with ``(= (f a ...) N)`` in ``:init``; they count when the problem says
@@ -169,6 +170,9 @@ class Action(NamedTuple):
     delete: tuple[Atom, ...]
     cost: int | Atom = 0
     """What it adds to ``total-cost``: a number, or a function term whose value ``:init`` gives."""
+    condition: tuple | None = None
+    """What the precondition asks beyond its literals (``or``, ``imply``, ``forall``, ``exists``): a formula of
+    :mod:`strips_planner.adl`, compiled away at grounding; None for STRIPS."""
 
 
 class Domain:
@@ -211,6 +215,8 @@ class Problem:
         """The functions' values from ``:init``: ``(= (road-length a b) 7)``."""
         self.minimise_cost = False
         """``(:metric minimize (total-cost))``: plans are judged by cost, not length."""
+        self.goal_condition: tuple | None = None
+        """What the goal asks beyond its literals (as :attr:`Action.condition`)."""
 
 
 # -- readers ---------------------------------------------------------------------------------------------
@@ -272,7 +278,7 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
         _name(predicate, "a function name" if functions else "a predicate name")  # raises
     args = tuple(expr[1:])
     if predicate == "=" and not functions:
-        if ":equality" not in domain.requirements and variables is not None:
+        if not domain.requirements & {":equality", ":adl"} and variables is not None:
             _warn(domain, "(= ...) is used without :equality in the domain's :requirements")
         if len(args) != 2:
             raise _error(expr, f"(= ...) takes 2 arguments, got {len(args)}")
@@ -296,6 +302,64 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
 
 
 _NOT_STRIPS = frozenset(("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"))
+_ADL_CONDITIONS = frozenset(("or", "imply", "exists", "forall"))
+"""What a precondition or a goal may say beyond a conjunction of literals (:mod:`strips_planner.adl`)."""
+
+
+def _conditions(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
+                what: str) -> tuple[list[Condition], tuple | None]:
+    """A precondition or goal: the literals of its top-level conjunction, and the rest as one ADL formula (None
+    where there is none)."""
+    if not expr:
+        return [], None
+    parts = _conjuncts(expr, what)
+    literals = [_literal(part, domain, variables, objects, what) for part in parts if not _is_adl(part)]
+    rest = tuple(_formula(part, domain, variables, objects, what) for part in parts if _is_adl(part))
+    return literals, (("and", rest) if len(rest) > 1 else rest[0]) if rest else None
+
+
+def _conjuncts(expr: list, what: str) -> list[list]:
+    if expr[0] != "and":
+        return [expr]
+    return [c for part in expr[1:] if _sub(part, what) for c in _conjuncts(part, what)]
+
+
+def _is_adl(expr: list) -> bool:
+    """Whether ``expr`` needs more than a literal: an ADL connective, or a ``not`` over one (or over ``and``)."""
+    head = expr[0] if expr else None
+    if head == "not" and len(expr) == 2 and isinstance(expr[1], list) and expr[1]:
+        return expr[1][0] in _ADL_CONDITIONS or expr[1][0] in ("and", "not")
+    return head in _ADL_CONDITIONS
+
+
+def _formula(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
+             what: str):
+    """An ADL condition in negation normal form (:mod:`strips_planner.adl`)."""
+    from strips_planner.adl import negated
+
+    head = _name(expr[0], "a predicate or a connective") if expr else ""
+    args = [_sub(part, what) for part in expr[1:]] if head in ("and", "or", "not", "imply") else []
+    if head in ("and", "or"):
+        return (head, tuple(_formula(part, domain, variables, objects, what) for part in args))
+    if head == "not":
+        if len(args) != 1:
+            raise _error(expr, "(not ...) takes exactly one condition")
+        return negated(_formula(args[0], domain, variables, objects, what))
+    if head == "imply":
+        if len(args) != 2:
+            raise _error(expr, "(imply A B) takes two conditions")
+        return ("or", (negated(_formula(args[0], domain, variables, objects, what)),
+                       _formula(args[1], domain, variables, objects, what)))
+    if head in ("forall", "exists"):
+        if len(expr) != 3:
+            raise _error(expr, f"({head} (VARIABLES) CONDITION) takes a variable list and a condition")
+        bound = _typed_list(list(_sub(expr[1], f"{head}'s variables")), expr, variables=True)
+        for _, kind, token in bound:
+            _check_type(domain, kind, token)
+        scope = {**(variables or {}), **{var: kind for var, kind, _ in bound}}
+        return (head, tuple((var, kind) for var, kind, _ in bound),
+                _formula(_sub(expr[2], what), domain, scope, objects, what))
+    return _literal(expr, domain, variables, objects, what)
 
 
 def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
@@ -324,15 +388,19 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
             raise _error(expr, "(not ...) takes exactly one atom")
         inner = _sub(expr[1], what)
         if inner and inner[0] in _NOT_STRIPS:
-            raise _unsupported(inner, f"{inner[0]!r} is not STRIPS: only conjunctions of literals are supported")
+            raise _unsupported(inner, f"{inner[0]!r} under a not is not supported in a {what}")
         if inner and _name(inner[0], "an atom") in ("and", "not", "or"):
             raise _error(inner, f"only atoms can be negated in a {what}")
-        if (what == "precondition" and ":negative-preconditions" not in domain.requirements
+        if (what == "precondition" and not domain.requirements & {":negative-preconditions", ":adl"}
                 and inner and inner[0] != "="):
             _warn(domain, "negative preconditions are used without :negative-preconditions in :requirements")
         return Condition(_atom(inner, domain, variables, objects), positive=False)
     if head in _NOT_STRIPS:
-        raise _unsupported(expr, f"{head!r} is not STRIPS: only conjunctions of literals are supported")
+        if what == "effect":
+            raise _unsupported(expr, f"{head!r} in an effect is not supported: effects are conjunctions of literals "
+                                     "(conditional and universal effects are not read)")
+        raise _unsupported(expr, f"{head!r} is not supported in a {what}: it takes literals, and, or, not, imply, "
+                                 "forall and exists")
     return Condition(_atom(expr, domain, variables, objects))
 
 
@@ -461,8 +529,8 @@ def _action(section: list, domain: Domain) -> Action:
     for _, kind, token in params:
         _check_type(domain, kind, token)
     variables = {var: kind for var, kind, _ in params}
-    pre = _literals(fields.get(":precondition", []), domain, variables, domain.constants,
-                    "precondition")
+    pre, condition = _conditions(fields.get(":precondition", []), domain, variables, domain.constants,
+                                 "precondition")
     effect_expr, costs = _without_increase(fields.get(":effect", []))
     effect = _literals(effect_expr, domain, variables, domain.constants, "effect")
     if len(costs) > 1:
@@ -473,7 +541,7 @@ def _action(section: list, domain: Domain) -> Action:
             raise _error(section, f"action {name}: equality cannot be an effect")
         (add if literal.positive else delete).append(literal.atom)
     return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre), tuple(add), tuple(delete),
-                  _cost(costs[0], domain, variables) if costs else 0)
+                  _cost(costs[0], domain, variables) if costs else 0, condition)
 
 
 def _without_increase(effect: list) -> tuple[list, list[list]]:
@@ -530,7 +598,8 @@ def _problem(root: list, domain: Domain) -> Problem:
             raise (_unsupported if key else _error)(section, f"unsupported problem section {key or '()'!r}")
     if goal_section is None or len(goal_section) != 2:
         raise _error(goal_section or root, "the problem needs one (:goal EXPRESSION)")
-    problem.goal = tuple(_literals(_sub(goal_section[1], "goal"), domain, None, problem.objects, "goal"))
+    goal, problem.goal_condition = _conditions(_sub(goal_section[1], "goal"), domain, None, problem.objects, "goal")
+    problem.goal = tuple(goal)
     return problem
 
 

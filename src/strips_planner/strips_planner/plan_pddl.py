@@ -23,7 +23,7 @@ USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHE
 HELP = f"""{USAGE}
 
 Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
-either types).
+either types; or, imply, forall and exists in preconditions and goals).
 
 options:
   --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),

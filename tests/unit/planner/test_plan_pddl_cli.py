@@ -59,16 +59,15 @@ def test_a_question_mark_starts_a_token_and_names_ignore_case(tmp_path: Path, ca
 
 
 @pytest.mark.parametrize("construct, snippet", [
-    ("or", "(:action hop :parameters (?from ?to) :precondition (or (at ?from) (link ?from ?to))"),
+    ("when", ":effect (when (link ?to ?from) (at ?to))))"),
     ("requirement", "(:requirements :strips :numeric-fluents)"),
     ("derived", "(:derived (near ?x) (at ?x))"),
 ])
 def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path, capsys, construct: str,
                                                                  snippet: str) -> None:
     domain = TOKENS_DOMAIN
-    if construct == "or":
-        domain = domain.replace("(:action hop :parameters (?from ?to) :precondition (and (at?from) (link ?from?to))",
-                                snippet)
+    if construct == "when":
+        domain = domain.replace(":effect (and (at ?to) (not (at ?from)))))", snippet)
     elif construct == "requirement":
         domain = domain.replace("(:requirements :strips)", snippet)
     else:
@@ -77,7 +76,7 @@ def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path,
     (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
     assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 3
     err = capsys.readouterr().err
-    assert "unsupported PDDL" in err and {"or": "'or'", "requirement": ":numeric-fluents",
+    assert "unsupported PDDL" in err and {"when": "'when'", "requirement": ":numeric-fluents",
                                           "derived": ":derived"}[construct] in err
 
 

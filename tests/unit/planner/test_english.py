@@ -218,6 +218,15 @@ PHRASES = [
     ("tabletop", "put red on the green block and keep blue far from both",
      "above(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "put both side by side", "close(red,green)"),
+    ("two_blocks", "put them next to each other", "close(red,green)"),
+    ("two_blocks", "let go", "not holding(red) & not holding(green)"),
+    ("desk_cleanup", "drop the block you are holding",
+     "not holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
+    ("three_blocks", "arrange red and green side by side, with blue apart",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "line up red, green and blue", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "cluster red and green; keep blue isolated",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("desk_cleanup", "I want red and blue placed in the bin", "in_bin(red) & in_bin(blue)"),
 ]
 

@@ -67,6 +67,8 @@ class Resolver:
             raise LanguageError(f"'it' or 'the block' is ambiguous: say which block ({', '.join(self.blocks)})")
         if self.last_named:  # them
             return self.last_named
+        if len(self.blocks) == 2:  # "put them next to each other" with two blocks there
+            return self.blocks
         raise LanguageError(f"'them' is ambiguous: say which blocks ({', '.join(self.blocks)})")
 
     def subjects_of(self, clause: Clause) -> tuple[str, ...]:
@@ -88,6 +90,8 @@ class Resolver:
             raise LanguageError("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks "
                                 "from the bottom up: 'build a tower of red, green and blue'")
         subjects = self.subjects_of(clause)
+        if not subjects and clause.kind == "release":  # "let go" with nothing picked before: the hand empty
+            subjects = self.blocks
         if not subjects:
             raise LanguageError(f"say which block: {', '.join(self.blocks)}")
         objects = self.blocks_of(clause.objects, besides=subjects)

@@ -16,6 +16,10 @@ MAX_GOAL_CHARS = 2_000
 
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
+    (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
+     r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))", "release all"),
+    (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
+     r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
     (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),  # "I'd like red to be next to blue"
@@ -56,7 +60,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "together"),
     (r"(far from|away from|apart from) (each other|one another)", "apart"),
     (r"apart from", "away"),
-    (r"far apart|apart|separated", "apart"),
+    (r"far apart|apart|separated|isolated", "apart"),
+    (r"line up|line|arrange in a row", "group"),  # "line up red, green and blue"
+    (r"arrange", "put"),  # "arrange red and green side by side"
     (r"over to", "to"),
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),

@@ -274,11 +274,46 @@ _SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECA
 
 
 def split_literals(text: str) -> list[str]:
-    """``a(x) & not b(x,y), c(y)`` -> the literal texts (commas inside parentheses are arguments); ValueError for
-    an empty goal or an empty part."""
+    """``a(x) & not b(x,y), c(y)`` -> the literal texts (commas inside parentheses are arguments), also from PDDL's
+    ``(and (a x) (not (b x y)))``; ValueError for an empty goal or an empty part."""
+    if text.strip().startswith("("):
+        return _pddl_literals(text)
     parts = [p.strip() for p in _SEPARATORS.split(text.strip())]
     if not text.strip() or any(not p for p in parts):
         raise ValueError(f"cannot read goal {text!r}: expected a task ({', '.join(ALL_TASKS)}) or literals joined by '&'")
+    return parts
+
+
+def _pddl_literals(text: str) -> list[str]:
+    """PDDL's goal syntax, a literal or a conjunction of them, as literal texts: ``(and (in_bin red) (not (close red
+    green)))`` -> ``['in_bin(red)', 'not close(red,green)']``."""
+    tokens = re.findall(r"\(|\)|[^\s()]+", text)
+    expected = f"cannot read goal {text!r}: PDDL goals are '(pred a b)', '(not (pred a b))' or '(and ...)' of those"
+
+    def literal(i: int) -> tuple[list[str], int]:
+        if i + 1 >= len(tokens) or tokens[i] != "(" or tokens[i + 1] in "()":
+            raise ValueError(expected)
+        head, i = tokens[i + 1].lower(), i + 2
+        if head in ("and", "not"):
+            parts = []
+            while i < len(tokens) and tokens[i] == "(":
+                part, i = literal(i)
+                parts += part
+            if i >= len(tokens) or tokens[i] != ")" or (head == "not" and (len(parts) != 1 or
+                                                                          parts[0].startswith("not "))):
+                raise ValueError(expected)
+            return (parts if head == "and" else [f"not {parts[0]}"]), i + 1
+        args = []
+        while i < len(tokens) and tokens[i] not in "()":
+            args.append(tokens[i])
+            i += 1
+        if i >= len(tokens) or tokens[i] != ")":
+            raise ValueError(expected)
+        return [f"{head}({','.join(args)})"], i + 1
+
+    parts, end = literal(0)
+    if end != len(tokens) or not parts:
+        raise ValueError(expected)
     return parts
 
 

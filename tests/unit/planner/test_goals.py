@@ -17,6 +17,20 @@ def test_conjunctions_with_every_separator() -> None:
                     Literal("close", ("green", "blue")), Literal("holding", ("red",))]
 
 
+def test_pddl_goal_syntax_reads_as_the_same_literals() -> None:
+    goal = parse_goal("(AND (close red green) (not (close red blue)) (holding red))", "three_blocks", BLOCKS, [])
+    assert goal == [Literal("close", ("red", "green")), Literal("close", ("red", "blue"), False),
+                    Literal("holding", ("red",))]
+    assert parse_goal("(close red green)", "three_blocks", BLOCKS, []) == [Literal("close", ("red", "green"))]
+
+
+@pytest.mark.parametrize("text", ["(and)", "(close red green", "(and (close red green)) x", "((close red green))",
+                                  "(not (and (close red green) (close red blue)))", "(or (close red green))"])
+def test_pddl_goals_beyond_a_conjunction_of_literals_are_refused(text: str) -> None:
+    with pytest.raises(GoalError, match=r"PDDL goals are|unknown predicate"):
+        parse_goal(text, "three_blocks", BLOCKS, [])
+
+
 def test_task_names_are_case_insensitive_and_resolved_against_the_state() -> None:
     goal = parse_goal("dc-2", "desk_cleanup", ("red", "green"), [])
     assert Literal("in_bin", ("red",)) in goal and Literal("holding", ("green",), False) in goal

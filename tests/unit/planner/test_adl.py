@@ -5,7 +5,7 @@ import pytest
 
 from semgoal_bench.validate_plan import invalid_step
 from strips_planner import adl
-from strips_planner.pddl import Atom, Condition, PddlUnsupportedError, parse_domain, parse_problem
+from strips_planner.pddl import Atom, Condition, PddlUnsupportedError, parse_domain, parse_problem, parse_sexpr
 from strips_planner.planner import solve_pddl
 
 # A truck with areas front to back: a package is loaded into an area only while every area nearer the door is free
@@ -95,3 +95,71 @@ def test_a_condition_that_grounds_to_too_many_alternatives_is_refused() -> None:
     problem = PROBLEM.replace("a1 a2 a3 - area", f"{objects} - area")
     with pytest.raises(PddlUnsupportedError, match="more than 512 alternatives"):
         solve_pddl(many, problem, "bfs")
+
+
+def _random_condition(rng, depth: int, variables: list[str]) -> str:
+    """A random ADL condition over p/1 and q/2 (both changed by actions) and r/1 (static)."""
+    if depth == 0 or rng.random() < 0.3:
+        head = rng.choice(["p", "q", "r", "="])
+        args = [rng.choice(variables) for _ in range(1 if head in ("p", "r") else 2)]
+        atom = f"({head} {' '.join(args)})"
+        return f"(not {atom})" if rng.random() < 0.4 else atom
+    kind = rng.choice(["and", "or", "not", "imply", "forall", "exists"])
+    if kind in ("and", "or"):
+        return f"({kind} {' '.join(_random_condition(rng, depth - 1, variables) for _ in range(rng.randint(1, 3)))})"
+    if kind == "not":
+        return f"(not {_random_condition(rng, depth - 1, variables)})"
+    if kind == "imply":
+        return f"(imply {_random_condition(rng, depth - 1, variables)} {_random_condition(rng, depth - 1, variables)})"
+    bound = f"?v{depth}"
+    return f"({kind} ({bound}) {_random_condition(rng, depth - 1, [*variables, bound])})"
+
+
+def _evaluate(expr: list, binding: dict[str, str], truth) -> bool:
+    """The condition's truth read straight off its text (objects a and b), apart from the reader and grounding."""
+    head, args = expr[0], expr[1:]
+    if head in ("and", "or"):
+        return (all if head == "and" else any)(_evaluate(a, binding, truth) for a in args)
+    if head == "not":
+        return not _evaluate(args[0], binding, truth)
+    if head == "imply":
+        return not _evaluate(args[0], binding, truth) or _evaluate(args[1], binding, truth)
+    if head in ("forall", "exists"):
+        values = (_evaluate(args[1], {**binding, args[0][0]: o}, truth) for o in "ab")
+        return (all if head == "forall" else any)(values)
+    names = [binding.get(a, a) for a in args]
+    return names[0] == names[1] if head == "=" else truth(Atom(head, tuple(names)))
+
+
+@pytest.mark.parametrize("seed", range(100))
+def test_the_grounded_operators_apply_exactly_where_the_condition_holds(seed: int) -> None:
+    """Random conditions, every state of a small world: some operator of a binding applies where the lifted
+    condition holds there (evaluated directly, as the validator does), and none where it does not."""
+    import random
+
+    from strips_planner.grounding import ground
+
+    rng = random.Random(seed)
+    condition = _random_condition(rng, 3, ["?x", "?y"])
+    domain_text = f"""(define (domain rnd) (:requirements :adl)
+      (:predicates (p ?a) (q ?a ?b) (r ?a) (done ?a ?b))
+      (:action act :parameters (?x ?y) :precondition {condition} :effect (done ?x ?y))
+      (:action flip :parameters (?x ?y) :effect (and (p ?x) (not (p ?y)) (q ?x ?y) (not (q ?y ?x)))))"""
+    problem_text = """(define (problem rnd) (:domain rnd) (:objects a b)
+      (:init (r a) (p a) (q a b)) (:goal (done a a)))"""
+    domain = parse_domain(domain_text)
+    problem = parse_problem(problem_text, domain)
+    task = ground(domain, problem)
+    fluent_atoms = [Atom("p", (o,)) for o in "ab"] + [Atom("q", (o, t)) for o in "ab" for t in "ab"]
+    facts = {fact: i for i, fact in enumerate(task.facts)}
+    for mask in range(1 << len(fluent_atoms)):
+        true = {atom for i, atom in enumerate(fluent_atoms) if mask >> i & 1}
+        state = sum(1 << facts[atom] for atom in true if atom in facts)
+        if any(atom not in facts for atom in true):
+            continue  # a state grounding proved unreachable: nothing to compare
+        truth = {*true, Atom("r", ("a",))}.__contains__
+        for x in "ab":
+            for y in "ab":
+                lifted = _evaluate(parse_sexpr(condition), {"?x": x, "?y": y}, truth)
+                grounded = any(op.applicable(state) for op in task.operators if op.name == "act" and op.args == (x, y))
+                assert grounded == lifted, (condition, sorted(map(str, true)), x, y)

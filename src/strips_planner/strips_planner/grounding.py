@@ -251,29 +251,14 @@ class _Grounder:
             costs.append(amount)
         return tuple(costs)
 
-    def _reachable_bindings(self) -> list[list[tuple[int, ...]]]:
-        """Per action, its bindings whose positive preconditions can hold together, sorted."""
-        actions = self.domain.actions
-        mentioned = {a.predicate for a in self.problem.init} | {c.atom.predicate for action in actions
-                                                                for c in action.precondition} \
-            | {a.predicate for action in actions for a in action.add}
-        names = sorted((set(self.domain.predicates) | mentioned) - {"="})
-        number = {name: i for i, name in enumerate(names)}
-        init = [(number[a.predicate], *map(self.index.__getitem__, a.args)) for a in self.problem.init]
-        arity = max((len(t) - 1 for t in init), default=0)
-        arity = max(arity, *map(len, self.domain.predicates.values()), 0)
-        return _explore.explore(len(names), len(self.objects), 1 + arity, init,
-                                [self._schema(action, number) for action in actions])
-
     def _unsolvable_reason(self, unreached: set[Condition], goal: tuple[Condition, ...]) -> str:
         """Why the goal can never hold: its first literal that is static and false, or not reachable."""
-        static_init = set(self.init)
         for cond in goal:
             if cond in unreached:
                 return f"goal {cond.atom} is not reachable from the initial state"
             atom = cond.atom
             if not self.is_fluent(atom.predicate):
-                holds = atom.args[0] == atom.args[1] if atom.predicate == "=" else self._key(atom) in static_init
+                holds = atom.args[0] == atom.args[1] if atom.predicate == "=" else self._key(atom) in self._static_init
                 if holds != cond.positive:
                     return f"goal {'' if cond.positive else 'not '}{atom} can never hold (static)"
         return ""

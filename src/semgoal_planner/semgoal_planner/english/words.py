@@ -209,9 +209,7 @@ def _top_named_last(words: list[str]) -> list[str]:
     kept, i = [], 0
     while i < len(words):
         if words[i:i + 2] == ["on", "other"] and (i + 2 == len(words) or words[i + 2] in ("and", "then")):
-            start = i
-            while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("and", "then")):
-                start -= 1
+            start = _listing_start(words, i)
             if start > 0 and words[start - 1] == "stack" and sum(w in BLOCK_COLOURS for w in words[start:i]) >= 2:
                 i += 2
                 continue
@@ -237,9 +235,7 @@ def _top_down(words: list[str]) -> list[str]:
     while TOP_DOWN in words:
         mark = words.index(TOP_DOWN)
         words = words[:mark] + words[mark + 1:]
-        start = mark
-        while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("and", "then")):
-            start -= 1
+        start = _listing_start(words, mark)
         ahead = mark
         while ahead < len(words) and words[ahead] == "and":  # "from the top down, build a tower of ..."
             ahead += 1
@@ -259,12 +255,16 @@ def _top_down(words: list[str]) -> list[str]:
 
 def _listing_after_verb(words: list[str]) -> bool:
     """Whether ``words`` end in one of :data:`LISTING_VERBS` and a list of colours only."""
-    for word in reversed(words):
-        if word in LISTING_VERBS:
-            return True
-        if word not in BLOCK_COLOURS and word not in ("and", "then"):
-            return False
-    return False
+    start = _listing_start(words, len(words))
+    return start > 0 and words[start - 1] in LISTING_VERBS
+
+
+def _listing_start(words: list[str], end: int) -> int:
+    """Where the run of colours and connectives ('red and green then blue') that ends before ``end`` begins."""
+    start = end
+    while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("and", "then")):
+        start -= 1
+    return start
 
 
 NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}

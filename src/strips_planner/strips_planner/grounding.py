@@ -11,11 +11,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from functools import cached_property
 from typing import NamedTuple
 
 from strips_planner import _core, _explore, _ground, adl
-from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, PddlUnsupportedError, Problem
+from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, Problem
 
 
 class Operator(NamedTuple):
@@ -72,6 +73,28 @@ class Task:
         if self.costs is None:
             return self.compiled
         return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, None)
+
+
+GOAL_REACHED = "#goal"
+"""The fact, and the name of the operators that make it, standing for a goal with several ways to it ('#' is in no
+PDDL name): the searches reach it, and plans leave those operators out (:func:`strips_planner.search.search`)."""
+
+
+def _masks(literals: Iterable[Condition], index: dict[Atom, int]) -> tuple[int, int] | None:
+    """(positive, negative) bit masks of ground ``literals`` over the facts ``index`` numbers; None where a positive
+    one is no fact (never reached, so never true) or the two overlap."""
+    pre = pre_neg = 0
+    for literal in literals:
+        bit = index.get(literal.atom)
+        if bit is None:
+            if literal.positive:
+                return None
+            continue
+        if literal.positive:
+            pre |= 1 << bit
+        else:
+            pre_neg |= 1 << bit
+    return None if pre & pre_neg else (pre, pre_neg)
 
 
 class _Grounder:
@@ -155,12 +178,13 @@ class _Grounder:
         width = 1 + max(arity, *map(len, self.domain.predicates.values()), 0)
         bindings = _explore.explore(len(self.number), len(self.objects), width, self.init,
                                     [schema for schema, _ in templates])
-        goal, never = self.problem.goal, ""
+        goal, never, options = self.problem.goal, "", []
         if self.problem.goal_condition is not None:
-            literals = self._goal_literals()
-            if literals is None:
+            options = adl.disjuncts(self.problem.goal_condition, {}, self._static_truth, self._objects_of_type)
+            if not options:
                 never = "the goal's condition can never hold: the static facts rule out every way to it"
-            goal = (*goal, *(literals or ()))
+            elif len(options) == 1:
+                goal, options = (*goal, *sorted(options[0])), []
         fluent = [c for c in goal if self.is_fluent(c.atom.predicate)]
         positive = [c for c in fluent if c.positive]
         nfluent = len(self.predicates)
@@ -172,6 +196,11 @@ class _Grounder:
             Atom, Operator)
         if self.conditional:
             operators = self._with_conditions(operators, facts)
+        if len(options) > 1:  # the goal's ways, each an operator that only marks the goal reached
+            facts, goal_mask = [*facts, Atom(GOAL_REACHED, ())], goal_mask | 1 << len(facts)
+            index = {fact: i for i, fact in enumerate(facts)}
+            operators += [Operator(GOAL_REACHED, (), *masks, 1 << (len(facts) - 1), 0)
+                          for option in options if (masks := _masks(option, index)) is not None]
         costs = self._costs(operators) if self.problem.minimise_cost else None
         return Task(tuple(facts), init, goal_mask, goal_neg, tuple(operators),
                     never or self._unsolvable_reason({positive[i] for i in unreached}, goal), costs)
@@ -191,17 +220,6 @@ class _Grounder:
         members = self._objects_of(kind)
         return self.objects if members is None else tuple(self.objects[i] for i in members)
 
-    def _goal_literals(self) -> tuple[Condition, ...] | None:
-        """The goal condition's literals: it has to come to one conjunction once static atoms are decided; None
-        where it never holds."""
-        options = adl.disjuncts(self.problem.goal_condition, {}, self._static_truth, self._objects_of_type)
-        if not options:
-            return None
-        if len(options) > 1:
-            raise PddlUnsupportedError(f"?:?: the goal leaves a choice ({len(options)} ways to reach it once static "
-                                       "facts are known): only goals that come to one conjunction are supported")
-        return tuple(sorted(options[0]))
-
     def _with_conditions(self, operators: list[Operator], facts: list[Atom]) -> list[Operator]:
         """Each operator of an action with an ADL condition as one operator per way its condition can hold (its
         disjuncts over fluent literals), none where it never can, under its action's name; the others as they
@@ -219,20 +237,9 @@ class _Grounder:
                 continue
             binding = dict(zip((variable for variable, _ in action.parameters), operator.args, strict=True))
             for conjunction in adl.disjuncts(action.condition, binding, self._static_truth, self._objects_of_type):
-                pre, pre_neg = operator.pre, operator.pre_neg
-                for literal in conjunction:
-                    bit = index.get(literal.atom)
-                    if bit is None:  # a fluent atom never reached: never true
-                        if literal.positive:
-                            break
-                        continue
-                    if literal.positive:
-                        pre |= 1 << bit
-                    else:
-                        pre_neg |= 1 << bit
-                else:
-                    if not pre & pre_neg:
-                        result.append(operator._replace(pre=pre, pre_neg=pre_neg))
+                masks = _masks(conjunction, index)
+                if masks is not None and not (operator.pre | masks[0]) & (operator.pre_neg | masks[1]):
+                    result.append(operator._replace(pre=operator.pre | masks[0], pre_neg=operator.pre_neg | masks[1]))
         return result
 
     def _costs(self, operators: list[Operator]) -> tuple[int, ...]:
@@ -240,6 +247,9 @@ class _Grounder:
         actions = {action.name: action for action in self.domain.actions}
         costs = []
         for operator in operators:
+            if operator.name == GOAL_REACHED:
+                costs.append(0)
+                continue
             action = actions[operator.name]
             amount = action.cost
             if isinstance(amount, Atom):

@@ -14,7 +14,7 @@ Successors come in a fixed order, so a search returns the same plan every time.
 
 from __future__ import annotations
 
-from strips_planner.grounding import Operator, Task
+from strips_planner.grounding import GOAL_REACHED, Operator, Task
 
 SEARCHES = ("bfs", "astar", "gbfs", "lazy")
 GREEDY = ("gbfs", "lazy")
@@ -36,7 +36,7 @@ def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = No
     if stats is not None:
         stats.expanded, stats.generated = expanded, generated
         stats.cost = task.cost(plan) if plan is not None else 0
-    return None if plan is None else [task.operators[i] for i in plan]
+    return None if plan is None else [task.operators[i] for i in plan if task.operators[i].name != GOAL_REACHED]
 
 
 def successors(task: Task, state: int) -> list[tuple[int, Operator]]:

@@ -199,8 +199,10 @@ class _Grounder:
         if len(options) > 1:  # the goal's ways, each an operator that only marks the goal reached
             facts, goal_mask = [*facts, Atom(GOAL_REACHED, ())], goal_mask | 1 << len(facts)
             index = {fact: i for i, fact in enumerate(facts)}
-            operators += [Operator(GOAL_REACHED, (), *masks, 1 << (len(facts) - 1), 0)
-                          for option in options if (masks := _masks(option, index)) is not None]
+            ways = [Operator(GOAL_REACHED, (), *masks, 1 << (len(facts) - 1), 0)
+                    for option in options if (masks := _masks(option, index)) is not None]
+            never = never or ("" if ways else "no way to the goal's condition is reachable from the initial state")
+            operators += ways
         costs = self._costs(operators) if self.problem.minimise_cost else None
         return Task(tuple(facts), init, goal_mask, goal_neg, tuple(operators),
                     never or self._unsolvable_reason({positive[i] for i in unreached}, goal), costs)

@@ -23,7 +23,7 @@ LIMITS = {
 
 
 REACHED = 0.9
-"""The success rate whose first env step the card reports per kind (issue 71 asks for 90 % per sub-goal type)."""
+"""The success rate whose first env step the card reports per kind: the tabletop's sample-efficiency yardstick."""
 REACHED_WINDOW = 3
 """Evaluations averaged for it: training's own evaluation has few episodes per type (20 in the recipes), so one
 lucky evaluation does not count."""

@@ -7,4 +7,4 @@ HEADERS = ["strips_planner/_support.h", "strips_planner/_atoms.h", "strips_plann
 
 setup(ext_modules=[Extension(f"strips_planner.{name}", [f"strips_planner/{name}.c"], depends=HEADERS,
                              extra_compile_args=["-O2", "-std=c11"])
-                   for name in ("_core", "_explore", "_ground", "_sexpr")])
+                   for name in ("_core", "_explore", "_ground", "_reader")])

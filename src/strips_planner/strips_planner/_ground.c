@@ -107,20 +107,6 @@ done:
 
 /* -- the output ----------------------------------------------------------------------------------------- */
 
-/* A tuple of `type` (a tuple subclass, such as a named tuple) from `n` new references, which it takes
-   over; NULL (all of them released) when one is NULL or memory runs out. */
-static PyObject *tuple_of(PyTypeObject *type, int n, PyObject **items) {
-    PyObject *tuple = NULL;
-    for (int i = 0; i < n; i++)
-        if (!items[i]) goto fail;
-    if (!(tuple = type == &PyTuple_Type ? PyTuple_New(n) : type->tp_alloc(type, n))) goto fail;
-    for (int i = 0; i < n; i++) PyTuple_SET_ITEM(tuple, i, items[i]);
-    return tuple;
-fail:
-    for (int i = 0; i < n; i++) Py_XDECREF(items[i]);
-    return NULL;
-}
-
 /* The names (items of the tuple `names`) at indices `index[0 .. n)`, as a tuple. */
 static PyObject *names_at(PyObject *names, const int *index, int n) {
     PyObject *tuple = PyTuple_New(n);

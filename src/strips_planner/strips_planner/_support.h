@@ -1,5 +1,5 @@
-/* What the planner's C modules (_core, _ground) share: int rows and Python-int bitsets. Functions are
- * static inline, so each module gets its own copy and exports nothing. */
+/* What the planner's C modules (_core, _ground, _reader) share: int rows, Python-int bitsets and named
+ * tuples. Functions are static inline, so each module gets its own copy and exports nothing. */
 #ifndef SEMGOAL_PLANNER_SUPPORT_H
 #define SEMGOAL_PLANNER_SUPPORT_H
 
@@ -38,6 +38,20 @@ static inline int rows_build(Rows *rows, int nrows, const int *row_of, const int
     for (int k = 0; k < npairs; k++) rows->items[fill[row_of[k]]++] = item_of[k];
     free(fill);
     return 0;
+}
+
+/* A tuple of `type` (a tuple subclass, such as a named tuple) from `n` new references, which it takes
+   over; NULL (all of them released) when one is NULL or memory runs out. */
+static inline PyObject *tuple_of(PyTypeObject *type, int n, PyObject **items) {
+    PyObject *tuple = NULL;
+    for (int i = 0; i < n; i++)
+        if (!items[i]) goto fail;
+    if (!(tuple = type == &PyTuple_Type ? PyTuple_New(n) : type->tp_alloc(type, n))) goto fail;
+    for (int i = 0; i < n; i++) PyTuple_SET_ITEM(tuple, i, items[i]);
+    return tuple;
+fail:
+    for (int i = 0; i < n; i++) Py_XDECREF(items[i]);
+    return NULL;
 }
 
 #if !PY_LITTLE_ENDIAN

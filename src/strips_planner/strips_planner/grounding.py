@@ -145,26 +145,26 @@ class _Grounder:
         :func:`_ground.ground` takes it (its fluent preconditions and effects), each atom a template:
         (predicate number, *arguments), an argument being a parameter's position or ~object for a constant."""
         position = {v: i for i, (v, _) in enumerate(action.parameters)}
-        index = self.index
+        index, number, nfluent = self.index, self.number, len(self.predicates)
 
-        def arguments(atom: Atom) -> tuple[int, ...]:
-            return tuple(position[a] if a in position else ~index[a] for a in atom.args)
+        def arguments(atom: Atom) -> list[int]:
+            return [position[a] if a in position else ~index[a] for a in atom.args]
 
         def template(atom: Atom) -> tuple[int, ...]:
-            return (self.number[atom.predicate], *arguments(atom))
+            return (number[atom.predicate], *arguments(atom))
 
         joined, filters, pre, pre_neg = [], [], [], []
         for cond in action.precondition:
-            predicate = cond.atom.predicate
-            if predicate == "=":
+            if cond.atom.predicate == "=":
                 filters.append((cond.positive, -1, *arguments(cond.atom)))
                 continue
             atom = template(cond.atom)
-            if self.is_fluent(predicate):
+            fluent = atom[0] < nfluent
+            if fluent:
                 (pre if cond.positive else pre_neg).append(atom)
             if cond.positive:
                 joined.append(atom)
-            elif not self.is_fluent(predicate):
+            elif not fluent:
                 filters.append((False, *atom))
         add = [template(a) for a in action.add]
         schema = (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters, add)

@@ -9,19 +9,20 @@ Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` o
 (f ?x ...))`` in an effect, with ``(= (f a ...) N)`` in ``:init``; they count when the problem says
 ``(:metric minimize (total-cost))``, and an action without an increase then costs 0.
 
-Valid input is read fast: the C module ``_sexpr`` turns the text into plain lists of plain strings (Python's
-own pass does where the text is not ASCII). Only when that first pass finds an error is the text read again
-with every token and list knowing its line and column, and the same check, now located, raises the
-:class:`PddlError`.
+Valid input is read fast: the C module ``_reader`` turns the text into plain lists of plain strings (Python's
+own pass does where the text is not ASCII), and checks and builds each plainly valid atom and literal (the rest
+Python checks). Only when that first pass finds an error is the text read again with every token and list
+knowing its line and column, and the same check, now located, raises the :class:`PddlError`.
 """
 
 from __future__ import annotations
 
+import bisect
 import re
 from collections.abc import Callable
 from typing import NamedTuple, TypeVar
 
-from strips_planner import _sexpr
+from strips_planner import _reader
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
 CHECKED_PER_CONSTRUCT = {":adl", ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
@@ -85,7 +86,7 @@ def parse_sexpr(text: str, located: bool = False) -> list:
     text = text.lower()
     if ";" in text:  # blank comments out, keeping every offset
         text = _COMMENT.sub(lambda comment: " " * len(comment[0]), text)
-    tokens: list[str] = [_located(m) for m in _TOKEN.finditer(text)] if located else _TOKEN.findall(text)
+    tokens: list[str] = _located_tokens(text) if located else _TOKEN.findall(text)
     if not tokens:
         raise _error(_at("1:1"), "empty input: expected (define ...)")
     stack: list[tuple[str, list]] = []
@@ -115,10 +116,16 @@ def parse_sexpr(text: str, located: bool = False) -> list:
     return result
 
 
-def _located(match: re.Match) -> Located:
-    source, offset = match.string, match.start()
-    return _at(f"{source.count(chr(10), 0, offset) + 1}:{offset - source.rfind(chr(10), 0, offset)}",
-                      match[0])
+def _located_tokens(text: str) -> list[Located]:
+    """Every token with its line and column, the lines found once (an error late in a long problem is
+    located in one pass, not one per token)."""
+    line_starts = [0, *(newline.end() for newline in re.finditer("\n", text))]
+    tokens = []
+    for match in _TOKEN.finditer(text):
+        offset = match.start()
+        line = bisect.bisect_right(line_starts, offset)
+        tokens.append(_at(f"{line}:{offset - line_starts[line - 1] + 1}", match[0]))
+    return tokens
 
 
 def _at(where: str, text: str = "") -> Located:
@@ -133,7 +140,7 @@ Parsed = TypeVar("Parsed")
 def _read(text: str, reader: Callable[[list], Parsed]) -> Parsed:
     """``reader`` on the fast pass; on an error, on the located pass, which raises it located."""
     try:
-        root = _sexpr.sexpr(text)
+        root = _reader.sexpr(text)
         return reader(parse_sexpr(text) if root is None else root)
     except _UnlocatedError:
         try:
@@ -191,6 +198,8 @@ class Domain:
         self.actions: list[Action] = []
         self.warnings: list[str] = []
         """What the reader let through that strict PDDL refuses (an undeclared requirement)."""
+        self.ancestors: dict[str, frozenset[str]] = {ROOT_TYPE: frozenset((ROOT_TYPE,))}
+        """type -> it and its supertypes, once ``:types`` is read: the C reader's subtype check."""
 
     def is_subtype(self, sub: str, sup: str) -> bool:
         """Whether every object of type ``sub`` is one of type ``sup`` (``either`` types: unions)."""
@@ -253,6 +262,17 @@ def _either(expr: list) -> str:
     return f"{EITHER}{','.join(sorted(_name(member, 'a type name') for member in expr[1:]))})"
 
 
+def _lineage(types: dict[str, str], kind: str, section: list) -> list[str]:
+    """``kind`` and its supertypes up to the root; a type that is its own supertype is refused."""
+    lineage = []
+    while kind:
+        if kind in lineage:
+            raise _error(section, f"type {kind!r} is its own supertype ({' - '.join((*lineage, kind))})")
+        lineage.append(kind)
+        kind = types.get(kind, "")
+    return lineage
+
+
 def either_members(kind: str) -> list[str]:
     return kind[len(EITHER):-1].split(",")
 
@@ -304,6 +324,8 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
 _NOT_STRIPS = frozenset(("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"))
 _ADL_CONDITIONS = frozenset(("or", "imply", "exists", "forall"))
 """What a precondition or a goal may say beyond a conjunction of literals (:mod:`strips_planner.adl`)."""
+_NEGATION = frozenset((":negative-preconditions", ":adl"))
+_reader.bind(Atom, Condition, _NOT_STRIPS | {"and", "not", "="}, ROOT_TYPE)
 
 
 def _conditions(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
@@ -381,7 +403,12 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
 
 def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
              what: str) -> Condition:
-    """An atom or a negated one (``expr`` is not empty)."""
+    """An atom or a negated one (``expr`` is not empty): built in C where it is plainly valid, else checked
+    here, where every error is worded."""
+    fast = _reader.literal(expr, domain.predicates, variables, objects, domain.ancestors,
+                           what != "precondition" or bool(domain.requirements & _NEGATION))
+    if fast is not None:
+        return fast
     head = _name(expr[0], "a predicate or 'and'")
     if head == "not":
         if len(expr) != 2:
@@ -391,7 +418,7 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
             raise _unsupported(inner, f"{inner[0]!r} under a not is not supported in a {what}")
         if inner and _name(inner[0], "an atom") in ("and", "not", "or"):
             raise _error(inner, f"only atoms can be negated in a {what}")
-        if (what == "precondition" and not domain.requirements & {":negative-preconditions", ":adl"}
+        if (what == "precondition" and not domain.requirements & _NEGATION
                 and inner and inner[0] != "="):
             _warn(domain, "negative preconditions are used without :negative-preconditions in :requirements")
         return Condition(_atom(inner, domain, variables, objects), positive=False)
@@ -472,6 +499,7 @@ def _domain(root: list) -> Domain:
                 domain.types[child] = parent
                 domain.types.setdefault(parent, ROOT_TYPE)
             domain.types[ROOT_TYPE] = ""
+            domain.ancestors = {kind: frozenset(_lineage(domain.types, kind, section)) for kind in domain.types}
         elif key == ":constants":
             for const, kind, token in _typed_list(body, section, variables=False):
                 _check_type(domain, kind, token)
@@ -576,6 +604,10 @@ def _problem(root: list, domain: Domain) -> Problem:
                 problem.objects[obj] = kind
         elif key == ":init":
             for fact in section[1:]:
+                atom = _reader.atom(fact, domain.predicates, problem.objects, domain.ancestors)
+                if atom is not None:
+                    problem.init.add(atom)
+                    continue
                 fact = _sub(fact, "initial fact")
                 head = _name(fact[0], "") if fact else ""
                 if head == "=" and len(fact) == 3 and isinstance(fact[1], list):

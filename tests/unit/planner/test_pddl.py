@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 
 from semgoal_planner.blocksworld import DOMAIN_PATH
-from strips_planner import _sexpr
-from strips_planner.pddl import PddlError, _UnlocatedError, parse_domain, parse_problem, parse_sexpr
+from strips_planner import _reader
+from strips_planner.pddl import Atom, Condition, PddlError, _UnlocatedError, parse_domain, parse_problem, parse_sexpr
 
 FIXTURES = Path(__file__).parent / "fixtures"
 DOMAINS = Path(DOMAIN_PATH).parent
@@ -84,7 +84,7 @@ def test_the_c_pass_reads_every_shipped_and_fixture_file_as_the_python_pass_does
     assert len(files) >= 10
     for path in files:
         text = path.read_text()
-        assert _sexpr.sexpr(text) == parse_sexpr(text), path.name
+        assert _reader.sexpr(text) == parse_sexpr(text), path.name
 
 
 def test_the_c_pass_agrees_with_the_python_pass_on_random_text() -> None:
@@ -94,10 +94,100 @@ def test_the_c_pass_agrees_with_the_python_pass_on_random_text() -> None:
     rng = random.Random(0)
     for _ in range(20000):
         text = "".join(rng.choice(pieces) for _ in range(rng.randint(0, 12)))
-        assert _sexpr.sexpr(text) == _python_pass(text), repr(text)
+        assert _reader.sexpr(text) == _python_pass(text), repr(text)
 
 
 def test_non_ascii_text_is_left_to_the_python_pass() -> None:
     text = "; café\n(define (domain d) (:predicates (p)))"
-    assert _sexpr.sexpr(text) is None
+    assert _reader.sexpr(text) is None
     assert parse_domain(text).predicates == {"p": ()}
+
+
+def _outcome(read, *texts: str) -> tuple:
+    """What ``read`` makes of the texts: every field of the domain or problem, or the error's class and words."""
+    try:
+        return ("read", vars(read(*texts)))
+    except PddlError as error:
+        return (type(error).__name__, str(error))
+
+
+def _domain_and_problem(domain: str, problem: str):
+    return parse_problem(problem, parse_domain(domain))
+
+
+def _random_pddl(rng: random.Random) -> tuple[str, str]:
+    """A small typed domain and problem where an atom may be wrong now and then: an unknown name, a wrong
+    count, a wrong or wider type; or fine through a subtype, an ``either``, an equality, a negation with or
+    without its requirement."""
+    types = ["object", "t1", "t2", "t3"]
+
+    def pick(good: list[str], bad: str) -> str:
+        return bad if rng.random() < 0.02 else rng.choice(good)
+
+    kind = lambda: pick([*types, "(either t1 t3)"], "nosuch")  # noqa: E731
+    requirements = " ".join(rng.sample([":strips", ":typing", ":negative-preconditions", ":equality"], rng.randint(1, 4)))
+    predicates = {f"p{i}": [kind() for _ in range(rng.randint(0, 2))] for i in range(3)}
+    params = [(f"?v{i}", rng.choice(types[1:])) for i in range(rng.randint(0, 3))]
+    terms = [*(v for v, _ in params), "c1", "c2"]
+
+    def literal(negation: bool = True, equality: bool = True) -> str:
+        name = pick([*predicates, *predicates, *["="] * equality], "nosuch")
+        arity = 2 if name == "=" else len(predicates.get(name, [])) + (rng.choice([1, -1]) if rng.random() < 0.03 else 0)
+        atom = f"({name} {' '.join(pick(terms, rng.choice(['?nosuch', 'nosuch'])) for _ in range(max(arity, 0)))})"
+        return f"(not {atom})" if negation and rng.random() < 0.3 else atom
+
+    decls = " ".join(f"({name} {' '.join(f'?a{j} - {k}' for j, k in enumerate(ks))})" for name, ks in predicates.items())
+    domain = (f"(define (domain d) (:requirements {requirements}) (:types t1 t2 - t3 t3) "
+              f"(:constants c1 - {rng.choice(types)} c2 - t1) (:predicates {decls}) "
+              f"(:action a :parameters ({' '.join(f'{v} - {k}' for v, k in params)}) "
+              f":precondition (and {' '.join(literal() for _ in range(3))}) "
+              f":effect (and {' '.join(literal(equality=False) for _ in range(2))})))")
+    terms[:] = ["o1", "o2", "c1"]
+    init = " ".join(literal(negation=False, equality=False) for _ in range(3))
+    problem = (f"(define (problem p) (:domain d) (:objects o1 - {rng.choice(types)} o2 - {kind()}) "
+               f"(:init {init}) (:goal (and {' '.join(literal() for _ in range(2))})))")
+    return domain, problem
+
+
+def test_the_c_checks_read_every_domain_and_problem_as_python_alone_does(monkeypatch) -> None:
+    """The C reader builds an atom or literal only where Python's checks would build the same one, without a
+    warning: on random domains and problems (a third of them malformed somewhere) both read the same fields or
+    raise the same error."""
+    rng, outcomes = random.Random(1), []
+    for _ in range(600):
+        domain, problem = _random_pddl(rng)
+        with_c = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
+        with monkeypatch.context() as python_alone:
+            python_alone.setattr(_reader, "literal", lambda *_: None)
+            python_alone.setattr(_reader, "atom", lambda *_: None)
+            alone = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
+        assert with_c == alone, (domain, problem)
+        outcomes.append(with_c[1][0])
+    assert outcomes.count("read") >= 30 and len(set(outcomes)) >= 2
+
+
+def test_the_c_checks_read_the_shipped_domains_as_python_alone_does(monkeypatch) -> None:
+    for path in sorted(FIXTURES.glob("*domain*.pddl")) + sorted(DOMAINS.glob("*.pddl")):
+        with_c = _outcome(parse_domain, path.read_text())
+        monkeypatch.setattr(_reader, "literal", lambda *_: None)
+        assert _outcome(parse_domain, path.read_text()) == with_c, path.name
+        monkeypatch.undo()
+
+
+def test_a_type_that_is_its_own_supertype_is_refused() -> None:
+    with pytest.raises(PddlError, match=r"1:\d+: type 'a' is its own supertype \(a - b - a\)"):
+        parse_domain("(define (domain d) (:types a - b b - a) (:predicates (p ?x - a)))")
+
+
+def test_the_c_checks_build_plain_literals_and_leave_the_rest_to_python() -> None:
+    predicates, objects = {"on": ("block", "place"), "free": ()}, {"a": "block", "t": "table"}
+    ancestors = {"block": frozenset({"block", "place", "object"}), "table": frozenset({"table", "place", "object"})}
+    variables = {"?x": "block"}
+    built = _reader.literal(["not", ["on", "?x", "t"]], predicates, variables, objects, ancestors, True)
+    assert built == Condition(Atom("on", ("?x", "t")), positive=False) and type(built.atom) is Atom
+    assert _reader.atom(["on", "a", "a"], predicates, objects, ancestors) == Atom("on", ("a", "a"))
+    for expr, negation in [(["not", ["on", "?x", "t"]], False), (["on", "t", "a"], True), (["on", "?x"], True),
+                           (["on", "?y", "t"], True), (["nosuch"], True), (["=", "?x", "a"], True),
+                           (["or", ["free"]], True), (["not", ["and"]], True), (["on", ["a"], "t"], True)]:
+        assert _reader.literal(expr, predicates, variables, objects, ancestors, negation) is None, expr
+    assert _reader.atom(["on", "?x", "t"], predicates, objects, ancestors) is None

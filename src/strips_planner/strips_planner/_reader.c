@@ -1,0 +1,228 @@
+/* The PDDL reader's fast pass in C: ASCII text -> its single top-level s-expression as nested lists of
+ * lower-case str tokens, or None; then each atom and literal of well-formed input checked against its
+ * declaration and built (`atom`, `literal`), or None.
+ *
+ * It reads exactly what strips_planner.pddl's regular-expression pass reads: a `;` comment runs to the end of
+ * its line, `(` and `)` are tokens, a `?` starts a new token, and a name runs to whitespace (Python's
+ * `str.isspace` over ASCII), a parenthesis, `?` or `;`. Names are interned, so the dictionary lookups that
+ * follow (a domain's predicates looked up from its problem's atoms) compare pointers. None means "read this
+ * in Python": non-ASCII text, or any structural error, which the Python reader then reports with its line
+ * and column. The atoms' checks answer None likewise for anything that is not plainly valid (an unknown name,
+ * a wrong count, a type that needs `either` or a warning), so strips_planner.pddl's own checks, the one place
+ * that words every error, look at it again.
+ */
+#include "_support.h" /* Python.h, tuple_of */
+
+/* ASCII whitespace as Python's str.isspace has it: \t \n \v \f \r, the separators 0x1c-0x1f and space. */
+static int is_space(unsigned char c) { return (c >= 9 && c <= 13) || (c >= 28 && c <= 32); }
+
+static int ends_name(unsigned char c) { return is_space(c) || c == '(' || c == ')' || c == '?' || c == ';'; }
+
+/* The token text[start:end] in lower case, interned (a new reference). */
+static PyObject *token(const char *text, Py_ssize_t start, Py_ssize_t end) {
+    PyObject *fresh = PyUnicode_New(end - start, 127);
+    if (!fresh) return NULL;
+    Py_UCS1 *out = PyUnicode_1BYTE_DATA(fresh);
+    for (Py_ssize_t i = start; i < end; i++) {
+        unsigned char c = (unsigned char)text[i];
+        out[i - start] = (Py_UCS1)(c >= 'A' && c <= 'Z' ? c + ('a' - 'A') : c);
+    }
+    PyUnicode_InternInPlace(&fresh);
+    return fresh;
+}
+
+/* Appends `item` (a new reference, stolen) to the innermost open list; -1 on failure. */
+static int append(PyObject *stack, PyObject *item) {
+    Py_ssize_t depth = PyList_GET_SIZE(stack);
+    int failed = PyList_Append(PyList_GET_ITEM(stack, depth - 1), item);
+    Py_DECREF(item);
+    return failed;
+}
+
+static PyObject *parse(PyObject *self, PyObject *arg) {
+    (void)self;
+    if (!PyUnicode_Check(arg)) {
+        PyErr_SetString(PyExc_TypeError, "sexpr() takes a str");
+        return NULL;
+    }
+    if (!PyUnicode_IS_ASCII(arg)) Py_RETURN_NONE;
+    const char *text = (const char *)PyUnicode_1BYTE_DATA(arg);
+    Py_ssize_t size = PyUnicode_GET_LENGTH(arg);
+    PyObject *stack = PyList_New(0), *result = NULL;
+    int structural = 0; /* a malformed text: None, so Python reads it again and says where */
+    if (!stack) goto done;
+    for (Py_ssize_t i = 0; i < size && !structural;) {
+        unsigned char c = (unsigned char)text[i];
+        if (is_space(c)) {
+            i++;
+        } else if (c == ';') {
+            while (i < size && text[i] != '\n') i++;
+        } else if (result) {
+            structural = 1; /* a token after the end of the definition */
+        } else if (c == '(') {
+            PyObject *list = PyList_New(0);
+            if (!list || PyList_Append(stack, list) < 0) {
+                Py_XDECREF(list);
+                goto done;
+            }
+            Py_DECREF(list);
+            i++;
+        } else if (c == ')') {
+            Py_ssize_t depth = PyList_GET_SIZE(stack);
+            if (depth == 0) {
+                structural = 1;
+                break;
+            }
+            PyObject *closed = PyList_GET_ITEM(stack, depth - 1);
+            Py_INCREF(closed);
+            if (PyList_SetSlice(stack, depth - 1, depth, NULL) < 0) {
+                Py_DECREF(closed);
+                goto done;
+            }
+            if (depth == 1) {
+                result = closed;
+            } else if (append(stack, closed) < 0) {
+                goto done;
+            }
+            i++;
+        } else if (PyList_GET_SIZE(stack) == 0) {
+            structural = 1; /* a name outside any list */
+        } else {
+            Py_ssize_t start = i++;
+            while (i < size && !ends_name((unsigned char)text[i])) i++;
+            PyObject *name = token(text, start, i);
+            if (!name || append(stack, name) < 0) goto done;
+        }
+    }
+    if (structural || !result || PyList_GET_SIZE(stack) != 0) {
+        Py_CLEAR(result);
+        result = Py_NewRef(Py_None);
+    }
+done:
+    Py_XDECREF(stack);
+    if (PyErr_Occurred()) Py_CLEAR(result);
+    return result;
+}
+
+/* -- atoms and literals ------------------------------------------------------------------------------------ */
+
+/* Set once by `bind`: the reader's named tuples, the names no predicate may take, and the root type. */
+static PyTypeObject *atom_type, *condition_type;
+static PyObject *reserved, *root_type;
+
+static PyObject *bind(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *atom, *condition, *names, *root;
+    if (!PyArg_ParseTuple(args, "O!O!O!U", &PyType_Type, &atom, &PyType_Type, &condition, &PyFrozenSet_Type,
+                          &names, &root))
+        return NULL;
+    if (!PyType_IsSubtype((PyTypeObject *)atom, &PyTuple_Type) ||
+        !PyType_IsSubtype((PyTypeObject *)condition, &PyTuple_Type))
+        return PyErr_Format(PyExc_TypeError, "bind() takes two tuple types");
+    Py_XSETREF(atom_type, (PyTypeObject *)Py_NewRef(atom));
+    Py_XSETREF(condition_type, (PyTypeObject *)Py_NewRef(condition));
+    Py_XSETREF(reserved, Py_NewRef(names));
+    Py_XSETREF(root_type, Py_NewRef(root));
+    Py_RETURN_NONE;
+}
+
+/* Whether an argument of type `has` may stand where `expected` is declared: 1, 0 (not plainly: None to the
+   caller), -1 on error. `ancestors` maps each type to the set of it and its supertypes. */
+static int fits(PyObject *has, PyObject *expected, PyObject *ancestors) {
+    if (expected == root_type || has == expected) return 1;
+    int same = PyObject_RichCompareBool(expected, root_type, Py_EQ);
+    if (same) return same;
+    if ((same = PyObject_RichCompareBool(has, expected, Py_EQ))) return same;
+    PyObject *supertypes = PyDict_GetItemWithError(ancestors, has);
+    if (!supertypes) return PyErr_Occurred() ? -1 : 0;
+    return PySet_Contains(supertypes, expected);
+}
+
+/* `expr` as an Atom when it is plainly valid (a new reference), Py_None (borrowed) when Python should look,
+   NULL on error. `variables` is None where none are in scope (a problem's atoms). */
+static PyObject *checked_atom(PyObject *expr, PyObject *predicates, PyObject *variables, PyObject *objects,
+                              PyObject *ancestors) {
+    if (!atom_type) {
+        PyErr_SetString(PyExc_RuntimeError, "_reader.bind() was not called");
+        return NULL;
+    }
+    if (!PyList_CheckExact(expr) || PyList_GET_SIZE(expr) == 0) return Py_None;
+    PyObject *head = PyList_GET_ITEM(expr, 0);
+    if (!PyUnicode_CheckExact(head)) return Py_None;
+    int special = PySet_Contains(reserved, head);
+    if (special) return special < 0 ? NULL : Py_None;
+    PyObject *expected = PyDict_GetItemWithError(predicates, head);
+    Py_ssize_t nargs = PyList_GET_SIZE(expr) - 1;
+    if (!expected) return PyErr_Occurred() ? NULL : Py_None;
+    if (!PyTuple_CheckExact(expected) || PyTuple_GET_SIZE(expected) != nargs) return Py_None;
+    for (Py_ssize_t i = 0; i < nargs; i++) {
+        PyObject *arg = PyList_GET_ITEM(expr, i + 1);
+        if (!PyUnicode_CheckExact(arg) || PyUnicode_GET_LENGTH(arg) == 0) return Py_None;
+        PyObject *scope = PyUnicode_READ_CHAR(arg, 0) == '?' ? variables : objects;
+        if (scope == Py_None) return Py_None;
+        PyObject *has = PyDict_GetItemWithError(scope, arg);
+        if (!has) return PyErr_Occurred() ? NULL : Py_None;
+        int ok = fits(has, PyTuple_GET_ITEM(expected, i), ancestors);
+        if (ok <= 0) return ok < 0 ? NULL : Py_None;
+    }
+    PyObject *items[2] = {Py_NewRef(head), PyList_GetSlice(expr, 1, nargs + 1)};
+    if (items[1]) Py_SETREF(items[1], PyList_AsTuple(items[1]));
+    return tuple_of(atom_type, 2, items);
+}
+
+static PyObject *atom(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *expr, *predicates, *objects, *ancestors;
+    if (!PyArg_ParseTuple(args, "OO!O!O!", &expr, &PyDict_Type, &predicates, &PyDict_Type, &objects, &PyDict_Type,
+                          &ancestors))
+        return NULL;
+    PyObject *result = checked_atom(expr, predicates, Py_None, objects, ancestors);
+    return result == Py_None ? Py_NewRef(Py_None) : result;
+}
+
+static PyObject *literal(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *expr, *predicates, *variables, *objects, *ancestors;
+    int negation;
+    if (!PyArg_ParseTuple(args, "OO!OO!O!p", &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
+                          &PyDict_Type, &ancestors, &negation))
+        return NULL;
+    if (variables != Py_None && !PyDict_Check(variables))
+        return PyErr_Format(PyExc_TypeError, "variables must be a dict or None");
+    int positive = 1;
+    if (PyList_CheckExact(expr) && PyList_GET_SIZE(expr) == 2) {
+        PyObject *head = PyList_GET_ITEM(expr, 0);
+        int is_not = PyUnicode_CheckExact(head) && PyUnicode_CompareWithASCIIString(head, "not") == 0;
+        if (is_not && !negation) Py_RETURN_NONE;
+        if (is_not) {
+            positive = 0;
+            expr = PyList_GET_ITEM(expr, 1);
+        }
+    }
+    PyObject *found = checked_atom(expr, predicates, variables, objects, ancestors);
+    if (found == Py_None) Py_RETURN_NONE;
+    PyObject *items[2] = {found, PyBool_FromLong(positive)};
+    return tuple_of(condition_type, 2, items);
+}
+
+static PyMethodDef reader_methods[] = {
+    {"sexpr", parse, METH_O,
+     "sexpr(text) -> the single top-level s-expression as nested lists of lower-case str, or None where the text "
+     "is not ASCII or not well formed (the Python reader then says where)."},
+    {"bind", bind, METH_VARARGS,
+     "bind(atom_type, condition_type, reserved, root_type): the reader's named tuples, the names that are no "
+     "predicate's (and, not, =, ...) and the root type, once before atom() and literal()."},
+    {"atom", atom, METH_VARARGS,
+     "atom(expr, predicates, objects, ancestors) -> an Atom of a problem (no variables), or None where "
+     "Python's checks should look."},
+    {"literal", literal, METH_VARARGS,
+     "literal(expr, predicates, variables, objects, ancestors, negation) -> a Condition, or None where Python's "
+     "checks should look; a (not ...) only with `negation`."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef reader_module = {
+    PyModuleDef_HEAD_INIT, "_reader", "The PDDL reader's fast pass in C.", -1, reader_methods, NULL, NULL, NULL, NULL,
+};
+
+PyMODINIT_FUNC PyInit__reader(void) { return PyModule_Create(&reader_module); }

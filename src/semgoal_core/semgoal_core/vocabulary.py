@@ -247,6 +247,12 @@ class SemanticLayout:
             entries = [k for k, (n, _) in enumerate(self.atoms) if n == name]
             args = [[scene.objects.index(a) for a in self.atoms[k][1]] for k in entries]
             self.groundings[name] = (np.array(entries), np.array(args))
+        self.spans: dict[str, tuple[slice, tuple[np.ndarray, ...]]] = {
+            name: (slice(int(entries[0]), int(entries[-1]) + 1) if len(entries) else slice(0, 0),
+                   tuple(np.ascontiguousarray(column) for column in args.T))
+            for name, (entries, args) in self.groundings.items()}
+        """Per predicate: its entries as one slice (each predicate's are contiguous) and each argument's object
+        indices, for :func:`evaluate`."""
 
     @property
     def size(self) -> int:
@@ -334,7 +340,8 @@ LAYOUTS: dict[str, SemanticLayout] = {name: SemanticLayout(scene) for name, scen
 def rests_on(top: np.ndarray, bottom: np.ndarray, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
     """The geometry of ``above``, for block centres (..., 3): also where a scene has no above predicate."""
     delta = np.asarray(top) - np.asarray(bottom)
-    return ((np.linalg.norm(delta[..., :2], axis=-1) < thresholds.above_xy)
+    flat = delta[..., :2]
+    return ((np.sqrt((flat * flat).sum(axis=-1)) < thresholds.above_xy)  # np.linalg.norm's sums
             & (delta[..., 2] > thresholds.above_dz_min) & (delta[..., 2] < thresholds.above_dz_max))
 
 
@@ -370,23 +377,26 @@ def evaluate(
     :param other_hands: grip position and finger opening of each other arm: ``holding`` is in any hand.
     """
     positions = np.asarray(block_positions, dtype=np.float64)
-    count = len(layout.objects)
-    present = np.ones(count, dtype=bool) if present is None else np.asarray(present, dtype=bool)
+    present = None if present is None else np.asarray(present, dtype=bool)
+    if present is not None and present.all():
+        present = None
     vector = np.zeros(layout.size, dtype=bool)
-    for name, (entries, args) in layout.groundings.items():
+    for name, (span, columns) in layout.spans.items():
         if name == "close":
-            a, b = positions[args[:, 0]], positions[args[:, 1]]
-            value = np.linalg.norm(a - b, axis=1) <= thresholds.close_distance
+            delta = positions[columns[0]] - positions[columns[1]]
+            value = np.sqrt((delta * delta).sum(axis=1)) <= thresholds.close_distance  # np.linalg.norm's sums
         elif name == "above":
-            value = rests_on(positions[args[:, 0]], positions[args[:, 1]], thresholds)
+            value = rests_on(positions[columns[0]], positions[columns[1]], thresholds)
         elif name == "holding":
             held = held_alone(positions, grip_position, finger_opening, present, thresholds)
             for grip, opening in other_hands:
                 held = held | held_alone(positions, grip, opening, present, thresholds)
-            value = held[args[:, 0]]
+            value = held[columns[0]]
         else:  # in_bin
-            value = layout.scene.bin.contains(positions[args[:, 0]], table_height)
-        vector[entries] = value & present[args].all(axis=1)
+            value = layout.scene.bin.contains(positions[columns[0]], table_height)
+        if present is not None:
+            value = value & np.logical_and.reduce([present[column] for column in columns])
+        vector[span] = value
     return vector
 
 

@@ -6,6 +6,7 @@ import json
 import pytest
 
 from semgoal_bringup.experiments import together
+from semgoal_bringup.experiments.episodes import Outcome
 from semgoal_bringup.tools.console_core import region_taken, step_place
 from semgoal_core.vocabulary import LAYOUTS, Literal, SubGoal
 from semgoal_planner.executive import Executive, Observation
@@ -38,6 +39,18 @@ def test_a_persons_step_has_its_place_in_the_console_and_the_bin_takes_one_at_a_
     assert "robot is putting a block in the bin (put_in_bin(red))" in region_taken("bin", robot_at_bin)
     assert region_taken("table", robot_at_bin) == ""
     assert region_taken("bin", [("put_in_bin(red)", "robot", "pending"), ("pick(green)", "robot", "active")]) == ""
+
+
+def test_the_summary_names_each_missed_start_and_why(capsys) -> None:
+    won, fell, slow, restless = (Outcome("DC-4", 1, True, 100), Outcome("DC-4", 1, False, 90, fell_off=True),
+                                 Outcome("DC-4", 2, False, 400, replans=3), Outcome("DC-4", 2, False, 80, first_held=60))
+    result = together.summary([(won, fell), (slow, restless)], ("one_arm", "two_arms"))
+    assert result["misses"] == [
+        {"seed": 1, "mode": "two_arms", "why": "a block ended off the table"},
+        {"seed": 2, "mode": "one_arm", "why": "the goal never held in 400 control steps (3 re-plans)"},
+        {"seed": 2, "mode": "two_arms", "why": "the goal held at step 60 but not at rest at the end"}]
+    together.print_summary(result, ("one_arm", "two_arms"))
+    assert "missed: start 2 (one_arm): the goal never held in 400 control steps (3 re-plans)" in capsys.readouterr().out
 
 
 @pytest.mark.slow

@@ -3,7 +3,8 @@
 Training: env steps per second with the gradient steps included, once the replay buffer holds its first
 episodes, on one torch thread:
 - ours (`Trainer.cycle`) on `two_blocks` sub-goals, with one gradient step per env step (the reference's
-  setting) and with the shipped setting (``TrainConfig.updates_per_step``);
+  setting), the same with the update's matrix products in bfloat16 (``SacConfig.precision``, where the CPU
+  multiplies bfloat16 in hardware), and with the shipped setting (``TrainConfig.updates_per_step``);
 - SB3 SAC + HerReplayBuffer (batch 256, nets [256, 256], one gradient step per env step) on the same env,
   and on gymnasium-robotics' FetchPickAndPlace-v4: the reference the policy issue measured (~47 steps/s).
 Each configuration runs in its own child process (``python -O``: gymnasium-robotics' asserts fail on
@@ -27,7 +28,7 @@ import time
 
 import numpy as np
 
-TRAIN_CONFIGS = ("ours:1", "ours:shipped", "sb3:two_blocks", "sb3:FetchPickAndPlace-v4")
+TRAIN_CONFIGS = ("ours:1", "ours:1:bf16", "ours:shipped", "sb3:two_blocks", "sb3:FetchPickAndPlace-v4")
 REFERENCE = "sb3:FetchPickAndPlace-v4"
 WARMUP_STEPS = 1_000
 
@@ -63,12 +64,14 @@ def train_rate(config: str, steps: int, warmup: int = WARMUP_STEPS) -> float:
     kind, _, arg = config.partition(":")
     if kind == "ours":
         from semgoal_bringup.experiments.training import trainer_for
+        from semgoal_policy.sac import SacConfig
         from semgoal_policy.trainer import TrainConfig
 
         defaults = TrainConfig(scene="two_blocks")
-        updates = 1.0 if arg == "1" else defaults.updates_per_step
-        trainer = trainer_for(TrainConfig(scene="two_blocks", seed=0, updates_per_step=updates,
-                                      learning_starts=warmup, run_dir=None))
+        updates, _, precision = arg.partition(":")
+        trainer = trainer_for(TrainConfig(scene="two_blocks", seed=0, learning_starts=warmup, run_dir=None,
+                                          updates_per_step=1.0 if updates == "1" else defaults.updates_per_step,
+                                          sac=SacConfig(precision=precision or "fp32")))
         while trainer.replay.transitions < warmup:
             trainer.cycle()
         start, done = time.perf_counter(), 0
@@ -154,8 +157,10 @@ def main(argv: list[str]) -> int:
             print(f"[repeat {repeat + 1}/{args.repeats}] {config:28s} {rates[config][-1]:7.1f} steps/s", file=out, flush=True)
     medians = {config: round(statistics.median(values), 1) for config, values in rates.items()}
     latency = json.loads(_child(["--worker", "inference", "--calls", str(args.calls)]))
+    from semgoal_policy.sac import bf16_is_native
+
     result = {"training": {"unit": "env steps/s with gradient steps, median of repeats, one torch thread",
-                           "steps_per_second": medians,
+                           "bf16_native": bf16_is_native(), "steps_per_second": medians,
                            "ratio_to_reference": {c: round(v / medians[REFERENCE], 2) for c, v in medians.items()},
                            "reference": REFERENCE},
               "inference": latency}

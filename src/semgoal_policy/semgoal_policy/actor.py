@@ -109,7 +109,7 @@ class Actor(GaussianPolicy):
 
     def forward(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """(mean, log_std) of the pre-tanh Gaussian."""
-        mean, log_std = self.net(self.features(obs, goal)).chunk(2, dim=-1)
+        mean, log_std = self.net(self.features(obs, goal)).float().chunk(2, dim=-1)  # fp32 under autocast too
         return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
 
 

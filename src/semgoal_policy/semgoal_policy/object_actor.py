@@ -116,7 +116,8 @@ class ObjectActor(GaussianPolicy):
         mean_pool = (embedded * weight).sum(1) / weight.sum(1).clamp(min=1.0)
         max_pool = embedded.masked_fill(~present.unsqueeze(-1), -1e9).max(1).values
         own = embedded[torch.arange(len(obs)), subject]
-        mean, log_std = self.net["head"](torch.cat([context, mean_pool, max_pool, own], dim=-1)).chunk(2, dim=-1)
+        head = self.net["head"](torch.cat([context, mean_pool, max_pool, own], dim=-1)).float()  # fp32 under autocast
+        mean, log_std = head.chunk(2, dim=-1)
         return mean, torch.clamp(log_std, LOG_STD_MIN, self.log_std_max)
 
 

@@ -30,4 +30,4 @@ def test_bench_policy_runs_every_configuration_at_a_tiny_size():
     figures = json.loads(result.stdout.strip().splitlines()[-1])
     rates = figures["training"]["steps_per_second"]
     assert set(rates) == set(TRAIN_CONFIGS) and all(rate > 0 for rate in rates.values())
-    assert figures["training"]["ratio_to_reference"][REFERENCE] == 1.0
+    assert figures["training"]["ratio_to_reference"][REFERENCE] == 1.0 and isinstance(figures["training"]["bf16_native"], bool)

@@ -308,3 +308,47 @@ def test_the_second_arm_acts_as_the_first_would_in_the_reflected_world() -> None
     np.testing.assert_allclose(second.act(observation), ArmFrame("desk_cleanup", 1).action(first.act(seen)), atol=1e-5)
     shared = SubgoalController("desk_cleanup", arm=1, shared=True)
     assert shared.hold(observation)[0] > 0  # an idle empty hand across the table draws back towards its own side
+
+
+@pytest.mark.parametrize("architecture", ["mlp", "object"])
+def test_a_bf16_update_multiplies_in_bf16_and_moves_the_weights_as_fp32_does(architecture: str) -> None:
+    """Under ``precision: bf16`` the networks' linear layers see bfloat16 inputs, while weights, losses and the
+    actions the losses read stay fp32; one update from the same weights moves them in nearly the same direction."""
+    import torch
+
+    from semgoal_policy.replay import Batch
+    from semgoal_policy.sac import SacAgent, SacConfig
+
+    scene = "tabletop" if architecture == "object" else ""
+    obs_size = layout.observation_size("tabletop") if scene else 6
+    goal_size = layout.goal_size("tabletop") if scene else 4
+    rng = np.random.default_rng(0)
+    n = 64
+    obs = rng.uniform(0.0, 1.0, (n, obs_size)).astype(np.float32)
+    batch = Batch(obs, rng.integers(0, 2, (n, goal_size)).astype(np.float32), rng.uniform(-1, 1, (n, 4)).astype(np.float32),
+                  rng.integers(0, 2, n).astype(np.float32), obs + 0.01, rng.uniform(-1, 1, (n, 4)).astype(np.float32),
+                  np.ones(n, np.float32))
+    moves = {}
+    for precision in ("fp32", "bf16"):
+        torch.manual_seed(0)
+        agent = SacAgent(obs_size, goal_size, SacConfig(precision=precision, architecture=architecture), scene)
+        seen: set[torch.dtype] = set()
+        hook = torch.nn.modules.module.register_module_forward_hook(
+            lambda module, inputs, output, seen=seen: seen.add(output.dtype) if isinstance(module, torch.nn.Linear) else None)
+        before = torch.cat([p.detach().flatten() for p in agent.critic.parameters()])
+        torch.manual_seed(1)
+        metrics = agent.update(batch, batch)
+        hook.remove()
+        after = torch.cat([p.detach().flatten() for p in agent.critic.parameters()])
+        assert np.isfinite(list(metrics.values())).all() and after.dtype == torch.float32
+        assert seen == ({torch.bfloat16} if precision == "bf16" else {torch.float32})
+        moves[precision] = after - before
+    cosine = torch.nn.functional.cosine_similarity(moves["fp32"], moves["bf16"], dim=0).item()
+    assert cosine > 0.9, cosine
+
+
+def test_an_unknown_precision_is_refused() -> None:
+    from semgoal_policy.sac import SacAgent, SacConfig
+
+    with pytest.raises(ValueError, match="unknown precision 'fp8'; valid: fp32, bf16"):
+        SacAgent(6, 4, SacConfig(precision="fp8"))

@@ -1,6 +1,6 @@
 /* The PDDL reader's fast pass in C: ASCII text -> its single top-level s-expression as nested lists of
  * lower-case str tokens, or None; then each atom and literal of well-formed input checked against its
- * declaration and built (`atom`, `literal`), or None.
+ * declaration and built (`atom`, `literal`, `conjunction`), or None.
  *
  * It reads exactly what strips_planner.pddl's regular-expression pass reads: a `;` comment runs to the end of
  * its line, `(` and `)` are tokens, a `?` starts a new token, and a name runs to whitespace (Python's
@@ -180,29 +180,81 @@ static PyObject *atom(PyObject *self, PyObject *args) {
     return result == Py_None ? Py_NewRef(Py_None) : result;
 }
 
-static PyObject *literal(PyObject *self, PyObject *args) {
-    (void)self;
-    PyObject *expr, *predicates, *variables, *objects, *ancestors;
-    int negation;
-    if (!PyArg_ParseTuple(args, "OO!OO!O!p", &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
-                          &PyDict_Type, &ancestors, &negation))
-        return NULL;
-    if (variables != Py_None && !PyDict_Check(variables))
-        return PyErr_Format(PyExc_TypeError, "variables must be a dict or None");
+/* `expr` as a Condition when it is a plainly valid atom or (with `negation`) a (not atom): a new reference,
+   Py_None (borrowed) when Python should look, NULL on error. */
+static PyObject *checked_literal(PyObject *expr, PyObject *predicates, PyObject *variables, PyObject *objects,
+                                 PyObject *ancestors, int negation) {
     int positive = 1;
     if (PyList_CheckExact(expr) && PyList_GET_SIZE(expr) == 2) {
         PyObject *head = PyList_GET_ITEM(expr, 0);
         int is_not = PyUnicode_CheckExact(head) && PyUnicode_CompareWithASCIIString(head, "not") == 0;
-        if (is_not && !negation) Py_RETURN_NONE;
+        if (is_not && !negation) return Py_None;
         if (is_not) {
             positive = 0;
             expr = PyList_GET_ITEM(expr, 1);
         }
     }
     PyObject *found = checked_atom(expr, predicates, variables, objects, ancestors);
-    if (found == Py_None) Py_RETURN_NONE;
+    if (found == Py_None) return Py_None;
     PyObject *items[2] = {found, PyBool_FromLong(positive)};
     return tuple_of(condition_type, 2, items);
+}
+
+/* Appends to `out` the literals of `expr`: one literal, or an (and ...) of literals and of (and ...)s, whose empty
+   parts () are skipped as the Python reader skips them. 1 when every one was plainly valid, 0 when one was not
+   (Python should look), -1 on error. */
+static int add_conjunction(PyObject *out, PyObject *expr, PyObject *predicates, PyObject *variables,
+                           PyObject *objects, PyObject *ancestors, int negation) {
+    if (PyList_CheckExact(expr) && PyList_GET_SIZE(expr) > 0 && PyUnicode_CheckExact(PyList_GET_ITEM(expr, 0)) &&
+        PyUnicode_CompareWithASCIIString(PyList_GET_ITEM(expr, 0), "and") == 0) {
+        for (Py_ssize_t i = 1; i < PyList_GET_SIZE(expr); i++) {
+            PyObject *part = PyList_GET_ITEM(expr, i);
+            if (!PyList_CheckExact(part)) return 0;
+            if (PyList_GET_SIZE(part) == 0) continue;
+            int plain = add_conjunction(out, part, predicates, variables, objects, ancestors, negation);
+            if (plain <= 0) return plain;
+        }
+        return 1;
+    }
+    PyObject *found = checked_literal(expr, predicates, variables, objects, ancestors, negation);
+    if (found == Py_None || !found) return found ? 0 : -1;
+    int failed = PyList_Append(out, found);
+    Py_DECREF(found);
+    return failed ? -1 : 1;
+}
+
+#define LITERAL_ARGS "OO!OO!O!p"
+
+static int check_variables(PyObject *variables) {
+    if (variables == Py_None || PyDict_Check(variables)) return 0;
+    PyErr_SetString(PyExc_TypeError, "variables must be a dict or None");
+    return -1;
+}
+
+static PyObject *literal(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *expr, *predicates, *variables, *objects, *ancestors;
+    int negation;
+    if (!PyArg_ParseTuple(args, LITERAL_ARGS, &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
+                          &PyDict_Type, &ancestors, &negation) || check_variables(variables) < 0)
+        return NULL;
+    PyObject *found = checked_literal(expr, predicates, variables, objects, ancestors, negation);
+    return found == Py_None ? Py_NewRef(Py_None) : found;
+}
+
+static PyObject *conjunction(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *expr, *predicates, *variables, *objects, *ancestors;
+    int negation;
+    if (!PyArg_ParseTuple(args, LITERAL_ARGS, &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
+                          &PyDict_Type, &ancestors, &negation) || check_variables(variables) < 0)
+        return NULL;
+    PyObject *out = PyList_New(0);
+    if (!out) return NULL;
+    int plain = add_conjunction(out, expr, predicates, variables, objects, ancestors, negation);
+    if (plain == 1) return out;
+    Py_DECREF(out);
+    return plain == 0 ? Py_NewRef(Py_None) : NULL;
 }
 
 static PyMethodDef reader_methods[] = {
@@ -218,6 +270,9 @@ static PyMethodDef reader_methods[] = {
     {"literal", literal, METH_VARARGS,
      "literal(expr, predicates, variables, objects, ancestors, negation) -> a Condition, or None where Python's "
      "checks should look; a (not ...) only with `negation`."},
+    {"conjunction", conjunction, METH_VARARGS,
+     "conjunction(expr, predicates, variables, objects, ancestors, negation) -> the list of Conditions of a literal "
+     "or an (and ...) of them (nested, () parts skipped), or None where any part needs Python's checks."},
     {NULL, NULL, 0, NULL},
 };
 

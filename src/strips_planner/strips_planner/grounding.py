@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable
 from functools import cached_property
 from typing import NamedTuple
@@ -106,8 +107,9 @@ class _Grounder:
         self.domain, self.problem = domain, problem
         self.actions = [copy for action in domain.actions for copy in adl.lifted_split(action)]
         """The domain's actions, one per way an ADL condition's ``or``s go (:func:`adl.lifted_split`)."""
-        self.conditional = {f"{a.name}#{i}": a for i, a in enumerate(self.actions) if a.condition is not None
-                            or sum(b.name == a.name for b in self.actions) > 1}
+        copies = Counter(action.name for action in self.actions)
+        self.conditional = {f"{a.name}#{i}": a for i, a in enumerate(self.actions)
+                            if a.condition is not None or copies[a.name] > 1}
         """The actions whose operators :meth:`_with_conditions` finishes, under a name of their own while grounded
         ('#' is no PDDL name's)."""
         actions = self.actions

@@ -334,6 +334,10 @@ def _conditions(expr: list, domain: Domain, variables: dict[str, str] | None, ob
     where there is none)."""
     if not expr:
         return [], None
+    plain = _reader.conjunction(expr, domain.predicates, variables, objects, domain.ancestors,
+                                _negation_allowed(domain, what))
+    if plain is not None:
+        return plain, None
     parts = _conjuncts(expr, what)
     literals = [_literal(part, domain, variables, objects, what) for part in parts if not _is_adl(part)]
     rest = tuple(_formula(part, domain, variables, objects, what) for part in parts if _is_adl(part))
@@ -389,6 +393,10 @@ def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, obje
     """A conjunction of (possibly negated) atoms; ``()`` is the empty conjunction."""
     if not expr:
         return []
+    plain = _reader.conjunction(expr, domain.predicates, variables, objects, domain.ancestors,
+                                _negation_allowed(domain, what))
+    if plain is not None:
+        return plain
     if expr[0] != "and":
         return [_literal(expr, domain, variables, objects, what)]
     result = []
@@ -406,7 +414,7 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
     """An atom or a negated one (``expr`` is not empty): built in C where it is plainly valid, else checked
     here, where every error is worded."""
     fast = _reader.literal(expr, domain.predicates, variables, objects, domain.ancestors,
-                           what != "precondition" or bool(domain.requirements & _NEGATION))
+                           _negation_allowed(domain, what))
     if fast is not None:
         return fast
     head = _name(expr[0], "a predicate or 'and'")
@@ -429,6 +437,11 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
         raise _unsupported(expr, f"{head!r} is not supported in a {what}: it takes literals, and, or, not, imply, "
                                  "forall and exists")
     return Condition(_atom(expr, domain, variables, objects))
+
+
+def _negation_allowed(domain: Domain, what: str) -> bool:
+    """Whether a ``(not ...)`` goes without a warning: anywhere but in a precondition, or with its requirement."""
+    return what != "precondition" or bool(domain.requirements & _NEGATION)
 
 
 def _warn(domain: Domain, message: str) -> None:

@@ -158,8 +158,8 @@ def test_the_c_checks_read_every_domain_and_problem_as_python_alone_does(monkeyp
         domain, problem = _random_pddl(rng)
         with_c = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
         with monkeypatch.context() as python_alone:
-            python_alone.setattr(_reader, "literal", lambda *_: None)
-            python_alone.setattr(_reader, "atom", lambda *_: None)
+            for name in ("literal", "atom", "conjunction"):
+                python_alone.setattr(_reader, name, lambda *_: None)
             alone = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
         assert with_c == alone, (domain, problem)
         outcomes.append(with_c[1][0])
@@ -170,6 +170,7 @@ def test_the_c_checks_read_the_shipped_domains_as_python_alone_does(monkeypatch)
     for path in sorted(FIXTURES.glob("*domain*.pddl")) + sorted(DOMAINS.glob("*.pddl")):
         with_c = _outcome(parse_domain, path.read_text())
         monkeypatch.setattr(_reader, "literal", lambda *_: None)
+        monkeypatch.setattr(_reader, "conjunction", lambda *_: None)
         assert _outcome(parse_domain, path.read_text()) == with_c, path.name
         monkeypatch.undo()
 
@@ -191,3 +192,8 @@ def test_the_c_checks_build_plain_literals_and_leave_the_rest_to_python() -> Non
                            (["or", ["free"]], True), (["not", ["and"]], True), (["on", ["a"], "t"], True)]:
         assert _reader.literal(expr, predicates, variables, objects, ancestors, negation) is None, expr
     assert _reader.atom(["on", "?x", "t"], predicates, objects, ancestors) is None
+    both = ["and", ["free"], [], ["and", ["not", ["on", "?x", "t"]]]]
+    assert _reader.conjunction(both, predicates, variables, objects, ancestors, True) == [
+        Condition(Atom("free", ())), Condition(Atom("on", ("?x", "t")), positive=False)]
+    for expr in (["and", ["free"], "free"], ["and", ["or", ["free"]]], both):
+        assert _reader.conjunction(expr, predicates, variables, objects, ancestors, expr is not both) is None, expr

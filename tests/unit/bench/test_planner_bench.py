@@ -28,11 +28,28 @@ def test_no_ratio_when_neither_finished_or_one_failed() -> None:
 
 
 def test_phase_speedup_splits_parse_and_ground_from_search() -> None:
-    ours = {**result(3.0), "parse_ground_ms": 1.0, "search_ms": 2.0}
-    theirs = {**result(25.0), "parse_ground_ms": 5.0, "search_ms": 20.0}
+    ours = {**result(3.0), "parse_ground_runs": [0.001] * 3, "search_ms": 2.0}
+    theirs = {**result(25.0), "parse_ground_runs": [0.005] * 3, "search_ms": 20.0}
     assert phase_speedup(ours, theirs, "parse_ground") == 5.0
     assert phase_speedup(ours, theirs, "search") == 10.0
     assert phase_speedup(ours, result(None, "timeout (60 s)"), "search") is None
+
+
+def test_a_search_that_ran_out_of_time_keeps_its_parse_and_ground_compared_first_run_with_first_run() -> None:
+    ours = {**result(3.0), "parse_ground_runs": [0.002, 0.001, 0.001], "search_ms": 2.0}
+    theirs = {**result(None, "timeout (60 s)"), "parse_ground_runs": [0.010]}
+    assert phase_speedup(ours, theirs, "parse_ground") == 5.0
+    assert phase_speedup(ours, theirs, "search") is None
+    assert phase_speedup(ours, {**result(None, "timeout (60 s)"), "parse_ground_runs": []}, "parse_ground") is None
+
+
+@pytest.mark.slow
+def test_a_runner_out_of_time_still_reports_its_parse_and_ground(tmp_path: Path) -> None:
+    prob = tmp_path / "bw-12.pddl"
+    prob.write_text(problem(12, seed=1))
+    row = run_one(sys.executable, OURS_RUNNER, DOMAIN_PATH, prob, "bfs", "blind", repeats=3, timeout=4)
+    assert row["status"] == "timeout (4 s)" and row["median_ms"] is None
+    assert len(row["parse_ground_runs"]) == 1 and 0 < row["parse_ground_ms"] < 100
 
 
 @pytest.mark.slow

@@ -20,6 +20,7 @@ def main(domain: str, problem: str, search: str, heuristic_name: str, repeats: s
         start = time.perf_counter()
         task = _ground(_parse(domain, problem))
         front.append(time.perf_counter() - start)
+        print(f"front {front[-1]}", flush=True)  # kept where the search runs out of time
         plan = _search(task, SEARCHES[search], heuristic and heuristic(task))
         times.append(time.perf_counter() - start)
     steps = None if plan is None else [op.name for op in plan]

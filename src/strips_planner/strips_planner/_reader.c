@@ -138,10 +138,16 @@ static int fits(PyObject *has, PyObject *expected, PyObject *ancestors) {
     return PySet_Contains(supertypes, expected);
 }
 
+/* What an atom's names are checked against: the predicates' argument types, the variables in scope (None in a
+   problem), the objects and constants, each type's supertypes (`ancestors`), and whether a (not ...) is plain. */
+typedef struct {
+    PyObject *predicates, *variables, *objects, *ancestors;
+    int negation;
+} Scope;
+
 /* `expr` as an Atom when it is plainly valid (a new reference), Py_None (borrowed) when Python should look,
-   NULL on error. `variables` is None where none are in scope (a problem's atoms). */
-static PyObject *checked_atom(PyObject *expr, PyObject *predicates, PyObject *variables, PyObject *objects,
-                              PyObject *ancestors) {
+   NULL on error. */
+static PyObject *checked_atom(PyObject *expr, const Scope *in) {
     if (!atom_type) {
         PyErr_SetString(PyExc_RuntimeError, "_reader.bind() was not called");
         return NULL;
@@ -151,18 +157,18 @@ static PyObject *checked_atom(PyObject *expr, PyObject *predicates, PyObject *va
     if (!PyUnicode_CheckExact(head)) return Py_None;
     int special = PySet_Contains(reserved, head);
     if (special) return special < 0 ? NULL : Py_None;
-    PyObject *expected = PyDict_GetItemWithError(predicates, head);
+    PyObject *expected = PyDict_GetItemWithError(in->predicates, head);
     Py_ssize_t nargs = PyList_GET_SIZE(expr) - 1;
     if (!expected) return PyErr_Occurred() ? NULL : Py_None;
     if (!PyTuple_CheckExact(expected) || PyTuple_GET_SIZE(expected) != nargs) return Py_None;
     for (Py_ssize_t i = 0; i < nargs; i++) {
         PyObject *arg = PyList_GET_ITEM(expr, i + 1);
         if (!PyUnicode_CheckExact(arg) || PyUnicode_GET_LENGTH(arg) == 0) return Py_None;
-        PyObject *scope = PyUnicode_READ_CHAR(arg, 0) == '?' ? variables : objects;
+        PyObject *scope = PyUnicode_READ_CHAR(arg, 0) == '?' ? in->variables : in->objects;
         if (scope == Py_None) return Py_None;
         PyObject *has = PyDict_GetItemWithError(scope, arg);
         if (!has) return PyErr_Occurred() ? NULL : Py_None;
-        int ok = fits(has, PyTuple_GET_ITEM(expected, i), ancestors);
+        int ok = fits(has, PyTuple_GET_ITEM(expected, i), in->ancestors);
         if (ok <= 0) return ok < 0 ? NULL : Py_None;
     }
     PyObject *items[2] = {Py_NewRef(head), PyList_GetSlice(expr, 1, nargs + 1)};
@@ -172,29 +178,29 @@ static PyObject *checked_atom(PyObject *expr, PyObject *predicates, PyObject *va
 
 static PyObject *atom(PyObject *self, PyObject *args) {
     (void)self;
-    PyObject *expr, *predicates, *objects, *ancestors;
-    if (!PyArg_ParseTuple(args, "OO!O!O!", &expr, &PyDict_Type, &predicates, &PyDict_Type, &objects, &PyDict_Type,
-                          &ancestors))
+    PyObject *expr;
+    Scope in = {.variables = Py_None, .negation = 0};
+    if (!PyArg_ParseTuple(args, "OO!O!O!", &expr, &PyDict_Type, &in.predicates, &PyDict_Type, &in.objects,
+                          &PyDict_Type, &in.ancestors))
         return NULL;
-    PyObject *result = checked_atom(expr, predicates, Py_None, objects, ancestors);
+    PyObject *result = checked_atom(expr, &in);
     return result == Py_None ? Py_NewRef(Py_None) : result;
 }
 
 /* `expr` as a Condition when it is a plainly valid atom or (with `negation`) a (not atom): a new reference,
    Py_None (borrowed) when Python should look, NULL on error. */
-static PyObject *checked_literal(PyObject *expr, PyObject *predicates, PyObject *variables, PyObject *objects,
-                                 PyObject *ancestors, int negation) {
+static PyObject *checked_literal(PyObject *expr, const Scope *in) {
     int positive = 1;
     if (PyList_CheckExact(expr) && PyList_GET_SIZE(expr) == 2) {
         PyObject *head = PyList_GET_ITEM(expr, 0);
         int is_not = PyUnicode_CheckExact(head) && PyUnicode_CompareWithASCIIString(head, "not") == 0;
-        if (is_not && !negation) return Py_None;
+        if (is_not && !in->negation) return Py_None;
         if (is_not) {
             positive = 0;
             expr = PyList_GET_ITEM(expr, 1);
         }
     }
-    PyObject *found = checked_atom(expr, predicates, variables, objects, ancestors);
+    PyObject *found = checked_atom(expr, in);
     if (found == Py_None) return Py_None;
     PyObject *items[2] = {found, PyBool_FromLong(positive)};
     return tuple_of(condition_type, 2, items);
@@ -203,55 +209,52 @@ static PyObject *checked_literal(PyObject *expr, PyObject *predicates, PyObject 
 /* Appends to `out` the literals of `expr`: one literal, or an (and ...) of literals and of (and ...)s, whose empty
    parts () are skipped as the Python reader skips them. 1 when every one was plainly valid, 0 when one was not
    (Python should look), -1 on error. */
-static int add_conjunction(PyObject *out, PyObject *expr, PyObject *predicates, PyObject *variables,
-                           PyObject *objects, PyObject *ancestors, int negation) {
+static int add_conjunction(PyObject *out, PyObject *expr, const Scope *in) {
     if (PyList_CheckExact(expr) && PyList_GET_SIZE(expr) > 0 && PyUnicode_CheckExact(PyList_GET_ITEM(expr, 0)) &&
         PyUnicode_CompareWithASCIIString(PyList_GET_ITEM(expr, 0), "and") == 0) {
         for (Py_ssize_t i = 1; i < PyList_GET_SIZE(expr); i++) {
             PyObject *part = PyList_GET_ITEM(expr, i);
             if (!PyList_CheckExact(part)) return 0;
             if (PyList_GET_SIZE(part) == 0) continue;
-            int plain = add_conjunction(out, part, predicates, variables, objects, ancestors, negation);
+            int plain = add_conjunction(out, part, in);
             if (plain <= 0) return plain;
         }
         return 1;
     }
-    PyObject *found = checked_literal(expr, predicates, variables, objects, ancestors, negation);
+    PyObject *found = checked_literal(expr, in);
     if (found == Py_None || !found) return found ? 0 : -1;
     int failed = PyList_Append(out, found);
     Py_DECREF(found);
     return failed ? -1 : 1;
 }
 
-#define LITERAL_ARGS "OO!OO!O!p"
-
-static int check_variables(PyObject *variables) {
-    if (variables == Py_None || PyDict_Check(variables)) return 0;
+/* The arguments of literal() and conjunction(): (expr, predicates, variables, objects, ancestors, negation). */
+static int parse_scope(PyObject *args, PyObject **expr, Scope *in) {
+    if (!PyArg_ParseTuple(args, "OO!OO!O!p", expr, &PyDict_Type, &in->predicates, &in->variables, &PyDict_Type,
+                          &in->objects, &PyDict_Type, &in->ancestors, &in->negation))
+        return -1;
+    if (in->variables == Py_None || PyDict_Check(in->variables)) return 0;
     PyErr_SetString(PyExc_TypeError, "variables must be a dict or None");
     return -1;
 }
 
 static PyObject *literal(PyObject *self, PyObject *args) {
     (void)self;
-    PyObject *expr, *predicates, *variables, *objects, *ancestors;
-    int negation;
-    if (!PyArg_ParseTuple(args, LITERAL_ARGS, &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
-                          &PyDict_Type, &ancestors, &negation) || check_variables(variables) < 0)
-        return NULL;
-    PyObject *found = checked_literal(expr, predicates, variables, objects, ancestors, negation);
+    PyObject *expr;
+    Scope in;
+    if (parse_scope(args, &expr, &in) < 0) return NULL;
+    PyObject *found = checked_literal(expr, &in);
     return found == Py_None ? Py_NewRef(Py_None) : found;
 }
 
 static PyObject *conjunction(PyObject *self, PyObject *args) {
     (void)self;
-    PyObject *expr, *predicates, *variables, *objects, *ancestors;
-    int negation;
-    if (!PyArg_ParseTuple(args, LITERAL_ARGS, &expr, &PyDict_Type, &predicates, &variables, &PyDict_Type, &objects,
-                          &PyDict_Type, &ancestors, &negation) || check_variables(variables) < 0)
-        return NULL;
+    PyObject *expr;
+    Scope in;
+    if (parse_scope(args, &expr, &in) < 0) return NULL;
     PyObject *out = PyList_New(0);
     if (!out) return NULL;
-    int plain = add_conjunction(out, expr, predicates, variables, objects, ancestors, negation);
+    int plain = add_conjunction(out, expr, &in);
     if (plain == 1) return out;
     Py_DECREF(out);
     return plain == 0 ? Py_NewRef(Py_None) : NULL;

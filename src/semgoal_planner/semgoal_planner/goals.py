@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
-from semgoal_planner.english import MAX_GOAL_CHARS, LanguageError, parse_english
+from semgoal_planner.english import MAX_GOAL_CHARS, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
 
 
 class GoalError(ValueError):
@@ -32,12 +32,13 @@ class Goal:
 
     def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
-        goal in that state, or the literals once every block they name is present. Nothing is parsed."""
+        goal in that state, or the literals once every block they name is present and 'the tower' is placed
+        (:func:`the_tower`). Nothing is parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            return [layout.validate(literal, objects) for literal in self.literals]
+            return [layout.validate(literal, objects) for literal in the_tower(self.literals, state)]
         except VocabularyError as error:
             raise GoalError(str(error)) from None
 
@@ -80,6 +81,34 @@ def typed_goal(literals: Sequence[Literal], scene: str, objects: tuple[str, ...]
 def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
     """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
     return read_goal(text, scene, objects).instantiate(scene, objects, state)
+
+
+def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
+    """``literals`` with 'the tower' placed in ``state``: :data:`TOWER_TOP` becomes the top block of the one tower
+    standing (two or more blocks one on another, the blocks the goal moves to it set aside), :data:`TOWER_BASE` its
+    bottom block. GoalError where no tower stands, or several do."""
+    placeholders = (TOWER_TOP, TOWER_BASE)
+    if not any(arg in placeholders for literal in literals for arg in literal.args):
+        return list(literals)
+    moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders}
+    under = {lit.args[0]: lit.args[1] for lit in state if lit.name == "above" and lit.value}  # block -> what it is on
+    upper = {below: block for block, below in under.items()}
+    towers = []
+    for bottom in [b for b in dict.fromkeys(under.values()) if b not in under]:
+        chain = [bottom]
+        while chain[-1] in upper and upper[chain[-1]] not in chain:
+            chain.append(upper[chain[-1]])
+        towers.append(chain)
+    standing = [t for t in towers if sum(b not in moved for b in t) >= 2] or towers  # not just a moved block's own
+    if not standing:
+        raise GoalError("no tower stands now (no block is on another): name the block instead of 'the tower'")
+    if len(standing) > 1:
+        tops = [[b for b in t if b not in moved][-1] for t in standing]
+        raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): say which block, e.g. "
+                        f"'put {sorted(moved)[0]} on {tops[0]}'")
+    kept = [b for b in standing[0] if b not in moved] or standing[0]
+    place = {TOWER_TOP: kept[-1], TOWER_BASE: standing[0][0]}
+    return [Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value) for literal in literals]
 
 
 def scene_task(name: str, scene: str) -> Task:

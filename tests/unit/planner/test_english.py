@@ -197,6 +197,25 @@ PHRASES = [
      "above(pink,cyan) & above(cyan,yellow) & above(yellow,orange)"),
     ("tabletop", "make a tower: red, green, blue from bottom to top", "above(green,red) & above(blue,green)"),
     ("tabletop", "stack red, green and blue from top to bottom", "above(red,green) & above(green,blue)"),
+    ("tabletop", "build a tower of red, green and blue with blue on top", "above(green,red) & above(blue,green)"),
+    ("tabletop", "build a tower of red, green and blue with the red block on top", "above(green,blue) & above(red,green)"),
+    ("tabletop", "stack cyan and pink, with orange on top", "above(pink,cyan) & above(orange,pink)"),
+    ("tabletop", "build a tower of red, green and blue with blue at the bottom", "above(green,blue) & above(red,green)"),
+    ("tabletop", "build a tower of yellow and green with purple at the bottom",
+     "above(yellow,purple) & above(green,yellow)"),
+    ("tabletop", "a tower of red, green and blue with red at the bottom and blue on top",
+     "above(green,red) & above(blue,green)"),
+    ("tabletop", "put red on green with blue on top", "above(red,green) & above(blue,red)"),
+    ("tabletop", "stack red on green on yellow, with pink at the bottom",
+     "above(red,green) & above(green,yellow) & above(yellow,pink)"),
+    ("tabletop", "put red on green with red on top", "above(red,green)"),
+    ("tabletop", "build a tower of red, green and blue with the blue block on top, then put yellow in the bin",
+     "above(green,red) & above(blue,green) & in_bin(yellow)"),
+    ("tabletop", "stack green under red", "above(red,green)"),
+    ("tabletop", "stack blue beneath yellow", "above(yellow,blue)"),
+    ("two_blocks", "unstack the tower", "not above(red,green) & not above(green,red)"),
+    ("two_blocks", "dismantle the stack", "not above(red,green) & not above(green,red)"),
+    ("two_blocks", "take the tower apart", "not above(red,green) & not above(green,red)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
@@ -266,6 +285,10 @@ REFUSALS = [
     ("desk_cleanup", "put gren in the bin", "unknown word 'gren' .did you mean 'green'.."),
     ("tabletop", "stak red on blue", "unknown word 'stak' .did you mean 'stack'.."),
     ("tabletop", "put red in the bin from top to bottom", "'from top to bottom' orders a tower's blocks"),
+    ("tabletop", "stack red, green and blue with green on top", "green is named inside the tower's list and at its top"),
+    ("tabletop", "put red on green with red at the bottom", "red is in the tower said, not at its bottom"),
+    ("tabletop", "put red in the bin with blue on top", "'with blue on top' names the top of a tower listed after"),
+    ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
 ]
 
 
@@ -388,3 +411,35 @@ def test_parse_goal_cli_contract(capsys) -> None:
     assert lines[1]["text"] == "put blue in the bin" and "no blue block" in lines[1]["error"]
     assert parse_goal_main(["--scene", "two_blocks", "--json", "stack red on green"]) == 0
     assert json.loads(capsys.readouterr().out) == {"text": "stack red on green", "literals": ["above(red,green)"]}
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("put the orange block on the tower", "above(orange,tower_top)"),
+    ("put orange on top of the stack", "above(orange,tower_top)"),
+    ("put red next to the tower", "close(red,tower_base)"),
+    ("keep blue away from the pile, then put green on the tower", "not close(blue,tower_base) & above(green,tower_top)"),
+])
+def test_the_tower_is_kept_for_the_state_it_is_planned_in(text: str, expected: str) -> None:
+    said = {str(literal) for literal in parse_english(text, "tabletop")}
+    assert said == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("scene", "text", "words"), [
+    ("tabletop", "the tower should be in the bin", "cannot read the goal"),
+    ("tabletop", "put red under the tower", "cannot read the goal"),
+    ("tabletop", "put orange and red on the tower", "a block goes on one block"),
+    ("three_blocks", "put red on the tower", "predicate 'above' is not used in scene 'three_blocks'"),
+])
+def test_the_tower_is_only_where_a_block_goes(scene: str, text: str, words: str) -> None:
+    with pytest.raises(LanguageError, match=words):
+        parse_english(text, scene)
+
+
+def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
+    executive = Executive(SemanticPlanner("tabletop"))
+    objects = ("red", "green", "blue", "orange")
+    tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]
+    executive.observe(Observation(objects, tower, 0))
+    ok, message = executive.set_goal("put the orange block on the tower")
+    assert ok and "(the goal: above(orange,blue))" in message
+    assert [str(s.subgoal) for s in executive.steps] == ["pick(orange)", "put_on(orange,blue)"]

@@ -1,5 +1,7 @@
 """Goal parsing: tasks and literal conjunctions; every bad goal is a GoalError with a message."""
 
+import itertools
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -106,3 +108,39 @@ def test_a_goal_is_read_once_then_planned_and_run_without_the_parser(monkeypatch
     assert ok, message
     assert executive.goal == [Literal("in_bin", ("red",))] and said in message
     assert executive.active is not None and executive.active.subgoal.kind == "pick"
+
+
+TABLETOP = ("red", "green", "blue", "yellow", "orange")
+
+
+def on(*chain: str) -> list[Literal]:
+    """A tower's facts, bottom first."""
+    return [Literal("above", (top, below)) for below, top in itertools.pairwise(chain)]
+
+
+@pytest.mark.parametrize(("text", "state", "expected"), [
+    ("put the orange block on the tower", on("red", "green", "blue"), [Literal("above", ("orange", "blue"))]),
+    ("stack orange on the tower", on("yellow", "red"), [Literal("above", ("orange", "red"))]),
+    ("put orange next to the tower", on("red", "green", "blue"), [Literal("close", ("red", "orange"))]),
+    ("keep orange away from the pile", on("blue", "red"), [Literal("close", ("blue", "orange"), False)]),
+    # the block the goal moves is set aside: on top of the tower already, or a tower of its own with one block
+    ("put orange on the tower", on("red", "green", "orange"), [Literal("above", ("orange", "green"))]),
+    ("put orange on the tower", on("red", "green") + on("blue", "orange"), [Literal("above", ("orange", "green"))]),
+    ("put orange on the tower", on("blue", "orange"), [Literal("above", ("orange", "blue"))]),
+])
+def test_the_tower_is_the_one_standing_when_the_goal_is_planned(text: str, state: list[Literal],
+                                                                expected: list[Literal]) -> None:
+    goal = read_goal(text, "tabletop", TABLETOP)
+    assert parse_goal(text, "tabletop", TABLETOP, state) == expected
+    assert goal.instantiate("tabletop", TABLETOP, state) == expected  # read once, placed when planned
+
+
+@pytest.mark.parametrize(("state", "words"), [
+    ([], "no tower stands now"),
+    ([Literal("in_bin", ("red",))], "no tower stands now"),
+    (on("red", "green") + on("blue", "yellow"), r"2 towers stand now \(topped by green, yellow\)"),
+])
+def test_the_tower_must_be_one(state: list[Literal], words: str) -> None:
+    goal = read_goal("put orange on the tower", "tabletop", TABLETOP)
+    with pytest.raises(GoalError, match=words):
+        goal.instantiate("tabletop", TABLETOP, state)

@@ -19,6 +19,7 @@ What a sentence becomes (``PHRASES`` in the tests hold many more)::
     stack red on green                           above(red,green)
     keep red away from green and blue            not close(red,green) & not close(red,blue)
     pick up blue                                 holding(blue)
+    put orange on the tower                      above(orange,tower_top): the top of the tower standing when planned
 
 The literals are what the operator is shown before anything moves.
 """
@@ -30,12 +31,12 @@ from collections.abc import Sequence
 import lark
 
 from semgoal_core.consistency import ContradictionError, check_consistent
-from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
+from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parser
-from semgoal_planner.english.resolver import Resolver
+from semgoal_planner.english.resolver import TOWER_BASE, TOWER_TOP, Resolver
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["MAX_GOAL_CHARS", "LanguageError", "examples", "normalise", "parse_english"]
+__all__ = ["MAX_GOAL_CHARS", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples", "normalise", "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:
@@ -72,7 +73,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                 continue  # "pick up red and put it in the bin": the picking is how, not where it ends
             for literal, generic in literals:
                 try:
-                    literal = layout.validate(literal, blocks)
+                    literal = _validated(layout, literal, blocks)
                 except VocabularyError as error:
                     raise LanguageError(str(error)) from None
                 key = (literal.name, literal.args)
@@ -90,6 +91,20 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
     except ContradictionError as error:
         raise LanguageError(str(error)) from None
     return list(goal.values())
+
+
+def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]) -> Literal:
+    """``literal`` checked against the scene; one naming the tower (:data:`TOWER_TOP`, :data:`TOWER_BASE`) is checked
+    with another block in its place and kept as it is, for :func:`~semgoal_planner.goals.the_tower` to place."""
+    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE)]
+    if not standing:
+        return layout.validate(literal, blocks)
+    stand_in = next((b for b in blocks if b not in literal.args), None)
+    if stand_in is None:
+        raise VocabularyError(f"{literal}: a tower needs two blocks besides {' and '.join(literal.args[:1])}")
+    layout.validate(Literal(literal.name, tuple(stand_in if a in standing else a for a in literal.args), literal.value),
+                    blocks)
+    return literal
 
 
 def _a_means(hold: Clause, later: list[Clause], resolver: Resolver) -> bool:

@@ -62,7 +62,7 @@ action: ("put" | "keep") refs dest          -> put
 condition: dest | "held" -> held
 
 dest: in_bin | out_of_bin | near | away | on | under | off_of | on_table | "together" -> together | "apart" -> apart
-dest_on: on | on_table
+dest_on: on | under | on_table
 dest_to: in_bin | near | on | on_table
 in_bin: ("in" | "to") "bin"
 out_of_bin: "out" "bin"? | "from" "bin"
@@ -81,6 +81,7 @@ ref: COLOUR                      -> colour
    | "other"                     -> other
    | "it"                        -> it
    | "them"                      -> them
+   | "the_tower"                 -> tower
 
 NOT: "not"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
@@ -96,7 +97,7 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 @dataclass(frozen=True)
 class Ref:
     """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
-    ``them``."""
+    ``them``, ``tower`` (the tower standing when the goal is planned)."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -276,6 +277,9 @@ class Clauses(lark.Transformer):
 
     def them(self, _: list) -> Ref:
         return Ref("them")
+
+    def tower(self, _: list) -> Ref:
+        return Ref("tower")
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

@@ -11,6 +11,12 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
 from semgoal_planner.english.words import LanguageError, examples
 
+TOWER_TOP, TOWER_BASE = "tower_top", "tower_base"
+"""What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
+its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
+TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
+"""The relations 'the tower' may be the object of, and which of its blocks each one means."""
+
 
 class Resolver:
     """References -> blocks of the world, clauses -> literals, in the order the sentence says them."""
@@ -39,6 +45,8 @@ class Resolver:
                 if colour not in self.blocks:
                     raise LanguageError(f"there is no {colour} block here: the blocks are {', '.join(self.blocks)}")
             return ref.colours
+        if ref.kind == "tower":  # placed by literals(), which knows the relation
+            return ("tower",)
         if ref.kind == "all":
             excluded = set(self.blocks_of(ref.excluded))
             return tuple(b for b in self.blocks if b not in excluded)
@@ -95,6 +103,11 @@ class Resolver:
         if not subjects:
             raise LanguageError(f"say which block: {', '.join(self.blocks)}")
         objects = self.blocks_of(clause.objects, besides=subjects)
+        if "tower" in objects:
+            if clause.kind not in TOWER_PLACES:
+                raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "
+                                    f"'put {subjects[0]} on the tower'")
+            objects = tuple(TOWER_PLACES[clause.kind] if b == "tower" else b for b in objects)
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
         said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]

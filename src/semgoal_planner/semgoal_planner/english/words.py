@@ -11,6 +11,10 @@ from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS
 
 TOP_DOWN = "topdown"
 """The mark 'from top to bottom' leaves: the tower's blocks are named from the top (:func:`_top_down`)."""
+TOP_MARK, BASE_MARK = "towertop", "towerbase"
+"""The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
+(:func:`_tower_end_named`)."""
+_COLOUR = "|".join(BLOCK_COLOURS)
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
 
@@ -18,6 +22,14 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
      r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))", "release all"),
+    (rf"(and )?with (the )?(?P<top>{_COLOUR})( block| cube| one)? (on (the )?top|at the top|as the top|"
+     r"uppermost|highest)(?! of\b)", rf"{TOP_MARK} \g<top>"),  # "a tower of red and green with blue on top"
+    (rf"(and )?with (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|base|foot)|"
+     r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
+    (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
+     r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
+    (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
+     r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
      r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
     (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
@@ -115,6 +127,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
+    "the_tower",
 })
 """The words the grammar reads (besides the colours)."""
 
@@ -156,7 +169,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
     words = [w for w in text.split() if w not in FILLERS]
-    for rewrite in (_joined, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
+    for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
@@ -216,6 +229,68 @@ def _top_named_last(words: list[str]) -> list[str]:
         kept.append(words[i])
         i += 1
     return kept
+
+
+def _tower_end_named(words: list[str]) -> list[str]:
+    """'a tower of red, green and blue with blue on top', '... with red at the bottom': the tower's list read from the
+    end it names (reversed where that end is its first block), and a block not in the list put on top (or under it)."""
+    while marks := [i for i, word in enumerate(words) if word in (TOP_MARK, BASE_MARK)]:
+        mark = marks[0]
+        top, named = words[mark] == TOP_MARK, words[mark + 1]
+        after = words[mark + 2:]
+        if (not top and after[:1] == ["and"] and after[1:2] and after[1] in BLOCK_COLOURS and after[2:4] == ["on", "other"]
+                and after[4:5] in ([], ["and"], ["then"])):  # "with red at the bottom and blue on top"
+            after = [TOP_MARK, after[1], *after[4:]]
+        before = words[:mark]
+        while before and before[-1] == "and":  # "red and green, with blue on top"
+            before.pop()
+        start = _listing_start(before, len(before))
+        colours = [w for w in before[start:] if w in BLOCK_COLOURS]
+        end = "top" if top else "bottom"
+        said = f"with {named} {'on top' if top else 'at the bottom'}"
+        if chain := _chain_ends(before):  # "put red on green with blue on top"
+            upper, lower, blocks = chain
+            if named == (upper if top else lower):
+                words = [*before, *after]
+            elif named not in blocks:
+                words = [*before, "and", *((named, "on", upper) if top else (lower, "on", named)), *after]
+            else:
+                raise LanguageError(f"{named} is in the tower said, not at its {end}: '{said}' names the {end}")
+            continue
+        if before[-1:] == ["stack"]:  # "a tower with red on top" (on the other block), "with red at the bottom, then ..."
+            words = [*before, named, *(("on", "other") if top else ()), *after]
+            continue
+        if start == 0 or before[start - 1] != "stack" or not colours:
+            others = " and ".join([c for c in BLOCK_COLOURS if c != named][:2])
+            raise LanguageError(f"'{said}' names the {end} of a tower listed after 'stack': e.g. 'build a tower of "
+                                f"{others} {said}'")
+        if named not in colours:
+            listing = [*colours, named] if top else [named, *colours]
+        elif named == (colours[-1] if top else colours[0]):
+            listing = colours
+        elif named == (colours[0] if top else colours[-1]):
+            listing = colours[::-1]
+        else:
+            raise LanguageError(f"{named} is named inside the tower's list and at its {end}: name the tower's blocks "
+                                f"from the bottom up, e.g. 'build a tower of {', '.join(colours)}'")
+        words = [*before[:start], *" and ".join(listing).split(), *after]
+    return words
+
+
+def _chain_ends(words: list[str]) -> tuple[str, str, set[str]] | None:
+    """The top block, the bottom block and all the blocks of the tower that ``words`` end in ('put red on green and
+    green on blue': red, blue), or None where they do not end in blocks put on blocks."""
+    start = len(words)
+    while start > 0 and (words[start - 1] in BLOCK_COLOURS or words[start - 1] in ("on", "and")):
+        start -= 1
+    clause = words[start:]
+    pairs = [(clause[i - 1], clause[i + 1]) for i, word in enumerate(clause) if word == "on"
+             and 0 < i < len(clause) - 1 and clause[i - 1] in BLOCK_COLOURS and clause[i + 1] in BLOCK_COLOURS]
+    if not pairs or start == 0 or words[start - 1] not in ("put", "stack"):
+        return None
+    tops, bottoms = {a for a, _ in pairs}, {b for _, b in pairs}
+    top, bottom = tops - bottoms, bottoms - tops
+    return (top.pop(), bottom.pop(), tops | bottoms) if len(top) == len(bottom) == 1 else None
 
 
 def _chained_on(words: list[str]) -> list[str]:

@@ -216,6 +216,16 @@ PHRASES = [
     ("two_blocks", "unstack the tower", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "dismantle the stack", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "take the tower apart", "not above(red,green) & not above(green,red)"),
+    ("tabletop", "red needs to be in the bin", "in_bin(red)"),
+    ("three_blocks", "red has to be next to green", "close(red,green)"),
+    ("tabletop", "ensure that red is on blue", "above(red,blue)"),
+    ("desk_cleanup", "check that green is in the bin", "in_bin(green)"),
+    ("tabletop", "sort the blocks: red and green in the bin, blue on yellow",
+     "in_bin(red) & in_bin(green) & above(blue,yellow)"),
+    ("desk_cleanup", "sort red and blue into the bin", "in_bin(red) & in_bin(blue)"),
+    ("desk_cleanup", "put red on the desk and everything else in the bin",
+     "not holding(red) & not in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("tabletop", "stack up cyan, pink and orange", "above(pink,cyan) & above(orange,pink)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
@@ -288,6 +298,9 @@ REFUSALS = [
     ("tabletop", "stack red, green and blue with green on top", "green is named inside the tower's list and at its top"),
     ("tabletop", "put red on green with red at the bottom", "red is in the tower said, not at its bottom"),
     ("tabletop", "put red in the bin with blue on top", "'with blue on top' names the top of a tower listed after"),
+    ("tabletop", "place the green block to the left of red", r"directions \(left of, behind\) are not among scene "
+     r"tabletop's predicates \(close, above, holding, in_bin\)"),
+    ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
 ]
 

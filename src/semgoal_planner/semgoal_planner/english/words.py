@@ -11,6 +11,8 @@ from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS
 
 TOP_DOWN = "topdown"
 """The mark 'from top to bottom' leaves: the tower's blocks are named from the top (:func:`_top_down`)."""
+DIRECTION = "direction"
+"""What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 TOP_MARK, BASE_MARK = "towertop", "towerbase"
 """The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
 (:func:`_tower_end_named`)."""
@@ -32,9 +34,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
      r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
-    (r"make sure( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|i need( you)?( to)?|"
+    (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
+     r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
-    (r"to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),  # "I'd like red to be next to blue"
+    (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
+    (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
+    (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
+     r"(north|south|east|west) of", DIRECTION),
     (r"the other (two|three)", "other"),
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
@@ -101,7 +107,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|put", "put"),
-    (r"pile|stack", "stack"),
+    (r"(pile|stack) up|pile|stack", "stack"),
+    (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),
     (r"everything|every|each|all of them|all of|all", "all"),
@@ -171,6 +178,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     words = [w for w in text.split() if w not in FILLERS]
     for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
+    if DIRECTION in words:
+        raise LanguageError(f"directions (left of, behind) are not among scene {scene}'s predicates "
+                            f"({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. {examples(scene, blocks)}")
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "

@@ -226,6 +226,17 @@ PHRASES = [
     ("desk_cleanup", "put red on the desk and everything else in the bin",
      "not holding(red) & not in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("tabletop", "stack up cyan, pink and orange", "above(pink,cyan) & above(orange,pink)"),
+    ("tabletop", "hand me red", "holding(red)"),
+    ("three_blocks", "give me the blue block", "holding(blue)"),
+    ("desk_cleanup", "put red and green together in the bin", "in_bin(red) & in_bin(green)"),
+    ("two_blocks", "move every block off the tower", "not above(red,green) & not above(green,red)"),
+    ("three_blocks", "put red far from all the others", "not close(red,green) & not close(red,blue)"),
+    ("three_blocks", "keep blue away from every other block", "not close(red,blue) & not close(green,blue)"),
+    ("tabletop", "red on top, green in the middle, blue at the bottom", "above(green,blue) & above(red,green)"),
+    ("tabletop", "build a tower: yellow at the bottom, pink in the middle and cyan on top",
+     "above(pink,yellow) & above(cyan,pink)"),
+    ("two_blocks", "I want green on top and red at the bottom", "above(green,red)"),
+    ("tabletop", "orange at the bottom, purple on top, then put red in the bin", "above(purple,orange) & in_bin(red)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
@@ -301,6 +312,7 @@ REFUSALS = [
     ("tabletop", "place the green block to the left of red", r"directions \(left of, behind\) are not among scene "
      r"tabletop's predicates \(close, above, holding, in_bin\)"),
     ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
+    ("tabletop", "red on top, green in the middle, blue in the middle", "two blocks are said to be at one place"),
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
 ]
 

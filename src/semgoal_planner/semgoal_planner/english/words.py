@@ -41,13 +41,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
      r"(north|south|east|west) of", DIRECTION),
-    (r"the other (two|three)", "other"),
+    (r"the other (two|three)|all (of )?(the )?others|all (of )?the other (blocks|cubes|ones)|every other (block|cube|one)",
+     "other"),
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
     (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
     (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
-    (r"(take|remove|get|lift) (everything|all( the blocks| the cubes)?|them all|every block) (off|from|down from) "
+    (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"
+     r"down from) "
      r"(the|that|this|your) (tower|stack|pile)", "unstack"),
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
@@ -73,6 +75,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
+    (r"together(?= (in|into|inside) )", ""),  # "put red and green together in the bin": both there
     (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
      r"together|neighbou?rs|(touch|touches|touching|adjacent)( each other| one another)?(?= (and|then)\b|$)",
      "together"),
@@ -95,7 +98,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"off of|off", "off"),
     (r"close", "together"),
     (r"far", "apart"),
-    (r"pick up|pick|grab|grasp|lift up|lift|hold on to|hold onto|hold up|take hold of|hold|seize|raise", "pick"),
+    (r"pick up|pick|grab|grasp|lift up|lift|hold on to|hold onto|hold up|take hold of|hold|seize|raise|"
+     r"(hand|give|pass)( it| them)? (me|over|to me)", "pick"),  # "hand me red": held out in the gripper
     (r"let go of|let go|release|set down|put down|lay down|drop off", "release"),
     (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear|(throw|toss|chuck|put) away|dump|"
      r"discard|dispose of|get rid of|fill up|fill", "clean"),
@@ -168,6 +172,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
+    text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
     text = re.sub(r"&+", " and ", text)
@@ -380,6 +385,35 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
+_POSITION = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
+                       r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
+                       r"on the bottom|at the base)\b")
+"""A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
+_LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "at the bottom": 0, "on the bottom": 0,
+           "at the base": 0}
+
+
+def _tower_by_positions(text: str) -> str:
+    """Two or more blocks' places in a tower said one after another ('red on top, green in the middle, blue at the
+    bottom', any order) as the tower from the bottom up ('stack blue and green and red')."""
+    runs: list[list[re.Match]] = []
+    for match in _POSITION.finditer(text):
+        if runs and re.fullmatch(r"(?: |and|then)*", text[runs[-1][-1].end():match.start()]):
+            runs[-1].append(match)
+        else:
+            runs.append([match])
+    for run in reversed([r for r in runs if len(r) >= 2 and not text[:r[0].start()].endswith("with ")]):
+        levels = [(_LEVELS[m["where"]], m["block"]) for m in run]
+        if len({level for level, _ in levels}) < len(levels):
+            raise LanguageError("two blocks are said to be at one place in the tower: name its blocks from the bottom "
+                                "up, e.g. 'build a tower of red, green and blue'")
+        tower = " and ".join(block for _, block in sorted(levels))
+        before = text[:run[0].start()]
+        said = "" if re.search(r"\b(?:tower|stack|pile)(?: and)? *$", before) else "stack "  # "a tower: red on top, ..."
+        text = f"{before} {said}{tower} {text[run[-1].end():]}"
+    return text
+
+
 _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")

@@ -237,6 +237,10 @@ PHRASES = [
      "above(pink,yellow) & above(cyan,pink)"),
     ("two_blocks", "I want green on top and red at the bottom", "above(green,red)"),
     ("tabletop", "orange at the bottom, purple on top, then put red in the bin", "above(purple,orange) & in_bin(red)"),
+    ("desk_cleanup", "neither red nor green should be in the bin", "not in_bin(red) & not in_bin(green)"),
+    ("three_blocks", "neither red nor the green block near blue", "not close(red,blue) & not close(green,blue)"),
+    ("tabletop", "carefully put red on green", "above(red,green)"),
+    ("desk_cleanup", "put blue in the bin right away", "in_bin(blue)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
@@ -313,6 +317,8 @@ REFUSALS = [
      r"tabletop's predicates \(close, above, holding, in_bin\)"),
     ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
     ("tabletop", "red on top, green in the middle, blue in the middle", "two blocks are said to be at one place"),
+    ("desk_cleanup", "put red or green in the bin", "'or' leaves the goal open"),
+    ("tabletop", "put red in the bin if it is on the table", "'if' leaves the goal open"),
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
 ]
 

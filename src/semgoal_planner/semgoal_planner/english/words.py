@@ -37,6 +37,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
+    (r"right away|straight away|at once|as soon as (you can|possible)|asap", ""),  # how soon says nothing of the goal
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
@@ -130,7 +131,8 @@ FILLERS = frozenset({
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
-    "stand", "stands", "standing", "somewhere", "anywhere",
+    "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",
+    "immediately", "right", "straight",
 })
 """Words that carry nothing for the goal."""
 
@@ -141,6 +143,9 @@ CANONICAL = frozenset({
     "the_tower",
 })
 """The words the grammar reads (besides the colours)."""
+
+UNDECIDED = frozenset({"or", "either", "nor", "whichever", "if", "unless", "when", "whenever", "maybe", "perhaps"})
+"""Words that make a goal a choice or a condition, which a goal (one state to reach) cannot be: refused by name."""
 
 class LanguageError(ValueError):
     """A sentence that cannot be read as a goal of the scene: the message names the word or the problem."""
@@ -173,6 +178,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
+    text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
     text = re.sub(r"&+", " and ", text)
@@ -187,6 +193,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError(f"directions (left of, behind) are not among scene {scene}'s predicates "
                             f"({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. {examples(scene, blocks)}")
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
+    if choice := next((w for w in unknown if w in UNDECIDED), None):
+        raise LanguageError(f"'{choice}' leaves the goal open: a goal is the one state the world ends in, so say it "
+                            f"plainly, e.g. {examples(scene, blocks)}")
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
                             f"({', '.join(blocks)}) and say where they go, e.g. {examples(scene, blocks)}")
@@ -385,6 +394,10 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
+_NEITHER = re.compile(r"\bneither (?P<first>(?:" + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?(?: and (?:"
+                      + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?)*) nor (?P<second>(?:" + "|".join(BLOCK_COLOURS)
+                      + r")(?: block| cube| one)?)(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
+"""'neither red nor green (should be) in the bin': both, not."""
 _POSITION = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
                        r"on the bottom|at the base)\b")

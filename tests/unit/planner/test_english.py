@@ -241,6 +241,7 @@ PHRASES = [
     ("three_blocks", "neither red nor the green block near blue", "not close(red,blue) & not close(green,blue)"),
     ("tabletop", "carefully put red on green", "above(red,green)"),
     ("desk_cleanup", "put blue in the bin right away", "in_bin(blue)"),
+    ("two_blocks", "take red off the tower", "not above(red,green)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),

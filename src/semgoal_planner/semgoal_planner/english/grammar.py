@@ -37,7 +37,7 @@ action: ("put" | "keep") refs dest          -> put
       | "remove" refs ("from" | "off") refs   -> off
       | ("remove" | "take") refs ("from" | "off") "table" -> clean
       | "pick" refs "up"?                     -> hold
-      | "pick" refs "up"? "off" refs          -> off
+      | "pick" refs "up"? "off" refs?         -> off
       | "pick" refs "up"? "from" refs         -> hold
       | "pick" refs "up"? ("out" ("bin" | "from" "bin")? | "from" "bin") -> out_bin
       | ("put" | "keep" | "pick") refs "up"? "held" -> hold

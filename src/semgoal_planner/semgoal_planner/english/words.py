@@ -52,6 +52,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"
      r"down from) "
      r"(the|that|this|your) (tower|stack|pile)", "unstack"),
+    (r"(off( of)?|down from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),

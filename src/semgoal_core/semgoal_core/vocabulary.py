@@ -348,9 +348,12 @@ def rests_on(top: np.ndarray, bottom: np.ndarray, thresholds: Thresholds = THRES
 def held_alone(block_positions: np.ndarray, grip_position: np.ndarray, finger_opening: float,
                present: np.ndarray | None = None, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
     """(N,) bool: which block the closed fingers hold, alone (the geometry of ``holding``, module doc)."""
-    rel = np.asarray(block_positions, dtype=np.float64) - np.asarray(grip_position)
-    closed_on_block = thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max
-    between = (closed_on_block & (np.linalg.norm(rel[:, :2], axis=1) < thresholds.holding_xy)
+    positions = np.asarray(block_positions, dtype=np.float64)
+    if not thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max:
+        return np.zeros(len(positions), dtype=bool)  # fingers open, or shut on nothing: most states, at once
+    rel = positions - np.asarray(grip_position)
+    flat = rel[:, :2]
+    between = ((np.sqrt((flat * flat).sum(axis=1)) < thresholds.holding_xy)  # np.linalg.norm's sums
                & (np.abs(rel[:, 2]) < thresholds.holding_z))
     if present is not None:
         between &= np.asarray(present, dtype=bool)

@@ -210,10 +210,15 @@ class VocabularyError(ValueError):
 
 
 _LITERAL = re.compile(r"^\s*(?P<neg>not\s+|!\s*|~\s*|¬\s*)?(?P<name>[A-Za-z_][\w-]*)\s*\((?P<args>[^()]*)\)\s*$")
+_NEGATED = re.compile(r"^\s*(?:not|!|~|¬)\s*\((?P<literal>[^()]*\([^()]*\)\s*)\)\s*$")
+"""A negation written as a call: ``not(in_bin(red))``."""
 
 
 def parse_literal(text: str) -> Literal:
-    """Parse ``close(red,green)``, ``not in_bin(red)``, ``!holding(blue)`` into a :class:`Literal`."""
+    """Parse ``close(red,green)``, ``not in_bin(red)``, ``!holding(blue)``, ``not(in_bin(red))`` into a
+    :class:`Literal`."""
+    if wrapped := _NEGATED.match(text):
+        return parse_literal(wrapped["literal"]).negated()
     match = _LITERAL.match(text)
     if not match:
         raise VocabularyError(f"cannot read literal {text!r}: expected e.g. 'close(red,green)' or 'not in_bin(red)'")

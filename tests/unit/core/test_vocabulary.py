@@ -107,6 +107,8 @@ def test_fallen_blocks_lie_well_below_the_table_top() -> None:
     ("not in_bin(red)", Literal("in_bin", ("red",), False)),
     ("  !Holding( Blue ) ", Literal("holding", ("blue",), False)),
     ("¬above(red, green)", Literal("above", ("red", "green"), False)),
+    ("not(in_bin(red))", Literal("in_bin", ("red",), False)),
+    (" ! ( close(Red, green) ) ", Literal("close", ("red", "green"), False)),
 ])
 def test_parse_literal(text: str, expected: Literal) -> None:
     assert parse_literal(text) == expected

@@ -220,9 +220,13 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             self._bin_some(positions)
             return positions
         kind = rng.uniform()
-        towers = TOWER_START_SHARE.get(self.scene.name, 0.0) if self.tower_share is None else self.tower_share
+        default = TOWER_START_SHARE.get(self.scene.name, 0.0)
+        towers = default if self.tower_share is None else self.tower_share
         if kind > 1.0 - towers:
             return self._tower_among(count)
+        # the other starts keep the shares they have beside the default towers: a larger tower share takes from each
+        # alike (drawn over the binned starts' range, it had left none)
+        kind *= (1.0 - default) / (1.0 - towers)
         if kind < 0.3 and count >= 2:
             positions = tasks.scatter(rng, count, **area)
             positions[:2] = tasks.cluster(rng, 2, **area)

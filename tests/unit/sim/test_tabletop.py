@@ -96,6 +96,26 @@ def test_training_may_draw_more_tower_starts_on_the_tabletop_only() -> None:
         env.tower_share = 0.9
 
 
+def test_more_tower_starts_keep_the_binned_ones_in_proportion() -> None:
+    """A larger tower share takes from every other kind of start alike: drawn over the binned starts' range, it
+    once left no training start with a block in the bin, and take-outs went untrained."""
+    from semgoal_sim.env import BINNED_START_SHARE, MAX_TOWER_SHARE, TOWER_START_SHARE, SubgoalEnv
+
+    def binned(env: SubgoalEnv, draws: int = 400) -> float:
+        env.reset(seed=0)
+        bin_floor = TABLE_TOP + env.scene.bin.floor_thickness + BLOCK_HALF_SIZE + 0.005
+        inside = lambda p: np.all(np.abs(p[:, :2] - env.scene.bin.center) < env.scene.bin.inner_half_size, axis=1)  # noqa: E731
+        return np.mean([(inside(p) & (p[:, 2] < bin_floor)).any() for p in (env._sample_positions() for _ in range(draws))])
+
+    env = SubgoalEnv("tabletop")
+    default = binned(env)
+    expected = (1.0 - BINNED_START_SHARE) - TOWER_START_SHARE["tabletop"]  # the binned range beside the default towers
+    assert abs(default - expected) < 0.05
+    env.tower_share = MAX_TOWER_SHARE
+    kept = expected * (1.0 - MAX_TOWER_SHARE) / (1.0 - TOWER_START_SHARE["tabletop"])
+    assert abs(binned(env) - kept) < 0.04 and binned(env) > 0.02
+
+
 def test_training_may_keep_to_six_blocks_so_seven_and_eight_stay_unseen() -> None:
     from semgoal_sim.env import SubgoalEnv
 

@@ -186,6 +186,9 @@ SCENES: dict[str, Scene] = {
     )
 }
 PAPER_SCENES = ("two_blocks", "three_blocks", "desk_cleanup")
+TAKE_OUT = "take_out"
+"""A pseudo sub-goal type for scenes with a bin: ``put_on_table`` of a block that starts in the bin, reported apart
+by evaluation (training draws it only from starts with blocks in the bin, and can forget it)."""
 """The paper's scenes (Table 1), each with its own trained actor."""
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from semgoal_core import layout
 from semgoal_core.settling import MotionReward
 from semgoal_core.tasks import scene_tasks
-from semgoal_core.vocabulary import LAYOUTS, SCENES
+from semgoal_core.vocabulary import LAYOUTS, SCENES, TAKE_OUT
 from semgoal_policy.replay import RewardFn
 
 
@@ -26,7 +26,8 @@ class AgentSpec:
     subgoals: bool
     """Whether it learns the planner's sub-goals (the hierarchy's low level) or whole tasks (a flat baseline)."""
     kinds: Callable[[str], tuple[str, ...]]
-    """scene -> the goal kinds the curriculum draws and evaluation reports (sub-goal types or tasks)."""
+    """scene -> the goal kinds the curriculum draws (sub-goal types or tasks); evaluation reports them and more
+    (:meth:`evaluated_kinds`)."""
     reward_fn: Callable[[str], RewardFn]
     """scene -> (achieved, desired, motion) -> reward, vectorised: the function HER relabels with."""
     goal: str = "semantic"
@@ -36,6 +37,12 @@ class AgentSpec:
 
     def model_name(self, scene: str) -> str:
         return scene + self.suffix
+
+    def evaluated_kinds(self, scene: str) -> tuple[str, ...]:
+        """What evaluation reports: the curriculum's kinds and, for sub-goals in a scene with a bin, take-outs apart
+        (:data:`~semgoal_core.vocabulary.TAKE_OUT`), which training meets only in starts with blocks in the bin."""
+        kinds = self.kinds(scene)
+        return (*kinds, TAKE_OUT) if self.subgoals and SCENES[scene].bin is not None else kinds
 
 
 def semantic_reward(scene: str) -> RewardFn:

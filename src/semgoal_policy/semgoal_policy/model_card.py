@@ -35,9 +35,10 @@ def steps_to_reach(rows: list[dict[str, str]], rate: float = REACHED, window: in
     kinds = [k.removeprefix("eval/success/") for k in (rows[0] if rows else {})
              if k.startswith("eval/success/") and k != "eval/success/overall"]
     reached: dict[str, int | None] = {}
-    for kind in kinds:
-        rates = [float(r[f"eval/success/{kind}"]) for r in rows]
-        reached[kind] = next((int(rows[i]["env_steps"]) for i in range(window - 1, len(rows))
+    for kind in kinds:  # over the evaluations that report it (a resumed run may report a kind from later on)
+        measured = [(int(r["env_steps"]), float(r[f"eval/success/{kind}"])) for r in rows if r[f"eval/success/{kind}"]]
+        rates = [value for _, value in measured]
+        reached[kind] = next((measured[i][0] for i in range(window - 1, len(measured))
                               if sum(rates[i - window + 1:i + 1]) / window >= rate), None)
     return reached
 

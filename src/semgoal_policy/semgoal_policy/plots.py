@@ -22,10 +22,12 @@ def learning_curve(csv_path: Path, png_path: Path, title: str) -> int | None:
     steps = [int(r["env_steps"]) for r in rows]
     kinds = [k for k in rows[0] if k.startswith("eval/success/") and k != "eval/success/overall"]
     fig, ax = plt.subplots(figsize=(7, 4), dpi=110)
-    for key in kinds:
-        ax.plot(steps, [float(r[key]) for r in rows], label=key.removeprefix("eval/success/"))
+    for key in kinds:  # a kind reported from a later evaluation on (a resumed run that reports more) from there
+        measured = [(step, float(r[key])) for step, r in zip(steps, rows, strict=True) if r[key]]
+        ax.plot(*zip(*measured, strict=True), label=key.removeprefix("eval/success/"))
     ax.plot(steps, [float(r["eval/success/overall"]) for r in rows], "k--", lw=2, label="overall")
-    reached = next((s for s, r in zip(steps, rows, strict=True) if min(float(r[k]) for k in kinds) >= TARGET), None)
+    reached = next((s for s, r in zip(steps, rows, strict=True)
+                    if all(r[k] for k in kinds) and min(float(r[k]) for k in kinds) >= TARGET), None)
     ax.axhline(TARGET, color="grey", lw=0.8, ls=":")
     xlabel = "env steps"
     if reached is not None:  # said under the axis: text inside it collides with the legend or the curves

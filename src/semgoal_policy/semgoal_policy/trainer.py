@@ -344,7 +344,8 @@ class Trainer:
         self._set_training_starts(on=False)
         policy = self.agent.policy
         policy.eval()
-        rates = success_by_kind(self.envs, policy.act, self.kinds, episodes, EVAL_SEED_BASE)
+        rates = success_by_kind(self.envs, policy.act, self.spec.evaluated_kinds(self.config.scene), episodes,
+                                EVAL_SEED_BASE)
         policy.train()
         self._set_training_starts(on=True)
         for env, state in zip(self.envs, training_rngs, strict=True):
@@ -421,12 +422,7 @@ class Trainer:
                **{f"eval/success/{k}": v for k, v in rates.items()},
                "eval/success/overall": float(np.mean(list(rates.values()))),
                **{k: round(v, 5) for k, v in self.last_metrics.items()}}
-        new = not csv_path.exists()
-        with csv_path.open("a", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=list(row))
-            if new:
-                writer.writeheader()
-            writer.writerow(row)
+        _append_row(csv_path, row)
         if self.config.tensorboard:
             self._tensorboard_row(row)
         print(f"[{self.env_steps} steps, {self.wall_s / 60:.1f} min] "
@@ -456,3 +452,25 @@ class Trainer:
         self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())
         write_card(self.export_dir)
+
+
+def _append_row(csv_path: Path, row: dict) -> None:
+    """Append ``row`` to the CSV; where it brings new columns (a resumed run that reports more), the file is written
+    again with them at the end, the rows before leaving them empty."""
+    if csv_path.exists():
+        with csv_path.open(newline="") as f:
+            reader = csv.DictReader(f)
+            fields, rows = list(reader.fieldnames or []), list(reader)
+        if added := [key for key in row if key not in fields]:
+            with csv_path.open("w", newline="") as f:
+                writer = csv.DictWriter(f, fieldnames=fields + added)
+                writer.writeheader()
+                writer.writerows([*rows, row])
+            return
+    else:
+        fields = list(row)
+    with csv_path.open("a", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields)
+        if csv_path.stat().st_size == 0:
+            writer.writeheader()
+        writer.writerow(row)

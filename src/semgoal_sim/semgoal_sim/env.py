@@ -25,7 +25,16 @@ import numpy as np
 from semgoal_core import features, layout, tasks
 from semgoal_core.expert import DROP_CLEARANCE, HOVER, RELEASE, clear_of, destination, expert_action, move_to
 from semgoal_core.settling import MotionReward, at_rest, info_motion, moving_blocks
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, SCENES, THRESHOLDS, Literal, SubGoal, parse_subgoal, rests_on
+from semgoal_core.vocabulary import (
+    BLOCK_HALF_SIZE,
+    SCENES,
+    TAKE_OUT,
+    THRESHOLDS,
+    Literal,
+    SubGoal,
+    parse_subgoal,
+    rests_on,
+)
 from semgoal_sim.render import RgbArrayRendering
 from semgoal_sim.rollout import held_blocks, run_subgoal, satisfied
 from semgoal_sim.world import FetchWorld, Snapshot
@@ -79,9 +88,6 @@ TAKE_OUT_SHARE = 0.5
 """With blocks in the bin: the share of put_on_table sub-goals that take a binned block back out, so
 operators' take-outs are in the training distribution (an actor that had rarely lifted a block
 out let it go over the bin, where it landed back in)."""
-TAKE_OUT = "take_out"
-"""A pseudo sub-goal type for ``reset(options={"kind": TAKE_OUT})``: ``put_on_table`` of a block that starts in
-the bin (desk scenes), so evaluation can report take-outs apart."""
 MAX_SPAWN_MARGIN = 0.1
 """Largest ``spawn_margin`` (m): 1.05..1.55 in x, still inside the workspace and within the expert's reach."""
 MAX_MISSED_PUT_SHARE = 0.5

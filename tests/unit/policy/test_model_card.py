@@ -27,3 +27,10 @@ def test_steps_to_reach_count_a_rate_held_over_three_evaluations_not_one_lucky_o
              for k, v in rates.items()}} for i in range(6)]
     assert steps_to_reach(rows) == {"pick": 60_000, "put_on": None}
     assert steps_to_reach(rows, window=1) == {"pick": 20_000, "put_on": 30_000}
+
+
+def test_steps_to_reach_a_kind_reported_from_later_on_counts_its_own_evaluations() -> None:
+    rates = {"pick": ["0.95"] * 5, "take_out": ["", "", "0.9", "0.9", "0.95"]}
+    rows = [{"env_steps": str(10_000 * (i + 1)), "eval/success/overall": "0", **{f"eval/success/{k}": v[i]
+             for k, v in rates.items()}} for i in range(5)]
+    assert steps_to_reach(rows) == {"pick": 30_000, "take_out": 50_000}

@@ -224,3 +224,34 @@ def test_the_running_clock_leaves_out_a_pause_that_sigcont_ends() -> None:
     finally:
         clock.close()
     assert signal.getsignal(signal.SIGCONT) in (signal.SIG_DFL, None)
+
+
+def test_a_resumed_run_that_reports_more_keeps_one_csv_with_every_column(tmp_path) -> None:
+    from semgoal_policy.plots import learning_curve
+    from semgoal_policy.trainer import _append_row
+
+    path = tmp_path / "progress.csv"
+    for steps in (1000, 2000):
+        _append_row(path, {"env_steps": steps, "eval/success/pick": 0.95, "eval/success/overall": 0.95})
+    _append_row(path, {"env_steps": 3000, "eval/success/pick": 1.0, "eval/success/overall": 0.5,
+                       "eval/success/take_out": 0.0})
+    _append_row(path, {"env_steps": 4000, "eval/success/pick": 1.0, "eval/success/overall": 0.98,
+                       "eval/success/take_out": 0.96})
+    rows = list(csv.DictReader(path.open()))
+    assert [r["eval/success/take_out"] for r in rows] == ["", "", "0.0", "0.96"]
+    assert [r["env_steps"] for r in rows] == ["1000", "2000", "3000", "4000"]
+    # every kind at 95 % first where every kind is measured and there
+    assert learning_curve(path, tmp_path / "curve.png", "t") == 4000 and (tmp_path / "curve.png").stat().st_size > 1000
+
+
+def test_evaluation_reports_take_outs_apart_where_there_is_a_bin(tmp_path) -> None:
+    from semgoal_policy.agents import AGENTS
+
+    trainer = trainer_for(replace(config(tmp_path, 400), scene="desk_cleanup", n_envs=2))
+    assert list(trainer.evaluate(1)) == [*trainer.kinds, "take_out"]
+
+    hierarchical = AGENTS["hierarchical"]
+    assert hierarchical.evaluated_kinds("tabletop")[-1] == "take_out"
+    assert hierarchical.evaluated_kinds("desk_cleanup")[-1] == "take_out"
+    assert hierarchical.evaluated_kinds("two_blocks") == hierarchical.kinds("two_blocks")
+    assert "take_out" not in AGENTS["flat-semantic"].evaluated_kinds("desk_cleanup")

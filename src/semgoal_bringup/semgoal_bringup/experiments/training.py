@@ -106,7 +106,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES
     from semgoal_policy.evaluate import success_by_kind
-    from semgoal_sim.env import EPISODE_STEPS, TAKE_OUT
+    from semgoal_sim.env import EPISODE_STEPS
 
     parser = argparse.ArgumentParser(prog="semgoal eval subgoals", description=eval_subgoals_main.__doc__)
     parser.add_argument("--scene", required=True, choices=list(SCENES))
@@ -142,7 +142,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
         """The actor's mean, or a sample of its Gaussian as the policy node draws it."""
         return actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
 
-    kinds = spec.kinds(args.scene) + ((TAKE_OUT,) if envs[0].scene.bin is not None else ())  # put_on_table from the bin
+    kinds = spec.evaluated_kinds(args.scene)
     misses: list[dict] = []
 
     def record(kind: str, seed: int, env) -> None:

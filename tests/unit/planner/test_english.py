@@ -14,7 +14,7 @@ from semgoal_core.consistency import contradictions
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
 from semgoal_planner.english import LanguageError, parse_english
-from semgoal_planner.english.words import CANONICAL
+from semgoal_planner.english.words import BASE_MARK, CANONICAL, DIRECTION, TOP_MARK
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import GoalError, parse_goal
 from semgoal_planner.semantic import SemanticPlanner
@@ -411,7 +411,10 @@ def test_random_goals_said_in_english_parse_back_to_themselves(case: tuple[str, 
     assert set(parse_english(sentence, scene)) == goal, sentence
 
 
-WORDS = sorted(CANONICAL | set(BLOCK_COLOURS) | {"the", "block", "please", ",", "next to", "out of", "don't"})
+WORDS = sorted(CANONICAL | set(BLOCK_COLOURS) | {"the", "block", "please", ",", "next to", "out of", "don't", "tower",
+                                                 "on top", "at the bottom", "in the middle", "with", "neither", "nor",
+                                                 "or", "else", TOP_MARK, BASE_MARK, DIRECTION})
+"""Known words, the phrases of towers, and the marks the reader leaves itself (a person may type them too)."""
 
 
 @settings(max_examples=400, deadline=None)

@@ -259,7 +259,7 @@ def _top_named_last(words: list[str]) -> list[str]:
 def _tower_end_named(words: list[str]) -> list[str]:
     """'a tower of red, green and blue with blue on top', '... with red at the bottom': the tower's list read from the
     end it names (reversed where that end is its first block), and a block not in the list put on top (or under it)."""
-    while marks := [i for i, word in enumerate(words) if word in (TOP_MARK, BASE_MARK)]:
+    while marks := [i for i, word in enumerate(words[:-1]) if word in (TOP_MARK, BASE_MARK) and words[i + 1] in BLOCK_COLOURS]:
         mark = marks[0]
         top, named = words[mark] == TOP_MARK, words[mark + 1]
         after = words[mark + 2:]

@@ -123,6 +123,13 @@ def open_turns(steps: list[PlanStep], turns: list[int]) -> dict[int, list[int]]:
             if steps[indices[0]].status in (StepStatus.DONE, StepStatus.ACTIVE) and steps[indices[-1]].status not in OVER}
 
 
+def _making_its_effect(step: PlanStep, obs: Observation) -> bool:
+    """An active step whose literals to make true hold already, before the rest does (a block held over the one it
+    goes on is above it while the hand still holds it): what it undoes of its own preconditions is its doing."""
+    made = [literal for literal in step.subgoal.literals() if literal.value]
+    return step.status == StepStatus.ACTIVE and bool(made) and obs.holds(made)
+
+
 def rest_of(steps: list[PlanStep], obs: Observation) -> list[int]:
     """The indices of the steps left, in the order one hand would run them from ``obs``: not done, less active ones
     whose literals hold, with the pick of a turn a person carries (their hand, which no predicate observes); the
@@ -706,7 +713,8 @@ class Executive:
         """Check that ``steps`` (a plan, its done steps with it) run on from the observed state to the goal."""
         obs = self.observation
         rest = rest_of(steps, obs)
-        self.planner.simulate(obs.objects, obs.true_literals, self.goal, [steps[i].subgoal for i in rest], rest)
+        self.planner.simulate(obs.objects, obs.true_literals, self.goal, [steps[i].subgoal for i in rest], rest,
+                              [k for k, i in enumerate(rest) if _making_its_effect(steps[i], obs)])
 
     def _undone(self) -> list[PlanStep]:
         return [step for step in self.steps if step.status not in OVER]

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -243,12 +244,15 @@ class SemanticPlanner:
         return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
-                 steps: list[SubGoal], first_index: int | list[int] = 0) -> None:
+                 steps: list[SubGoal], first_index: int | list[int] = 0, underway: Collection[int] = ()) -> None:
         """Check that ``steps`` run one after another from ``state`` and end in ``goal``; else PlanningError,
         naming a step by its index in the plan (``first_index`` for the first of ``steps``, or each one's), as
-        `plan show` does."""
+        `plan show` does. ``underway``: positions in ``steps`` of steps already making their effect (a block held
+        over the one it goes on): they run without the preconditions they undo themselves (that block clear)."""
         task = self.task(objects, state, goal)
         choices = [_operators_for(task, step) for step in steps]
+        for position in underway:
+            choices[position] = [op._replace(pre=op.pre & ~op.delete) for op in choices[position]]
         if _runs(task, task.init, choices):
             return
         current = task.init  # no choice of actions runs the steps: say where the first choices fail

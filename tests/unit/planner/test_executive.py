@@ -315,6 +315,30 @@ def test_a_persons_step_has_a_time_limit_and_a_pick_is_never_theirs() -> None:
     assert ex.status == "failed" and "was a person's and was not done within 40 control steps" in ex.message
 
 
+def test_a_block_held_over_the_one_it_goes_on_is_the_step_at_work_not_a_contradiction() -> None:
+    """While the hand holds blue over green, blue is above green and green is no longer clear: the put making its own
+    effect. A block let go beside the tower is a contradiction all the same."""
+    tabletop = ("red", "green", "blue")
+    ex = Executive(SemanticPlanner("tabletop"), settle_steps=1, contradiction_steps=10)
+    ex.observe(observe(["above(green,red)"], scene="tabletop", objects=tabletop))
+    assert ex.set_goal("above(blue,green)")[0]
+    assert [str(s.subgoal) for s in ex.steps] == ["pick(blue)", "put_on(blue,green)"]
+    for step in range(1, 4):
+        ex.observe(observe(["above(green,red)", "holding(blue)"], step, "tabletop", tabletop))
+        ex.tick(step)
+    assert ex.current == 1 and ex.steps[1].status == "active"
+    for step in range(4, 30):  # longer than the contradiction debounce
+        ex.observe(observe(["above(green,red)", "holding(blue)", "above(blue,green)", "close(green,blue)"], step,
+                           "tabletop", tabletop))
+        ex.tick(step)
+    assert ex.replans == 0 and ex.contradicted_since is None
+    assert not [e for e in ex.drain_events() if "contradicts" in e]
+    for step in range(30, 50):  # let go beside the tower
+        ex.observe(observe(["above(green,red)"], step, "tabletop", tabletop))
+        ex.tick(step)
+    assert ex.replans == 1 and "the observed state contradicts the plan" in ex.message
+
+
 def test_a_step_still_being_confirmed_is_no_contradiction() -> None:
     """A pick whose block is held but not yet confirmed (lifting, so not at rest) makes the next step's
     precondition true and the pick's false: that is the step working, not the world contradicting the plan."""

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
-from semgoal_planner.english import MAX_GOAL_CHARS, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
+from semgoal_planner.english import MAX_GOAL_CHARS, SWAP, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
 
 
 class GoalError(ValueError):
@@ -32,15 +32,17 @@ class Goal:
 
     def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
-        goal in that state, or the literals once every block they name is present and 'the tower' is placed
-        (:func:`the_tower`). Nothing is parsed."""
+        goal in that state, or the literals once every block they name is present, 'the tower' placed
+        (:func:`the_tower`) and swaps made (:func:`swapped`). Nothing is parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            return [layout.validate(literal, objects) for literal in the_tower(self.literals, state)]
-        except VocabularyError as error:
+            goal = [layout.validate(literal, objects) for literal in swapped(the_tower(self.literals, state), state)]
+            check_consistent(goal)
+        except (VocabularyError, ContradictionError) as error:
             raise GoalError(str(error)) from None
+        return list(dict.fromkeys(goal))
 
 
 def read_goal(text: str, scene: str, objects: tuple[str, ...]) -> Goal:
@@ -109,6 +111,30 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
     kept = [b for b in standing[0] if b not in moved] or standing[0]
     place = {TOWER_TOP: kept[-1], TOWER_BASE: standing[0][0]}
     return [Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value) for literal in literals]
+
+
+def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
+    """``literals`` with each ``swap(a,b)`` made what the two blocks trading places means in ``state``: the one on the
+    other goes under it, or the one in the bin comes out as the other goes in. GoalError where they have no places to
+    trade (neither on the other, both in the bin or both out)."""
+    true = set(state)
+    made: list[Literal] = []
+    for literal in literals:
+        if literal.name != SWAP:
+            made.append(literal)
+            continue
+        a, b = literal.args
+        on = next(((top, below) for top, below in ((a, b), (b, a)) if Literal("above", (top, below)) in true), None)
+        binned = [block for block in (a, b) if Literal("in_bin", (block,)) in true]
+        if on:
+            made += [Literal("above", on[::-1]), Literal("above", on, False)]
+        elif len(binned) == 1:
+            outside = b if binned == [a] else a
+            made += [Literal("in_bin", (outside,)), Literal("in_bin", (binned[0],), False)]
+        else:
+            where = "in the bin" if binned else "out of the bin"
+            raise GoalError(f"{a} and {b} have no places to trade now: neither is on the other, and both are {where}")
+    return made
 
 
 def scene_task(name: str, scene: str) -> Task:

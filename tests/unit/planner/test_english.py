@@ -281,7 +281,7 @@ REFUSALS = [
     ("three_blocks", "move a cube next to green", "'it' or 'the block' is ambiguous"),
     ("desk_cleanup", "put violet in the bin", "unknown word 'violet'"),
     ("desk_cleanup", "put purple in the bin", "there is no purple block here"),
-    ("desk_cleanup", "swap the blocks", "unknown word 'swap'"),
+    ("desk_cleanup", "swap the blocks", "'swap' trades the places of two blocks, not 4"),
     ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
     ("three_blocks", "put red in the bin", "'in_bin' is not used in scene 'three_blocks'"),
     ("three_blocks", "put yellow near red", "there is no yellow block here"),
@@ -319,6 +319,9 @@ REFUSALS = [
     ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
     ("tabletop", "red on top, green in the middle, blue in the middle", "two blocks are said to be at one place"),
     ("desk_cleanup", "put red or green in the bin", "'or' leaves the goal open"),
+    ("tabletop", "swap red", "'swap' trades the places of two blocks, not 1"),
+    ("tabletop", "don't swap red and green", "'not swap' asks for nothing"),
+    ("three_blocks", "swap red and green", "in scene three_blocks two blocks have no places to trade"),
     ("tabletop", "put red in the bin if it is on the table", "'if' leaves the goal open"),
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
 ]
@@ -362,7 +365,7 @@ def test_a_refusal_suggests_goals_the_scene_can_state_with_its_blocks(scene: str
     objects = LAYOUTS[scene].objects
     for blocks in (objects, objects[-1:], objects[1:]):
         with pytest.raises(LanguageError) as refusal:
-            parse_english("swap them", scene, blocks)
+            parse_english("teleport them", scene, blocks)
         suggested = re.findall(r"'([^']+)'", str(refusal.value).split("e.g.")[1])
         assert suggested
         for sentence in suggested:
@@ -453,8 +456,11 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put orange on top of the stack", "above(orange,tower_top)"),
     ("put red next to the tower", "close(red,tower_base)"),
     ("keep blue away from the pile, then put green on the tower", "not close(blue,tower_base) & above(green,tower_top)"),
+    ("switch red and green, then put blue in the bin", "swap(red,green) & in_bin(blue)"),
+    ("exchange the red and the green block", "swap(red,green)"),
 ])
-def test_the_tower_is_kept_for_the_state_it_is_planned_in(text: str, expected: str) -> None:
+def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text: str, expected: str) -> None:
+    """'the tower' and 'swap' stand in the literals until the goal is planned (tests/unit/planner/test_goals.py)."""
     said = {str(literal) for literal in parse_english(text, "tabletop")}
     assert said == set(expected.split(" & "))
 
@@ -478,3 +484,12 @@ def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
     ok, message = executive.set_goal("put the orange block on the tower")
     assert ok and "(the goal: above(orange,blue))" in message
     assert [str(s.subgoal) for s in executive.steps] == ["pick(orange)", "put_on(orange,blue)"]
+
+
+def test_the_planner_swaps_the_blocks_whichever_is_on_top_now() -> None:
+    executive = Executive(SemanticPlanner("two_blocks"))
+    for top, below in (("red", "green"), ("green", "red")):
+        executive.observe(Observation(("red", "green"), [Literal("above", (top, below))], 0))
+        ok, message = executive.set_goal("swap the two blocks")
+        assert ok and f"above({below},{top})" in message, message
+        assert [str(s.subgoal) for s in executive.steps][-1] == f"put_on({below},{top})"

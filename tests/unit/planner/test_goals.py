@@ -144,3 +144,23 @@ def test_the_tower_must_be_one(state: list[Literal], words: str) -> None:
     goal = read_goal("put orange on the tower", "tabletop", TABLETOP)
     with pytest.raises(GoalError, match=words):
         goal.instantiate("tabletop", TABLETOP, state)
+
+
+@pytest.mark.parametrize(("state", "expected"), [
+    (on("red", "green"), [Literal("above", ("red", "green")), Literal("above", ("green", "red"), False)]),
+    (on("green", "red"), [Literal("above", ("green", "red")), Literal("above", ("red", "green"), False)]),
+    ([Literal("in_bin", ("green",))], [Literal("in_bin", ("red",)), Literal("in_bin", ("green",), False)]),
+    ([Literal("in_bin", ("red",))], [Literal("in_bin", ("green",)), Literal("in_bin", ("red",), False)]),
+])
+def test_two_blocks_swapped_trade_the_places_they_have_when_planned(state: list[Literal],
+                                                                    expected: list[Literal]) -> None:
+    assert read_goal("swap green and red", "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, state) == expected
+
+
+@pytest.mark.parametrize(("state", "words"), [
+    ([], "neither is on the other, and both are out of the bin"),
+    ([Literal("in_bin", ("red",)), Literal("in_bin", ("green",))], "both are in the bin"),
+])
+def test_blocks_with_no_places_to_trade_are_not_swapped(state: list[Literal], words: str) -> None:
+    with pytest.raises(GoalError, match=words):
+        read_goal("swap red and green", "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, state)

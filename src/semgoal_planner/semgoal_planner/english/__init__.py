@@ -20,6 +20,7 @@ What a sentence becomes (``PHRASES`` in the tests hold many more)::
     keep red away from green and blue            not close(red,green) & not close(red,blue)
     pick up blue                                 holding(blue)
     put orange on the tower                      above(orange,tower_top): the top of the tower standing when planned
+    swap red and green                           swap(red,green): which is on which (or in the bin) when planned
 
 The literals are what the operator is shown before anything moves.
 """
@@ -33,10 +34,11 @@ import lark
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parser
-from semgoal_planner.english.resolver import TOWER_BASE, TOWER_TOP, Resolver
+from semgoal_planner.english.resolver import SWAP, TOWER_BASE, TOWER_TOP, Resolver
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["MAX_GOAL_CHARS", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples", "normalise", "parse_english"]
+__all__ = ["MAX_GOAL_CHARS", "SWAP", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples", "normalise",
+           "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:
@@ -96,6 +98,13 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
 def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]) -> Literal:
     """``literal`` checked against the scene; one naming the tower (:data:`TOWER_TOP`, :data:`TOWER_BASE`) is checked
     with another block in its place and kept as it is, for :func:`~semgoal_planner.goals.the_tower` to place."""
+    if literal.name == SWAP:
+        if not literal.value:
+            raise VocabularyError("'not swap' asks for nothing: say where the blocks should be")
+        if not {"above", "in_bin"} & set(layout.scene.predicates):
+            raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
+                                  f"{', '.join(layout.scene.predicates)}): say where each goes")
+        return literal
     standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE)]
     if not standing:
         return layout.validate(literal, blocks)

@@ -55,6 +55,7 @@ action: ("put" | "keep") refs dest          -> put
       | "group" refs near                     -> group_near
       | "separate" refs? ("apart" | "out")?   -> apart
       | "separate" refs ("from" | "away") refs -> separate_from
+      | "swap" refs?                          -> swap
       | "unstack" refs?                       -> unstack
       | "unstack" refs ("on" | "down")        -> unstack
       | "keep" refs                           -> keep
@@ -215,6 +216,10 @@ class Clauses(lark.Transformer):
 
     def keep(self, items: list) -> Clause:
         return Clause("keep", subjects=items[0])
+
+    def swap(self, items: list) -> Clause:
+        refs = refs_in(items)
+        return Clause("swap", subjects=refs[0] if refs else (Ref("all"),))
 
     def unstack(self, items: list) -> Clause:
         refs = refs_in(items)

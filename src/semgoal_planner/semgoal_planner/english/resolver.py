@@ -15,6 +15,9 @@ TOWER_TOP, TOWER_BASE = "tower_top", "tower_base"
 """What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
+SWAP = "swap"
+"""A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
+trade places, which only the world then can say (which is on which, which is in the bin)."""
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
 
 
@@ -162,6 +165,10 @@ class Resolver:
             return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
         if kind == "tower":  # the first named at the bottom
             return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))
+        if kind == "swap":
+            if len(subjects) != 2:
+                raise LanguageError(f"'swap' trades the places of two blocks, not {len(subjects)}: say which two")
+            return [Literal(SWAP, subjects)]
         if kind == "unstack":
             return (Literal("above", (s, o), False) for s in subjects for o in others(s))
         if kind in ("together", "apart"):

@@ -110,6 +110,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "separate"),
     (r"put together|bring together|push together|gather|group|cluster|bunch up|bunch|collect|pair up|pair", "group"),
     (r"take down|unstack", "unstack"),
+    (r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|put", "put"),
@@ -141,7 +142,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower",
+    "the_tower", "swap",
 })
 """The words the grammar reads (besides the colours)."""
 

@@ -13,7 +13,7 @@ def parse_goal_main(argv: list[str]) -> int:
     import json
 
     from semgoal_core.vocabulary import SCENES
-    from semgoal_planner.english import LanguageError, parse_english
+    from semgoal_planner.english import PLACED_WHEN_PLANNED, LanguageError, parse_english
 
     parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
@@ -34,7 +34,11 @@ def parse_goal_main(argv: list[str]) -> int:
             result, failed = {"text": text, "error": str(error)}, True
         if args.json:
             print(json.dumps(result))
-        else:
-            print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
+            continue
+        print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
+        said = " ".join(result.get("literals", []))
+        for stand_in, meaning in PLACED_WHEN_PLANNED.items():
+            if stand_in in said:
+                print(f"    {stand_in}: {meaning}")
     return 2 if failed else 0
 

@@ -449,6 +449,10 @@ def test_parse_goal_cli_contract(capsys) -> None:
     assert lines[1]["text"] == "put blue in the bin" and "no blue block" in lines[1]["error"]
     assert parse_goal_main(["--scene", "two_blocks", "--json", "stack red on green"]) == 0
     assert json.loads(capsys.readouterr().out) == {"text": "stack red on green", "literals": ["above(red,green)"]}
+    assert parse_goal_main(["--scene", "tabletop", "put orange on the tower"]) == 0
+    said = capsys.readouterr().out.splitlines()
+    assert said == ["'put orange on the tower': above(orange,tower_top)",
+                    "    tower_top: the top block of the tower standing when the goal is planned"]
 
 
 @pytest.mark.parametrize(("text", "expected"), [

@@ -34,11 +34,11 @@ import lark
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parser
-from semgoal_planner.english.resolver import SWAP, TOWER_BASE, TOWER_TOP, Resolver
+from semgoal_planner.english.resolver import PLACED_WHEN_PLANNED, SWAP, TOWER_BASE, TOWER_TOP, Resolver
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["MAX_GOAL_CHARS", "SWAP", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples", "normalise",
-           "parse_english"]
+__all__ = ["MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples",
+           "normalise", "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:

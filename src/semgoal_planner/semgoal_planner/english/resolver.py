@@ -18,6 +18,13 @@ TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 SWAP = "swap"
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
+PLACED_WHEN_PLANNED = {
+    TOWER_TOP: "the top block of the tower standing when the goal is planned",
+    TOWER_BASE: "the bottom block of the tower standing when the goal is planned",
+    SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
+          "or the one in the bin comes out)",
+}
+"""What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
 
 

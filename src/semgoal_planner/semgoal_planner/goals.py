@@ -87,8 +87,9 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
 
 def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with 'the tower' placed in ``state``: :data:`TOWER_TOP` becomes the top block of the one tower
-    standing (two or more blocks one on another, the blocks the goal moves to it set aside), :data:`TOWER_BASE` its
-    bottom block. GoalError where no tower stands, or several do."""
+    standing (two or more blocks one on another, the blocks the goal moves to it set aside), and each further block
+    put on the tower goes on the one put there before it; :data:`TOWER_BASE` its bottom block. GoalError where no
+    tower stands, or several do."""
     placeholders = (TOWER_TOP, TOWER_BASE)
     if not any(arg in placeholders for literal in literals for arg in literal.args):
         return list(literals)
@@ -110,7 +111,12 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
                         f"'put {sorted(moved)[0]} on {tops[0]}'")
     kept = [b for b in standing[0] if b not in moved] or standing[0]
     place = {TOWER_TOP: kept[-1], TOWER_BASE: standing[0][0]}
-    return [Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value) for literal in literals]
+    placed = []
+    for literal in literals:
+        placed.append(Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value))
+        if literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on the tower goes on this one
+            place[TOWER_TOP] = literal.args[0]
+    return placed
 
 
 def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:

@@ -127,6 +127,9 @@ def on(*chain: str) -> list[Literal]:
     ("put orange on the tower", on("red", "green", "orange"), [Literal("above", ("orange", "green"))]),
     ("put orange on the tower", on("red", "green") + on("blue", "orange"), [Literal("above", ("orange", "green"))]),
     ("put orange on the tower", on("blue", "orange"), [Literal("above", ("orange", "blue"))]),
+    # blocks put on the tower one after another: each on the one before
+    ("put orange on the tower, then put yellow on the tower", on("red", "green"),
+     [Literal("above", ("orange", "green")), Literal("above", ("yellow", "orange"))]),
 ])
 def test_the_tower_is_the_one_standing_when_the_goal_is_planned(text: str, state: list[Literal],
                                                                 expected: list[Literal]) -> None:

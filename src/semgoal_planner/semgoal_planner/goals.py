@@ -86,15 +86,41 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
 
 
 def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
-    """``literals`` with 'the tower' placed in ``state``: :data:`TOWER_TOP` becomes the top block of the one tower
-    standing (two or more blocks one on another, the blocks the goal moves to it set aside), and each further block
-    put on the tower goes on the one put there before it; :data:`TOWER_BASE` its bottom block. GoalError where no
-    tower stands, or several do."""
+    """``literals`` with 'the tower' placed: the one tower the goal itself builds ("a tower of red and green, then
+    yellow next to the tower"), else the one standing in ``state`` (two or more blocks one on another, the blocks the
+    goal moves to it set aside). :data:`TOWER_TOP` becomes its top block, and each further block put on the tower goes
+    on the one put there before it; :data:`TOWER_BASE` its bottom block. GoalError where no tower stands, or several
+    do."""
     placeholders = (TOWER_TOP, TOWER_BASE)
     if not any(arg in placeholders for literal in literals for arg in literal.args):
         return list(literals)
     moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders}
-    under = {lit.args[0]: lit.args[1] for lit in state if lit.name == "above" and lit.value}  # block -> what it is on
+    built = _towers([lit for lit in literals if lit.name == "above" and lit.value and lit.args[-1] not in placeholders])
+    if len(built) == 1:
+        tower = kept = built[0]
+    else:
+        towers = _towers([lit for lit in state if lit.name == "above" and lit.value])
+        standing = [t for t in towers if sum(b not in moved for b in t) >= 2] or towers  # not a moved block's own
+        if not standing:
+            raise GoalError("no tower stands now (no block is on another): name the block instead of 'the tower'")
+        if len(standing) > 1:
+            tops = [[b for b in t if b not in moved][-1] for t in standing]
+            raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): say which block, e.g. "
+                            f"'put {sorted(moved)[0]} on {tops[0]}'")
+        tower = standing[0]
+        kept = [b for b in tower if b not in moved] or tower
+    place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
+    placed = []
+    for literal in literals:
+        placed.append(Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value))
+        if literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on the tower goes on this one
+            place[TOWER_TOP] = literal.args[0]
+    return placed
+
+
+def _towers(above: Sequence[Literal]) -> list[list[str]]:
+    """The towers that ``above`` literals make, each bottom block first, in the order their bottoms appear."""
+    under = {lit.args[0]: lit.args[1] for lit in above}  # block -> what it is on
     upper = {below: block for block, below in under.items()}
     towers = []
     for bottom in [b for b in dict.fromkeys(under.values()) if b not in under]:
@@ -102,21 +128,7 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
         while chain[-1] in upper and upper[chain[-1]] not in chain:
             chain.append(upper[chain[-1]])
         towers.append(chain)
-    standing = [t for t in towers if sum(b not in moved for b in t) >= 2] or towers  # not just a moved block's own
-    if not standing:
-        raise GoalError("no tower stands now (no block is on another): name the block instead of 'the tower'")
-    if len(standing) > 1:
-        tops = [[b for b in t if b not in moved][-1] for t in standing]
-        raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): say which block, e.g. "
-                        f"'put {sorted(moved)[0]} on {tops[0]}'")
-    kept = [b for b in standing[0] if b not in moved] or standing[0]
-    place = {TOWER_TOP: kept[-1], TOWER_BASE: standing[0][0]}
-    placed = []
-    for literal in literals:
-        placed.append(Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value))
-        if literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on the tower goes on this one
-            place[TOWER_TOP] = literal.args[0]
-    return placed
+    return towers
 
 
 def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:

@@ -130,6 +130,11 @@ def on(*chain: str) -> list[Literal]:
     # blocks put on the tower one after another: each on the one before
     ("put orange on the tower, then put yellow on the tower", on("red", "green"),
      [Literal("above", ("orange", "green")), Literal("above", ("yellow", "orange"))]),
+    # the tower the goal builds, whatever stands
+    ("build a tower of red and green, then put yellow next to the tower", on("blue", "orange"),
+     [Literal("above", ("green", "red")), Literal("close", ("red", "yellow"))]),
+    ("stack blue on red, then put orange on the tower", [], [Literal("above", ("blue", "red")),
+                                                            Literal("above", ("orange", "blue"))]),
 ])
 def test_the_tower_is_the_one_standing_when_the_goal_is_planned(text: str, state: list[Literal],
                                                                 expected: list[Literal]) -> None:

@@ -149,6 +149,7 @@ CANONICAL = frozenset({
 UNDECIDED = frozenset({"or", "either", "nor", "whichever", "if", "unless", "when", "whenever", "maybe", "perhaps"})
 """Words that make a goal a choice or a condition, which a goal (one state to reach) cannot be: refused by name."""
 
+
 class LanguageError(ValueError):
     """A sentence that cannot be read as a goal of the scene: the message names the word or the problem."""
 

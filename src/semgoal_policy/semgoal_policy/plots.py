@@ -21,7 +21,7 @@ def learning_curve(csv_path: Path, png_path: Path, title: str) -> int | None:
         return None
     steps = [int(r["env_steps"]) for r in rows]
     kinds = [k for k in rows[0] if k.startswith("eval/success/") and k != "eval/success/overall"]
-    fig, ax = plt.subplots(figsize=(7, 4), dpi=110)
+    fig, ax = plt.subplots(figsize=(8.2, 4), dpi=110)
     for key in kinds:  # a kind reported from a later evaluation on (a resumed run that reports more) from there
         measured = [(step, float(r[key])) for step, r in zip(steps, rows, strict=True) if r[key]]
         ax.plot(*zip(*measured, strict=True), label=key.removeprefix("eval/success/"))
@@ -35,7 +35,7 @@ def learning_curve(csv_path: Path, png_path: Path, title: str) -> int | None:
         xlabel += f" (dotted green: every kind ≥ 95 % first at {reached:,})"
     ax.set(xlabel=xlabel, ylabel="success (deterministic actor)", ylim=(-0.02, 1.02), title=title)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))  # beside the axes: it hides no curve
     fig.tight_layout()
     png_path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(png_path)

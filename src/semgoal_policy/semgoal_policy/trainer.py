@@ -455,22 +455,22 @@ class Trainer:
 
 
 def _append_row(csv_path: Path, row: dict) -> None:
-    """Append ``row`` to the CSV; where it brings new columns (a resumed run that reports more), the file is written
-    again with them at the end, the rows before leaving them empty."""
+    """Append ``row`` to the CSV (its header read, nothing more); where it brings new columns (a resumed run that
+    reports more), the file is written again with them at the end, the rows before leaving them empty."""
+    fields: list[str] = []
     if csv_path.exists():
         with csv_path.open(newline="") as f:
-            reader = csv.DictReader(f)
-            fields, rows = list(reader.fieldnames or []), list(reader)
-        if added := [key for key in row if key not in fields]:
-            with csv_path.open("w", newline="") as f:
-                writer = csv.DictWriter(f, fieldnames=fields + added)
-                writer.writeheader()
-                writer.writerows([*rows, row])
-            return
-    else:
-        fields = list(row)
-    with csv_path.open("a", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        if csv_path.stat().st_size == 0:
-            writer.writeheader()
-        writer.writerow(row)
+            fields = next(csv.reader(f), [])
+    added = [key for key in row if key not in fields]
+    if fields and not added:
+        with csv_path.open("a", newline="") as f:
+            csv.DictWriter(f, fieldnames=fields).writerow(row)
+        return
+    rows: list[dict] = []
+    if fields:
+        with csv_path.open(newline="") as f:
+            rows = list(csv.DictReader(f))
+    with csv_path.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields + added)
+        writer.writeheader()
+        writer.writerows([*rows, row])

@@ -397,11 +397,11 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
-_BLOCK_SAID = r"(?:the )?(?:" + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?"
+_BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _NEITHER = re.compile(rf"\bneither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
 """'neither red nor green (should be) in the bin': both, not."""
-_POSITION = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
+_POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
                        r"on the bottom|at the base)\b")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""

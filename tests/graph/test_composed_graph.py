@@ -24,8 +24,8 @@ def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, pro
     client = GraphClient("semgoal_test_operator", watch=False)
     try:
         assert client.wait_ready(), nodes.logs()
-        names = {name for name, _ in probe.node.get_node_names_and_namespaces()}
-        assert {"sim", "predicates", "planner", "policy"} <= names, names
+        probe.spin_until(lambda: {"sim", "predicates", "planner", "policy"} <= set(probe.node.get_node_names()), 20,
+                         "the four node names from the one process")
         ok, message = client.reset(TASK, SEED)
         assert ok, message
         result = client.execute(TASK, max_steps=TASK_STEP_BUDGET)

@@ -48,6 +48,10 @@ class EpisodeReplay:
         self.next_index = 0
         self.size = 0
 
+    def clear(self) -> None:
+        """Empty (the rows a load that failed half-way wrote are never sampled)."""
+        self.size = self.next_index = 0
+
     @property
     def transitions(self) -> int:
         return self.size * self.horizon
@@ -85,8 +89,13 @@ class EpisodeReplay:
         )
 
     def save(self, path: Path) -> None:
+        """Written beside ``path`` and moved onto it: a run stopped while saving keeps the buffer it had (one was
+        left half written, and the resume stopped on it)."""
         arrays = {name: getattr(self, name)[: self.size] for name in self.FIELDS}
-        np.savez(path, next_index=self.next_index, **arrays)
+        partial = path.with_name(f"{path.name}.partial")
+        with partial.open("wb") as file:
+            np.savez(file, next_index=self.next_index, **arrays)
+        partial.replace(path)
 
     def load(self, path: Path) -> None:
         """Restore a saved buffer; one holding more episodes than this buffer's capacity (a run resumed

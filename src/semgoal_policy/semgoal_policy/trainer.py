@@ -20,6 +20,7 @@ import signal
 import sys
 import threading
 import time
+import zipfile
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
@@ -287,7 +288,13 @@ class Trainer:
             env.np_random.bit_generator.state = rng_state
         replay_path = self.run_dir / "replay.npz"
         if replay_path.exists():
-            self.replay.load(replay_path)
+            try:
+                self.replay.load(replay_path)
+            except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as error:  # a torn write
+                self.replay.clear()
+                print(f"{replay_path} unreadable ({type(error).__name__}: {error}): left aside as "
+                      f"{replay_path.name}.unreadable; the buffer is refilled", file=sys.stderr)
+                replay_path.replace(replay_path.with_name(f"{replay_path.name}.unreadable"))
 
     def refill(self, progress: Callable[[int], object] = lambda steps: None) -> int:
         """Collect without updates until the buffer holds ``refill_steps`` transitions (a resumed run whose

@@ -72,6 +72,26 @@ def test_a_saved_buffer_larger_than_the_capacity_loads_its_newest_episodes(tmp_p
     assert small.goal[:, 0].tolist() == [3, 4, 5] and small.size == 3 and small.next_index == 0
 
 
+def test_a_save_that_stops_half_way_leaves_the_buffer_saved_before(tmp_path, monkeypatch) -> None:
+    reward = lambda a, d, m: layout.goal_reward(a, d)  # noqa: E731
+    replay = EpisodeReplay(2, 2, 1, 2, reward)
+    replay.add(np.zeros((1, 3, 1)), np.zeros((1, 3, 2)), np.zeros((1, 3, 0)), np.ones((1, 2)), np.zeros((1, 2, 4)),
+               np.zeros((1, 2, 4)))
+    replay.save(tmp_path / "replay.npz")
+
+    def stopped(file, **arrays) -> None:
+        file.write(b"PK\x03\x04 half a zip")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(np, "savez", stopped)
+    with pytest.raises(KeyboardInterrupt):
+        replay.save(tmp_path / "replay.npz")
+    monkeypatch.undo()
+    restored = EpisodeReplay(2, 2, 1, 2, reward)
+    restored.load(tmp_path / "replay.npz")
+    assert restored.size == 1 and np.array_equal(restored.goal[0], [1, 1])
+
+
 def test_normaliser_tracks_mean_and_variance() -> None:
     rng = np.random.default_rng(0)
     data = rng.normal(3.0, 2.0, size=(5000, 4))

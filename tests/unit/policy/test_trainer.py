@@ -92,6 +92,17 @@ def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_
     assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
 
 
+def test_resume_over_a_torn_replay_buffer_sets_it_aside_and_refills(tmp_path) -> None:
+    """A run stopped while its buffer was written (an older save, not atomic) left half a file: the resume goes on."""
+    trainer_for(config(tmp_path, 400)).run()
+    replay = tmp_path / "run" / "replay.npz"
+    replay.write_bytes(replay.read_bytes()[: replay.stat().st_size // 2])
+    resumed = trainer_for(config(tmp_path, 800))
+    resumed.run(resume=True)
+    assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
+    assert (tmp_path / "run" / "replay.npz.unreadable").exists()
+
+
 @pytest.mark.slow
 def test_the_refill_collects_without_updating_the_networks(tmp_path) -> None:
     trainer_for(config(tmp_path, 400)).run()

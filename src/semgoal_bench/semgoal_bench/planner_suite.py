@@ -173,13 +173,19 @@ def _parsed(domain_path: Path, problem_path: Path) -> tuple:
     return domain, parse_problem(problem_path.read_text(), domain)
 
 
-def validity(domain_path: Path, problem_path: Path, plan: tuple[str, ...] | None) -> str:
-    """"" for a valid plan (or none), else why not: the plan is run on the lifted actions (validate_plan.py)."""
+def validity(domain_path: Path, problem_path: Path, plan: tuple[str, ...] | None) -> str | None:
+    """"" for a valid plan (or none), else why not: the plan is run on the lifted actions (validate_plan.py); None
+    where the validator cannot read the task (PDDL outside our reader's fragment, which another planner solved)."""
     from semgoal_bench.validate_plan import invalid_step, read_plan
+    from strips_planner.pddl import PddlUnsupportedError
 
     if plan is None:
         return ""
-    return invalid_step(*_parsed(domain_path, problem_path), read_plan("\n".join(plan))) or ""
+    try:
+        parsed = _parsed(domain_path, problem_path)
+    except PddlUnsupportedError:
+        return None
+    return invalid_step(*parsed, read_plan("\n".join(plan))) or ""
 
 
 def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float, search: str, heuristic: str,
@@ -199,7 +205,7 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
     ratios: dict[str, list[float]] = {p: [] for p in installed if p != "ours"}
     for domain_name, domain_path, problem_path in suite_problems(folder, per_domain, domains):
         row = rows.setdefault(domain_name, {"problems": 0, **{p: {"solved": 0, "invalid": [], "seconds": [],
-                                                                  "failed": []} for p in installed}})
+                                                                  "failed": [], "unchecked": []} for p in installed}})
         row["problems"] += 1
         results = {}
         for name, planner in installed.items():
@@ -211,6 +217,8 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
                 cell["invalid"].append(f"{problem_path.name}: {reason}")
             elif result.status == "solved":
                 cell["solved"] += 1
+                if reason is None:
+                    cell["unchecked"].append(problem_path.name)
                 cell["seconds"].append(result.seconds)
                 results[name] = result.seconds
             elif result.status.startswith("error"):
@@ -235,6 +243,7 @@ def run_suite(folder: Path, planners: list[str], per_domain: int, timeout: float
             "coverage": {p: sum(row[p]["solved"] for row in rows.values()) for p in installed},
             "invalid_plans": {p: sum(len(row[p]["invalid"]) for row in rows.values()) for p in installed},
             "errors": {p: sum(len(row[p]["failed"]) for row in rows.values()) for p in installed},
+            "unchecked_plans": {p: sum(len(row[p]["unchecked"]) for row in rows.values()) for p in installed},
             "median_ratio_to_ours": {n: round(statistics.median(r), 2) for n, r in ratios.items() if r}}
 
 
@@ -244,6 +253,7 @@ def table(result: dict) -> str:
     for name, row in result["domains"].items():
         cells = "  ".join(f"{p} {row[p]['solved']}/{row['problems']}"
                           f"{' ' + str(len(row[p]['invalid'])) + ' INVALID' if row[p]['invalid'] else ''}"
+                          f"{' (' + str(len(row[p]['unchecked'])) + ' unchecked)' if row[p]['unchecked'] else ''}"
                           f" {row[p]['median_s'] if row[p]['median_s'] is not None else '-'} s"
                           for p in row if p not in ("problems", "ratio_to_ours"))
         ratios = "  ".join(f"{p}/ours {r}x" for p, r in row["ratio_to_ours"].items())

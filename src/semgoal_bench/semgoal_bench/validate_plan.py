@@ -1,6 +1,7 @@
 """Check a plan against a PDDL task by executing it on the lifted actions, without the planner's grounding:
 each step's action exists, its arguments are objects of the parameters' types, its precondition holds
-(equality included), and the goal holds at the end; where the problem minimises total-cost, it prints the
+(equality included), its conditional and universal effects take place where their conditions hold before it, and the
+goal holds at the end; where the problem minimises total-cost, it prints the
 plan's cost, summed from the actions' increases. A second opinion on ``plan-pddl``'s plans where VAL is not
 at hand.
 
@@ -11,6 +12,7 @@ Exit 0 valid, 1 invalid (the reason on stderr).
 from __future__ import annotations
 
 import sys
+from itertools import product
 from pathlib import Path
 
 from strips_planner.adl import holds
@@ -49,7 +51,13 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
             return f"step {number} ({name} {' '.join(args)}): precondition {unmet[0]} does not hold"
         if action.condition is not None and not holds(action.condition, binding, state.__contains__, of_type):
             return f"step {number} ({name} {' '.join(args)}): its precondition's condition does not hold"
-        state = (state - {_bind(a, binding) for a in action.delete}) | {_bind(a, binding) for a in action.add}
+        adds, deletes = {_bind(a, binding) for a in action.add}, {_bind(a, binding) for a in action.delete}
+        for effect in action.effects:
+            for values in product(*(of_type(kind) for _, kind in effect.variables)):
+                bound = dict(binding, **dict(zip((variable for variable, _ in effect.variables), values, strict=True)))
+                if effect.condition is None or holds(effect.condition, bound, state.__contains__, of_type):
+                    (adds if effect.literal.positive else deletes).add(_bind(effect.literal.atom, bound))
+        state = (state - deletes) | adds
     unmet = [c for c in problem.goal if not _holds(c, state)]
     if not unmet and problem.goal_condition is not None and not holds(problem.goal_condition, {}, state.__contains__,
                                                                       of_type):

@@ -2,7 +2,8 @@
  * heuristics (blind, hmax, hFF, LM-cut, the landmark count) over a grounded STRIPS task.
  *
  * Parsing stays in Python (strips_planner.pddl), grounding in Python and _ground.c; this module gets the
- * ground operators as bit masks and returns plans as operator indices. It holds the GIL throughout and checks
+ * ground operators as bit masks (with their conditional effects, each a condition and its adds and deletes) and
+ * returns plans as operator indices. It holds the GIL throughout and checks
  * for signals now and then, so Ctrl-C still stops a long search.
  *
  * States are bitsets of `nwords` 64-bit words. The searches keep every state they meet in one arena
@@ -14,7 +15,9 @@
  * The relaxed heuristics share one structure: the facts plus two artificial ones, "goal" (added by a
  * zero-cost operator that needs the goal facts) and "true" (in every state, and the precondition of
  * operators that have none), and a Dijkstra over facts (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
- * Helmert & Domshlak 2009).
+ * Helmert & Domshlak 2009). A conditional effect is a relaxed operator of its own (its operator's precondition and
+ * its condition; its adds), as Fast Downward's relaxation heuristics take them; LM-cut is refused on such tasks (it
+ * would no longer be admissible).
  */
 #include "_landmarks.h" /* Zhu & Givan's landmarks */
 #include "_support.h"   /* Python.h, word, Rows, int <-> words */
@@ -87,11 +90,15 @@ typedef struct {
     PyObject_HEAD
     int nfacts, nwords, nops;
     word *pre, *neg, *add, *keep; /* nops x nwords each; keep = ~delete */
+    int ncond, *cond_start, *cond_op;   /* conditional effects: operator o's are cond_start[o]..cond_start[o + 1], and
+                                           cond_op names each one's operator */
+    word *cpre, *cneg, *cadd, *cdel;    /* ncond x nwords each: an effect's condition, its adds and its deletes */
+    int nrel;                           /* relaxed operators: the operators, then one per conditional effect */
     word *init, *goal, *goal_neg;
     Rows filed;                   /* per fact: operators filed under it (their rarest precondition) */
     int *free_ops, nfree;         /* operators with no positive precondition */
-    /* the relaxed task: facts 0..nfacts-1, GOAL = nfacts, TRUE = nfacts + 1; operators 0..nops-1 and
-       the goal operator nops */
+    /* the relaxed task: facts 0..nfacts-1, GOAL = nfacts, TRUE = nfacts + 1; operators 0..nops-1, the
+       conditional effects nops..nrel-1 and the goal operator nrel */
     Rows rpre, radd, consumers, achievers;
     /* heuristic workspace, reused between evaluations */
     int *fact_cost, *achiever, *missing, *supporter, *op_max; /* achiever: each fact's cheapest, for hFF */
@@ -113,9 +120,33 @@ static int applicable(const TaskObject *t, const word *s, int o) {
     return 1;
 }
 
+static int effect_fires(const TaskObject *t, const word *s, int c) {
+    const word *pre = W(t, t->cpre, c), *neg = W(t, t->cneg, c);
+    for (int i = 0; i < t->nwords; i++)
+        if ((s[i] & pre[i]) != pre[i] || (s[i] & neg[i])) return 0;
+    return 1;
+}
+
+/* The child of `s` by operator o: every effect's condition read in `s`, the deletes before the adds (an atom both
+   added and deleted is true after, as in Fast Downward). */
 static void apply_op(const TaskObject *t, const word *s, int o, word *child) {
     const word *keep = W(t, t->keep, o), *add = W(t, t->add, o);
     for (int i = 0; i < t->nwords; i++) child[i] = (s[i] & keep[i]) | add[i];
+    int first = t->cond_start[o], last = t->cond_start[o + 1];
+    if (first == last) return;
+    char fires[last - first];
+    for (int c = first; c < last; c++) {
+        fires[c - first] = (char)effect_fires(t, s, c);
+        if (!fires[c - first]) continue;
+        const word *del = W(t, t->cdel, c);
+        for (int i = 0; i < t->nwords; i++) child[i] &= ~del[i];
+    }
+    for (int c = first; c < last; c++) {
+        const word *cadd = W(t, t->cadd, c);
+        if (fires[c - first])
+            for (int i = 0; i < t->nwords; i++) child[i] |= cadd[i];
+    }
+    for (int i = 0; i < t->nwords; i++) child[i] |= add[i];
 }
 
 static int goal_reached(const TaskObject *t, const word *s) {
@@ -149,7 +180,7 @@ static int next_epoch(TaskObject *t) {
     if (t->epoch == INT_MAX) {
         memset(t->mark, 0, sizeof(int) * (size_t)(t->nfacts + 2));
         memset(t->in_zone, 0, sizeof(int) * (size_t)(t->nfacts + 2));
-        memset(t->op_mark, 0, sizeof(int) * (size_t)(t->nops + 1));
+        memset(t->op_mark, 0, sizeof(int) * (size_t)(t->nrel + 1));
         t->epoch = 0;
     }
     return ++t->epoch;
@@ -172,7 +203,7 @@ static int offer(TaskObject *t, int o, int value) {
 /* The start of a Dijkstra over facts from state `s`: the facts of `s` and "true" cost 0 and wait in the heap, the
    others are unreached, and every operator misses all its preconditions (op_max 0, no supporter yet). */
 static int dijkstra_start(TaskObject *t, const word *s) {
-    int nf = t->nfacts + 2, nr = t->nops + 1, truth = t->nfacts + 1;
+    int nf = t->nfacts + 2, nr = t->nrel + 1, truth = t->nfacts + 1;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) {
         t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
@@ -215,7 +246,7 @@ static int relaxed_costs(TaskObject *t, const word *s) {
    operator costs 0, and nothing needs its fact. It stops once the goal fact is set (its cost and every
    achiever a relaxed plan can need are final by then). */
 static void unit_costs(TaskObject *t, const word *s) {
-    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, head = 0, tail = 0;
+    int nf = t->nfacts + 2, nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1, head = 0, tail = 0;
     int *queue = t->stack;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
@@ -251,7 +282,7 @@ static int hmax_costs(TaskObject *t, const word *s) {
         unit_costs(t, s);
         return 0;
     }
-    memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)(t->nops + 1));
+    memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)(t->nrel + 1));
     return relaxed_costs(t, s);
 }
 
@@ -284,9 +315,13 @@ static int additive_costs(TaskObject *t, const word *s) {
     return 0;
 }
 
+/* The operator a relaxed operator stands for: itself, or a conditional effect's operator. */
+static int real_op(const TaskObject *t, int o) { return o < t->nops || o == t->nrel ? o : t->cond_op[o - t->nops]; }
+
 /* hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever under hadd (as Fast Downward's
    FF heuristic takes them; Keyder & Geffner 2008), traced back from the goal fact (its size where every
-   operator costs 1). */
+   operator costs 1). An operator counts once however many of its effects the plan uses, and is marked (op_mark)
+   as the relaxed plan's, for the helpful operators; its own precondition is in each of its effects'. */
 static int h_hff(TaskObject *t, const word *s) {
     if (additive_costs(t, s)) return -1;
     int goal = t->nfacts, truth = t->nfacts + 1;
@@ -297,10 +332,10 @@ static int h_hff(TaskObject *t, const word *s) {
     while (top) {
         int f = t->stack[--top];
         if (f == truth || (f < goal && in_state(s, f))) continue;
-        int o = t->achiever[f];
+        int o = t->achiever[f], real = real_op(t, o);
         if (t->op_mark[o] == epoch) continue;
-        t->op_mark[o] = epoch;
-        size += t->base_cost[o];
+        if (real == o || t->op_mark[real] != epoch) size += t->base_cost[o];
+        t->op_mark[o] = t->op_mark[real] = epoch;
         for (int k = t->rpre.start[o]; k < t->rpre.start[o + 1]; k++) {
             int p = t->rpre.items[k];
             if (t->mark[p] != epoch) {
@@ -361,7 +396,7 @@ static void break_ties(TaskObject *t, int o, int zone) {
 
 /* LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts. */
 static int h_lmcut(TaskObject *t, const word *s) {
-    int nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1;
+    int nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1;
     memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)nr);
     if (relaxed_costs(t, s)) return -1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
@@ -433,7 +468,7 @@ static int h_lmcut(TaskObject *t, const word *s) {
 static int find_landmarks(TaskObject *t) {
     if (t->landmarks) return 0;
     word *found = malloc(sizeof(word) * (size_t)t->nwords);
-    int reachable = found ? zhu_givan_landmarks(t->nfacts, t->nwords, t->nops, &t->rpre, &t->radd, &t->consumers,
+    int reachable = found ? zhu_givan_landmarks(t->nfacts, t->nwords, t->nrel, &t->rpre, &t->radd, &t->consumers,
                                                 t->init, found)
                           : -1;
     if (reachable < 0) {
@@ -899,16 +934,25 @@ done:
 
 /* -- Python glue ------------------------------------------------------------------------------------- */
 
-static int heuristic_id(const char *name) {
-    for (int i = 0; i < H_COUNT; i++)
-        if (!strcmp(name, HEURISTIC_NAMES[i])) return i;
+/* The heuristic called `name` for task t; -1 with a ValueError for an unknown one, or LM-cut where the task has
+   conditional effects. */
+static int heuristic_id(const TaskObject *t, const char *name) {
+    for (int i = 0; i < H_COUNT; i++) {
+        if (strcmp(name, HEURISTIC_NAMES[i])) continue;
+        if (i == H_LMCUT && t->ncond) {
+            PyErr_Format(PyExc_ValueError, "lmcut does not take conditional effects (this task has %d): its cuts "
+                                           "would no longer be admissible; hmax keeps A*'s plans optimal", t->ncond);
+            return -1;
+        }
+        return i;
+    }
     PyErr_Format(PyExc_ValueError, "unknown heuristic '%s'", name);
     return -1;
 }
 
 /* The heuristics named in `spec`, joined by '+' ("hff+lmcount"), into the guide of a greedy search; -1 with a
    ValueError for an unknown or repeated name, or more than one for another search. */
-static int read_guide(const char *spec, int greedy, Guide *gd) {
+static int read_guide(const TaskObject *t, const char *spec, int greedy, Guide *gd) {
     char name[32];
     for (const char *at = spec;; at++) {
         size_t length = strcspn(at, "+");
@@ -919,7 +963,7 @@ static int read_guide(const char *spec, int greedy, Guide *gd) {
         size_t copied = length < sizeof(name) ? length : sizeof(name) - 1; /* no heuristic has so long a name */
         memcpy(name, at, copied);
         name[copied] = 0;
-        int h = heuristic_id(name);
+        int h = heuristic_id(t, name);
         if (h < 0) return -1;
         if (h == H_LMCOUNT && !greedy) {
             PyErr_Format(PyExc_ValueError, "lmcount counts the landmarks not yet reached on a path: it guides the "
@@ -954,7 +998,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
     else if (!strcmp(search, "lazy")) kind = S_LAZY;
     else return PyErr_Format(PyExc_ValueError, "unknown search %R", PyTuple_GET_ITEM(args, 0));
     Guide guide = {0};
-    if (read_guide(heuristic_name, kind == S_GBFS || kind == S_LAZY, &guide)) return NULL;
+    if (read_guide(t, heuristic_name, kind == S_GBFS || kind == S_LAZY, &guide)) return NULL;
     int heuristic = guide.heuristics[0];
 
     Store st;
@@ -1010,7 +1054,7 @@ static PyObject *Task_heuristic(TaskObject *t, PyObject *args) {
     const char *name;
     PyObject *state;
     if (!PyArg_ParseTuple(args, "sO", &name, &state)) return NULL;
-    int heuristic = heuristic_id(name);
+    int heuristic = heuristic_id(t, name);
     if (heuristic < 0) return NULL;
     word *s = malloc(sizeof(word) * (size_t)t->nwords);
     PyObject *result = NULL;
@@ -1049,6 +1093,12 @@ static void Task_dealloc(TaskObject *t) {
     free(t->neg);
     free(t->add);
     free(t->keep);
+    free(t->cond_start);
+    free(t->cond_op);
+    free(t->cpre);
+    free(t->cneg);
+    free(t->cadd);
+    free(t->cdel);
     free(t->init);
     free(t->goal);
     free(t->goal_neg);
@@ -1083,21 +1133,36 @@ static int set_bits(const TaskObject *t, const word *m, int *out) {
     return n;
 }
 
-static size_t count_bits(const TaskObject *t, const word *masks) {
+static size_t count_bits(const TaskObject *t, const word *masks, int count) {
     size_t n = 0;
-    for (size_t i = 0; i < (size_t)t->nops * (size_t)t->nwords; i++) n += (size_t)__builtin_popcountll(masks[i]);
+    for (size_t i = 0; i < (size_t)count * (size_t)t->nwords; i++) n += (size_t)__builtin_popcountll(masks[i]);
     return n;
+}
+
+/* Relaxed operator r's precondition (`which` 0) or adds (1) into `mask`: an operator's own, or a conditional
+   effect's (its operator's precondition and its condition; its adds). */
+static void relaxed_mask(const TaskObject *t, int r, int which, word *mask) {
+    if (r < t->nops) {
+        memcpy(mask, W(t, which ? t->add : t->pre, r), sizeof(word) * (size_t)t->nwords);
+        return;
+    }
+    int c = r - t->nops;
+    const word *own = W(t, which ? t->cadd : t->cpre, c), *op_pre = W(t, t->pre, t->cond_op[c]);
+    for (int i = 0; i < t->nwords; i++) mask[i] = which ? own[i] : own[i] | op_pre[i];
 }
 
 /* The operator index structures: the successor filing and the relaxed task. */
 static int build_indexes(TaskObject *t) {
-    int nf = t->nfacts + 2, nr = t->nops + 1, goal = t->nfacts, truth = t->nfacts + 1, status = -1;
-    size_t npre = count_bits(t, t->pre), nadd = count_bits(t, t->add);
+    int nf = t->nfacts + 2, nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1, status = -1;
+    size_t npre = count_bits(t, t->pre, t->nops) + count_bits(t, t->cpre, t->ncond), nadd = count_bits(t, t->add, t->nops);
+    for (int c = 0; c < t->ncond; c++) npre += count_bits(t, W(t, t->pre, t->cond_op[c]), 1);
+    nadd += count_bits(t, t->cadd, t->ncond);
     size_t room = (npre > nadd ? npre : nadd) + (size_t)t->nfacts + (size_t)nr + 1;
     int *row = malloc(sizeof(int) * room), *item = malloc(sizeof(int) * room);
     int *uses = calloc((size_t)nf, sizeof(int)), *facts = malloc(sizeof(int) * (size_t)nf);
+    word *mask = malloc(sizeof(word) * (size_t)t->nwords);
     t->free_ops = malloc(sizeof(int) * (size_t)(t->nops + 1));
-    if (!row || !item || !uses || !facts || !t->free_ops) goto done;
+    if (!row || !item || !uses || !facts || !mask || !t->free_ops) goto done;
 
     /* successor filing: each operator under its precondition that the fewest operators need (the first
        such) */
@@ -1117,15 +1182,18 @@ static int build_indexes(TaskObject *t) {
     /* relaxed preconditions (TRUE for none; the goal operator needs the goal facts) and their inverse */
     int n = 0;
     for (int o = 0; o < nr; o++) {
-        int count = set_bits(t, o < t->nops ? W(t, t->pre, o) : t->goal, facts);
+        if (o < t->nrel) relaxed_mask(t, o, 0, mask);
+        int count = set_bits(t, o < t->nrel ? mask : t->goal, facts);
         for (int k = 0; k < count; k++) row[n] = o, item[n++] = facts[k];
         if (!count) row[n] = o, item[n++] = truth;
     }
     if (rows_build(&t->rpre, nr, row, item, n) || rows_build(&t->consumers, nf, item, row, n)) goto done;
     n = 0;
-    for (int o = 0; o < t->nops; o++)
-        for (int k = 0, count = set_bits(t, W(t, t->add, o), facts); k < count; k++) row[n] = o, item[n++] = facts[k];
-    row[n] = t->nops, item[n++] = goal;
+    for (int o = 0; o < t->nrel; o++) {
+        relaxed_mask(t, o, 1, mask);
+        for (int k = 0, count = set_bits(t, mask, facts); k < count; k++) row[n] = o, item[n++] = facts[k];
+    }
+    row[n] = t->nrel, item[n++] = goal;
     if (rows_build(&t->radd, nr, row, item, n) || rows_build(&t->achievers, nf, item, row, n)) goto done;
 
     size_t stack_room = (size_t)nf + (size_t)nr;
@@ -1150,6 +1218,7 @@ done:
     free(item);
     free(uses);
     free(facts);
+    free(mask);
     return status;
 }
 
@@ -1178,9 +1247,76 @@ static int read_costs(TaskObject *t, PyObject *costs) {
         t->unit &= cost == 1;
         if (o == 0 || cost < t->min_cost) t->min_cost = (int)cost;
     }
-    t->base_cost[t->nops] = 0;
+    for (int c = 0; c < t->ncond; c++) t->base_cost[t->nops + c] = t->base_cost[t->cond_op[c]];
+    t->base_cost[t->nrel] = 0;
     Py_XDECREF(seq);
     return PyErr_Occurred() ? -1 : 0;
+}
+
+static PyObject *effects_name; /* "effects", interned at import */
+
+/* Each operator's conditional effects: its `effects` attribute, a sequence of (pre, pre_neg, add, delete) masks (an
+   operator without the attribute has none). Sets ncond, nrel and the effect arrays; -1 with an exception set. */
+static int read_effects(TaskObject *t, PyObject *ops) {
+    PyObject **lists = calloc((size_t)t->nops + 1, sizeof(PyObject *));
+    t->cond_start = malloc(sizeof(int) * ((size_t)t->nops + 1));
+    int status = -1;
+    if (!lists || !t->cond_start) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    long total = 0;
+    for (int o = 0; o < t->nops; o++) {
+        t->cond_start[o] = (int)total;
+        PyObject *effects = PyObject_GetAttr(PySequence_Fast_GET_ITEM(ops, o), effects_name);
+        if (!effects) {
+            if (!PyErr_ExceptionMatches(PyExc_AttributeError)) goto done;
+            PyErr_Clear();
+            continue;
+        }
+        lists[o] = PySequence_Fast(effects, "an operator's effects must be a sequence of (pre, pre_neg, add, delete)");
+        Py_DECREF(effects);
+        if (!lists[o]) goto done;
+        total += PySequence_Fast_GET_SIZE(lists[o]);
+        if (total >= INT_MAX / 4) {
+            PyErr_SetString(PyExc_ValueError, "too many conditional effects");
+            goto done;
+        }
+    }
+    t->cond_start[t->nops] = (int)total;
+    t->ncond = (int)total;
+    t->nrel = t->nops + t->ncond;
+    size_t room = (size_t)total * (size_t)t->nwords + 1;
+    t->cond_op = malloc(sizeof(int) * ((size_t)total + 1));
+    t->cpre = malloc(sizeof(word) * room);
+    t->cneg = malloc(sizeof(word) * room);
+    t->cadd = malloc(sizeof(word) * room);
+    t->cdel = malloc(sizeof(word) * room);
+    if (!t->cond_op || !t->cpre || !t->cneg || !t->cadd || !t->cdel) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    for (int o = 0; o < t->nops; o++) {
+        for (int c = t->cond_start[o]; c < t->cond_start[o + 1]; c++) {
+            PyObject *effect = PySequence_Fast_GET_ITEM(lists[o], c - t->cond_start[o]);
+            word *into[4] = {W(t, t->cpre, c), W(t, t->cneg, c), W(t, t->cadd, c), W(t, t->cdel, c)};
+            PyObject *masks = PySequence_Fast(effect, "a conditional effect must be (pre, pre_neg, add, delete)");
+            if (!masks) goto done;
+            int failed = PySequence_Fast_GET_SIZE(masks) != 4;
+            if (failed) PyErr_SetString(PyExc_ValueError, "a conditional effect must be (pre, pre_neg, add, delete)");
+            for (int m = 0; m < 4 && !failed; m++)
+                failed = int_to_words(PySequence_Fast_GET_ITEM(masks, m), into[m], t->nwords, MASK_NAMES[m]) != 0;
+            Py_DECREF(masks);
+            if (failed) goto done;
+            t->cond_op[c] = o;
+        }
+    }
+    status = 0;
+done:
+    if (lists)
+        for (int o = 0; o < t->nops; o++) Py_XDECREF(lists[o]);
+    free(lists);
+    return status;
 }
 
 static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
@@ -1227,6 +1363,7 @@ static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) 
         }
         for (size_t i = 0; i < nw; i++) into[3][i] = ~into[3][i];
     }
+    if (read_effects(t, seq)) goto fail;
     if (build_indexes(t)) {
         PyErr_NoMemory();
         goto fail;
@@ -1253,8 +1390,9 @@ static PyTypeObject TaskType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "strips_planner._core.Task",
     .tp_doc = "Task(nfacts, operators, init, goal, goal_neg, costs=None): a grounded task. States and masks are "
-              "int bitsets over the facts; each operator has the masks pre, pre_neg, add and delete; costs: one "
-              "non-negative int per operator (None: each costs 1).",
+              "int bitsets over the facts; each operator has the masks pre, pre_neg, add and delete, and may have "
+              "effects: conditional effects, each (pre, pre_neg, add, delete); costs: one non-negative int per "
+              "operator (None: each costs 1).",
     .tp_basicsize = sizeof(TaskObject),
     .tp_flags = Py_TPFLAGS_DEFAULT,
     .tp_new = Task_new,
@@ -1272,6 +1410,7 @@ static struct PyModuleDef core_module = {
 PyMODINIT_FUNC PyInit__core(void) {
     for (int m = 0; m < 4; m++)
         if (!mask_names[m] && !(mask_names[m] = PyUnicode_InternFromString(MASK_NAMES[m]))) return NULL;
+    if (!effects_name && !(effects_name = PyUnicode_InternFromString("effects"))) return NULL;
     if (PyType_Ready(&TaskType) < 0) return NULL;
     PyObject *module = PyModule_Create(&core_module);
     if (!module) return NULL;

@@ -295,8 +295,8 @@ static PyObject *facts_list(const Grounding *g, PyObject *predicates, PyObject *
     return facts;
 }
 
-/* The fired operators, in order, as `operator_type` (name, arguments, pre, pre_neg, add, delete) with
-   int-bitset masks; delete leaves out what the operator adds. */
+/* The fired operators, in order, as `operator_type` (name, arguments, pre, pre_neg, add, delete, effects) with
+   int-bitset masks and no conditional effects (grounding.py adds them); delete leaves out what the operator adds. */
 static PyObject *operators_list(const Grounding *g, PyObject *objects, PyTypeObject *operator_type) {
     size_t nw = (size_t)g->nwords;
     word *masks = malloc(sizeof(word) * KINDS * nw);
@@ -309,12 +309,13 @@ static PyObject *operators_list(const Grounding *g, PyObject *objects, PyTypeObj
         for (int k = 0; k < KINDS; k++)
             for (int i = 0; i < action->count[k]; i++) set_bit(masks + k * nw, g->bit_of[*atom++]);
         for (size_t w = 0; w < nw; w++) masks[DEL * nw + w] &= ~masks[ADD * nw + w];
-        PyObject *items[2 + KINDS] = {action->name,
+        PyObject *items[3 + KINDS] = {action->name,
                                       names_at(objects, action->values + (size_t)g->op_binding[o] * (size_t)action->nparams,
                                                action->nparams)};
         Py_INCREF(action->name);
         for (int k = 0; k < KINDS; k++) items[2 + k] = words_to_int(masks + k * nw, g->nwords);
-        PyObject *op = tuple_of(operator_type, 2 + KINDS, items);
+        items[2 + KINDS] = PyTuple_New(0);
+        PyObject *op = tuple_of(operator_type, 3 + KINDS, items);
         if (!op || PyList_Append(operators, op)) Py_CLEAR(operators);
         Py_XDECREF(op);
     }

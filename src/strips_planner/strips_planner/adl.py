@@ -5,7 +5,9 @@ The reader keeps such a condition as a formula in negation normal form: a :class
 body)``, with ``variables`` the (name, type) pairs it binds. Grounding binds an operator's parameters, expands the
 quantifiers over the problem's objects, decides the static atoms (their predicate no action changes) and equality,
 and turns what is left into disjunctive normal form: one operator per disjunct, each a conjunction of literals, so
-the searches and heuristics see STRIPS. Effects stay STRIPS (``when`` and ``forall`` effects are refused).
+the searches and heuristics see STRIPS. Conditional and universal effects are the grounder's
+(:mod:`strips_planner.grounding`): their ``forall`` expanded over the objects before grounding, their conditions
+ground here like a precondition's.
 """
 
 from __future__ import annotations
@@ -31,6 +33,17 @@ def negated(formula: Formula) -> Formula:
     if kind in ("and", "or"):
         return ("or" if kind == "and" else "and", tuple(negated(part) for part in formula[1]))
     return ("exists" if kind == "forall" else "forall", formula[1], negated(formula[2]))
+
+
+def substituted(formula: Formula, mapping: dict[str, str]) -> Formula:
+    """``formula`` with its free variables in ``mapping`` replaced (a quantifier's own variables shadow them)."""
+    if isinstance(formula, Condition):
+        atom = formula.atom
+        return formula._replace(atom=Atom(atom.predicate, tuple(mapping.get(arg, arg) for arg in atom.args)))
+    if formula[0] in ("and", "or"):
+        return (formula[0], tuple(substituted(part, mapping) for part in formula[1]))
+    inner = {var: value for var, value in mapping.items() if var not in {v for v, _ in formula[1]}}
+    return (formula[0], formula[1], substituted(formula[2], inner))
 
 
 def lifted_split(action: Action) -> list[Action]:

@@ -7,6 +7,11 @@
    the initial state; no binding is enumerated that a precondition rules out. Static atoms never enter the state.
 3. The C module ``_ground`` instantiates the fluent atoms of those bindings, numbers the facts in sorted order,
    builds the operators' masks and finds goal atoms no operator reaches.
+
+Conditional and universal effects: a ``forall`` in an effect is expanded over the problem's objects before
+grounding, and both passes take every conditional add as an add (reachability relaxed further: a condition may
+never hold); each ground operator then keeps its own adds, and each conditional effect becomes masks of its
+condition (one per way an ADL condition can hold), adds and deletes, read in the state the operator applies to.
 """
 
 from __future__ import annotations
@@ -14,10 +19,11 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable
 from functools import cached_property
+from itertools import product
 from typing import NamedTuple
 
 from strips_planner import _core, _explore, _ground, adl
-from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, PddlError, Problem
+from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, Effect, PddlError, Problem
 
 
 class Operator(NamedTuple):
@@ -29,12 +35,21 @@ class Operator(NamedTuple):
     pre_neg: int
     add: int
     delete: int
+    effects: tuple[tuple[int, int, int, int], ...] = ()
+    """Conditional effects: each (pre, pre_neg, add, delete), its adds and deletes made where its condition holds in
+    the state the operator applies to."""
 
     def applicable(self, state: int) -> bool:
         return state & self.pre == self.pre and not state & self.pre_neg
 
     def apply(self, state: int) -> int:
-        return (state & ~self.delete) | self.add
+        """The state after: every condition read before, the deletes made before the adds (an atom both added and
+        deleted is true after)."""
+        add, delete = self.add, self.delete
+        for pre, pre_neg, more, less in self.effects:
+            if state & pre == pre and not state & pre_neg:
+                add, delete = add | more, delete | less
+        return (state & ~delete) | add
 
     def __str__(self) -> str:
         return f"({' '.join((self.name, *self.args))})"
@@ -62,6 +77,11 @@ class Task:
 
     def atoms(self, state: int) -> list[Atom]:
         return [fact for i, fact in enumerate(self.facts) if state >> i & 1]
+
+    @cached_property
+    def conditional_effects(self) -> int:
+        """How many conditional effects the operators have (LM-cut takes none)."""
+        return sum(len(op.effects) for op in self.operators)
 
     @cached_property
     def compiled(self) -> _core.Task:
@@ -105,24 +125,27 @@ class _Grounder:
 
     def __init__(self, domain: Domain, problem: Problem) -> None:
         self.domain, self.problem = domain, problem
-        self.actions = [copy for action in domain.actions for copy in adl.lifted_split(action)]
-        """The domain's actions, one per way an ADL condition's ``or``s go (:func:`adl.lifted_split`)."""
+        self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
+        self.index = {name: i for i, name in enumerate(self.objects)}
+        self._types: dict[str, tuple[int, ...] | None] = {}
+        self.actions = [self._universal_expanded(copy) for action in domain.actions
+                        for copy in adl.lifted_split(action)]
+        """The domain's actions, one per way an ADL condition's ``or``s go (:func:`adl.lifted_split`), their effects'
+        ``forall``s expanded."""
         copies = Counter(action.name for action in self.actions)
         self.conditional = {f"{a.name}#{i}": a for i, a in enumerate(self.actions)
-                            if a.condition is not None or copies[a.name] > 1}
+                            if a.condition is not None or a.effects or copies[a.name] > 1}
         """The actions whose operators :meth:`_with_conditions` finishes, under a name of their own while grounded
         ('#' is no PDDL name's)."""
         actions = self.actions
-        fluent = sorted({a.predicate for action in actions for a in (*action.add, *action.delete)})
+        fluent = sorted({a.predicate for action in actions
+                         for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))})
         mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in actions
                                                            for c in action.precondition}
         static = sorted((set(domain.predicates) | mentioned) - set(fluent) - {"="})
         self.predicates = tuple(fluent)
         self.number = {name: i for i, name in enumerate((*fluent, *static))}
-        self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
-        self.index = {name: i for i, name in enumerate(self.objects)}
         self.init = [self._key(a) for a in problem.init]
-        self._types: dict[str, tuple[int, ...] | None] = {}
 
     def is_fluent(self, predicate: str) -> bool:
         return self.number.get(predicate, len(self.predicates)) < len(self.predicates)
@@ -168,7 +191,7 @@ class _Grounder:
                 joined.append(atom)
             elif not fluent:
                 filters.append((False, *atom))
-        add = [template(a) for a in action.add]
+        add = [template(a) for a in (*action.add, *(e.literal.atom for e in action.effects if e.literal.positive))]
         schema = (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters, add)
         return schema, (action.name, len(position), pre, pre_neg, add, [template(a) for a in action.delete])
 
@@ -224,10 +247,58 @@ class _Grounder:
         members = self._objects_of(kind)
         return self.objects if members is None else tuple(self.objects[i] for i in members)
 
+    def _universal_expanded(self, action: Action) -> Action:
+        """``action`` with each effect under a ``forall`` once per binding of its variables to the problem's objects;
+        one under no ``when`` joins the action's own adds or deletes."""
+        if not action.effects:
+            return action
+        add, delete, effects = list(action.add), list(action.delete), []
+        for effect in action.effects:
+            variables = [variable for variable, _ in effect.variables]
+            for values in product(*(self._objects_of_type(kind) for _, kind in effect.variables)):
+                mapping = dict(zip(variables, values, strict=True))
+                literal = adl.substituted(effect.literal, mapping)
+                if effect.condition is None:
+                    (add if literal.positive else delete).append(literal.atom)
+                else:
+                    effects.append(Effect((), adl.substituted(effect.condition, mapping), literal))
+        return action._replace(add=tuple(add), delete=tuple(delete), effects=tuple(effects))
+
+    def _with_effects(self, operator: Operator, action: Action, binding: dict[str, str], index: dict[Atom, int]
+                      ) -> Operator:
+        """``operator`` with its action's own adds and deletes only (both grounding passes took the conditional adds
+        as adds, and left out the deletes they add) and its conditional effects: one per way each effect's
+        condition can hold, less what the precondition already asks, effects of the same condition merged; one
+        whose condition the precondition implies is the operator's own, one whose condition contradicts it is
+        dropped."""
+        add = delete = 0
+        merged: dict[tuple[int, int], tuple[int, int]] = {}
+        for atom in action.add:
+            add |= 1 << index[_bound(atom, binding)]
+        for atom in action.delete:
+            bit = index.get(_bound(atom, binding))
+            delete |= 0 if bit is None else 1 << bit
+        for effect in action.effects:
+            bit = index.get(_bound(effect.literal.atom, binding))
+            if bit is None:  # the delete of an atom that is never true
+                continue
+            for way in adl.disjuncts(effect.condition, binding, self._static_truth, self._objects_of_type):
+                masks = _masks(way, index)
+                if masks is None or masks[0] & operator.pre_neg or masks[1] & operator.pre:
+                    continue
+                condition = (masks[0] & ~operator.pre, masks[1] & ~operator.pre_neg)
+                if condition == (0, 0):
+                    add, delete = (add | 1 << bit, delete) if effect.literal.positive else (add, delete | 1 << bit)
+                    continue
+                adds, deletes = merged.get(condition, (0, 0))
+                merged[condition] = (adds | 1 << bit, deletes) if effect.literal.positive else (adds, deletes | 1 << bit)
+        return operator._replace(add=add, delete=delete & ~add,
+                                 effects=tuple((*condition, *masks) for condition, masks in merged.items()))
+
     def _with_conditions(self, operators: list[Operator], facts: list[Atom]) -> list[Operator]:
         """Each operator of an action with an ADL condition as one operator per way its condition can hold (its
-        disjuncts over fluent literals), none where it never can, under its action's name; the others as they
-        are."""
+        disjuncts over fluent literals), none where it never can, under its action's name, with its conditional
+        effects (:meth:`_with_effects`); the others as they are."""
         index = {fact: i for i, fact in enumerate(facts)}
         result = []
         for operator in operators:
@@ -236,10 +307,12 @@ class _Grounder:
                 result.append(operator)
                 continue
             operator = operator._replace(name=action.name)
+            binding = dict(zip((variable for variable, _ in action.parameters), operator.args, strict=True))
+            if action.effects:
+                operator = self._with_effects(operator, action, binding, index)
             if action.condition is None:
                 result.append(operator)
                 continue
-            binding = dict(zip((variable for variable, _ in action.parameters), operator.args, strict=True))
             for conjunction in adl.disjuncts(action.condition, binding, self._static_truth, self._objects_of_type):
                 masks = _masks(conjunction, index)
                 if masks is not None and not (operator.pre | masks[0]) & (operator.pre_neg | masks[1]):
@@ -276,6 +349,10 @@ class _Grounder:
                 if holds != cond.positive:
                     return f"goal {'' if cond.positive else 'not '}{atom} can never hold (static)"
         return ""
+
+
+def _bound(atom: Atom, binding: dict[str, str]) -> Atom:
+    return Atom(atom.predicate, tuple(binding.get(arg, arg) for arg in atom.args))
 
 
 def ground(domain: Domain, problem: Problem) -> Task:

@@ -5,6 +5,9 @@ They run in C (``_core.c``) inside the searches; :func:`heuristic` evaluates one
 tests and for inspecting a task. All of them ignore delete effects, negative preconditions and negative
 goals, which only relaxes the task further, so hmax and LM-cut stay admissible (Bonet & Geffner 2001;
 Hoffmann & Nebel 2001; Helmert & Domshlak 2009). Actions cost 1, or their own costs where the task has them.
+A conditional effect is, relaxed, an action of its own (its action's precondition and its condition, its adds, its
+action's cost): hmax stays admissible, hFF counts an action once however many of its effects its relaxed plan uses,
+and LM-cut, which would not stay admissible so, is refused on such tasks.
 
 - blind: 0 in a goal state, else the cheapest action's cost (1 without costs).
 - hmax: the cost of the goal's costliest fact in the relaxed task (a Dijkstra over facts).

@@ -1,9 +1,10 @@
 """A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, :action-costs, objects and constants,
-and ADL's conditions (``or``, ``imply``, ``forall``, ``exists``) in preconditions and goals.
+ADL's conditions (``or``, ``imply``, ``forall``, ``exists``) in preconditions and goals, and its conditional and
+universal effects (``when``, ``forall`` in an effect).
 
-Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (``when``, ``forall``
-in an effect, numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that names the line
-and column, so a user knows what to rewrite.
+Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (derived predicates,
+numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that names the line and column, so a
+user knows what to rewrite.
 
 Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` or ``(increase (total-cost)
 (f ?x ...))`` in an effect, with ``(= (f a ...) N)`` in ``:init``; they count when the problem says
@@ -27,8 +28,8 @@ from strips_planner import _reader
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
 CHECKED_PER_CONSTRUCT = {":adl", ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
                          ":quantified-preconditions", ":conditional-effects", ":derived-predicates"}
-"""Requirements a domain may declare without using: many IPC domains declare ``:adl`` and stay STRIPS. The reader
-refuses the construct itself where one is used (``forall``, ``when``, a ``:derived`` section), with its place."""
+"""Requirements read per construct: many IPC domains declare ``:adl`` and stay STRIPS, and the reader refuses only
+a construct it does not take (a ``:derived`` section), where it is used, with its place."""
 TOTAL_COST = "total-cost"
 ROOT_TYPE = "object"
 EITHER = "either("
@@ -168,6 +169,17 @@ class Condition(NamedTuple):
     positive: bool = True
 
 
+class Effect(NamedTuple):
+    """A conditional or universal effect: for every binding of ``variables``, where ``condition`` holds in the state
+    the action is applied in (None: always), ``literal`` holds after it (a negative one is deleted)."""
+
+    variables: tuple[tuple[str, str], ...]
+    """(variable, type) pairs its ``forall``s bind."""
+    condition: Condition | tuple | None
+    """A formula of :mod:`strips_planner.adl` (its ``when``s' conditions, joined by ``and``)."""
+    literal: Condition
+
+
 class Action(NamedTuple):
     name: str
     parameters: tuple[tuple[str, str], ...]
@@ -180,6 +192,8 @@ class Action(NamedTuple):
     condition: tuple | None = None
     """What the precondition asks beyond its literals (``or``, ``imply``, ``forall``, ``exists``): a formula of
     :mod:`strips_planner.adl`, compiled away at grounding; None for STRIPS."""
+    effects: tuple[Effect, ...] = ()
+    """Its effects under a ``when`` or a ``forall`` (the others are :attr:`add` and :attr:`delete`)."""
 
 
 class Domain:
@@ -388,27 +402,6 @@ def _formula(expr: list, domain: Domain, variables: dict[str, str] | None, objec
     return _literal(expr, domain, variables, objects, what)
 
 
-def _literals(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
-              what: str) -> list[Condition]:
-    """A conjunction of (possibly negated) atoms; ``()`` is the empty conjunction."""
-    if not expr:
-        return []
-    plain = _reader.conjunction(expr, domain.predicates, variables, objects, domain.ancestors,
-                                _negation_allowed(domain, what))
-    if plain is not None:
-        return plain
-    if expr[0] != "and":
-        return [_literal(expr, domain, variables, objects, what)]
-    result = []
-    for part in expr[1:]:
-        part = _sub(part, what)
-        if part and part[0] == "and":
-            result += _literals(part, domain, variables, objects, what)
-        elif part:
-            result.append(_literal(part, domain, variables, objects, what))
-    return result
-
-
 def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objects: dict[str, str],
              what: str) -> Condition:
     """An atom or a negated one (``expr`` is not empty): built in C where it is plainly valid, else checked
@@ -432,8 +425,8 @@ def _literal(expr: list, domain: Domain, variables: dict[str, str] | None, objec
         return Condition(_atom(inner, domain, variables, objects), positive=False)
     if head in _NOT_STRIPS:
         if what == "effect":
-            raise _unsupported(expr, f"{head!r} in an effect is not supported: effects are conjunctions of literals "
-                                     "(conditional and universal effects are not read)")
+            raise _error(expr, f"{head!r} is not an effect: effects are literals, and, forall, when and an action's "
+                               "own (increase (total-cost) ...)")
         raise _unsupported(expr, f"{head!r} is not supported in a {what}: it takes literals, and, or, not, imply, "
                                  "forall and exists")
     return Condition(_atom(expr, domain, variables, objects))
@@ -573,16 +566,54 @@ def _action(section: list, domain: Domain) -> Action:
     pre, condition = _conditions(fields.get(":precondition", []), domain, variables, domain.constants,
                                  "precondition")
     effect_expr, costs = _without_increase(fields.get(":effect", []))
-    effect = _literals(effect_expr, domain, variables, domain.constants, "effect")
+    effects: list[Effect] = []
+    _effect(effect_expr, domain, variables, Effect((), None, Condition(Atom("", ()))), effects)
     if len(costs) > 1:
         raise _unsupported(costs[1], f"action {name}: more than one (increase (total-cost) ...)")
     add, delete = [], []
-    for literal in effect:
-        if literal.atom.predicate == "=":
+    for effect in effects:
+        if effect.literal.atom.predicate == "=":
             raise _error(section, f"action {name}: equality cannot be an effect")
-        (add if literal.positive else delete).append(literal.atom)
+        if not effect.variables and effect.condition is None:
+            (add if effect.literal.positive else delete).append(effect.literal.atom)
     return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre), tuple(add), tuple(delete),
-                  _cost(costs[0], domain, variables) if costs else 0, condition)
+                  _cost(costs[0], domain, variables) if costs else 0, condition,
+                  tuple(e for e in effects if e.variables or e.condition is not None))
+
+
+def _effect(expr: list, domain: Domain, variables: dict[str, str], within: Effect, out: list[Effect]) -> None:
+    """The literals of an effect into ``out``, each with the ``forall`` variables and the ``when`` conditions it is
+    under (``within``: those around ``expr``)."""
+    if not expr:
+        return
+    plain = _reader.conjunction(expr, domain.predicates, variables, domain.constants, domain.ancestors, True)
+    if plain is not None:
+        out += [within._replace(literal=literal) for literal in plain]
+        return
+    head = expr[0]
+    if head == "and":
+        for part in expr[1:]:
+            _effect(_sub(part, "effect"), domain, variables, within, out)
+    elif head == "forall":
+        if len(expr) != 3:
+            raise _error(expr, "(forall (VARIABLES) EFFECT) takes a variable list and an effect")
+        bound = _typed_list(list(_sub(expr[1], "forall's variables")), expr, variables=True)
+        for _, kind, token in bound:
+            _check_type(domain, kind, token)
+        _effect(_sub(expr[2], "effect"), domain, {**variables, **{var: kind for var, kind, _ in bound}},
+                within._replace(variables=(*within.variables, *((var, kind) for var, kind, _ in bound))), out)
+    elif head == "when":
+        if len(expr) != 3:
+            raise _error(expr, "(when CONDITION EFFECT) takes a condition and an effect")
+        condition = _formula(_sub(expr[1], "condition"), domain, variables, domain.constants, "condition")
+        if within.condition is not None:
+            condition = ("and", (within.condition, condition))
+        _effect(_sub(expr[2], "effect"), domain, variables, within._replace(condition=condition), out)
+    elif head in ("increase", "decrease", "assign"):
+        raise _unsupported(expr, f"{head!r} is not supported here: only an action's own (increase (total-cost) ...), "
+                                 "at the top of its effect")
+    else:
+        out.append(within._replace(literal=_literal(expr, domain, variables, domain.constants, "effect")))
 
 
 def _without_increase(effect: list) -> tuple[list, list[list]]:

@@ -1,5 +1,5 @@
 """`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--time-limit T] [--stats]`: our planner on any
-STRIPS PDDL.
+STRIPS PDDL, and ADL's conditions and conditional effects.
 
 Exit 0 with the plan (one action a line, then ``; cost = N`` where the problem minimises total-cost), 1
 unsolvable, 2 bad PDDL, an unreadable file or a bad command line, 3 valid PDDL outside the supported fragment
@@ -23,7 +23,7 @@ USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHE
 HELP = f"""{USAGE}
 
 Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
-either types; or, imply, forall and exists in preconditions and goals).
+either types; or, imply, forall and exists in preconditions and goals; when and forall in effects).
 
 options:
   --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),
@@ -32,7 +32,8 @@ options:
                   (:metric minimize (total-cost)), shortest means cheapest and bfs searches by cost
                   (uniform-cost), while the greedy ones are guided as if every action cost 1 (as
                   LAMA's first iteration) and print the plan's real cost
-  --heuristic H   default: blind (bfs), lmcut (astar), hff (gbfs), hff+lmcount (lazy); the greedy searches
+  --heuristic H   default: blind (bfs), lmcut (astar; hmax where the task has conditional effects, which
+                  lmcut does not take), hff (gbfs), hff+lmcount (lazy); the greedy searches
                   take several joined by '+', one open list each, in turn; lmcount (the landmark
                   count) guides only them
   --time-limit T  give up after T seconds (exit 4), looked at in Python's steps and every 256

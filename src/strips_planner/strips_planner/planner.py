@@ -6,7 +6,7 @@ import time
 
 from strips_planner.grounding import Operator, Task, ground
 from strips_planner.heuristics import GREEDY_ONLY, HEURISTICS
-from strips_planner.pddl import parse_domain, parse_problem
+from strips_planner.pddl import PddlUnsupportedError, parse_domain, parse_problem
 from strips_planner.search import DEFAULT_HEURISTIC, SEARCHES, SearchStats, search
 
 
@@ -41,7 +41,14 @@ def check_choice(search: str, heuristic: str | None) -> str:
 
 
 def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = None) -> PlanResult:
+    """Search ``task``; with conditional effects A*'s default is hmax, and LM-cut is refused with
+    :class:`PddlUnsupportedError` (its cuts would no longer be admissible)."""
+    if heuristic is None and task.conditional_effects and "lmcut" in DEFAULT_HEURISTIC[search_name]:
+        heuristic = "hmax"
     heuristic = check_choice(search_name, heuristic)
+    if task.conditional_effects and "lmcut" in heuristic.split("+"):
+        raise PddlUnsupportedError(f"?:?: lmcut does not take conditional effects (this task has "
+                                   f"{task.conditional_effects}); hmax keeps A*'s plans optimal")
     start = time.perf_counter()
     if task.unsolvable_reason:
         return PlanResult(None, task.unsolvable_reason, seconds=time.perf_counter() - start)

@@ -65,6 +65,14 @@ def test_an_invalid_plan_is_named(tmp_path) -> None:
     assert validity(domain, problem, []).startswith("the goal")
 
 
+def test_a_plan_for_a_task_the_validator_cannot_read_is_unchecked_not_invalid(tmp_path) -> None:
+    """Another planner may solve what our reader refuses (derived predicates): its plan is counted as unchecked."""
+    domain = tmp_path / "domain.pddl"
+    domain.write_text((FIXTURES / "blocksworld-domain.pddl").read_text().replace(
+        "(:predicates", "(:derived (tall ?x) (on ?x ?x)) (:predicates", 1))
+    assert validity(domain, FIXTURES / "blocksworld-sussman.pddl", ["(pickup c)"]) is None
+
+
 @pytest.mark.slow
 def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked(tmp_path) -> None:
     """The two reference planners install into .bench/ (pinned) and run as whole processes; on this small suite

@@ -2,6 +2,7 @@
 operators, planned, and the plans checked by the validator, which evaluates the conditions on its own."""
 
 import pytest
+from random_conditions import evaluate_text, random_condition
 
 from semgoal_bench.validate_plan import invalid_step
 from strips_planner import adl
@@ -105,40 +106,6 @@ def test_a_condition_that_grounds_to_too_many_alternatives_is_refused() -> None:
         solve_pddl(many, problem, "bfs")
 
 
-def _random_condition(rng, depth: int, variables: list[str]) -> str:
-    """A random ADL condition over p/1 and q/2 (both changed by actions) and r/1 (static)."""
-    if depth == 0 or rng.random() < 0.3:
-        head = rng.choice(["p", "q", "r", "="])
-        args = [rng.choice(variables) for _ in range(1 if head in ("p", "r") else 2)]
-        atom = f"({head} {' '.join(args)})"
-        return f"(not {atom})" if rng.random() < 0.4 else atom
-    kind = rng.choice(["and", "or", "not", "imply", "forall", "exists"])
-    if kind in ("and", "or"):
-        return f"({kind} {' '.join(_random_condition(rng, depth - 1, variables) for _ in range(rng.randint(1, 3)))})"
-    if kind == "not":
-        return f"(not {_random_condition(rng, depth - 1, variables)})"
-    if kind == "imply":
-        return f"(imply {_random_condition(rng, depth - 1, variables)} {_random_condition(rng, depth - 1, variables)})"
-    bound = f"?v{depth}"
-    return f"({kind} ({bound}) {_random_condition(rng, depth - 1, [*variables, bound])})"
-
-
-def _evaluate(expr: list, binding: dict[str, str], truth) -> bool:
-    """The condition's truth read straight off its text (objects a and b), apart from the reader and grounding."""
-    head, args = expr[0], expr[1:]
-    if head in ("and", "or"):
-        return (all if head == "and" else any)(_evaluate(a, binding, truth) for a in args)
-    if head == "not":
-        return not _evaluate(args[0], binding, truth)
-    if head == "imply":
-        return not _evaluate(args[0], binding, truth) or _evaluate(args[1], binding, truth)
-    if head in ("forall", "exists"):
-        values = (_evaluate(args[1], {**binding, args[0][0]: o}, truth) for o in "ab")
-        return (all if head == "forall" else any)(values)
-    names = [binding.get(a, a) for a in args]
-    return names[0] == names[1] if head == "=" else truth(Atom(head, tuple(names)))
-
-
 @pytest.mark.parametrize("seed", range(100))
 def test_the_grounded_operators_apply_exactly_where_the_condition_holds(seed: int) -> None:
     """Random conditions, every state of a small world: some operator of a binding applies where the lifted
@@ -148,7 +115,7 @@ def test_the_grounded_operators_apply_exactly_where_the_condition_holds(seed: in
     from strips_planner.grounding import ground
 
     rng = random.Random(seed)
-    condition = _random_condition(rng, 3, ["?x", "?y"])
+    condition = random_condition(rng, 3, ["?x", "?y"])
     domain_text = f"""(define (domain rnd) (:requirements :adl)
       (:predicates (p ?a) (q ?a ?b) (r ?a) (done ?a ?b))
       (:action act :parameters (?x ?y) :precondition {condition} :effect (done ?x ?y))
@@ -168,6 +135,6 @@ def test_the_grounded_operators_apply_exactly_where_the_condition_holds(seed: in
         truth = {*true, Atom("r", ("a",))}.__contains__
         for x in "ab":
             for y in "ab":
-                lifted = _evaluate(parse_sexpr(condition), {"?x": x, "?y": y}, truth)
+                lifted = evaluate_text(parse_sexpr(condition), {"?x": x, "?y": y}, truth)
                 grounded = any(op.applicable(state) for op in task.operators if op.name == "act" and op.args == (x, y))
                 assert grounded == lifted, (condition, sorted(map(str, true)), x, y)

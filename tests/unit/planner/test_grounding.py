@@ -212,7 +212,7 @@ def test_the_c_grounder_builds_masks_and_constants() -> None:
         **{**SHAPE, "init": [(0, 0, 1), (0, 1, 1)], "goal": [(0, 1, 0), (0, 1, 1)], "actions": [toggle]})
     assert facts == [("on", ("a", "a")), ("on", ("a", "b")), ("on", ("b", "b"))]
     assert (init, goal, goal_neg, unreached) == (0b110, 0b100, 0, [0])  # (on b a) is never reached
-    assert operators == [("toggle", ("a",), 0b010, 0, 0b001, 0b010), ("toggle", ("b",), 0b100, 0, 0b100, 0)]
+    assert operators == [("toggle", ("a",), 0b010, 0, 0b001, 0b010, ()), ("toggle", ("b",), 0b100, 0, 0b100, 0, ())]
 
 
 # explore(npredicates, nobjects, width, init, schemas): a schema is (types, joined, filters, adds)

@@ -35,15 +35,16 @@ DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates
     ("(define (domain d)", "1:1", "never closed"),
     ("; a comment (with a paren\n(define (domain d) ; another (\n ) x", "3:4", "after the end"),
     ("(define (domain d)))", "1:20", "after the end"),
-    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (forall (?y) (p ?y))))", "3:38", "'forall' in an effect is not supported"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (forall (?y))))", "3:38", "(forall (VARIABLES) EFFECT) takes"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (r ?x) :effect (q)))", "3:44", "unknown predicate"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?y) :effect (q)))", "3:47", "unknown variable"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :precondition (p ?x ?x) :effect (q)))", "3:44", "takes 1 argument"),
-    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (and (q) (assign (f) 1))))", "3:47", "'assign' in an effect"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (and (q) (assign (f) 1))))", "3:47", "'assign' is not supported here"),
     ("(define (domain d) (:requirements :fluents))", "1:20", "unsupported requirement"),
     (DOMAIN_HEAD + " (:action a :parameters (?x - thing) :effect (q)))", "3:26", "unknown type"),
     ("(define (domain d) (:requirements :adl)\n (:predicates (p))\n (:action a :parameters () :precondition (p)"
-     " :effect (when (p) (not (p)))))", "3:54", "'when' in an effect is not supported"),
+     " :effect (when (p))))", "3:54", "(when CONDITION EFFECT) takes"),
+    (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (or (q) (p ?x))))", "3:38", "'or' is not an effect"),
 ])
 def test_malformed_domain_names_line_and_column(text: str, where: str, words: str) -> None:
     with pytest.raises(PddlError) as error:

@@ -59,14 +59,14 @@ def test_a_question_mark_starts_a_token_and_names_ignore_case(tmp_path: Path, ca
 
 
 @pytest.mark.parametrize("construct, snippet", [
-    ("when", ":effect (when (link ?to ?from) (at ?to))))"),
+    ("cost", ":effect (when (link ?to ?from) (increase (total-cost) 1))))"),
     ("requirement", "(:requirements :strips :numeric-fluents)"),
     ("derived", "(:derived (near ?x) (at ?x))"),
 ])
 def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path, capsys, construct: str,
                                                                  snippet: str) -> None:
     domain = TOKENS_DOMAIN
-    if construct == "when":
+    if construct == "cost":
         domain = domain.replace(":effect (and (at ?to) (not (at ?from)))))", snippet)
     elif construct == "requirement":
         domain = domain.replace("(:requirements :strips)", snippet)
@@ -76,7 +76,7 @@ def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path,
     (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
     assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 3
     err = capsys.readouterr().err
-    assert "unsupported PDDL" in err and {"when": "'when'", "requirement": ":numeric-fluents",
+    assert "unsupported PDDL" in err and {"cost": "'increase'", "requirement": ":numeric-fluents",
                                           "derived": ":derived"}[construct] in err
 
 

@@ -92,6 +92,7 @@ def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_
     assert resumed.env_steps == 800 and resumed.replay.size == (400 + 400) // 50
 
 
+@pytest.mark.slow
 def test_resume_over_a_torn_replay_buffer_sets_it_aside_and_refills(tmp_path) -> None:
     """A run stopped while its buffer was written (an older save, not atomic) left half a file: the resume goes on."""
     trainer_for(config(tmp_path, 400)).run()

@@ -127,11 +127,10 @@ static int effect_fires(const TaskObject *t, const word *s, int c) {
     return 1;
 }
 
-/* The child of `s` by operator o: every effect's condition read in `s`, the deletes before the adds (an atom both
-   added and deleted is true after, as in Fast Downward). */
-static void apply_op(const TaskObject *t, const word *s, int o, word *child) {
-    const word *keep = W(t, t->keep, o), *add = W(t, t->add, o);
-    for (int i = 0; i < t->nwords; i++) child[i] = (s[i] & keep[i]) | add[i];
+/* Operator o's conditional effects onto `child` (its own effects already made): every condition read in `s`, the
+   deletes before the adds (an atom both added and deleted is true after, as in Fast Downward). Kept out of line, so
+   that a STRIPS task's children cost what they did. */
+static __attribute__((noinline)) void apply_effects(const TaskObject *t, const word *s, int o, word *child) {
     int first = t->cond_start[o], last = t->cond_start[o + 1];
     if (first == last) return;
     char fires[last - first];
@@ -141,12 +140,20 @@ static void apply_op(const TaskObject *t, const word *s, int o, word *child) {
         const word *del = W(t, t->cdel, c);
         for (int i = 0; i < t->nwords; i++) child[i] &= ~del[i];
     }
+    const word *add = W(t, t->add, o);
     for (int c = first; c < last; c++) {
         const word *cadd = W(t, t->cadd, c);
         if (fires[c - first])
             for (int i = 0; i < t->nwords; i++) child[i] |= cadd[i];
     }
     for (int i = 0; i < t->nwords; i++) child[i] |= add[i];
+}
+
+/* The child of `s` by operator o. */
+static inline void apply_op(const TaskObject *t, const word *s, int o, word *child) {
+    const word *keep = W(t, t->keep, o), *add = W(t, t->add, o);
+    for (int i = 0; i < t->nwords; i++) child[i] = (s[i] & keep[i]) | add[i];
+    if (t->ncond) apply_effects(t, s, o, child);
 }
 
 static int goal_reached(const TaskObject *t, const word *s) {

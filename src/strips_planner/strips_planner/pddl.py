@@ -567,53 +567,57 @@ def _action(section: list, domain: Domain) -> Action:
                                  "precondition")
     effect_expr, costs = _without_increase(fields.get(":effect", []))
     effects: list[Effect] = []
-    _effect(effect_expr, domain, variables, Effect((), None, Condition(Atom("", ()))), effects)
+    plain = _reader.conjunction(effect_expr, domain.predicates, variables, domain.constants, domain.ancestors,
+                                True) if effect_expr else []
+    if plain is None:  # under a when or a forall, or an error to word
+        _effect(effect_expr, domain, variables, (), None, effects)
+        plain = [effect.literal for effect in effects if not effect.variables and effect.condition is None]
+        effects = [effect for effect in effects if effect.variables or effect.condition is not None]
     if len(costs) > 1:
         raise _unsupported(costs[1], f"action {name}: more than one (increase (total-cost) ...)")
     add, delete = [], []
-    for effect in effects:
-        if effect.literal.atom.predicate == "=":
+    for literal in (*plain, *(effect.literal for effect in effects)):
+        if literal.atom.predicate == "=":
             raise _error(section, f"action {name}: equality cannot be an effect")
-        if not effect.variables and effect.condition is None:
-            (add if effect.literal.positive else delete).append(effect.literal.atom)
+    for literal in plain:
+        (add if literal.positive else delete).append(literal.atom)
     return Action(name, tuple((v, k) for v, k, _ in params), tuple(pre), tuple(add), tuple(delete),
-                  _cost(costs[0], domain, variables) if costs else 0, condition,
-                  tuple(e for e in effects if e.variables or e.condition is not None))
+                  _cost(costs[0], domain, variables) if costs else 0, condition, tuple(effects))
 
 
-def _effect(expr: list, domain: Domain, variables: dict[str, str], within: Effect, out: list[Effect]) -> None:
-    """The literals of an effect into ``out``, each with the ``forall`` variables and the ``when`` conditions it is
-    under (``within``: those around ``expr``)."""
+def _effect(expr: list, domain: Domain, variables: dict[str, str], bound: tuple[tuple[str, str], ...],
+            condition: Condition | tuple | None, out: list[Effect]) -> None:
+    """The literals of an effect into ``out``, each with the ``forall`` variables (``bound``) and the ``when``
+    conditions (``condition``) it is under."""
     if not expr:
         return
     plain = _reader.conjunction(expr, domain.predicates, variables, domain.constants, domain.ancestors, True)
     if plain is not None:
-        out += [within._replace(literal=literal) for literal in plain]
+        out += [Effect(bound, condition, literal) for literal in plain]
         return
     head = expr[0]
     if head == "and":
         for part in expr[1:]:
-            _effect(_sub(part, "effect"), domain, variables, within, out)
+            _effect(_sub(part, "effect"), domain, variables, bound, condition, out)
     elif head == "forall":
         if len(expr) != 3:
             raise _error(expr, "(forall (VARIABLES) EFFECT) takes a variable list and an effect")
-        bound = _typed_list(list(_sub(expr[1], "forall's variables")), expr, variables=True)
-        for _, kind, token in bound:
+        new = _typed_list(list(_sub(expr[1], "forall's variables")), expr, variables=True)
+        for _, kind, token in new:
             _check_type(domain, kind, token)
-        _effect(_sub(expr[2], "effect"), domain, {**variables, **{var: kind for var, kind, _ in bound}},
-                within._replace(variables=(*within.variables, *((var, kind) for var, kind, _ in bound))), out)
+        _effect(_sub(expr[2], "effect"), domain, {**variables, **{var: kind for var, kind, _ in new}},
+                (*bound, *((var, kind) for var, kind, _ in new)), condition, out)
     elif head == "when":
         if len(expr) != 3:
             raise _error(expr, "(when CONDITION EFFECT) takes a condition and an effect")
-        condition = _formula(_sub(expr[1], "condition"), domain, variables, domain.constants, "condition")
-        if within.condition is not None:
-            condition = ("and", (within.condition, condition))
-        _effect(_sub(expr[2], "effect"), domain, variables, within._replace(condition=condition), out)
+        inner = _formula(_sub(expr[1], "condition"), domain, variables, domain.constants, "condition")
+        _effect(_sub(expr[2], "effect"), domain, variables, bound,
+                inner if condition is None else ("and", (condition, inner)), out)
     elif head in ("increase", "decrease", "assign"):
         raise _unsupported(expr, f"{head!r} is not supported here: only an action's own (increase (total-cost) ...), "
                                  "at the top of its effect")
     else:
-        out.append(within._replace(literal=_literal(expr, domain, variables, domain.constants, "effect")))
+        out.append(Effect(bound, condition, _literal(expr, domain, variables, domain.constants, "effect")))
 
 
 def _without_increase(effect: list) -> tuple[list, list[list]]:

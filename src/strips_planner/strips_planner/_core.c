@@ -15,7 +15,10 @@
  * The relaxed heuristics share one structure: the facts plus two artificial ones, "goal" (added by a
  * zero-cost operator that needs the goal facts) and "true" (in every state, and the precondition of
  * operators that have none), and a Dijkstra over facts (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
- * Helmert & Domshlak 2009). A conditional effect is a relaxed operator of its own (its operator's precondition and
+ * Helmert & Domshlak 2009). A fact some precondition, condition or goal asks to be false has a relaxed fact for its
+ * negation too, true where the fact is not and made by what deletes it, as a finite-domain translation (Fast
+ * Downward's) has the false value of a binary variable: without it a relaxation ignores negative preconditions
+ * (schedule's `(not (busy polisher))`) and cannot see what must be undone first. A conditional effect is a relaxed operator of its own (its operator's precondition and
  * its condition; its adds), as Fast Downward's relaxation heuristics take them; LM-cut is refused on such tasks (it
  * would no longer be admissible).
  */
@@ -94,11 +97,14 @@ typedef struct {
                                            cond_op names each one's operator */
     word *cpre, *cneg, *cadd, *cdel;    /* ncond x nwords each: an effect's condition, its adds and its deletes */
     int nrel;                           /* relaxed operators: the operators, then one per conditional effect */
+    int nneg, *neg_of, *neg_index;      /* negated facts: relaxed fact nfacts + k is "not neg_of[k]"; neg_index:
+                                           per fact, its k or -1 */
+    int nrf;                            /* relaxed facts: the facts, then the negated ones */
     word *init, *goal, *goal_neg;
     Rows filed;                   /* per fact: operators filed under it (their rarest precondition) */
     int *free_ops, nfree;         /* operators with no positive precondition */
-    /* the relaxed task: facts 0..nfacts-1, GOAL = nfacts, TRUE = nfacts + 1; operators 0..nops-1, the
-       conditional effects nops..nrel-1 and the goal operator nrel */
+    /* the relaxed task: facts 0..nfacts-1, the negated facts nfacts..nrf-1, GOAL = nrf, TRUE = nrf + 1; operators
+       0..nops-1, the conditional effects nops..nrel-1 and the goal operator nrel */
     Rows rpre, radd, consumers, achievers;
     /* heuristic workspace, reused between evaluations */
     int *fact_cost, *achiever, *missing, *supporter, *op_max; /* achiever: each fact's cheapest, for hFF */
@@ -183,10 +189,28 @@ static int applicable_ops(const TaskObject *t, const word *s, int *out) {
 
 /* -- heuristics -------------------------------------------------------------------------------------- */
 
+static int in_state(const word *s, int f) { return (int)(s[f / 64] >> (f % 64) & 1); }
+
+/* Whether relaxed fact f (not GOAL or TRUE) holds in state `s`. */
+static int relaxed_true(const TaskObject *t, const word *s, int f) {
+    return f < t->nfacts ? in_state(s, f) : !in_state(s, t->neg_of[f - t->nfacts]);
+}
+
+/* The relaxed facts of state `s` into `out` (room for nrf): its facts, then the negated facts of those it lacks;
+   returns how many. */
+static int state_facts(const TaskObject *t, const word *s, int *out) {
+    int n = 0;
+    for (int i = 0; i < t->nwords; i++)
+        for (word rest = s[i]; rest; rest &= rest - 1) out[n++] = i * 64 + __builtin_ctzll(rest);
+    for (int k = 0; k < t->nneg; k++)
+        if (!in_state(s, t->neg_of[k])) out[n++] = t->nfacts + k;
+    return n;
+}
+
 static int next_epoch(TaskObject *t) {
     if (t->epoch == INT_MAX) {
-        memset(t->mark, 0, sizeof(int) * (size_t)(t->nfacts + 2));
-        memset(t->in_zone, 0, sizeof(int) * (size_t)(t->nfacts + 2));
+        memset(t->mark, 0, sizeof(int) * (size_t)(t->nrf + 2));
+        memset(t->in_zone, 0, sizeof(int) * (size_t)(t->nrf + 2));
         memset(t->op_mark, 0, sizeof(int) * (size_t)(t->nrel + 1));
         t->epoch = 0;
     }
@@ -210,7 +234,7 @@ static int offer(TaskObject *t, int o, int value) {
 /* The start of a Dijkstra over facts from state `s`: the facts of `s` and "true" cost 0 and wait in the heap, the
    others are unreached, and every operator misses all its preconditions (op_max 0, no supporter yet). */
 static int dijkstra_start(TaskObject *t, const word *s) {
-    int nf = t->nfacts + 2, nr = t->nrel + 1, truth = t->nfacts + 1;
+    int nf = t->nrf + 2, nr = t->nrel + 1, truth = t->nrf + 1, *facts = t->stack;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) {
         t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
@@ -218,12 +242,10 @@ static int dijkstra_start(TaskObject *t, const word *s) {
         t->op_max[o] = 0;
     }
     t->heap.n = 0;
-    for (int i = 0; i < t->nwords; i++)
-        for (word rest = s[i]; rest; rest &= rest - 1) {
-            int f = i * 64 + __builtin_ctzll(rest);
-            t->fact_cost[f] = 0;
-            if (heap_push(&t->heap, 0, f, f)) return -1;
-        }
+    for (int k = 0, n = state_facts(t, s, facts); k < n; k++) {
+        t->fact_cost[facts[k]] = 0;
+        if (heap_push(&t->heap, 0, facts[k], facts[k])) return -1;
+    }
     t->fact_cost[truth] = 0;
     return heap_push(&t->heap, 0, truth, truth);
 }
@@ -253,16 +275,12 @@ static int relaxed_costs(TaskObject *t, const word *s) {
    operator costs 0, and nothing needs its fact. It stops once the goal fact is set (its cost and every
    achiever a relaxed plan can need are final by then). */
 static void unit_costs(TaskObject *t, const word *s) {
-    int nf = t->nfacts + 2, nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1, head = 0, tail = 0;
+    int nf = t->nrf + 2, nr = t->nrel + 1, goal = t->nrf, truth = t->nrf + 1, head = 0, tail = 0;
     int *queue = t->stack;
     for (int f = 0; f < nf; f++) t->fact_cost[f] = COST_INF;
     for (int o = 0; o < nr; o++) t->missing[o] = t->rpre.start[o + 1] - t->rpre.start[o];
-    for (int i = 0; i < t->nwords; i++)
-        for (word rest = s[i]; rest; rest &= rest - 1) {
-            int f = i * 64 + __builtin_ctzll(rest);
-            t->fact_cost[f] = 0;
-            queue[tail++] = f;
-        }
+    tail = state_facts(t, s, queue);
+    for (int k = 0; k < tail; k++) t->fact_cost[queue[k]] = 0;
     t->fact_cost[truth] = 0;
     queue[tail++] = truth;
     while (head < tail) {
@@ -295,10 +313,8 @@ static int hmax_costs(TaskObject *t, const word *s) {
 
 static int h_hmax(TaskObject *t, const word *s) {
     if (hmax_costs(t, s)) return -1;
-    return t->fact_cost[t->nfacts];
+    return t->fact_cost[t->nrf];
 }
-
-static int in_state(const word *s, int f) { return (int)(s[f / 64] >> (f % 64) & 1); }
 
 static int add_costs(int x, int y) { return x > COST_INF - y ? COST_INF : x + y; }
 
@@ -307,7 +323,7 @@ static int add_costs(int x, int y) { return x > COST_INF - y ? COST_INF : x + y;
    precondition pops. It stops when the goal fact pops: every fact a relaxed plan can need is final then (any
    later offer costs at least the goal's). */
 static int additive_costs(TaskObject *t, const word *s) {
-    int goal = t->nfacts, *sum = t->op_max; /* per operator, its popped preconditions' costs so far */
+    int goal = t->nrf, *sum = t->op_max; /* per operator, its popped preconditions' costs so far */
     if (dijkstra_start(t, s)) return -1;
     while (t->heap.n) {
         Entry e = heap_pop(&t->heap);
@@ -331,14 +347,14 @@ static int real_op(const TaskObject *t, int o) { return o < t->nops || o == t->n
    as the relaxed plan's, for the helpful operators; its own precondition is in each of its effects'. */
 static int h_hff(TaskObject *t, const word *s) {
     if (additive_costs(t, s)) return -1;
-    int goal = t->nfacts, truth = t->nfacts + 1;
+    int goal = t->nrf, truth = t->nrf + 1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
     int epoch = next_epoch(t), size = 0, top = 0;
     t->stack[top++] = goal;
     t->mark[goal] = epoch;
     while (top) {
         int f = t->stack[--top];
-        if (f == truth || (f < goal && in_state(s, f))) continue;
+        if (f == truth || (f < goal && relaxed_true(t, s, f))) continue;
         int o = t->achiever[f], real = real_op(t, o);
         if (t->op_mark[o] == epoch) continue;
         if (real == o || t->op_mark[real] != epoch) size += t->base_cost[o];
@@ -403,7 +419,7 @@ static void break_ties(TaskObject *t, int o, int zone) {
 
 /* LM-cut: the sum of the costs of disjunctive action landmarks found by repeated hmax cuts. */
 static int h_lmcut(TaskObject *t, const word *s) {
-    int nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1;
+    int nr = t->nrel + 1, goal = t->nrf, truth = t->nrf + 1;
     memcpy(t->cost, t->base_cost, sizeof(int) * (size_t)nr);
     if (relaxed_costs(t, s)) return -1;
     if (t->fact_cost[goal] == COST_INF) return COST_INF;
@@ -428,12 +444,8 @@ static int h_lmcut(TaskObject *t, const word *s) {
         }
         /* forward from the state through operators whose supporter is reached, stopping at the zone */
         int reached = zone, ncut = 0;
-        for (int i = 0; i < t->nwords; i++)
-            for (word rest = s[i]; rest; rest &= rest - 1) {
-                int f = i * 64 + __builtin_ctzll(rest);
-                t->mark[f] = reached;
-                t->stack[top++] = f;
-            }
+        top = state_facts(t, s, t->stack);
+        for (int k = 0; k < top; k++) t->mark[t->stack[k]] = reached;
         t->mark[truth] = reached;
         t->stack[top++] = truth;
         while (top) {
@@ -472,16 +484,23 @@ static int h_lmcut(TaskObject *t, const word *s) {
 }
 
 /* The task's landmarks, found on first use; -1 when out of memory. */
+/* The task's landmarks, found on first use over the relaxed facts; the count keeps the facts' own (a negated fact
+   is no fact of a state); -1 when out of memory. */
 static int find_landmarks(TaskObject *t) {
     if (t->landmarks) return 0;
-    word *found = malloc(sizeof(word) * (size_t)t->nwords);
-    int reachable = found ? zhu_givan_landmarks(t->nfacts, t->nwords, t->nrel, &t->rpre, &t->radd, &t->consumers,
-                                                t->init, found)
-                          : -1;
+    int rwords = (t->nrf + 63) / 64 + 1, reachable = -1;
+    word *init = calloc((size_t)rwords, sizeof(word)), *found = malloc(sizeof(word) * (size_t)rwords);
+    if (init && found) {
+        for (int k = 0, n = state_facts(t, t->init, t->stack); k < n; k++)
+            init[t->stack[k] / 64] |= (word)1 << (t->stack[k] % 64);
+        reachable = zhu_givan_landmarks(t->nrf, rwords, t->nrel, &t->rpre, &t->radd, &t->consumers, init, found);
+    }
+    free(init);
     if (reachable < 0) {
         free(found);
         return -1;
     }
+    for (int f = t->nfacts; f < t->nwords * 64; f++) found[f / 64] &= ~((word)1 << (f % 64)); /* padding and negations */
     t->landmarks = found;
     t->goal_reachable = reachable;
     return 0;
@@ -1106,6 +1125,8 @@ static void Task_dealloc(TaskObject *t) {
     free(t->cneg);
     free(t->cadd);
     free(t->cdel);
+    free(t->neg_of);
+    free(t->neg_index);
     free(t->init);
     free(t->goal);
     free(t->goal_neg);
@@ -1140,36 +1161,72 @@ static int set_bits(const TaskObject *t, const word *m, int *out) {
     return n;
 }
 
-static size_t count_bits(const TaskObject *t, const word *masks, int count) {
-    size_t n = 0;
-    for (size_t i = 0; i < (size_t)count * (size_t)t->nwords; i++) n += (size_t)__builtin_popcountll(masks[i]);
+/* Relaxed operator r's preconditions (`which` 0) or adds (1) as relaxed facts into `out` (room for nrf): an
+   operator's own, or a conditional effect's (its operator's precondition and its condition; its adds), each with
+   the negated facts of what it asks false (preconditions) or deletes (adds); the goal operator's (nrel) the goal's.
+   Returns how many. */
+static int relaxed_facts(const TaskObject *t, int r, int which, int *out) {
+    const word *pos, *neg, *also_pos = NULL, *also_neg = NULL;
+    if (r == t->nrel) pos = t->goal, neg = t->goal_neg;
+    else if (r < t->nops) pos = W(t, which ? t->add : t->pre, r), neg = which ? NULL : W(t, t->neg, r);
+    else {
+        int c = r - t->nops, o = t->cond_op[c];
+        pos = W(t, which ? t->cadd : t->cpre, c), neg = W(t, which ? t->cdel : t->cneg, c);
+        if (!which) also_pos = W(t, t->pre, o), also_neg = W(t, t->neg, o);
+    }
+    int n = 0;
+    for (int i = 0; i < t->nwords; i++) {
+        word yes = pos[i] | (also_pos ? also_pos[i] : 0);
+        word no = r < t->nops && which ? ~W(t, t->keep, r)[i] : (neg ? neg[i] : 0) | (also_neg ? also_neg[i] : 0);
+        for (word rest = yes; rest; rest &= rest - 1) out[n++] = i * 64 + __builtin_ctzll(rest);
+        for (word rest = no; rest; rest &= rest - 1) {
+            int f = i * 64 + __builtin_ctzll(rest);
+            if (f < t->nfacts && t->neg_index[f] >= 0) out[n++] = t->nfacts + t->neg_index[f];
+        }
+    }
     return n;
 }
 
-/* Relaxed operator r's precondition (`which` 0) or adds (1) into `mask`: an operator's own, or a conditional
-   effect's (its operator's precondition and its condition; its adds). */
-static void relaxed_mask(const TaskObject *t, int r, int which, word *mask) {
-    if (r < t->nops) {
-        memcpy(mask, W(t, which ? t->add : t->pre, r), sizeof(word) * (size_t)t->nwords);
-        return;
+/* The negated facts: one per fact that an operator's precondition, a conditional effect's condition or the goal asks
+   false; -1 when out of memory. */
+static int find_negations(TaskObject *t) {
+    word *asked = calloc((size_t)t->nwords, sizeof(word));
+    t->neg_index = malloc(sizeof(int) * ((size_t)t->nfacts + 1));
+    t->neg_of = malloc(sizeof(int) * ((size_t)t->nfacts + 1));
+    if (!asked || !t->neg_index || !t->neg_of) {
+        free(asked);
+        return -1;
     }
-    int c = r - t->nops;
-    const word *own = W(t, which ? t->cadd : t->cpre, c), *op_pre = W(t, t->pre, t->cond_op[c]);
-    for (int i = 0; i < t->nwords; i++) mask[i] = which ? own[i] : own[i] | op_pre[i];
+    for (int i = 0; i < t->nwords; i++) {
+        asked[i] = t->goal_neg[i];
+        for (int o = 0; o < t->nops; o++) asked[i] |= W(t, t->neg, o)[i];
+        for (int c = 0; c < t->ncond; c++) asked[i] |= W(t, t->cneg, c)[i];
+    }
+    t->nneg = 0;
+    for (int f = 0; f < t->nfacts; f++) {
+        t->neg_index[f] = in_state(asked, f) ? t->nneg : -1;
+        if (t->neg_index[f] >= 0) t->neg_of[t->nneg++] = f;
+    }
+    t->nrf = t->nfacts + t->nneg;
+    free(asked);
+    return 0;
 }
 
 /* The operator index structures: the successor filing and the relaxed task. */
 static int build_indexes(TaskObject *t) {
-    int nf = t->nfacts + 2, nr = t->nrel + 1, goal = t->nfacts, truth = t->nfacts + 1, status = -1;
-    size_t npre = count_bits(t, t->pre, t->nops) + count_bits(t, t->cpre, t->ncond), nadd = count_bits(t, t->add, t->nops);
-    for (int c = 0; c < t->ncond; c++) npre += count_bits(t, W(t, t->pre, t->cond_op[c]), 1);
-    nadd += count_bits(t, t->cadd, t->ncond);
-    size_t room = (npre > nadd ? npre : nadd) + (size_t)t->nfacts + (size_t)nr + 1;
-    int *row = malloc(sizeof(int) * room), *item = malloc(sizeof(int) * room);
-    int *uses = calloc((size_t)nf, sizeof(int)), *facts = malloc(sizeof(int) * (size_t)nf);
-    word *mask = malloc(sizeof(word) * (size_t)t->nwords);
+    if (find_negations(t)) return -1;
+    int nf = t->nrf + 2, nr = t->nrel + 1, goal = t->nrf, truth = t->nrf + 1, status = -1;
+    int *facts = malloc(sizeof(int) * (size_t)nf), *row = NULL, *item = NULL, *uses = calloc((size_t)nf, sizeof(int));
     t->free_ops = malloc(sizeof(int) * (size_t)(t->nops + 1));
-    if (!row || !item || !uses || !facts || !mask || !t->free_ops) goto done;
+    if (!facts || !uses || !t->free_ops) goto done;
+    size_t room = (size_t)t->nfacts + (size_t)nr + 1, npre = 0, nadd = 0;
+    for (int o = 0; o < nr; o++) {
+        npre += (size_t)relaxed_facts(t, o, 0, facts) + 1;
+        if (o < t->nrel) nadd += (size_t)relaxed_facts(t, o, 1, facts);
+    }
+    room += npre > nadd ? npre : nadd;
+    row = malloc(sizeof(int) * room), item = malloc(sizeof(int) * room);
+    if (!row || !item) goto done;
 
     /* successor filing: each operator under its precondition that the fewest operators need (the first
        such) */
@@ -1189,17 +1246,14 @@ static int build_indexes(TaskObject *t) {
     /* relaxed preconditions (TRUE for none; the goal operator needs the goal facts) and their inverse */
     int n = 0;
     for (int o = 0; o < nr; o++) {
-        if (o < t->nrel) relaxed_mask(t, o, 0, mask);
-        int count = set_bits(t, o < t->nrel ? mask : t->goal, facts);
+        int count = relaxed_facts(t, o, 0, facts);
         for (int k = 0; k < count; k++) row[n] = o, item[n++] = facts[k];
         if (!count) row[n] = o, item[n++] = truth;
     }
     if (rows_build(&t->rpre, nr, row, item, n) || rows_build(&t->consumers, nf, item, row, n)) goto done;
     n = 0;
-    for (int o = 0; o < t->nrel; o++) {
-        relaxed_mask(t, o, 1, mask);
-        for (int k = 0, count = set_bits(t, mask, facts); k < count; k++) row[n] = o, item[n++] = facts[k];
-    }
+    for (int o = 0; o < t->nrel; o++)
+        for (int k = 0, count = relaxed_facts(t, o, 1, facts); k < count; k++) row[n] = o, item[n++] = facts[k];
     row[n] = t->nrel, item[n++] = goal;
     if (rows_build(&t->radd, nr, row, item, n) || rows_build(&t->achievers, nf, item, row, n)) goto done;
 
@@ -1225,7 +1279,6 @@ done:
     free(item);
     free(uses);
     free(facts);
-    free(mask);
     return status;
 }
 

@@ -2,9 +2,12 @@
 the landmark count.
 
 They run in C (``_core.c``) inside the searches; :func:`heuristic` evaluates one on a single state, for
-tests and for inspecting a task. All of them ignore delete effects, negative preconditions and negative
-goals, which only relaxes the task further, so hmax and LM-cut stay admissible (Bonet & Geffner 2001;
-Hoffmann & Nebel 2001; Helmert & Domshlak 2009). Actions cost 1, or their own costs where the task has them.
+tests and for inspecting a task. All of them ignore delete effects (Bonet & Geffner 2001; Hoffmann & Nebel 2001;
+Helmert & Domshlak 2009), so hmax and LM-cut stay admissible. A fact that a precondition, a condition or the goal asks
+false has a relaxed fact for its negation, true where the fact is not and made by what deletes it, as in a
+finite-domain translation (Fast Downward's, where it is the false value of a binary variable): ignoring negative
+preconditions, as they did, hid what must be undone first (schedule's busy machines). Actions cost 1, or their own
+costs where the task has them.
 A conditional effect is, relaxed, an action of its own (its action's precondition and its condition, its adds, its
 action's cost): hmax stays admissible, hFF counts an action once however many of its effects its relaxed plan uses,
 and LM-cut, which would not stay admissible so, is refused on such tasks.

@@ -169,6 +169,46 @@ def test_heuristics_bound_the_optimal_cost_from_states_along_a_walk(seed: int) -
         state = rng.choice(successors(task, state))[0]
 
 
+def test_a_fact_asked_false_must_be_undone_first_in_the_relaxations() -> None:
+    """``use`` asks the machine not busy: from a busy one the relaxations count freeing it too (they ignored negative
+    preconditions, and read 1)."""
+    domain = parse_domain("""(define (domain machine) (:requirements :negative-preconditions)
+      (:predicates (busy) (done))
+      (:action use :precondition (not (busy)) :effect (and (done) (busy)))
+      (:action free :precondition (busy) :effect (not (busy))))""")
+    task = ground(domain, parse_problem("(define (problem p) (:domain machine) (:init (busy)) (:goal (done)))", domain))
+    for name in ("hmax", "hff", "lmcut"):
+        assert heuristics.heuristic(task, name)(task.init) == 2, name
+        assert heuristics.heuristic(task, name)(0) == 1, name  # not busy
+    assert heuristics.heuristic(task, "lmcount")(task.init) == 1  # (done): a negation is no fact of a state to count
+
+
+LOCKS = """(define (domain locks) (:requirements :negative-preconditions)
+  (:predicates (on ?x) (locked ?x) (ready))
+  (:action switch-on :parameters (?x) :precondition (and (not (on ?x)) (not (locked ?x))) :effect (on ?x))
+  (:action switch-off :parameters (?x) :precondition (on ?x) :effect (and (not (on ?x)) (ready)))
+  (:action lock :parameters (?x) :precondition (and (not (on ?x)) (ready)) :effect (and (locked ?x) (not (ready))))
+  (:action unlock :parameters (?x) :precondition (locked ?x) :effect (not (locked ?x))))"""
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_heuristics_with_facts_asked_false_bound_the_optimal_cost_in_every_state(seed: int) -> None:
+    """Random goals of true and false facts over switches that lock: in every state, hmax <= LM-cut <= h* and
+    hmax <= hFF, and a relaxation calls a state a dead end only where it is one."""
+    rng = random.Random(seed)
+    literals = [f"({p} {x})" for p in ("on", "locked") for x in "abc"] + ["(ready)"]
+    goal = " ".join(lit if rng.random() < 0.5 else f"(not {lit})" for lit in rng.sample(literals, 3))
+    domain = parse_domain(LOCKS)
+    task = ground(domain, parse_problem(f"(define (problem p) (:domain locks) (:objects a b c) (:init (on a)) "
+                                        f"(:goal (and {goal})))", domain))
+    h = {name: heuristics.heuristic(task, name) for name in ("hmax", "hff", "lmcut")}
+    for state in range(1 << len(task.facts)):
+        optimal = _bfs_length(task, state)
+        assert h["hmax"](state) <= h["lmcut"](state) <= optimal, (goal, task.atoms(state))
+        assert h["hmax"](state) <= h["hff"](state)
+        assert (h["hff"](state) == float("inf")) <= (optimal == float("inf"))
+
+
 def test_dead_ends_are_infinite_for_every_relaxed_heuristic() -> None:
     domain_text = """(define (domain roads) (:requirements :strips)
       (:predicates (at ?x) (road ?x ?y))

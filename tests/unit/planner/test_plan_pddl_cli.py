@@ -173,3 +173,11 @@ def test_a_time_limit_must_be_a_positive_number(value: str, capsys) -> None:
 def test_a_time_limit_that_is_not_reached_changes_nothing(capsys) -> None:
     assert plan_pddl_main([KEYS, str(FIXTURES / "keys-vault.pddl"), "--time-limit=60"]) == 0
     assert len(capsys.readouterr().out.splitlines()) == 9
+
+
+def test_lmcut_on_conditional_effects_exits_3_and_astar_takes_hmax_by_default(capsys) -> None:
+    briefcase = [str(FIXTURES / "briefcase-domain.pddl"), str(FIXTURES / "briefcase-3.pddl"), "--search", "astar"]
+    assert plan_pddl_main([*briefcase, "--heuristic", "lmcut"]) == 3
+    assert "lmcut does not take conditional effects" in capsys.readouterr().err
+    assert plan_pddl_main(briefcase) == 0
+    assert len(capsys.readouterr().out.splitlines()) == 8

@@ -112,9 +112,12 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
     place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
     placed = []
     for literal in literals:
-        placed.append(Literal(literal.name, tuple(place.get(arg, arg) for arg in literal.args), literal.value))
-        if literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on the tower goes on this one
-            place[TOWER_TOP] = literal.args[0]
+        args = tuple(place.get(arg, arg) for arg in literal.args)
+        if len(set(args)) < len(args) and not literal.value:  # "put the top block on the table": not on itself
+            continue
+        placed.append(Literal(literal.name, args, literal.value))
+        if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
+            place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
 
 

@@ -242,6 +242,8 @@ PHRASES = [
     ("tabletop", "carefully put red on green", "above(red,green)"),
     ("desk_cleanup", "put blue in the bin right away", "in_bin(blue)"),
     ("two_blocks", "take red off the tower", "not above(red,green)"),
+    ("two_blocks", "remove red from the tower", "not above(red,green)"),
+    ("two_blocks", "remove red off", "not above(red,green)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",
      "above(purple,orange) & above(orange,yellow) & in_bin(red)"),
     ("tabletop", "put the blue block on the green one, which sits on red", "above(blue,green) & above(green,red)"),
@@ -462,6 +464,12 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("keep blue away from the pile, then put green on the tower", "not close(blue,tower_base) & above(green,tower_top)"),
     ("switch red and green, then put blue in the bin", "swap(red,green) & in_bin(blue)"),
     ("exchange the red and the green block", "swap(red,green)"),
+    ("put the top block in the bin", "in_bin(tower_top)"),
+    ("pick up the block on top of the tower", "holding(tower_top)"),
+    ("put the bottom block of the stack in the bin", "in_bin(tower_base)"),
+    ("put the block at the bottom of the tower next to red", "close(tower_base,red)"),
+    ("put red on the topmost block", "above(red,tower_top)"),
+    ("put the top block next to the bottom block", "close(tower_top,tower_base)"),
 ])
 def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text: str, expected: str) -> None:
     """'the tower' and 'swap' stand in the literals until the goal is planned (tests/unit/planner/test_goals.py)."""
@@ -474,6 +482,8 @@ def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text
     ("tabletop", "put red under the tower", "cannot read the goal"),
     ("tabletop", "put orange and red on the tower", "a block goes on one block"),
     ("three_blocks", "put red on the tower", "predicate 'above' is not used in scene 'three_blocks'"),
+    ("tabletop", "put the top block on the tower", "a block of the tower cannot be placed on or by itself"),
+    ("tabletop", "put the bottom block next to the bottom block", "a block of the tower cannot be placed on or by itself"),
 ])
 def test_the_tower_is_only_where_a_block_goes(scene: str, text: str, words: str) -> None:
     with pytest.raises(LanguageError, match=words):

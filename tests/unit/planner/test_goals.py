@@ -135,6 +135,12 @@ def on(*chain: str) -> list[Literal]:
      [Literal("above", ("green", "red")), Literal("close", ("red", "yellow"))]),
     ("stack blue on red, then put orange on the tower", [], [Literal("above", ("blue", "red")),
                                                             Literal("above", ("orange", "blue"))]),
+    # the tower's ends said as blocks: moved themselves, and never said to be off themselves
+    ("put the top block in the bin", on("red", "green", "blue"), [Literal("in_bin", ("blue",))]),
+    ("put the bottom block in the bin", on("red", "green", "blue"), [Literal("in_bin", ("red",))]),
+    ("put the top block next to the bottom block", on("red", "green", "blue"), [Literal("close", ("red", "blue"))]),
+    ("take the top block off the tower", on("red", "green"),
+     [Literal("above", ("green", b), False) for b in ("red", "blue", "yellow", "orange")]),
 ])
 def test_the_tower_is_the_one_standing_when_the_goal_is_planned(text: str, state: list[Literal],
                                                                 expected: list[Literal]) -> None:

@@ -20,6 +20,7 @@ What a sentence becomes (``PHRASES`` in the tests hold many more)::
     keep red away from green and blue            not close(red,green) & not close(red,blue)
     pick up blue                                 holding(blue)
     put orange on the tower                      above(orange,tower_top): the top of the tower standing when planned
+    put the bottom block in the bin              in_bin(tower_base): the tower's bottom block when planned
     swap red and green                           swap(red,green): which is on which (or in the bin) when planned
 
 The literals are what the operator is shown before anything moves.
@@ -108,11 +109,11 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
     standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE)]
     if not standing:
         return layout.validate(literal, blocks)
-    stand_in = next((b for b in blocks if b not in literal.args), None)
-    if stand_in is None:
+    spare = iter(b for b in blocks if b not in literal.args)
+    stand_ins = {arg: next(spare, None) for arg in dict.fromkeys(standing)}  # one block for each end named
+    if None in stand_ins.values():
         raise VocabularyError(f"{literal}: a tower needs two blocks besides {' and '.join(literal.args[:1])}")
-    layout.validate(Literal(literal.name, tuple(stand_in if a in standing else a for a in literal.args), literal.value),
-                    blocks)
+    layout.validate(Literal(literal.name, tuple(stand_ins.get(a, a) for a in literal.args), literal.value), blocks)
     return literal
 
 

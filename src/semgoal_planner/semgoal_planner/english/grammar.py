@@ -35,6 +35,7 @@ action: ("put" | "keep") refs dest          -> put
       | "take" refs "up"?                     -> hold
       | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
       | "remove" refs ("from" | "off") refs   -> off
+      | "remove" refs "off"                   -> off
       | ("remove" | "take") refs ("from" | "off") "table" -> clean
       | "pick" refs "up"?                     -> hold
       | "pick" refs "up"? "off" refs?         -> off
@@ -83,6 +84,8 @@ ref: COLOUR                      -> colour
    | "it"                        -> it
    | "them"                      -> them
    | "the_tower"                 -> tower
+   | "the_top"                   -> top
+   | "the_base"                  -> base
 
 NOT: "not"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
@@ -98,7 +101,8 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 @dataclass(frozen=True)
 class Ref:
     """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
-    ``them``, ``tower`` (the tower standing when the goal is planned)."""
+    ``them``, ``tower`` (the tower standing when the goal is planned), ``top`` and ``base`` (its top and bottom
+    blocks)."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -285,6 +289,12 @@ class Clauses(lark.Transformer):
 
     def tower(self, _: list) -> Ref:
         return Ref("tower")
+
+    def top(self, _: list) -> Ref:
+        return Ref("top")
+
+    def base(self, _: list) -> Ref:
+        return Ref("base")
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

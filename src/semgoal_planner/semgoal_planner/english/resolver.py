@@ -15,6 +15,8 @@ TOWER_TOP, TOWER_BASE = "tower_top", "tower_base"
 """What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
+TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE}
+"""'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation."""
 SWAP = "swap"
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
@@ -52,11 +54,13 @@ class Resolver:
     def _one(self, ref: Ref, besides: tuple[str, ...]) -> tuple[str, ...]:
         if ref.kind in ("colours", "only"):
             for colour in ref.colours:
-                if colour not in self.blocks:
+                if colour not in self.blocks and colour not in PLACED_WHEN_PLANNED:  # a resolved clause's stand-ins
                     raise LanguageError(f"there is no {colour} block here: the blocks are {', '.join(self.blocks)}")
             return ref.colours
         if ref.kind == "tower":  # placed by literals(), which knows the relation
             return ("tower",)
+        if ref.kind in TOWER_ENDS:  # "the top block": stands in the literals until the goal is planned
+            return (TOWER_ENDS[ref.kind],)
         if ref.kind == "all":
             excluded = set(self.blocks_of(ref.excluded))
             return tuple(b for b in self.blocks if b not in excluded)
@@ -113,6 +117,8 @@ class Resolver:
         if not subjects:
             raise LanguageError(f"say which block: {', '.join(self.blocks)}")
         objects = self.blocks_of(clause.objects, besides=subjects)
+        if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
+            raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
         if "tower" in objects:
             if clause.kind not in TOWER_PLACES:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "

@@ -30,6 +30,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
+    (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
+     r"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?", "the_top"),
+    (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
+     r"the (block|cube|one) (at|on) the (bottom|base|foot)( of (the|that|this|your) (tower|stack|pile))?",
+     "the_base"),  # "put the top block in the bin": the tower's ends, placed when planned
     (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
@@ -52,7 +57,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"
      r"down from) "
      r"(the|that|this|your) (tower|stack|pile)", "unstack"),
-    (r"(off( of)?|down from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
+    (r"(off( of)?|(down )?from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
@@ -142,7 +147,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "swap",
+    "the_tower", "the_top", "the_base", "swap",
 })
 """The words the grammar reads (besides the colours)."""
 

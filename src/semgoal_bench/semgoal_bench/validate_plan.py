@@ -1,7 +1,7 @@
 """Check a plan against a PDDL task by executing it on the lifted actions, without the planner's grounding:
 each step's action exists, its arguments are objects of the parameters' types, its precondition holds
 (equality included), its conditional and universal effects take place where their conditions hold before it, and the
-goal holds at the end; where the problem minimises total-cost, it prints the
+goal holds at the end, derived predicates read from their rules in each state; where the problem minimises total-cost, it prints the
 plan's cost, summed from the actions' increases. A second opinion on ``plan-pddl``'s plans where VAL is not
 at hand.
 
@@ -16,6 +16,7 @@ from itertools import product
 from pathlib import Path
 
 from strips_planner.adl import holds
+from strips_planner.axioms import derived_atoms
 from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain, parse_problem
 
 
@@ -38,7 +39,11 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
     def of_type(kind: str) -> list[str]:
         return [name for name, own in objects.items() if domain.is_subtype(own, kind)]
 
+    def seen(state: set[Atom]) -> set[Atom]:  # the state with its derived atoms
+        return state | derived_atoms(domain.axioms, state, of_type) if domain.axioms else state
+
     for number, (name, *args) in enumerate(plan, 1):
+        before = seen(state)
         action = actions.get(name)
         if action is None or len(args) != len(action.parameters):
             return f"step {number} ({name} {' '.join(args)}): no such action with {len(args)} arguments"
@@ -46,18 +51,19 @@ def invalid_step(domain: Domain, problem: Problem, plan: list[tuple[str, ...]]) 
         for arg, (_, kind) in zip(args, action.parameters, strict=True):
             if arg not in objects or not domain.is_subtype(objects[arg], kind):
                 return f"step {number}: {arg!r} is not an object of type {kind}"
-        unmet = [c for c in action.precondition if not _holds(Condition(_bind(c.atom, binding), c.positive), state)]
+        unmet = [c for c in action.precondition if not _holds(Condition(_bind(c.atom, binding), c.positive), before)]
         if unmet:
             return f"step {number} ({name} {' '.join(args)}): precondition {unmet[0]} does not hold"
-        if action.condition is not None and not holds(action.condition, binding, state.__contains__, of_type):
+        if action.condition is not None and not holds(action.condition, binding, before.__contains__, of_type):
             return f"step {number} ({name} {' '.join(args)}): its precondition's condition does not hold"
         adds, deletes = {_bind(a, binding) for a in action.add}, {_bind(a, binding) for a in action.delete}
         for effect in action.effects:
             for values in product(*(of_type(kind) for _, kind in effect.variables)):
                 bound = dict(binding, **dict(zip((variable for variable, _ in effect.variables), values, strict=True)))
-                if effect.condition is None or holds(effect.condition, bound, state.__contains__, of_type):
+                if effect.condition is None or holds(effect.condition, bound, before.__contains__, of_type):
                     (adds if effect.literal.positive else deletes).add(_bind(effect.literal.atom, bound))
         state = (state - deletes) | adds
+    state = seen(state)
     unmet = [c for c in problem.goal if not _holds(c, state)]
     if not unmet and problem.goal_condition is not None and not holds(problem.goal_condition, {}, state.__contains__,
                                                                       of_type):

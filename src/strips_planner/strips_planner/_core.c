@@ -20,7 +20,9 @@
  * Downward's) has the false value of a binary variable: without it a relaxation ignores negative preconditions
  * (schedule's `(not (busy polisher))`) and cannot see what must be undone first. A conditional effect is a relaxed operator of its own (its operator's precondition and
  * its condition; its adds), as Fast Downward's relaxation heuristics take them; LM-cut is refused on such tasks (it
- * would no longer be admissible).
+ * would no longer be admissible). Derived predicates' rules (axioms) make a state's derived facts after every
+ * operator, layer by layer to a fixed point; relaxed, each rule is an operator of cost 0, and a negated derived fact
+ * is left out (assumed true), as Fast Downward's relaxations take them.
  */
 #include "_landmarks.h" /* Zhu & Givan's landmarks */
 #include "_support.h"   /* Python.h, word, Rows, int <-> words */
@@ -96,7 +98,10 @@ typedef struct {
     int ncond, *cond_start, *cond_op;   /* conditional effects: operator o's are cond_start[o]..cond_start[o + 1], and
                                            cond_op names each one's operator */
     word *cpre, *cneg, *cadd, *cdel;    /* ncond x nwords each: an effect's condition, its adds and its deletes */
-    int nrel;                           /* relaxed operators: the operators, then one per conditional effect */
+    int nax, *ax_layer, *ax_head;       /* derived predicates' rules, layer by layer: each one's layer and head fact */
+    word *ax_pos, *ax_neg, *derived;    /* nax x nwords each: a rule's body; and the derived facts' mask */
+    int nrel;                           /* relaxed operators: the operators, one per conditional effect, one per
+                                           rule */
     int nneg, *neg_of, *neg_index;      /* negated facts: relaxed fact nfacts + k is "not neg_of[k]"; neg_index:
                                            per fact, its k or -1 */
     int nrf;                            /* relaxed facts: the facts, then the negated ones */
@@ -155,11 +160,31 @@ static __attribute__((noinline)) void apply_effects(const TaskObject *t, const w
     for (int i = 0; i < t->nwords; i++) child[i] |= add[i];
 }
 
+/* State `s`'s derived facts made again: cleared, then each layer's rules applied to their fixed point. */
+static __attribute__((noinline)) void derive(const TaskObject *t, word *s) {
+    for (int i = 0; i < t->nwords; i++) s[i] &= ~t->derived[i];
+    for (int first = 0, last; first < t->nax; first = last) {
+        for (last = first; last < t->nax && t->ax_layer[last] == t->ax_layer[first]; last++) {}
+        for (int changed = 1; changed;) {
+            changed = 0;
+            for (int r = first; r < last; r++) {
+                int h = t->ax_head[r];
+                if (s[h / 64] >> (h % 64) & 1) continue;
+                const word *pos = W(t, t->ax_pos, r), *neg = W(t, t->ax_neg, r);
+                int fires = 1;
+                for (int i = 0; i < t->nwords && fires; i++) fires = (s[i] & pos[i]) == pos[i] && !(s[i] & neg[i]);
+                if (fires) s[h / 64] |= (word)1 << (h % 64), changed = 1;
+            }
+        }
+    }
+}
+
 /* The child of `s` by operator o. */
 static inline void apply_op(const TaskObject *t, const word *s, int o, word *child) {
     const word *keep = W(t, t->keep, o), *add = W(t, t->add, o);
     for (int i = 0; i < t->nwords; i++) child[i] = (s[i] & keep[i]) | add[i];
     if (t->ncond) apply_effects(t, s, o, child);
+    if (t->nax) derive(t, child);
 }
 
 static int goal_reached(const TaskObject *t, const word *s) {
@@ -339,7 +364,9 @@ static int additive_costs(TaskObject *t, const word *s) {
 }
 
 /* The operator a relaxed operator stands for: itself, or a conditional effect's operator. */
-static int real_op(const TaskObject *t, int o) { return o < t->nops || o == t->nrel ? o : t->cond_op[o - t->nops]; }
+static int real_op(const TaskObject *t, int o) {
+    return o < t->nops || o >= t->nops + t->ncond ? o : t->cond_op[o - t->nops];
+}
 
 /* hFF: the cost of a relaxed plan made of each needed fact's cheapest achiever under hadd (as Fast Downward's
    FF heuristic takes them; Keyder & Geffner 2008), traced back from the goal fact (its size where every
@@ -1127,6 +1154,11 @@ static void Task_dealloc(TaskObject *t) {
     free(t->cdel);
     free(t->neg_of);
     free(t->neg_index);
+    free(t->ax_layer);
+    free(t->ax_head);
+    free(t->ax_pos);
+    free(t->ax_neg);
+    free(t->derived);
     free(t->init);
     free(t->goal);
     free(t->goal_neg);
@@ -1169,7 +1201,14 @@ static int relaxed_facts(const TaskObject *t, int r, int which, int *out) {
     const word *pos, *neg, *also_pos = NULL, *also_neg = NULL;
     if (r == t->nrel) pos = t->goal, neg = t->goal_neg;
     else if (r < t->nops) pos = W(t, which ? t->add : t->pre, r), neg = which ? NULL : W(t, t->neg, r);
-    else {
+    else if (r >= t->nops + t->ncond) { /* a rule: its body, its head */
+        int a = r - t->nops - t->ncond;
+        if (which) {
+            out[0] = t->ax_head[a];
+            return 1;
+        }
+        pos = W(t, t->ax_pos, a), neg = W(t, t->ax_neg, a);
+    } else {
         int c = r - t->nops, o = t->cond_op[c];
         pos = W(t, which ? t->cadd : t->cpre, c), neg = W(t, which ? t->cdel : t->cneg, c);
         if (!which) also_pos = W(t, t->pre, o), also_neg = W(t, t->neg, o);
@@ -1187,8 +1226,8 @@ static int relaxed_facts(const TaskObject *t, int r, int which, int *out) {
     return n;
 }
 
-/* The negated facts: one per fact that an operator's precondition, a conditional effect's condition or the goal asks
-   false; -1 when out of memory. */
+/* The negated facts: one per fact (not derived) that an operator's precondition, a conditional effect's condition, a
+   rule's body or the goal asks false; -1 when out of memory. */
 static int find_negations(TaskObject *t) {
     word *asked = calloc((size_t)t->nwords, sizeof(word));
     t->neg_index = malloc(sizeof(int) * ((size_t)t->nfacts + 1));
@@ -1201,6 +1240,8 @@ static int find_negations(TaskObject *t) {
         asked[i] = t->goal_neg[i];
         for (int o = 0; o < t->nops; o++) asked[i] |= W(t, t->neg, o)[i];
         for (int c = 0; c < t->ncond; c++) asked[i] |= W(t, t->cneg, c)[i];
+        for (int a = 0; a < t->nax; a++) asked[i] |= W(t, t->ax_neg, a)[i];
+        asked[i] &= ~t->derived[i]; /* a derived fact asked false: left out of the relaxation */
     }
     t->nneg = 0;
     for (int f = 0; f < t->nfacts; f++) {
@@ -1308,12 +1349,62 @@ static int read_costs(TaskObject *t, PyObject *costs) {
         if (o == 0 || cost < t->min_cost) t->min_cost = (int)cost;
     }
     for (int c = 0; c < t->ncond; c++) t->base_cost[t->nops + c] = t->base_cost[t->cond_op[c]];
+    for (int a = 0; a < t->nax; a++) t->base_cost[t->nops + t->ncond + a] = 0;
     t->base_cost[t->nrel] = 0;
+    t->unit &= !t->nax; /* rules cost 0: the unit-cost sweep would not meet facts in order of cost */
     Py_XDECREF(seq);
     return PyErr_Occurred() ? -1 : 0;
 }
 
 static PyObject *effects_name; /* "effects", interned at import */
+
+/* The derived predicates' rules, each (layer, head mask, pos, neg), in ascending layers, and the derived facts'
+   mask (NULL: none); -1 with an exception set. */
+static int read_axioms(TaskObject *t, PyObject *axioms, PyObject *derived) {
+    size_t nw = (size_t)t->nwords;
+    PyObject *seq = axioms ? PySequence_Fast(axioms, "axioms must be a sequence of (layer, head, pos, neg)") : NULL;
+    if (axioms && !seq) return -1;
+    Py_ssize_t n = seq ? PySequence_Fast_GET_SIZE(seq) : 0;
+    int status = -1;
+    t->nax = (int)n;
+    t->ax_layer = malloc(sizeof(int) * ((size_t)n + 1));
+    t->ax_head = malloc(sizeof(int) * ((size_t)n + 1));
+    t->ax_pos = malloc(sizeof(word) * ((size_t)n * nw + 1));
+    t->ax_neg = malloc(sizeof(word) * ((size_t)n * nw + 1));
+    t->derived = calloc(nw, sizeof(word));
+    word *head = malloc(sizeof(word) * nw);
+    if (!t->ax_layer || !t->ax_head || !t->ax_pos || !t->ax_neg || !t->derived || !head) {
+        PyErr_NoMemory();
+        goto done;
+    }
+    if (derived && int_to_words(derived, t->derived, t->nwords, "derived")) goto done;
+    for (Py_ssize_t a = 0; a < n; a++) {
+        PyObject *rule = PySequence_Fast(PySequence_Fast_GET_ITEM(seq, a), "a rule must be (layer, head, pos, neg)");
+        if (!rule) goto done;
+        int bad = PySequence_Fast_GET_SIZE(rule) != 4;
+        long layer = bad ? 0 : PyLong_AsLong(PySequence_Fast_GET_ITEM(rule, 0));
+        bad = bad || (layer == -1 && PyErr_Occurred()) ||
+              int_to_words(PySequence_Fast_GET_ITEM(rule, 1), head, t->nwords, "head") ||
+              int_to_words(PySequence_Fast_GET_ITEM(rule, 2), W(t, t->ax_pos, a), t->nwords, "pos") ||
+              int_to_words(PySequence_Fast_GET_ITEM(rule, 3), W(t, t->ax_neg, a), t->nwords, "neg");
+        Py_DECREF(rule);
+        int h = -1;
+        for (int i = 0; !bad && i < t->nwords && h < 0; i++)
+            if (head[i]) h = i * 64 + __builtin_ctzll(head[i]);
+        if (!bad && (h < 0 || layer < 0 || (a && layer < t->ax_layer[a - 1]))) {
+            PyErr_SetString(PyExc_ValueError, "a rule is (layer, head, pos, neg): one head fact, layers ascending");
+            bad = 1;
+        }
+        if (bad) goto done;
+        t->ax_layer[a] = (int)layer;
+        t->ax_head[a] = h;
+    }
+    status = 0;
+done:
+    free(head);
+    Py_XDECREF(seq);
+    return status;
+}
 
 /* Each operator's conditional effects: its `effects` attribute, a sequence of (pre, pre_neg, add, delete) masks (an
    operator without the attribute has none). Sets ncond, nrel and the effect arrays; -1 with an exception set. */
@@ -1345,7 +1436,7 @@ static int read_effects(TaskObject *t, PyObject *ops) {
     }
     t->cond_start[t->nops] = (int)total;
     t->ncond = (int)total;
-    t->nrel = t->nops + t->ncond;
+    t->nrel = t->nops + t->ncond + t->nax;
     size_t room = (size_t)total * (size_t)t->nwords + 1;
     t->cond_op = malloc(sizeof(int) * ((size_t)total + 1));
     t->cpre = malloc(sizeof(word) * room);
@@ -1380,11 +1471,11 @@ done:
 }
 
 static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", "costs", NULL};
+    static char *keywords[] = {"nfacts", "operators", "init", "goal", "goal_neg", "costs", "axioms", "derived", NULL};
     int nfacts;
-    PyObject *operators, *init, *goal, *goal_neg, *costs = Py_None;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO|O", keywords, &nfacts, &operators, &init, &goal, &goal_neg,
-                                     &costs))
+    PyObject *operators, *init, *goal, *goal_neg, *costs = Py_None, *axioms = NULL, *derived = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "iOOOO|OOO", keywords, &nfacts, &operators, &init, &goal, &goal_neg,
+                                     &costs, &axioms, &derived))
         return NULL;
     if (nfacts < 0) return PyErr_Format(PyExc_ValueError, "nfacts must not be negative");
     PyObject *seq = PySequence_Fast(operators, "operators must be a sequence");
@@ -1423,7 +1514,7 @@ static PyObject *Task_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) 
         }
         for (size_t i = 0; i < nw; i++) into[3][i] = ~into[3][i];
     }
-    if (read_effects(t, seq)) goto fail;
+    if (read_axioms(t, axioms, derived) || read_effects(t, seq)) goto fail;
     if (build_indexes(t)) {
         PyErr_NoMemory();
         goto fail;

@@ -12,8 +12,8 @@ Every fact a step or the goal needs then has a support no other step can come be
 partial-order causal-link planning, every order of the steps that keeps these is a plan that reaches the goal
 (Bäckström, "Computational aspects of reordering plans", JAIR 1998, calls such a result a deordering). The
 facts in ``ignore`` (each agent's own resource, such as an empty hand) take no part: the steps are then ordered as
-if every agent had its own. A plan with conditional effects keeps its order: what a step makes true depends there on
-the state it runs in.
+if every agent had its own. A plan with conditional effects or derived predicates keeps its order: what a step makes
+true depends there on the state it runs in.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def deorder(task: Task, plan: Sequence[Operator], ignore: int = 0) -> list[tuple
     """For each step of ``plan`` (a valid plan of ``task``), the earlier steps it must follow directly: the kept
     orderings without those that follow from others (a transitive reduction), each tuple ascending."""
     count = len(plan)
-    if any(op.effects for op in plan):
+    if task.axioms or any(op.effects for op in plan):
         return [() if step == 0 else (step - 1,) for step in range(count)]
     after: list[set[int]] = [set() for _ in range(count + 1)]  # index count: the goal
     needs = [(op.pre & ~ignore, op.pre_neg & ~ignore) for op in plan]

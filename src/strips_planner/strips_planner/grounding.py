@@ -22,7 +22,7 @@ from functools import cached_property
 from itertools import product
 from typing import NamedTuple
 
-from strips_planner import _core, _explore, _ground, adl
+from strips_planner import _core, _explore, _ground, adl, axioms
 from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, Effect, PddlError, Problem
 
 
@@ -59,7 +59,8 @@ class Task:
     """A grounded task: facts, initial state, goal and operators over int bitsets."""
 
     def __init__(self, facts: tuple[Atom, ...], init: int, goal: int, goal_neg: int, operators: tuple[Operator, ...],
-                 unsolvable_reason: str = "", costs: tuple[int, ...] | None = None) -> None:
+                 unsolvable_reason: str = "", costs: tuple[int, ...] | None = None,
+                 axioms: tuple[tuple[int, int, int, int], ...] = (), derived: int = 0) -> None:
         self.facts = facts
         """Bit i of a state is ``facts[i]``."""
         self.init, self.goal, self.goal_neg, self.operators = init, goal, goal_neg, operators
@@ -67,6 +68,31 @@ class Task:
         """Set when grounding alone proves the goal unreachable (a static or unreachable goal atom)."""
         self.costs = costs
         """Each operator's cost where the problem minimises total-cost; None: every action costs 1."""
+        self.axioms, self.derived = axioms, derived
+        """The derived predicates' ground rules, each (layer, head bit, pos, neg), layer by layer, and the mask of the
+        derived facts: a state holds them as its rules make them (:meth:`closed`)."""
+
+    def closed(self, state: int) -> int:
+        """``state`` with its derived facts as the rules make them, layer by layer to each one's fixed point."""
+        if not self.axioms:
+            return state
+        state &= ~self.derived
+        start = 0
+        while start < len(self.axioms):
+            layer = self.axioms[start][0]
+            end = next((i for i in range(start, len(self.axioms)) if self.axioms[i][0] != layer), len(self.axioms))
+            changed = True
+            while changed:
+                changed = False
+                for _, head, pos, neg in self.axioms[start:end]:
+                    if not state & head and state & pos == pos and not state & neg:
+                        state, changed = state | head, True
+            start = end
+        return state
+
+    def successor(self, state: int, operator: Operator) -> int:
+        """The state after ``operator``, its derived facts made again."""
+        return self.closed(operator.apply(state))
 
     def cost(self, plan: list[int]) -> int:
         """The cost of a plan given as operator indices (its length where actions cost 1)."""
@@ -86,14 +112,16 @@ class Task:
     @cached_property
     def compiled(self) -> _core.Task:
         """This task for the C searches and heuristics (built on first use)."""
-        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, self.costs)
+        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, self.costs, self.axioms,
+                          self.derived)
 
     @cached_property
     def compiled_unit_cost(self) -> _core.Task:
         """This task with every action costing 1, which the greedy searches are guided by (:mod:`.search`)."""
         if self.costs is None:
             return self.compiled
-        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, None)
+        return _core.Task(len(self.facts), self.operators, self.init, self.goal, self.goal_neg, None, self.axioms,
+                          self.derived)
 
 
 GOAL_REACHED = "#goal"
@@ -139,13 +167,17 @@ class _Grounder:
         ('#' is no PDDL name's)."""
         actions = self.actions
         fluent = sorted({a.predicate for action in actions
-                         for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))})
+                         for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))}
+                        | domain.derived)
         mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in actions
                                                            for c in action.precondition}
         static = sorted((set(domain.predicates) | mentioned) - set(fluent) - {"="})
         self.predicates = tuple(fluent)
         self.number = {name: i for i, name in enumerate((*fluent, *static))}
         self.init = [self._key(a) for a in problem.init]
+        self.derived_atoms = [Atom(p, args) for p in sorted(domain.derived)
+                              for args in product(*(self._objects_of_type(k) for k in domain.predicates[p]))]
+        """Every derived atom the types allow: reached, for grounding, as any of them may come to hold."""
 
     def is_fluent(self, predicate: str) -> bool:
         return self.number.get(predicate, len(self.predicates)) < len(self.predicates)
@@ -201,7 +233,8 @@ class _Grounder:
                      for action in self.actions for schema, (_, *rest) in [self._templates(action)]]
         arity = max((len(key) - 1 for key in self.init), default=0)
         width = 1 + max(arity, *map(len, self.domain.predicates.values()), 0)
-        bindings = _explore.explore(len(self.number), len(self.objects), width, self.init,
+        derived_keys = [self._key(atom) for atom in self.derived_atoms]
+        bindings = _explore.explore(len(self.number), len(self.objects), width, self.init + derived_keys,
                                     [schema for schema, _ in templates])
         goal, never, options = self.problem.goal, "", []
         if self.problem.goal_condition is not None:
@@ -214,7 +247,7 @@ class _Grounder:
         positive = [c for c in fluent if c.positive]
         nfluent = len(self.predicates)
         facts, init, goal_mask, goal_neg, unreached, operators = _ground.ground(
-            self.predicates, self.objects, width, [key for key in self.init if key[0] < nfluent],
+            self.predicates, self.objects, width, [key for key in self.init if key[0] < nfluent] + derived_keys,
             [self._key(c.atom) for c in positive], [self._key(c.atom) for c in fluent if not c.positive],
             [(name, nparams, found, *atoms) for (_, (name, nparams, *atoms)), found in zip(templates, bindings,
                                                                                            strict=True)],
@@ -229,8 +262,29 @@ class _Grounder:
             never = never or ("" if ways else "no way to the goal's condition is reachable from the initial state")
             operators += ways
         costs = self._costs(operators) if self.problem.minimise_cost else None
-        return Task(tuple(facts), init, goal_mask, goal_neg, tuple(operators),
-                    never or self._unsolvable_reason({positive[i] for i in unreached}, goal), costs)
+        rules, derived = self._axioms(facts) if self.domain.axioms else ((), 0)
+        task = Task(tuple(facts), init, goal_mask, goal_neg, tuple(operators),
+                    never or self._unsolvable_reason({positive[i] for i in unreached}, goal), costs, rules, derived)
+        task.init = task.closed(init)  # every derived atom was in it, for reachability: now those its rules make
+        return task
+
+    def _axioms(self, facts: list[Atom]) -> tuple[tuple[tuple[int, int, int, int], ...], int]:
+        """The derived predicates' ground rules, each (layer, head mask, pos, neg): one per way its condition can hold
+        (as an ADL precondition's), layer by layer (:func:`axioms.layers`); and the mask of the derived facts."""
+        index = {fact: i for i, fact in enumerate(facts)}
+        layer = axioms.layers(self.domain.axioms)
+        derived = sum(1 << index[atom] for atom in self.derived_atoms)
+        rules = []
+        for axiom in self.domain.axioms:
+            variables = [variable for variable, _ in axiom.parameters]
+            for values in product(*(self._objects_of_type(kind) for _, kind in axiom.parameters)):
+                head = 1 << index[Atom(axiom.predicate, values)]
+                binding = dict(zip(variables, values, strict=True))
+                for way in adl.disjuncts(axiom.condition, binding, self._static_truth, self._objects_of_type):
+                    masks = _masks(way, index)
+                    if masks is not None:
+                        rules.append((layer[axiom.predicate], head, *masks))
+        return tuple(sorted(rules, key=lambda rule: rule[0])), derived
 
     # -- ADL conditions (strips_planner.adl) ------------------------------------------------------------
     def _static_truth(self, atom: Atom) -> bool | None:

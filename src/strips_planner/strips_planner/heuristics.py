@@ -10,7 +10,8 @@ preconditions, as they did, hid what must be undone first (schedule's busy machi
 costs where the task has them.
 A conditional effect is, relaxed, an action of its own (its action's precondition and its condition, its adds, its
 action's cost): hmax stays admissible, hFF counts an action once however many of its effects its relaxed plan uses,
-and LM-cut, which would not stay admissible so, is refused on such tasks.
+and LM-cut, which would not stay admissible so, is refused on such tasks. A derived predicate's rule is an action of
+cost 0 (its body, its head), and a derived fact asked false is left out, as in Fast Downward's relaxations.
 
 - blind: 0 in a goal state, else the cheapest action's cost (1 without costs).
 - hmax: the cost of the goal's costliest fact in the relaxed task (a Dijkstra over facts).

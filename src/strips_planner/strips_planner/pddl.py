@@ -1,9 +1,9 @@
 """A PDDL reader for STRIPS with :typing, :negative-preconditions, :equality, :action-costs, objects and constants,
-ADL's conditions (``or``, ``imply``, ``forall``, ``exists``) in preconditions and goals, and its conditional and
-universal effects (``when``, ``forall`` in an effect).
+ADL's conditions (``or``, ``imply``, ``forall``, ``exists``) in preconditions and goals, its conditional and
+universal effects (``when``, ``forall`` in an effect), and derived predicates (``:derived``).
 
-Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (derived predicates,
-numeric fluents other than ``total-cost``) is refused with a :class:`PddlError` that names the line and column, so a
+Text -> s-expressions -> :class:`Domain` / :class:`Problem`. Anything outside that fragment (numeric fluents other
+than ``total-cost``) is refused with a :class:`PddlError` that names the line and column, so a
 user knows what to rewrite.
 
 Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` or ``(increase (total-cost)
@@ -28,8 +28,8 @@ from strips_planner import _reader
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
 CHECKED_PER_CONSTRUCT = {":adl", ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
                          ":quantified-preconditions", ":conditional-effects", ":derived-predicates"}
-"""Requirements read per construct: many IPC domains declare ``:adl`` and stay STRIPS, and the reader refuses only
-a construct it does not take (a ``:derived`` section), where it is used, with its place."""
+"""Requirements read per construct: many IPC domains declare ``:adl`` and stay STRIPS; what the reader does not take
+is refused where it is used, with its place."""
 TOTAL_COST = "total-cost"
 ROOT_TYPE = "object"
 EITHER = "either("
@@ -180,6 +180,15 @@ class Effect(NamedTuple):
     literal: Condition
 
 
+class Axiom(NamedTuple):
+    """A derived predicate's rule (``:derived``): ``predicate`` holds of ``parameters`` in every state where
+    ``condition`` does (a formula of :mod:`strips_planner.adl`); a derived atom no rule makes true is false."""
+
+    predicate: str
+    parameters: tuple[tuple[str, str], ...]
+    condition: Condition | tuple
+
+
 class Action(NamedTuple):
     name: str
     parameters: tuple[tuple[str, str], ...]
@@ -210,10 +219,17 @@ class Domain:
         self.functions: dict[str, tuple[str, ...]] = {}
         """Numeric functions (``total-cost``, ``road-length``): name -> parameter types."""
         self.actions: list[Action] = []
+        self.axioms: list[Axiom] = []
+        """The derived predicates' rules, in the order read."""
         self.warnings: list[str] = []
         """What the reader let through that strict PDDL refuses (an undeclared requirement)."""
         self.ancestors: dict[str, frozenset[str]] = {ROOT_TYPE: frozenset((ROOT_TYPE,))}
         """type -> it and its supertypes, once ``:types`` is read: the C reader's subtype check."""
+
+    @property
+    def derived(self) -> set[str]:
+        """The predicates a ``:derived`` rule defines."""
+        return {axiom.predicate for axiom in self.axioms}
 
     def is_subtype(self, sub: str, sup: str) -> bool:
         """Whether every object of type ``sub`` is one of type ``sup`` (``either`` types: unions)."""
@@ -393,9 +409,7 @@ def _formula(expr: list, domain: Domain, variables: dict[str, str] | None, objec
     if head in ("forall", "exists"):
         if len(expr) != 3:
             raise _error(expr, f"({head} (VARIABLES) CONDITION) takes a variable list and a condition")
-        bound = _typed_list(list(_sub(expr[1], f"{head}'s variables")), expr, variables=True)
-        for _, kind, token in bound:
-            _check_type(domain, kind, token)
+        bound = _variables(list(_sub(expr[1], f"{head}'s variables")), expr, domain)
         scope = {**(variables or {}), **{var: kind for var, kind, _ in bound}}
         return (head, tuple((var, kind) for var, kind, _ in bound),
                 _formula(_sub(expr[2], what), domain, scope, objects, what))
@@ -514,17 +528,49 @@ def _domain(root: list) -> Domain:
             for decl in body:
                 decl = _sub(decl, "predicate declaration")
                 pred = _name(decl[0], "a predicate name")
-                params = _typed_list(decl[1:], decl, variables=True)
-                for _, kind, token in params:
-                    _check_type(domain, kind, token)
+                params = _variables(decl[1:], decl, domain)
                 domain.predicates[pred] = tuple(kind for _, kind, _ in params)
         elif key == ":functions":
             _functions(body, domain)
         elif key == ":action":
             domain.actions.append(_action(section, domain))
+        elif key == ":derived":
+            domain.axioms.append(_axiom(section, domain))
         else:
             raise (_unsupported if key else _error)(section, f"unsupported domain section {key or '()'!r}")
+    derived = domain.derived
+    for action in domain.actions:
+        changed = {a.predicate for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))}
+        if changed & derived:
+            raise PddlError(f"?:?: action {action.name} changes {', '.join(sorted(changed & derived))}, which a "
+                            ":derived rule defines: derived predicates follow from the state, no action sets them")
     return domain
+
+
+def _axiom(section: list, domain: Domain) -> Axiom:
+    """``(:derived (PREDICATE ?x - type ...) CONDITION)``; the predicate declared by it where ``:predicates`` did not."""
+    if len(section) != 3:
+        raise _error(section, "(:derived (PREDICATE ?x - type ...) CONDITION) takes a head and a condition")
+    head = _sub(section[1], "derived predicate's head")
+    name = _name(head[0], "a predicate name") if head else ""
+    if not name:
+        raise _error(head, "a derived predicate's head names its predicate: (:derived (PREDICATE ?x ...) ...)")
+    params = _variables(head[1:], head, domain)
+    kinds = tuple(kind for _, kind, _ in params)
+    declared = domain.predicates.setdefault(name, kinds)
+    if len(declared) != len(kinds):
+        raise _error(head, f"{name} takes {len(declared)} argument(s), its :derived head {len(kinds)}")
+    variables = {var: kind for var, kind, _ in params}
+    condition = _formula(_sub(section[2], "condition"), domain, variables, domain.constants, "condition")
+    return Axiom(name, tuple((var, kind) for var, kind, _ in params), condition)
+
+
+def _variables(items: list, where: list, domain: Domain) -> list[tuple[str, str, str]]:
+    """``?a ?b - t ?c``: each variable with its type (checked to be the domain's) and its token."""
+    variables = _typed_list(items, where, variables=True)
+    for _, kind, token in variables:
+        _check_type(domain, kind, token)
+    return variables
 
 
 def _functions(body: list, domain: Domain) -> None:
@@ -535,9 +581,7 @@ def _functions(body: list, domain: Domain) -> None:
         name = _name(decl[0], "a function name") if decl else ""
         if not name:
             raise _error(decl, "empty function declaration ()")
-        params = _typed_list(decl[1:], decl, variables=True)
-        for _, kind, token in params:
-            _check_type(domain, kind, token)
+        params = _variables(decl[1:], decl, domain)
         i += 1
         if i < len(body) and body[i] == "-":
             if i + 1 >= len(body) or body[i + 1] != "number":
@@ -559,9 +603,7 @@ def _action(section: list, domain: Domain) -> Action:
     unknown = set(fields) - {":parameters", ":precondition", ":effect"}
     if unknown:
         raise _unsupported(section, f"action {name}: unsupported field(s) {', '.join(sorted(unknown))}")
-    params = _typed_list(list(fields.get(":parameters", [])), section, variables=True)
-    for _, kind, token in params:
-        _check_type(domain, kind, token)
+    params = _variables(list(fields.get(":parameters", [])), section, domain)
     variables = {var: kind for var, kind, _ in params}
     pre, condition = _conditions(fields.get(":precondition", []), domain, variables, domain.constants,
                                  "precondition")
@@ -602,9 +644,7 @@ def _effect(expr: list, domain: Domain, variables: dict[str, str], bound: tuple[
     elif head == "forall":
         if len(expr) != 3:
             raise _error(expr, "(forall (VARIABLES) EFFECT) takes a variable list and an effect")
-        new = _typed_list(list(_sub(expr[1], "forall's variables")), expr, variables=True)
-        for _, kind, token in new:
-            _check_type(domain, kind, token)
+        new = _variables(list(_sub(expr[1], "forall's variables")), expr, domain)
         _effect(_sub(expr[2], "effect"), domain, {**variables, **{var: kind for var, kind, _ in new}},
                 (*bound, *((var, kind) for var, kind, _ in new)), condition, out)
     elif head == "when":
@@ -680,6 +720,10 @@ def _problem(root: list, domain: Domain) -> Problem:
         raise _error(goal_section or root, "the problem needs one (:goal EXPRESSION)")
     goal, problem.goal_condition = _conditions(_sub(goal_section[1], "goal"), domain, None, problem.objects, "goal")
     problem.goal = tuple(goal)
+    derived = sorted({str(atom) for atom in problem.init if atom.predicate in domain.derived})
+    if derived:
+        raise PddlError(f"?:?: {derived[0]} is in :init, but a :derived rule defines {derived[0][1:].split()[0]}: "
+                        "derived atoms follow from the state")
     return problem
 
 

@@ -1,5 +1,5 @@
 """`./semgoal plan-pddl DOMAIN PROBLEM [--search S] [--heuristic H] [--time-limit T] [--stats]`: our planner on any
-STRIPS PDDL, and ADL's conditions and conditional effects.
+STRIPS PDDL, and ADL's conditions, conditional effects and derived predicates.
 
 Exit 0 with the plan (one action a line, then ``; cost = N`` where the problem minimises total-cost), 1
 unsolvable, 2 bad PDDL, an unreadable file or a bad command line, 3 valid PDDL outside the supported fragment
@@ -23,7 +23,7 @@ USAGE = (f"usage: semgoal plan-pddl DOMAIN PROBLEM [--search {{{','.join(SEARCHE
 HELP = f"""{USAGE}
 
 Plan with our STRIPS planner (:strips :typing :negative-preconditions :equality :action-costs, constants,
-either types; or, imply, forall and exists in preconditions and goals; when and forall in effects).
+either types; or, imply, forall and exists in preconditions and goals; when and forall in effects; :derived).
 
 options:
   --search S      bfs (default, shortest plans), astar (shortest plans with an admissible heuristic),

@@ -61,7 +61,7 @@ def test_a_question_mark_starts_a_token_and_names_ignore_case(tmp_path: Path, ca
 @pytest.mark.parametrize("construct, snippet", [
     ("cost", ":effect (when (link ?to ?from) (increase (total-cost) 1))))"),
     ("requirement", "(:requirements :strips :numeric-fluents)"),
-    ("derived", "(:derived (near ?x) (at ?x))"),
+    ("derived", "(:derived (plane ?x) (not (plane ?x)))"),
 ])
 def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path, capsys, construct: str,
                                                                  snippet: str) -> None:
@@ -71,13 +71,13 @@ def test_valid_but_unsupported_pddl_exits_3_naming_the_construct(tmp_path: Path,
     elif construct == "requirement":
         domain = domain.replace("(:requirements :strips)", snippet)
     else:
-        domain = domain.replace("(:predicates", snippet + " (:predicates")
+        domain = domain.replace("(:action", snippet + " (:action")
     (tmp_path / "d.pddl").write_text(domain)
     (tmp_path / "p.pddl").write_text(TOKENS_PROBLEM)
     assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl")]) == 3
     err = capsys.readouterr().err
     assert "unsupported PDDL" in err and {"cost": "'increase'", "requirement": ":numeric-fluents",
-                                          "derived": ":derived"}[construct] in err
+                                          "derived": "depend on their own negation"}[construct] in err
 
 
 EITHER_DOMAIN = """(define (domain depotish) (:requirements :typing)

@@ -286,6 +286,7 @@ class Trainer:
         self.curriculum.success = state["curriculum"]
         for env, rng_state in zip(self.envs, state["env_rngs"], strict=True):
             env.np_random.bit_generator.state = rng_state
+        _drop_rows_after(self.run_dir / "progress.csv", self.env_steps)
         replay_path = self.run_dir / "replay.npz"
         if replay_path.exists():
             try:
@@ -459,6 +460,22 @@ class Trainer:
         self._export_actor(self.agent.policy, self.export_dir, info)
         (self.export_dir / "progress.csv").write_text((self.run_dir / "progress.csv").read_text())
         write_card(self.export_dir)
+
+
+def _drop_rows_after(csv_path: Path, env_steps: int) -> None:
+    """Leave out the progress rows past ``env_steps``: a run stopped after evaluating but before its next checkpoint
+    resumes from the checkpoint, and would log those steps again (seed 202's curve had 1,725,200 twice)."""
+    if not csv_path.exists():
+        return
+    with csv_path.open(newline="") as f:
+        reader = csv.DictReader(f)
+        fields, rows = reader.fieldnames or [], list(reader)
+    kept = [row for row in rows if int(float(row["env_steps"])) <= env_steps]
+    if len(kept) < len(rows):
+        with csv_path.open("w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=fields)
+            writer.writeheader()
+            writer.writerows(kept)
 
 
 def _append_row(csv_path: Path, row: dict) -> None:

@@ -93,6 +93,17 @@ def test_resume_without_replay_buffer_refills_at_most_the_steps_the_run_had(tmp_
 
 
 @pytest.mark.slow
+def test_a_resume_drops_the_progress_rows_past_its_checkpoint(tmp_path) -> None:
+    """Rows logged after the last checkpoint (a run stopped between them) are of steps the resume takes again."""
+    trainer_for(config(tmp_path, 400)).run()
+    progress = tmp_path / "run" / "progress.csv"
+    lines = progress.read_text().splitlines()
+    progress.write_text("\n".join([*lines, lines[-1].replace("400", "600", 1)]) + "\n")
+    trainer_for(config(tmp_path, 800)).run(resume=True)
+    assert [int(r["env_steps"]) for r in csv.DictReader(progress.open())] == [400, 800]
+
+
+@pytest.mark.slow
 def test_resume_over_a_torn_replay_buffer_sets_it_aside_and_refills(tmp_path) -> None:
     """A run stopped while its buffer was written (an older save, not atomic) left half a file: the resume goes on."""
     trainer_for(config(tmp_path, 400)).run()

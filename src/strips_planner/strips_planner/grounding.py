@@ -12,6 +12,9 @@ Conditional and universal effects: a ``forall`` in an effect is expanded over th
 grounding, and both passes take every conditional add as an add (reachability relaxed further: a condition may
 never hold); each ground operator then keeps its own adds, and each conditional effect becomes masks of its
 condition (one per way an ADL condition can hold), adds and deletes, read in the state the operator applies to.
+
+Derived predicates: every derived atom the types allow counts as reached, and each rule becomes one ground rule per
+way its condition can hold; a task's states hold the derived facts its rules make (:meth:`Task.closed`).
 """
 
 from __future__ import annotations
@@ -19,7 +22,8 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable
 from functools import cached_property
-from itertools import product
+from itertools import groupby, product
+from operator import itemgetter
 from typing import NamedTuple
 
 from strips_planner import _core, _explore, _ground, adl, axioms
@@ -69,7 +73,7 @@ class Task:
         self.costs = costs
         """Each operator's cost where the problem minimises total-cost; None: every action costs 1."""
         self.axioms, self.derived = axioms, derived
-        """The derived predicates' ground rules, each (layer, head bit, pos, neg), layer by layer, and the mask of the
+        """The derived predicates' ground rules, each (layer, head mask, pos, neg), layer by layer, and the mask of the
         derived facts: a state holds them as its rules make them (:meth:`closed`)."""
 
     def closed(self, state: int) -> int:
@@ -77,17 +81,14 @@ class Task:
         if not self.axioms:
             return state
         state &= ~self.derived
-        start = 0
-        while start < len(self.axioms):
-            layer = self.axioms[start][0]
-            end = next((i for i in range(start, len(self.axioms)) if self.axioms[i][0] != layer), len(self.axioms))
+        for _, layer in groupby(self.axioms, key=itemgetter(0)):
+            rules = list(layer)
             changed = True
             while changed:
                 changed = False
-                for _, head, pos, neg in self.axioms[start:end]:
+                for _, head, pos, neg in rules:
                     if not state & head and state & pos == pos and not state & neg:
                         state, changed = state | head, True
-            start = end
         return state
 
     def successor(self, state: int, operator: Operator) -> int:

@@ -75,6 +75,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
+    (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"

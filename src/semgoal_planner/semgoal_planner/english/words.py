@@ -74,6 +74,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
+    (rf"(the )?bin (should |must |will |has to |needs to |is to )?(contains?|holds?|has|have|gets?) "
+     rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(the )?({_COLOUR})( block| cube| one)?"
+     rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)", r"\g<what> in the bin"),  # "the bin should contain red"
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
     (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),

@@ -246,6 +246,7 @@ PHRASES = [
     ("three_blocks", "put the blocks red and green next to each other", "close(red,green)"),
     ("desk_cleanup", "red green in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "the bin should contain red and the green block", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "put the blocks in the bin one by one", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("two_blocks", "stack green red", "above(red,green)"),
     ("two_blocks", "remove red off", "not above(red,green)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",

@@ -42,7 +42,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
-    (r"right away|straight away|at once|as soon as (you can|possible)|asap", ""),  # how soon says nothing of the goal
+    (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another)|"
+     r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"

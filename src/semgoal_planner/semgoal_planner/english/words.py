@@ -75,6 +75,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
+    (rf"(?P<said>({_COLOUR})( (must|should|will|need to|have to|are|were))?) (all|both)(?= (be|are|stay|sit|apart|"
+     r"together|in|on|near|next|away|separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart"
+    (r"(from|off)( of)? (the )?(desk|table)(?= (in|into|to|onto|on|next|near|beside|close|away)\b)", ""),  # "move
+    # the blocks from the desk into the bin": where they go
     (rf"(the )?bin (should |must |will |has to |needs to |is to )?(contains?|holds?|has|have|gets?) "
      rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(the )?({_COLOUR})( block| cube| one)?"
      rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)", r"\g<what> in the bin"),  # "the bin should contain red"

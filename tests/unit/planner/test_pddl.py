@@ -45,6 +45,9 @@ DOMAIN_HEAD = "(define (domain d) (:requirements :strips :typing)\n (:predicates
     ("(define (domain d) (:requirements :adl)\n (:predicates (p))\n (:action a :parameters () :precondition (p)"
      " :effect (when (p))))", "3:54", "(when CONDITION EFFECT) takes"),
     (DOMAIN_HEAD + " (:action a :parameters (?x) :effect (or (q) (p ?x))))", "3:38", "'or' is not an effect"),
+    (DOMAIN_HEAD + " (:derived (p ?x) (p ?y)))", "3:22", "unknown variable '?y'"),
+    (DOMAIN_HEAD + " (:derived (p ?x ?y) (q)))", "3:12", "p takes 1 argument(s), its :derived head 2"),
+    (DOMAIN_HEAD + " (:derived (p ?x)))", "3:2", "(:derived (PREDICATE ?x - type ...) CONDITION) takes a head"),
 ])
 def test_malformed_domain_names_line_and_column(text: str, where: str, words: str) -> None:
     with pytest.raises(PddlError) as error:

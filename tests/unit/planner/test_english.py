@@ -252,6 +252,7 @@ PHRASES = [
     ("desk_cleanup", "red and green should both be in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "move the blocks from the desk into the bin",
      "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("two_blocks", "take red off the table and put it on green", "above(red,green)"),
     ("two_blocks", "stack green red", "above(red,green)"),
     ("two_blocks", "remove red off", "not above(red,green)"),
     ("tabletop", "From the top down, build a tower of purple, orange and yellow; then put red in the bin",

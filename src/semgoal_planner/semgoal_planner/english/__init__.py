@@ -72,8 +72,8 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
         goal = {key: lit for key, lit in goal.items() if not moved & set(lit.args)}
         stage: dict[tuple[str, tuple[str, ...]], tuple[Literal, bool]] = {}
         for i, (clause, literals) in enumerate(resolved):
-            if clause.kind == "hold" and _a_means(clause, [c for c, _ in resolved[i + 1:]], resolver):
-                continue  # "pick up red and put it in the bin": the picking is how, not where it ends
+            if clause.kind in ("hold", "off_table") and _a_means(clause, [c for c, _ in resolved[i + 1:]], resolver):
+                continue  # "pick up red and put it in the bin", "take red off the table and put it on green": how
             for literal, generic in literals:
                 try:
                     literal = _validated(layout, literal, blocks)

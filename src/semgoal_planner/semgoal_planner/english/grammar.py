@@ -36,7 +36,7 @@ action: ("put" | "keep") refs dest          -> put
       | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
       | "remove" refs ("from" | "off") refs   -> off
       | "remove" refs "off"                   -> off
-      | ("remove" | "take") refs ("from" | "off") "table" -> clean
+      | ("remove" | "take") refs ("from" | "off") "table" -> off_table
       | "pick" refs "up"?                     -> hold
       | "pick" refs "up"? "off" refs?         -> off
       | "pick" refs "up"? "from" refs         -> hold
@@ -49,7 +49,7 @@ action: ("put" | "keep") refs dest          -> put
       | "keep"? "bin" "empty"                -> empty
       | "clean" refs ("in" "bin" | "table")?  -> clean
       | "bin" refs                            -> clean
-      | "put" refs "off" "table"              -> clean
+      | "put" refs "off" "table"              -> off_table
       | "empty" "bin"                         -> empty
       | "empty" refs ("out" "bin"?)?          -> empty_refs
       | "group" refs? "together"?             -> together
@@ -93,7 +93,7 @@ COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
 """
 
 
-OPPOSABLE = frozenset({"in_bin", "out_bin", "hold", "release", "near", "away", "on", "under"})
+OPPOSABLE = frozenset({"in_bin", "off_table", "out_bin", "hold", "release", "near", "away", "on", "under"})
 """Relations whose opposite is one literal per block, so 'all except red' and 'only red' can give it to the
 blocks left out (the opposite of 'on the table' or 'apart' is no single place)."""
 
@@ -194,6 +194,10 @@ class Clauses(lark.Transformer):
 
     def clean(self, items: list) -> Clause:
         return Clause("in_bin", subjects=items[0])
+
+    def off_table(self, items: list) -> Clause:
+        """'take red off the table': into the bin, unless the sentence puts it somewhere else after."""
+        return Clause("off_table", subjects=items[0])
 
     def empty(self, _: list) -> Clause:
         return Clause("out_bin", subjects=(Ref("all"),))

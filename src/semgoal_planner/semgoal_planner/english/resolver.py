@@ -145,7 +145,7 @@ class Resolver:
 
     def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:
         others = lambda block: [b for b in self.blocks if b != block]  # noqa: E731
-        if kind == "in_bin":
+        if kind in ("in_bin", "off_table"):
             return (Literal("in_bin", (s,)) for s in subjects)
         if kind == "out_bin":
             return (Literal("in_bin", (s,), False) for s in subjects)

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
-from semgoal_planner.english import MAX_GOAL_CHARS, SWAP, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
+from semgoal_planner.english import MAX_GOAL_CHARS, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
 
 
 class GoalError(ValueError):
@@ -89,9 +89,9 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
     """``literals`` with 'the tower' placed: the one tower the goal itself builds ("a tower of red and green, then
     yellow next to the tower"), else the one standing in ``state`` (two or more blocks one on another, the blocks the
     goal moves to it set aside). :data:`TOWER_TOP` becomes its top block, and each further block put on the tower goes
-    on the one put there before it; :data:`TOWER_BASE` its bottom block. GoalError where no tower stands, or several
-    do."""
-    placeholders = (TOWER_TOP, TOWER_BASE)
+    on the one put there before it; :data:`TOWER_BASE` its bottom block; :data:`TOWER_ALL` each of its blocks.
+    GoalError where no tower stands, or several do."""
+    placeholders = (TOWER_TOP, TOWER_BASE, TOWER_ALL)
     if not any(arg in placeholders for literal in literals for arg in literal.args):
         return list(literals)
     moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders}
@@ -111,7 +111,7 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
         kept = [b for b in tower if b not in moved] or tower
     place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
     placed = []
-    for literal in literals:
+    for literal in (each for lit in literals for each in _each_of(lit, tower)):
         args = tuple(place.get(arg, arg) for arg in literal.args)
         if len(set(args)) < len(args) and not literal.value:  # "put the top block on the table": not on itself
             continue
@@ -119,6 +119,14 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
         if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
             place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
+
+
+def _each_of(literal: Literal, tower: list[str]) -> list[Literal]:
+    """``literal`` once for each block of ``tower`` where it names :data:`TOWER_ALL` (the whole tower), else itself."""
+    if TOWER_ALL not in literal.args:
+        return [literal]
+    return [Literal(literal.name, tuple(block if arg == TOWER_ALL else arg for arg in literal.args), literal.value)
+            for block in tower]
 
 
 def _towers(above: Sequence[Literal]) -> list[list[str]]:

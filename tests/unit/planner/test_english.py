@@ -481,6 +481,7 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put the block at the bottom of the tower next to red", "close(tower_base,red)"),
     ("put red on the topmost block", "above(red,tower_top)"),
     ("put the top block next to the bottom block", "close(tower_top,tower_base)"),
+    ("put all the blocks of the tower in the bin", "in_bin(tower_all)"),
 ])
 def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text: str, expected: str) -> None:
     """'the tower' and 'swap' stand in the literals until the goal is planned (tests/unit/planner/test_goals.py)."""
@@ -494,6 +495,7 @@ def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text
     ("tabletop", "put orange and red on the tower", "a block goes on one block"),
     ("three_blocks", "put red on the tower", "predicate 'above' is not used in scene 'three_blocks'"),
     ("tabletop", "put the top block on the tower", "a block of the tower cannot be placed on or by itself"),
+    ("tabletop", "pick up the whole tower", "the whole tower goes in the bin, onto the table, near or away"),
     ("tabletop", "put the bottom block next to the bottom block", "a block of the tower cannot be placed on or by itself"),
 ])
 def test_the_tower_is_only_where_a_block_goes(scene: str, text: str, words: str) -> None:

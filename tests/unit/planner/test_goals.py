@@ -139,6 +139,10 @@ def on(*chain: str) -> list[Literal]:
     ("put the top block in the bin", on("red", "green", "blue"), [Literal("in_bin", ("blue",))]),
     ("put the bottom block in the bin", on("red", "green", "blue"), [Literal("in_bin", ("red",))]),
     ("put the top block next to the bottom block", on("red", "green", "blue"), [Literal("close", ("red", "blue"))]),
+    ("put the whole tower in the bin", on("red", "green", "blue"),
+     [Literal("in_bin", (b,)) for b in ("red", "green", "blue")]),
+    ("keep orange away from the entire stack", on("red", "green"),
+     [Literal("close", (b, "orange"), False) for b in ("red", "green")]),
     ("take the top block off the tower", on("red", "green"),
      [Literal("above", ("green", b), False) for b in ("red", "blue", "yellow", "orange")]),
 ])

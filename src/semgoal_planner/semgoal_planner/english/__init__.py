@@ -35,11 +35,11 @@ import lark
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parser
-from semgoal_planner.english.resolver import PLACED_WHEN_PLANNED, SWAP, TOWER_BASE, TOWER_TOP, Resolver
+from semgoal_planner.english.resolver import PLACED_WHEN_PLANNED, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, Resolver
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_BASE", "TOWER_TOP", "LanguageError", "examples",
-           "normalise", "parse_english"]
+__all__ = ["MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_TOP", "LanguageError",
+           "examples", "normalise", "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:
@@ -106,7 +106,7 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")
         return literal
-    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE)]
+    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE, TOWER_ALL)]
     if not standing:
         return layout.validate(literal, blocks)
     spare = iter(b for b in blocks if b not in literal.args)

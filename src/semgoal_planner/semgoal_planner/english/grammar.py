@@ -86,6 +86,7 @@ ref: COLOUR                      -> colour
    | "the_tower"                 -> tower
    | "the_top"                   -> top
    | "the_base"                  -> base
+   | "the_whole"                 -> whole
 
 NOT: "not"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
@@ -299,6 +300,9 @@ class Clauses(lark.Transformer):
 
     def base(self, _: list) -> Ref:
         return Ref("base")
+
+    def whole(self, _: list) -> Ref:
+        return Ref("whole")
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

@@ -11,18 +11,20 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
 from semgoal_planner.english.words import LanguageError, examples
 
-TOWER_TOP, TOWER_BASE = "tower_top", "tower_base"
+TOWER_TOP, TOWER_BASE, TOWER_ALL = "tower_top", "tower_base", "tower_all"
 """What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
-TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE}
-"""'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation."""
+TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
+"""'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
+each of its blocks, as a subject."""
 SWAP = "swap"
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
 PLACED_WHEN_PLANNED = {
     TOWER_TOP: "the top block of the tower standing when the goal is planned",
     TOWER_BASE: "the bottom block of the tower standing when the goal is planned",
+    TOWER_ALL: "each block of the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out)",
 }
@@ -119,6 +121,10 @@ class Resolver:
         objects = self.blocks_of(clause.objects, besides=subjects)
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
+        if (TOWER_ALL in objects and clause.kind not in ("near", "away")) or (
+                TOWER_ALL in subjects and clause.kind in ("on", "under", "hold")):
+            raise LanguageError("the whole tower goes in the bin, onto the table, near or away from a block: its "
+                                "blocks cannot go on one block, or into one hand")
         if "tower" in objects:
             if clause.kind not in TOWER_PLACES:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "

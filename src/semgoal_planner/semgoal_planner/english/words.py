@@ -30,6 +30,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
+    (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
+     r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      r"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?", "the_top"),
     (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
@@ -157,7 +159,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "swap",
+    "the_tower", "the_top", "the_base", "the_whole", "swap",
 })
 """The words the grammar reads (besides the colours)."""
 

@@ -81,6 +81,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"together|in|on|near|next|away|separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart"
     (r"(from|off)( of)? (the )?(desk|table)(?= (in|into|to|onto|on|next|near|beside|close|away)\b)", ""),  # "move
     # the blocks from the desk into the bin": where they go
+    (r"not (near|next to|close to|by|beside|touching) (anything|any( other)? (block|cube|one))", "away"),  # "not
+    # near anything": away from every other block
+    (r"(on|onto|to) (the )?(table|desk)(?= (next to|near|beside|close to|by)\b)", r"\g<0> and"),  # "put red on the
+    # table next to green": both
     (rf"(the )?bin (should |must |will |has to |needs to |is to )?(contains?|holds?|has|have|gets?) "
      rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(the )?({_COLOUR})( block| cube| one)?"
      rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)", r"\g<what> in the bin"),  # "the bin should contain red"

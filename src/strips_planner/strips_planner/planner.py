@@ -43,7 +43,7 @@ def check_choice(search: str, heuristic: str | None) -> str:
 def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = None) -> PlanResult:
     """Search ``task``; with conditional effects A*'s default is hmax, and LM-cut is refused with
     :class:`PddlUnsupportedError` (its cuts would no longer be admissible)."""
-    if heuristic is None and task.conditional_effects and "lmcut" in DEFAULT_HEURISTIC[search_name]:
+    if heuristic is None and task.conditional_effects and "lmcut" in DEFAULT_HEURISTIC.get(search_name, ""):
         heuristic = "hmax"
     heuristic = check_choice(search_name, heuristic)
     if task.conditional_effects and "lmcut" in heuristic.split("+"):

@@ -59,6 +59,12 @@ def test_lmcut_is_refused_on_conditional_effects_naming_hmax() -> None:
         solve_task(task, "astar", "lmcut")
 
 
+def test_an_unknown_search_on_conditional_effects_is_named() -> None:
+    _, _, task = _task(BRIEFCASE, BRIEFCASE_3)
+    with pytest.raises(ValueError, match="unknown search 'nosuch'"):
+        solve_task(task, "nosuch")
+
+
 def test_an_atom_reached_only_through_a_conditional_effect_is_grounded_and_planned() -> None:
     domain = """(define (domain relay) (:requirements :conditional-effects)
       (:predicates (armed) (lit) (done))

@@ -101,9 +101,14 @@ class MotionReward:
 
     def settled(self, goal: np.ndarray, motion: np.ndarray) -> np.ndarray:
         """(...,) bool: no restless block under ``goal``; ``motion`` (..., 2N) is moving then held."""
+        return self.at_rest(self.asked(goal), motion)
+
+    @staticmethod
+    def at_rest(asked: np.ndarray, motion: np.ndarray) -> np.ndarray:
+        """:meth:`settled` with the goal's :meth:`asked` blocks worked out already (a sub-goal's, once)."""
         slots = motion.shape[-1] // 2
         moving, held = motion[..., :slots] > 0.5, motion[..., slots:] > 0.5
-        return ~restless(moving, held, self.asked(goal)).any(axis=-1)
+        return ~restless(moving, held, asked).any(axis=-1)
 
 
 def motion_bits(speeds: np.ndarray, held: np.ndarray, slots: int) -> np.ndarray:

@@ -153,7 +153,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         })
         self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
         self.subgoal: SubGoal | None = None
-        self._target = self._mask = np.zeros(self.layout.size, dtype=np.float32)
+        self._encode_goal(np.zeros(self.layout.size, dtype=np.float32), np.zeros(self.layout.size, dtype=np.float32))
         self._steps = 0
         self._achieved = False
         """Whether the sub-goal's literals held after the latest reset or step, at rest or not (the expert's
@@ -178,8 +178,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             if not self._success() or "subgoal" in options:
                 break
         self._steps = 0
-        obs = self._obs()
-        return obs, self._reward(obs)[1]
+        obs, _, info = self._read()
+        return obs, info
 
     @property
     def tower_share(self) -> float | None:
@@ -196,17 +196,19 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def step(self, action: np.ndarray):
         self.world.step(action)
         self._steps += 1
-        snapshot = self.world.snapshot()  # one read of the world per step: observation, goal and reward
-        vector = self.world.semantic_vector(snapshot)
-        obs = self._obs(snapshot, vector)
-        reward, info = self._reward(obs, snapshot, vector)
+        obs, reward, info = self._read()
         return obs, reward, False, self._steps >= self.max_steps, info
 
-    def _reward(self, obs: dict[str, np.ndarray], snapshot: Snapshot | None = None, vector: np.ndarray | None = None
-                ) -> tuple[float, dict[str, Any]]:
+    def _read(self) -> tuple[dict[str, np.ndarray], float, dict[str, Any]]:
+        """The observation, reward and info of the world now, from one read of it (a snapshot and its vector)."""
+        snapshot = self.world.snapshot()
+        vector = self.world.semantic_vector(snapshot)
+        return self._obs(snapshot, vector), *self._reward(snapshot, vector)
+
+    def _reward(self, snapshot: Snapshot, vector: np.ndarray) -> tuple[float, dict[str, Any]]:
         motion = self.world.motion(snapshot, vector)
-        self._achieved = bool(layout.goal_reward(obs["achieved_goal"], obs["desired_goal"]))
-        reward = float(self._achieved and self.motion_reward.settled(obs["desired_goal"], motion))  # compute_reward
+        self._achieved = self._holds(vector)
+        reward = float(self._achieved and self.motion_reward.at_rest(self._asked, motion))  # compute_reward's
         return reward, {"subgoal": str(self.subgoal), "subgoal_type": self.kind, "is_success": reward > 0,
                         "motion": motion}
 
@@ -414,7 +416,19 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
 
     def _set_subgoal(self, subgoal: SubGoal) -> None:
         self.subgoal = subgoal
-        self._target, self._mask = self.layout.encode(subgoal.literals())
+        self._encode_goal(*self.layout.encode(subgoal.literals()))
+
+    def _encode_goal(self, target: np.ndarray, mask: np.ndarray) -> None:
+        """The sub-goal's (target, mask) and what each step reads of them, worked out once per sub-goal."""
+        self._target, self._mask = target, mask
+        self._goal = np.concatenate([target, mask])
+        self._asked = self.motion_reward.asked(self._goal)
+        self._constrained = np.flatnonzero(mask > 0.5)
+        self._wanted = target[self._constrained] > 0.5
+
+    def _holds(self, vector: np.ndarray) -> bool:
+        """The sub-goal's literals hold in the semantic ``vector`` (:func:`layout.goal_reward` of it, at rest or not)."""
+        return bool((vector[self._constrained] == self._wanted).all())
 
     @property
     def kind(self) -> str:
@@ -428,8 +442,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     # -- read-out ------------------------------------------------------------------------------------
     def _success(self) -> bool:
         """The sub-goal's literals hold (at rest or not): a start that already meets them is drawn again."""
-        achieved = layout.achieved_goal(self.world.semantic_vector(), self._mask)
-        return bool(layout.goal_reward(achieved, np.concatenate([self._target, self._mask])))
+        return self._holds(self.world.semantic_vector())
 
     def shortfall(self) -> list[str]:
         """Why the sub-goal is not achieved at rest now, in words (``eval-subgoals --misses``): each of its
@@ -449,10 +462,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             reasons.append(f"not at rest (moving: {', '.join(moving) or 'none'}; held: {', '.join(held) or 'none'})")
         return reasons
 
-    def _obs(self, snapshot: Snapshot | None = None, vector: np.ndarray | None = None) -> dict[str, np.ndarray]:
-        snapshot = snapshot or self.world.snapshot()
-        vector = self.world.semantic_vector(snapshot) if vector is None else vector
-        goal = np.concatenate([self._target, self._mask])
+    def _obs(self, snapshot: Snapshot, vector: np.ndarray) -> dict[str, np.ndarray]:
+        goal = self._goal.copy()
         return {
             "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal),
             "achieved_goal": layout.achieved_goal(vector, self._mask),

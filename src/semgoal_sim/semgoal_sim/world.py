@@ -286,20 +286,20 @@ class FetchWorld:
     # -- read-out ------------------------------------------------------------------------------------
     def snapshot(self, arm: int = 0) -> Snapshot:
         """The world now, with arm ``arm``'s hand (the others' in :attr:`Snapshot.other_hands`)."""
-        d, hand = self.data, self.arms[arm]
-        velocities = d.qvel[self._block_velocity_index].reshape(len(self.blocks), 6)
+        d, hand = self.data, self.arms[arm]  # take() copies, as a fancy index does, at a third of its cost
+        velocities = d.qvel.take(self._block_velocity_index).reshape(len(self.blocks), 6)
         grip_velocity = np.empty(6)
         mujoco.mj_objectVelocity(self.model, d, mujoco.mjtObj.mjOBJ_SITE, hand.grip_site, grip_velocity, 0)
         return Snapshot(
             step=self.step_count,
             time=self.step_count * CONTROL_DT,
-            block_positions=d.xpos[self._block_body].copy(),
-            block_quaternions=d.xquat[self._block_body].copy(),
+            block_positions=d.xpos.take(self._block_body, axis=0),
+            block_quaternions=d.xquat.take(self._block_body, axis=0),
             block_velocities=velocities,
             grip_position=d.site_xpos[hand.grip_site].copy(),
-            grip_velocity=grip_velocity[3:].copy(),
-            finger_positions=d.qpos[hand.finger_qpos].copy(),
-            finger_velocities=d.qvel[hand.finger_qvel].copy(),
+            grip_velocity=grip_velocity[3:],
+            finger_positions=d.qpos.take(hand.finger_qpos),
+            finger_velocities=d.qvel.take(hand.finger_qvel),
             other_hands=tuple((d.site_xpos[other.grip_site].copy(), float(d.qpos[other.finger_qpos].sum()))
                               for other in self.arms if other is not hand),
         )
@@ -348,8 +348,9 @@ class FetchWorld:
         """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`);
         ``vector``: the snapshot's semantic vector, whose ``holding`` entries say what is held."""
         snapshot = snapshot or self.snapshot()
-        speeds = np.linalg.norm(snapshot.block_velocities[:, :3], axis=1)
-        held = (self.semantic_vector(snapshot) if vector is None else vector)[self._holding_entries]
+        vx, vy, vz = snapshot.block_velocities[:, :3].T
+        speeds = np.sqrt(vx * vx + vy * vy + vz * vz)  # np.linalg.norm's, a column at a time
+        held = (self.semantic_vector(snapshot) if vector is None else vector).take(self._holding_entries)
         return motion_bits(speeds, held, self.scene.max_blocks)
 
     def fallen_blocks(self, snapshot: Snapshot | None = None) -> list[str]:

@@ -96,6 +96,42 @@ def test_absent_blocks_never_hold() -> None:
     assert result == {"in_bin(red)", "in_bin(green)"}
 
 
+@pytest.mark.parametrize("scene", sorted(LAYOUTS))
+def test_the_vector_is_each_atom_by_its_definition(scene: str) -> None:
+    """evaluate's vectorised geometry, atom by atom as the module doc defines it, over random states (pairs near
+    each other, stacked, in the bin, in a hand, some slots absent)."""
+    layout, t, rng = LAYOUTS[scene], THRESHOLDS, np.random.default_rng(7)
+    geometry = layout.scene.bin
+    for trial in range(150):
+        count = layout.scene.max_blocks
+        positions = rng.uniform([1.05, 0.45, REST], [1.55, 1.05, REST + 0.1], (count, 3))
+        positions[1] = positions[0] + rng.normal([0.0, 0.0, 0.05], 0.03)
+        if geometry is not None and trial % 3 == 0:
+            positions[-1, :2] = np.asarray(geometry.center) + rng.uniform(-0.2, 0.2, 2)
+        grip, opening = positions[trial % count] + rng.normal(0.0, 0.01, 3), rng.uniform(0.03, 0.06)
+        present = rng.uniform(size=count) < 0.8 if trial % 2 else np.ones(count, dtype=bool)
+        vector = evaluate(layout, positions, grip, opening, TABLE, present)
+        between = [present[i] and np.linalg.norm(positions[i, :2] - grip[:2]) < t.holding_xy
+                   and abs(positions[i, 2] - grip[2]) < t.holding_z for i in range(count)]
+        closed = t.holding_opening_min <= opening <= t.holding_opening_max
+        for entry, (name, args) in enumerate(layout.atoms):
+            i, *rest = (layout.objects.index(a) for a in args)
+            if name == "close":
+                expected = np.linalg.norm(positions[i] - positions[rest[0]]) <= t.close_distance
+            elif name == "above":
+                dz = positions[i, 2] - positions[rest[0], 2]
+                expected = (np.linalg.norm(positions[i, :2] - positions[rest[0], :2]) < t.above_xy
+                            and t.above_dz_min < dz < t.above_dz_max)
+            elif name == "holding":
+                expected = closed and between[i] and sum(between) == 1
+            else:
+                offset = np.abs(positions[i, :2] - np.asarray(geometry.center))
+                expected = ((offset < np.asarray(geometry.inner_half_size)).all()
+                            and positions[i, 2] < TABLE + geometry.floor_thickness + geometry.wall_height)
+            expected = bool(expected) and all(present[[i, *rest]])
+            assert vector[entry] == expected, (trial, name, args)
+
+
 def test_fallen_blocks_lie_well_below_the_table_top() -> None:
     depth = THRESHOLDS.fallen_depth
     positions = [[1.3, 0.7, REST], [0.9, 0.3, 0.025], [1.3, 1.2, TABLE - depth + 0.001], [1.3, 1.2, TABLE - depth - 0.001]]

@@ -62,6 +62,23 @@ def test_the_expert_is_not_done_while_a_block_lies_off_the_table() -> None:
     assert world.fallen_blocks() == ["green"] and not solve(world, goal).success
 
 
+@pytest.mark.parametrize("scene", ["two_blocks", "desk_cleanup", "tabletop"])
+def test_a_steps_reward_is_what_her_recomputes_from_it(scene: str) -> None:
+    """The step's reward (worked out from the sub-goal's entries, once per sub-goal) is compute_reward of the step's
+    own achieved and desired goals and info, over expert episodes that reach their sub-goals, at rest and not."""
+    env = SubgoalEnv(scene)
+    rewards, achieved_moving = [], 0
+    for seed in range(4):
+        env.reset(seed=seed)
+        for _ in range(env.max_steps):
+            obs, reward, _, _, info = env.step(env.expert_action())
+            recomputed = env.compute_reward(obs["achieved_goal"], obs["desired_goal"], info)
+            assert reward == recomputed == float(info["is_success"])
+            achieved_moving += int(goal_reward(obs["achieved_goal"], obs["desired_goal"]) > reward)
+            rewards.append(reward)
+    assert 0 < sum(rewards) < len(rewards) and achieved_moving > 0
+
+
 def test_env_contract_and_her_reward() -> None:
     env = SubgoalEnv("three_blocks")
     check_env(env, skip_render_check=True)

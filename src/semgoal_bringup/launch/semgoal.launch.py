@@ -11,7 +11,8 @@ again, as under `./semgoal up`.
 """
 
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument, OpaqueFunction
+from launch.actions import DeclareLaunchArgument, OpaqueFunction, RegisterEventHandler
+from launch.event_handlers import OnShutdown
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node
 
@@ -44,9 +45,14 @@ def launch_nodes(context) -> list[Node]:
     """The nodes for the arguments given (a task of another scene than ``scene`` stops the launch with why)."""
     value = {name: LaunchConfiguration(name).perform(context) for name, _, _ in LAUNCH_ARGUMENTS}
     task = scene_task(value["scene"], value["task"])
-    graph = graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"], value["record"], value["foxglove"],
-                        value["console"], run_state_dir(value["state_dir"]), Sight(value["perception"], value["policy_input"]),
-                        int(value["robots"]))
+    state_dir, remove_state_dir = run_state_dir(value["state_dir"])  # one made for this launch goes at its shutdown
+    try:
+        graph = graph_nodes(task.name, int(value["seed"]), value["mode"], value["models"], value["record"],
+                            value["foxglove"], value["console"], state_dir, Sight(value["perception"], value["policy_input"]),
+                            int(value["robots"]))
+    except ValueError:
+        remove_state_dir()
+        raise
     together = composed_nodes(graph, value["composed"].lower() in ("true", "1", "yes"))
     nodes = [Node(package="semgoal_bringup", executable="graph_node", output="screen", respawn=True, respawn_delay=2.0,
                   arguments=composed_arguments(together), ros_arguments=composed_parameters(together),
@@ -56,4 +62,4 @@ def launch_nodes(context) -> list[Node]:
               for package, executable, params in graph if (package, executable, params) not in together]
     if value["rviz"].lower() in ("true", "1", "yes"):
         nodes.append(Node(package="rviz2", executable="rviz2", output="screen", arguments=["-d", str(rviz_config())]))
-    return nodes
+    return [*nodes, RegisterEventHandler(OnShutdown(on_shutdown=lambda event, context: remove_state_dir()))]

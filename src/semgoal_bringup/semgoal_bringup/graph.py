@@ -4,9 +4,10 @@ PyPI: here every node goes through `./semgoal run`)."""
 
 from __future__ import annotations
 
+import functools
 import os
 import subprocess
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -135,12 +136,21 @@ def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: 
             *views]
 
 
-def run_state_dir(given: str) -> str:
-    """The planner's journal folder for a graph that restarts dead nodes: ``given``, else a new temporary one (a
-    journal of an earlier run is never taken up by a new graph)."""
+STATE_DIR_PREFIX = "semgoal-planner-"
+"""The temporary journal folders' names begin so (in the system's temporary folder)."""
+
+
+def run_state_dir(given: str) -> tuple[str, Callable[[], None]]:
+    """The planner's journal folder for a graph that restarts dead nodes, and what to call when the graph stops:
+    ``given``, kept; else a new temporary one, then removed (a journal of an earlier run is never taken up by a new
+    graph)."""
+    import shutil
     import tempfile
 
-    return given or tempfile.mkdtemp(prefix="semgoal-planner-")
+    if given:
+        return given, lambda: None
+    made = tempfile.mkdtemp(prefix=STATE_DIR_PREFIX)
+    return made, functools.partial(shutil.rmtree, made, ignore_errors=True)
 
 
 def rviz_config() -> Path:

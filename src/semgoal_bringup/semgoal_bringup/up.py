@@ -5,7 +5,7 @@ semgoal.launch.py``), read from the same definition.
 
 The operator then drives it from another shell with the same ROS_DOMAIN_ID: `./semgoal goal DC-3`,
 `./semgoal plan show`, `./semgoal plan pause` ... A node that dies is started again (after 1, 2, 4 ... s;
-at most 5 times a minute) while the others run on; Ctrl-C stops every node.
+at most 5 times a minute) while the others run on; Ctrl-C (or SIGTERM) stops every node.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import time
 
@@ -28,6 +29,7 @@ from semgoal_bringup.graph import (
     stop_graph,
 )
 from semgoal_core.names import Mode
+from semgoal_core.tasks import Task
 from semgoal_policy.expert_actor import EXPERT
 
 DEFAULT_PORTS = {"foxglove": 8765, "console": 8080}
@@ -57,13 +59,30 @@ def main(argv: list[str]) -> int:
     rviz = args.rviz.lower() in ("true", "1", "yes")
     if rviz and shutil.which("rviz2") is None:
         parser.error("--rviz needs rviz2 on the PATH (a native ROS 2 install or the Docker image)")
+    state_dir, remove_state_dir = run_state_dir(args.state_dir)
+    print(f"[up] the planner's journal: {state_dir}" + ("" if args.state_dir else " (removed when the graph stops)"),
+          flush=True)
     try:
         if not args.robots.isdigit():
             raise ValueError(f"--robots must be 1 or 2, got {args.robots!r}")
         nodes = graph_nodes(task.name, int(args.seed), args.mode, args.models, args.record, args.foxglove, args.console,
-                            run_state_dir(args.state_dir), Sight(args.perception, args.policy_input), int(args.robots))
+                            state_dir, Sight(args.perception, args.policy_input), int(args.robots))
     except ValueError as error:
+        remove_state_dir()
         parser.error(str(error))
+    signal.signal(signal.SIGTERM, _interrupt)  # `kill` stops the nodes too, as Ctrl-C does
+    try:
+        return run_graph(task, nodes, args, rviz)
+    finally:
+        remove_state_dir()
+
+
+def _interrupt(signum: int, frame: object) -> None:
+    raise KeyboardInterrupt
+
+
+def run_graph(task: Task, nodes: list, args: argparse.Namespace, rviz: bool) -> int:
+    """Starts ``nodes`` and keeps them up (a node that dies is started again) until Ctrl-C or one keeps dying."""
     if policy_model_dir(task.scene, args.models) == EXPERT:
         print(f"[up] {task.scene} has no trained actor here: the scripted expert drives the arm", flush=True)
     commands = graph_commands(nodes, args.composed.lower() in ("true", "1", "yes"), args.log_level)

@@ -4,6 +4,7 @@
 import importlib.util
 import json
 import sys
+import tempfile
 import types
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,7 +12,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-from semgoal_bringup.graph import LAUNCH_ARGUMENTS, graph_nodes, params_file, rviz_config
+from semgoal_bringup.graph import LAUNCH_ARGUMENTS, STATE_DIR_PREFIX, graph_nodes, params_file, rviz_config
 from semgoal_ros import interfaces as topics
 from semgoal_ros.package_data import share_path
 
@@ -39,10 +40,13 @@ class LaunchConfiguration:
 def launch_file(monkeypatch):
     """The installed launch file, imported with stand-ins for launch and launch_ros."""
     modules = {name: types.ModuleType(name) for name in
-               ("launch", "launch.actions", "launch.substitutions", "launch_ros", "launch_ros.actions")}
+               ("launch", "launch.actions", "launch.event_handlers", "launch.substitutions", "launch_ros",
+                "launch_ros.actions")}
     modules["launch"].LaunchDescription = Recorded
     modules["launch.actions"].DeclareLaunchArgument = type("DeclareLaunchArgument", (Recorded,), {})
     modules["launch.actions"].OpaqueFunction = type("OpaqueFunction", (Recorded,), {})
+    modules["launch.actions"].RegisterEventHandler = type("RegisterEventHandler", (Recorded,), {})
+    modules["launch.event_handlers"].OnShutdown = type("OnShutdown", (Recorded,), {})
     modules["launch.substitutions"].LaunchConfiguration = LaunchConfiguration
     modules["launch_ros.actions"].Node = type("Node", (Recorded,), {})
     for name, module in modules.items():
@@ -51,16 +55,27 @@ def launch_file(monkeypatch):
     spec = importlib.util.spec_from_file_location("semgoal_launch", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    return module
+    module.handlers = []
+    yield module
+    for handler in module.handlers:  # the launch shuts down: its journal folders go
+        handler.args[0].kwargs["on_shutdown"](None, None)
 
 
 def _launched(launch_file, **given) -> list[Recorded]:
+    """The nodes launched with the arguments ``given``."""
+    return [action for action in _actions(launch_file, **given) if type(action).__name__ == "Node"]
+
+
+def _actions(launch_file, **given) -> list[Recorded]:
+    """Every action the launch takes with the arguments ``given``: its nodes and its handlers."""
     description = launch_file.generate_launch_description()
     actions = description.args[0]
     declared = {a.args[0]: a.kwargs["default_value"] for a in actions if type(a).__name__ == "DeclareLaunchArgument"}
     assert declared == {name: default for name, default, _ in LAUNCH_ARGUMENTS}
     opaque = [a for a in actions if type(a).__name__ == "OpaqueFunction"]
-    return opaque[0].kwargs["function"]({**declared, **given})
+    taken = opaque[0].kwargs["function"]({**declared, **given})
+    launch_file.handlers += [action for action in taken if type(action).__name__ == "RegisterEventHandler"]
+    return taken
 
 
 @pytest.mark.parametrize("given, task, seed, mode", [
@@ -79,6 +94,17 @@ def test_the_launch_file_starts_the_graph_that_up_starts(launch_file, given, tas
         assert node.kwargs["respawn"] is True  # a node that dies is started again, as ./semgoal up does
 
 
+def test_a_journal_folder_made_for_the_launch_goes_when_it_shuts_down_and_one_given_stays(launch_file, tmp_path) -> None:
+    for given in ("", str(tmp_path)):
+        *nodes, handler = _actions(launch_file, state_dir=given)
+        journal = Path(next(n.kwargs["parameters"][1]["state_dir"] for n in nodes
+                            if n.kwargs["executable"] == "planner_node"))
+        assert type(handler).__name__ == "RegisterEventHandler" and journal.is_dir()
+        assert journal == tmp_path if given else journal.name.startswith(STATE_DIR_PREFIX)
+        handler.args[0].kwargs["on_shutdown"](None, None)
+        assert journal.is_dir() == bool(given)
+
+
 def test_rviz_and_a_recorder_join_on_request_and_a_task_of_another_scene_is_refused(launch_file, tmp_path) -> None:
     launched = _launched(launch_file, rviz="true", record=str(tmp_path / "run.mcap"))
     assert launched[-1].kwargs["executable"] == "rviz2" and launched[-1].kwargs["arguments"] == ["-d", str(rviz_config())]
@@ -93,9 +119,11 @@ def test_the_live_view_and_the_console_join_on_request_with_their_ports(launch_f
     assert [(n.kwargs["executable"], n.kwargs["parameters"][1]) for n in launched[-2:]] == \
         [("foxglove_node", {"port": 9001}), ("console_node", {"port": 9002})]
     assert not {"foxglove_node", "console_node"} & {n.kwargs["executable"] for n in _launched(launch_file)}
+    made_before = set(Path(tempfile.gettempdir()).glob(f"{STATE_DIR_PREFIX}*"))
     for name in ("foxglove", "console"):
         with pytest.raises(ValueError, match=f"{name} must be a port number"):
             _launched(launch_file, **{name: "eighty"})
+    assert set(Path(tempfile.gettempdir()).glob(f"{STATE_DIR_PREFIX}*")) <= made_before  # no journal folder left
 
 
 def test_the_foxglove_layout_shows_what_the_live_view_serves() -> None:

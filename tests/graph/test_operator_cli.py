@@ -48,6 +48,8 @@ def test_operator_commands_drive_the_graph(nodes: NodeProcesses, probe: GraphPro
 
     solved = semgoal("goal", TASK, "--wait", "--max-steps", "600")
     assert solved.returncode == 0 and solved.stdout.strip().splitlines()[-1].startswith("success"), solved.stdout
+    shown = semgoal("plan", "show").stdout.splitlines()  # the plan says why it ended
+    assert "status: succeeded" in shown[0] and shown[1].startswith("last: goal ") and shown[1].endswith("holds at rest"), shown
 
     for bad in ("DC-9", "put purple in the bin"):  # on the topic: refused with the reason, not "published"
         out = semgoal("goal", bad)

@@ -42,7 +42,7 @@ def sim_time(msg: SemanticState) -> float:
 def plan_message(ex: Executive, stamp) -> Plan:
     """The plan as published (latched) and answered by GetPlan."""
     msg = Plan(goal=ex.goal_text, current=ex.current, status=ex.status, revision=ex.revision, replans=ex.replans,
-               paused_because=ex.blind)
+               paused_because=ex.blind, message=ex.message)
     msg.header.stamp = stamp
     msg.steps = [step_message(i, step.subgoal, step.status, step.assignee, after)
                  for i, (step, after) in enumerate(zip(ex.steps, ex.orderings(), strict=True))]

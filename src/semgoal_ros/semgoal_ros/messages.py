@@ -104,10 +104,11 @@ def plan_markers(plan: Plan):
 
 
 def format_plan(plan: Plan) -> str:
-    """A plan as the operator reads it: goal, status and revision, then a line per step (> marks each agent's active
-    one; "after 1, 2": the steps it must follow)."""
+    """A plan as the operator reads it: goal, status and revision, why it last changed, then a line per step (> marks
+    each agent's active one; "after 1, 2": the steps it must follow)."""
     status = f"{plan.status} ({plan.paused_because})" if plan.paused_because else plan.status
-    lines = [f"goal: {plan.goal or '(none)'}   status: {status}   revision {plan.revision}   replans {plan.replans}"]
+    lines = [f"goal: {plan.goal or '(none)'}   status: {status}   revision {plan.revision}   replans {plan.replans}",
+             *([f"last: {plan.message}"] if plan.message else [])]
     for step in plan.steps:
         marker = ">" if step.status == StepStatus.ACTIVE and plan.status == PlanStatus.EXECUTING else " "
         lines.append(f"{marker} {step.index:2d}. {step.action:28s} {step.status:8s} {step.assignee:6s} {after_text(step)}"

@@ -67,13 +67,17 @@ def test_the_plan_is_drawn_as_text_with_the_active_step_highlighted() -> None:
     steps = [SubGoal(index=0, action="pick(red)", status=StepStatus.DONE, assignee=Assignee.ROBOT),
              SubGoal(index=1, action="put_in_bin(red)", status=StepStatus.ACTIVE, assignee=Assignee.ROBOT, after=[0]),
              SubGoal(index=2, action="pick(green)", status=StepStatus.PENDING, assignee=Assignee.HUMAN)]
-    plan = Plan(goal="in_bin(red) & in_bin(green)", steps=steps, current=1, status=PlanStatus.EXECUTING, revision=3)
+    plan = Plan(goal="in_bin(red) & in_bin(green)", steps=steps, current=1, status=PlanStatus.EXECUTING, revision=3,
+                message="step 0 pick(red) done")
     drawn = messages.plan_markers(plan).markers
     texts = [m.text for m in drawn[1:]]
     assert drawn[0].action == drawn[0].DELETEALL and len(texts) == 4
     assert texts[0].startswith("goal: in_bin(red) & in_bin(green) [executing, revision 3]")
     assert texts[2] == "> 1. put_in_bin(red) active robot after 0" and texts[3] == "2. pick(green) pending human"
-    lines = messages.format_plan(plan).splitlines()  # the same in the plan text `plan show` prints
-    assert lines[2].split() == [">", "1.", "put_in_bin(red)", "active", "robot", "after", "0"]
-    assert lines[3].split() == ["2.", "pick(green)", "pending", "human"]
+    lines = messages.format_plan(plan).splitlines()  # the same in the plan text `plan show` prints, why it last changed
+    assert lines[1] == "last: step 0 pick(red) done"
+    assert lines[3].split() == [">", "1.", "put_in_bin(red)", "active", "robot", "after", "0"]
+    assert lines[4].split() == ["2.", "pick(green)", "pending", "human"]
+    plan.message = ""
+    assert messages.format_plan(plan).splitlines()[1].split()[0] == "0."  # no line for no reason
     assert drawn[3].color.g == 1.0 and drawn[3].color.r < 1.0  # the active step in green

@@ -51,12 +51,17 @@ class Planner:
     unsolvable: tuple[int, ...] = (1,)
 
 
+def plan_lines(text: str) -> tuple[str, ...]:
+    """A plan's actions, a line each, as planners print them: comments (``; cost = 9``) and blank lines left out."""
+    return tuple(line for line in text.split("\n") if line and not line.startswith(";"))
+
+
 def _ours() -> Planner:
     def command(domain: Path, problem: Path, search: str, heuristic: str, _: Path) -> list[str]:
         return [str(ROOT / "semgoal"), "plan-pddl", "--search", search, "--heuristic", heuristic, str(domain), str(problem)]
 
     def plan(done: subprocess.CompletedProcess, _: Path, __: Path) -> tuple[str, ...] | None:
-        return tuple(done.stdout.split("\n")[:-1]) if done.returncode == 0 else None
+        return plan_lines(done.stdout) if done.returncode == 0 else None
 
     return Planner("ours", command, plan)
 
@@ -93,7 +98,7 @@ def _fast_downward(python: Path) -> Planner:
         found = work / "plan"
         if done.returncode != 0 or not found.exists():
             return None
-        return tuple(line for line in found.read_text().split("\n") if line and not line.startswith(";"))
+        return plan_lines(found.read_text())
 
     return Planner("fast-downward", command, plan, unsolvable=(11, 12))
 

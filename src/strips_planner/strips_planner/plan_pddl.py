@@ -127,7 +127,7 @@ def main(argv: list[str]) -> int:
         if result.reason:
             print(result.reason, file=sys.stderr)
         return 1
-    print("\n".join(map(str, result.plan)))
+    print("\n".join(map(str, result.plan)) if result.plan else "; the goal holds in the initial state: an empty plan")
     if result.cost is not None:
         print(f"; cost = {result.cost}")
     return 0
@@ -165,5 +165,10 @@ class _Alarm:
 
 
 def _read(path: str) -> str:
-    with open(path, encoding="utf-8") as file:
-        return file.read()
+    """The file's text; PddlError where it is not UTF-8 (a binary file given by mistake)."""
+    with open(path, "rb") as file:
+        data = file.read()
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise PddlError(f"{path}: not UTF-8 text (byte 0x{data[error.start]:02x} at offset {error.start})") from None

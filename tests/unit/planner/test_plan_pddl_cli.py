@@ -40,6 +40,19 @@ def test_bad_pddl_and_missing_files_exit_2_with_a_message(tmp_path: Path, capsys
     assert "bad PDDL: 2:3: '(' is never closed" in capsys.readouterr().err
     assert plan_pddl_main([KEYS, str(tmp_path / "absent.pddl")]) == 2
     assert "absent.pddl" in capsys.readouterr().err
+    binary = tmp_path / "image.pddl"
+    binary.write_bytes(b"\x89PNG\r\n\x1a\n\xff")
+    assert plan_pddl_main([KEYS, str(binary)]) == 2
+    assert "image.pddl: not UTF-8 text (byte 0x89 at offset 0)" in capsys.readouterr().err
+    assert plan_pddl_main([KEYS, str(tmp_path)]) == 2
+    assert "Is a directory" in capsys.readouterr().err
+
+
+def test_a_goal_that_holds_at_the_start_is_an_empty_plan(tmp_path: Path, capsys) -> None:
+    problem = tmp_path / "there.pddl"
+    problem.write_text((FIXTURES / "keys-vault.pddl").read_text().replace("(and (at vault) (has master) (not (locked r2)))", "(at hall)"))
+    assert plan_pddl_main([KEYS, str(problem)]) == 0
+    assert capsys.readouterr().out == "; the goal holds in the initial state: an empty plan\n"
 
 
 TOKENS_DOMAIN = """(define (domain Hops) (:requirements :strips)

@@ -19,7 +19,7 @@ COMMANDS: dict[str, Entry | dict[str, Entry]] = {
     # the operator
     "goal": ("semgoal_planner.operator:goal_main", "send a goal to the planner (ros2 topic pub / action send_goal)"),
     "plan": ("semgoal_planner.operator:plan_main", "show or edit the plan (ros2 service call get_plan / edit_plan)"),
-    "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a plain-English goal becomes (or why not)"),
+    "parse-goal": ("semgoal_planner.cli:parse_goal_main", "the literals a goal (a sentence, or literals) becomes, or why it is refused"),
     "console": ("semgoal_bringup.tools.console", "the collaboration console: a web page to set goals, edit the plan and do steps"),
     "replay": ("semgoal_bringup.tools.replay", "an episode recorded as MCAP: summary, re-run check (--verify), GIF"),
     "plan-pddl": ("strips_planner.plan_pddl", "plan with our STRIPS planner on any PDDL domain and problem"),

@@ -6,14 +6,17 @@ import argparse
 
 
 def parse_goal_main(argv: list[str]) -> int:
-    """`./semgoal parse-goal --scene S [--blocks a,b,...] [--json] TEXT...`: the literals each sentence becomes.
+    """`./semgoal parse-goal --scene S [--blocks a,b,...] [--json] TEXT...`: the literals each sentence becomes (or
+    literals joined by '&', checked as the planner checks them; a task is named).
 
-    With ``--json``, one object per TEXT, in order: ``{"text": TEXT, "literals": [...]}`` or ``{"text": TEXT,
-    "error": "..."}``. Exit 0 when every TEXT parsed, 2 otherwise."""
+    With ``--json``, one object per TEXT, in order: ``{"text": TEXT, "literals": [...]}``, ``{"text": TEXT, "task":
+    NAME}`` or ``{"text": TEXT, "error": "..."}``. Exit 0 when every TEXT parsed, 2 otherwise."""
     import json
 
+    from semgoal_core.tasks import goal_form
     from semgoal_core.vocabulary import SCENES
     from semgoal_planner.english import PLACED_WHEN_PLANNED, LanguageError, parse_english
+    from semgoal_planner.goals import GoalError, read_goal
 
     parser = argparse.ArgumentParser(prog="semgoal parse-goal", description=parse_goal_main.__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
@@ -29,13 +32,21 @@ def parse_goal_main(argv: list[str]) -> int:
     failed = False
     for text in args.texts:
         try:
-            result = {"text": text, "literals": [str(lit) for lit in parse_english(text, args.scene, blocks)]}
-        except LanguageError as error:
+            if goal_form(text) == "text":
+                result = {"text": text, "literals": [str(lit) for lit in parse_english(text, args.scene, blocks)]}
+            else:
+                goal = read_goal(text, args.scene, blocks)
+                result = {"text": text, **({"task": goal.task} if goal.task else
+                                           {"literals": [str(lit) for lit in goal.literals]})}
+        except (LanguageError, GoalError) as error:
             result, failed = {"text": text, "error": str(error)}, True
         if args.json:
             print(json.dumps(result))
             continue
-        print(f"{text!r}: {' & '.join(result['literals']) if 'literals' in result else 'refused: ' + result['error']}")
+        read = (" & ".join(result["literals"]) if "literals" in result else
+                f"task {result['task']} (its literals come from the world when it is planned)" if "task" in result else
+                "refused: " + result["error"])
+        print(f"{text!r}: {read}")
         said = " ".join(result.get("literals", []))
         for stand_in, meaning in PLACED_WHEN_PLANNED.items():
             if stand_in in said:

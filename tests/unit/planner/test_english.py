@@ -469,6 +469,12 @@ def test_parse_goal_cli_contract(capsys) -> None:
     said = capsys.readouterr().out.splitlines()
     assert said == ["'put orange on the tower': above(orange,tower_top)",
                     "    tower_top: the top block of the tower standing when the goal is planned"]
+    code = parse_goal_main(["--scene", "desk_cleanup", "--json", "in_bin(red) & ~in_bin(green)", "DC-3", "in_bin(red) &",
+                            "in_bin(purple)"])
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert code == 2 and lines[:2] == [{"text": "in_bin(red) & ~in_bin(green)", "literals": ["in_bin(red)", "not in_bin(green)"]},
+                                       {"text": "DC-3", "task": "DC-3"}]
+    assert "literals joined by '&'" in lines[2]["error"] and "unknown object 'purple'" in lines[3]["error"]
 
 
 @pytest.mark.parametrize(("text", "expected"), [

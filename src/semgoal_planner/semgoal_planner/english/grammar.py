@@ -138,8 +138,9 @@ class Clauses(lark.Transformer):
 
     def _ambig(self, alternatives: list) -> object:
         # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
-        # longest exception ("all except red and blue" leaves out both)
-        return min(alternatives, key=reading_cost)
+        # longest exception ("all except red and blue" leaves out both); between equals, the same one on every run (the
+        # parser lists them in an order that follows string hashing)
+        return min(alternatives, key=lambda reading: (reading_cost(reading), repr(reading)))
 
     # -- clauses ------------------------------------------------------------------------------------
     def act(self, items: list) -> Clause:

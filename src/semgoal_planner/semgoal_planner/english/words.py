@@ -20,6 +20,11 @@ _COLOUR = "|".join(BLOCK_COLOURS)
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
 
+_LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get) )?(the )?(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
+                        r"( blocks| cubes)? (in|into|as|to) (a|one|another|a second|a separate) (single )?(tower|stack|pile)")
+"""Blocks named into a tower, whatever the verb ('put red, green and blue in a tower'): stacked in the order named; where
+the tower goes, its bottom block goes."""
+
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
@@ -32,6 +37,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
     (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
      r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
+    (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
+     r"(tower|stack|pile)(?! of)", r"\g<verb> the_whole"),  # "put the tower in the bin": what is moved is each block
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      r"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?", "the_top"),
     (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
@@ -55,6 +62,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"as well as|as well|along with", "and"),
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
+    (_LISTED_INTO_A_TOWER + r"(?= and\b|$)", r"stack \g<listed> then"),  # "red, green and blue in a tower, the rest ..."
+    (_LISTED_INTO_A_TOWER, r"stack \g<listed> and put \g<base>"),  # "... in a tower next to yellow": its bottom block
     (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
     (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"

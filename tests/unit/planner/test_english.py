@@ -295,6 +295,9 @@ PHRASES = [
     ("tabletop", "red, green and blue in a tower, the rest in the bin",
      "above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"),
     ("tabletop", "put red and green in a tower and blue and yellow in another tower", "above(green,red) & above(yellow,blue)"),
+    ("three_blocks", "blue must not be near red or green", "not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "keep blue away from red or green", "not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "red should not touch green or blue", "not close(red,green) & not close(red,blue)"),
     ("tabletop", "put red, green and blue in a tower next to yellow",
      "above(green,red) & above(blue,green) & close(red,yellow)"),
 ]
@@ -331,6 +334,7 @@ REFUSALS = [
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "stack all blocks into one tower", "say which block goes on which"),
     ("tabletop", "build a tower", "say which block goes on which"),
+    ("three_blocks", "red near green or blue", "'or' leaves the goal open"),
     ("desk_cleanup", "put both in the bin", "'both' is ambiguous: say which two blocks"),
     ("desk_cleanup", "put gren in the bin", "unknown word 'gren' .did you mean 'green'.."),
     ("tabletop", "stak red on blue", "unknown word 'stak' .did you mean 'stack'.."),

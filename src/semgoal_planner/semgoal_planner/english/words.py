@@ -212,6 +212,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
+    text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
     text = re.sub(r"&+", " and ", text)
@@ -431,6 +432,10 @@ _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _NEITHER = re.compile(rf"\bneither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
 """'neither red nor green (should be) in the bin': both, not."""
+_NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next to|close to|beside|by|touch|touches|"
+                         r"touching|in contact with|on|on top of|above)|(?:away|far|apart) from) "
+                         rf"(?P<first>{_BLOCK_SAID}) or (?P<second>{_BLOCK_SAID})\b")
+"""'blue must not be near red or green', 'away from red or green': from both (a denied 'or' is an 'and' of denials)."""
 _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
                        r"on the bottom|at the base)\b")

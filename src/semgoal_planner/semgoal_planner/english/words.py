@@ -13,6 +13,8 @@ TOP_DOWN = "topdown"
 """The mark 'from top to bottom' leaves: the tower's blocks are named from the top (:func:`_top_down`)."""
 DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
+ANY_ORDER = "anyorder"
+"""What 'in any order' leaves: nothing for blocks put each in its place; a tower has one order (refused)."""
 TOP_MARK, BASE_MARK = "towertop", "towerbase"
 """The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
 (:func:`_tower_end_named`)."""
@@ -51,6 +53,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
+    (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
@@ -223,6 +226,11 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     words = [w for w in text.split() if w not in FILLERS]
     for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
+    if ANY_ORDER in words:
+        if "stack" in words:
+            raise LanguageError("a tower stands in one order: name its blocks from the bottom up, e.g. 'build a tower "
+                                "of red, green and blue'")
+        words = [w for w in words if w != ANY_ORDER]  # "put the blocks in the bin in any order": where, not when
     if DIRECTION in words:
         raise LanguageError(f"directions (left of, behind) are not among scene {scene}'s predicates "
                             f"({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. {examples(scene, blocks)}")

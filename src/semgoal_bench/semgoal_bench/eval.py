@@ -10,6 +10,7 @@ import json
 import time
 
 from semgoal_bringup.experiments.evaluation import evaluate_in_process
+from semgoal_core.arguments import count
 from semgoal_policy.actor import models_dir
 
 TASKS, SEED, CHUNK = ["MA-2", "DC-2"], 3_000_000, 2
@@ -17,7 +18,7 @@ TASKS, SEED, CHUNK = ["MA-2", "DC-2"], 3_000_000, 2
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench eval", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--episodes", type=int, default=8, help="episodes per task")
+    parser.add_argument("--episodes", type=count, default=8, help="episodes per task")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     results = []

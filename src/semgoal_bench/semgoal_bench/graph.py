@@ -20,6 +20,7 @@ from itertools import pairwise
 
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import TRUTH, Sight, running_graph
+from semgoal_core.arguments import count, natural, seconds
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 REALTIME_HZ = 25.0
@@ -101,9 +102,9 @@ def composed_rates(task: str, episodes: int, seed: int, processes_rate: float, l
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench graph", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default="MC-2")
-    parser.add_argument("--episodes", type=int, default=5)
-    parser.add_argument("--seed", type=int, default=3_000_000)
-    parser.add_argument("--realtime-s", type=float, default=20.0, help="seconds of realtime running")
+    parser.add_argument("--episodes", type=count, default=5)
+    parser.add_argument("--seed", type=natural, default=3_000_000)
+    parser.add_argument("--realtime-s", type=seconds, default=20.0, help="seconds of realtime running")
     parser.add_argument("--pixels", action="store_true", help="also the lockstep episodes with everything on the camera")
     parser.add_argument("--composed", action="store_true", help="also the lockstep episodes with the four nodes in one "
                         "process (graph_node)")

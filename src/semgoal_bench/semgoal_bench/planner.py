@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 from semgoal_bench.planner_suite import PLANNERS, bench_python, run_suite, table
+from semgoal_core.arguments import count, counts, seconds
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
@@ -83,12 +84,12 @@ def project_tasks(repeats: int) -> dict[str, dict]:
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench planner", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, help="runs per measurement, the median kept (default: 3; 1 with --suite)")
-    parser.add_argument("--timeout", type=float, default=60.0, help="seconds per planner, problem and search")
-    parser.add_argument("--sizes", default=",".join(map(str, SIZES)))
+    parser.add_argument("--repeats", type=count, help="runs per measurement, the median kept (default: 3; 1 with --suite)")
+    parser.add_argument("--timeout", type=seconds, default=60.0, help="seconds per planner, problem and search")
+    parser.add_argument("--sizes", type=counts, default=list(SIZES))
     parser.add_argument("--suite", type=Path, help="a folder of PDDL domains in the IPC layout: coverage, validity "
                         "and whole-process times instead of the blocksworld series")
-    parser.add_argument("--per-domain", type=int, default=6, help="with --suite: the first N problems of each domain")
+    parser.add_argument("--per-domain", type=count, default=6, help="with --suite: the first N problems of each domain")
     parser.add_argument("--domains", help="with --suite: only these comma-separated domain folders")
     parser.add_argument("--planners", default="ours,pyperplan,fast-downward",
                         help=f"with --suite: any of {', '.join(PLANNERS)}")
@@ -115,7 +116,7 @@ def main(argv: list[str]) -> int:
     pyperplan = str(bench_python("pyperplan"))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for n in map(int, args.sizes.split(",")):
+        for n in args.sizes:
             prob = Path(tmp) / f"bw-{n}.pddl"
             prob.write_text(problem(n, seed=1))
             for search, heuristic in COMBOS:

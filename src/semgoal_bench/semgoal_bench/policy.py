@@ -28,6 +28,8 @@ import time
 
 import numpy as np
 
+from semgoal_core.arguments import count, natural
+
 TRAIN_CONFIGS = ("ours:1", "ours:1:bf16", "ours:shipped", "sb3:two_blocks", "sb3:FetchPickAndPlace-v4")
 REFERENCE = "sb3:FetchPickAndPlace-v4"
 WARMUP_STEPS = 1_000
@@ -137,10 +139,10 @@ def _child(args: list[str]) -> str:
 
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench policy", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--steps", type=int, default=2_000, help="env steps timed per training run")
-    parser.add_argument("--warmup", type=int, default=WARMUP_STEPS, help="env steps before the first update")
-    parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--calls", type=int, default=5_000, help="single-observation actions timed")
+    parser.add_argument("--steps", type=count, default=2_000, help="env steps timed per training run")
+    parser.add_argument("--warmup", type=natural, default=WARMUP_STEPS, help="env steps before the first update")
+    parser.add_argument("--repeats", type=count, default=3)
+    parser.add_argument("--calls", type=count, default=5_000, help="single-observation actions timed")
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--worker", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_core.arguments import count
+
 BATCH_WORLDS = 8
 CHUNK = 50
 """Steps each way of stepping takes before the next has its turn."""
@@ -23,8 +25,8 @@ CHUNK = 50
 def main(argv: list[str]) -> int:
     """`./semgoal bench-sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4."""
     parser = argparse.ArgumentParser(prog="semgoal bench sim", description=main.__doc__)
-    parser.add_argument("--steps", type=int, default=2000)
-    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--steps", type=count, default=2000)
+    parser.add_argument("--repeats", type=count, default=5)
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     import mujoco

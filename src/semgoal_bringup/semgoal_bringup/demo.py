@@ -15,6 +15,7 @@ import os
 import sys
 from pathlib import Path
 
+from semgoal_core.arguments import natural
 from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_core.tasks import TASK_STEP_BUDGET
 
@@ -30,7 +31,7 @@ def main(argv: list[str]) -> int:
 
     parser = argparse.ArgumentParser(prog="semgoal demo", description=__doc__.split("\n\n")[0])
     parser.add_argument("--task", default=DEFAULT_TASK)
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="the task start (default %(default)s)")
+    parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="the task start (default %(default)s)")
     parser.add_argument("--max-steps", type=int, default=TASK_STEP_BUDGET,
                         help="control steps the goal may take before it fails, as in the evaluation (0: no limit)")
     parser.add_argument("--models", default="", help="folder of exported actors (SCENE/actor.pt); default: the shipped "

@@ -16,6 +16,7 @@ import argparse
 import re
 import sys
 
+from semgoal_core.arguments import seconds
 from semgoal_ros.client import GraphClient, GraphUnavailableError
 from semgoal_ros.messages import format_plan
 
@@ -33,7 +34,7 @@ def goal_main(argv: list[str]) -> int:
     parser.add_argument("--wait", action="store_true", help="execute through the ExecuteGoal action and print progress")
     parser.add_argument("--max-steps", type=int, default=0,
                         help="with --wait: control steps the goal may take before it fails (default 0: no limit)")
-    parser.add_argument("--timeout", type=float, default=300.0)
+    parser.add_argument("--timeout", type=seconds, default=300.0)
     parser.add_argument("--record", help="with --wait: record the graph while the goal runs into this MCAP file")
     args = parser.parse_args(argv)
     if args.max_steps < 0:

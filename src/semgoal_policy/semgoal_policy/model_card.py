@@ -117,6 +117,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--trace", action="store_true",
                         help="first give actors without provenance the one traced in git history")
     args = parser.parse_args(argv)
+    if missing := [str(d) for d in args.dirs if not (d / "actor.json").is_file()]:
+        parser.error(f"no exported actor (actor.json) in {', '.join(missing)}")
     for directory in args.dirs:
         if args.trace and trace_provenance(directory):
             print(f"traced the provenance of {directory / 'actor.json'} in git history")

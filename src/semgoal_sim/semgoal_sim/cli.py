@@ -8,6 +8,7 @@ import statistics
 import sys
 import time
 
+from semgoal_core.arguments import count, natural
 from semgoal_core.tasks import ALL_TASKS, TASKS, get_task
 
 
@@ -15,8 +16,8 @@ def expert_main(argv: list[str]) -> int:
     """`./semgoal expert --task T --episodes N --seed S [--json]`: success rate of the scripted expert."""
     parser = argparse.ArgumentParser(prog="semgoal expert", description=expert_main.__doc__)
     parser.add_argument("--task", required=True, help=f"one of {', '.join(ALL_TASKS)}, or 'all' (the paper's)")
-    parser.add_argument("--episodes", type=int, default=100)
-    parser.add_argument("--seed", type=int, default=0, help="episode i uses seed S + i")
+    parser.add_argument("--episodes", type=count, default=100)
+    parser.add_argument("--seed", type=natural, default=0, help="episode i uses seed S + i")
     parser.add_argument("--json", action="store_true", help="last line: one JSON object")
     args = parser.parse_args(argv)
     from semgoal_sim.rollout import run_task

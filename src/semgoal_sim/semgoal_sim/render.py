@@ -10,6 +10,7 @@ from typing import ClassVar
 import mujoco
 import numpy as np
 
+from semgoal_core.arguments import natural
 from semgoal_sim.world import FetchWorld
 
 
@@ -74,11 +75,14 @@ def main(argv: list[str]) -> int:
 
     parser = argparse.ArgumentParser(prog="semgoal render", description=main.__doc__)
     parser.add_argument("--task", required=True)
-    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seed", type=natural, default=0)
     parser.add_argument("--solved", action="store_true", help="the expert's end beside the start")
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args(argv)
-    task = get_task(args.task)
+    try:
+        task = get_task(args.task)
+    except KeyError as error:
+        parser.error(str(error.args[0]))
     world = FetchWorld(task.scene, task.n_blocks)
     positions, goal = task.initial_state(args.seed)
     world.reset(positions)

@@ -548,6 +548,7 @@ def test_the_planner_swaps_the_blocks_whichever_is_on_top_now() -> None:
         assert [str(s.subgoal) for s in executive.steps][-1] == f"put_on({below},{top})"
 
 
+@pytest.mark.slow
 def test_a_sentence_reads_the_same_on_every_run() -> None:
     """Readings of equal rank are chosen the same way whatever the string hashing: the parser lists them in an order
     that follows it (this sentence read two ways across seeds)."""

@@ -46,4 +46,4 @@ def test_the_sampled_actor_is_seeded_so_a_run_repeats(capsys) -> None:
 def test_counts_below_one_are_refused(flag, capsys) -> None:
     with pytest.raises(SystemExit) as exit_info:
         eval_subgoals_main(["--scene", "two_blocks", flag, "0"])
-    assert exit_info.value.code == 2 and f"{flag} must be at least 1" in capsys.readouterr().err
+    assert exit_info.value.code == 2 and f"argument {flag}: must be a whole number of at least 1" in capsys.readouterr().err

@@ -16,6 +16,8 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+from semgoal_core.arguments import count, natural
+
 VARIANTS: dict[str, list[str]] = {
     "full recipe": [],
     "no demonstrations": ["--demo-fraction", "0"],
@@ -83,10 +85,10 @@ def write_report(scene: str, steps: int, seed: int, results: dict[str, dict], do
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal ablation", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="two_blocks")
-    parser.add_argument("--steps", type=int, default=50_000)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--final-eval-episodes", type=int, default=50)
-    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--steps", type=count, default=50_000)
+    parser.add_argument("--seed", type=natural, default=1)
+    parser.add_argument("--final-eval-episodes", type=count, default=50)
+    parser.add_argument("--jobs", type=count, default=2)
     parser.add_argument("--out", type=Path, default=Path("runs/ablation"))
     parser.add_argument("--docs", type=Path, default=Path("docs"))
     args = parser.parse_args(argv)

@@ -25,6 +25,7 @@ from tqdm import tqdm
 
 from semgoal_bringup.experiments.episodes import HierarchicalAgent
 from semgoal_bringup.experiments.training import make_env
+from semgoal_core.arguments import count, natural
 from semgoal_core.provenance import provenance
 from semgoal_core.tasks import ALL_TASKS
 from semgoal_core.vocabulary import SCENES
@@ -123,21 +124,18 @@ def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal train dagger", description=main.__doc__)
     parser.add_argument("--scene", default="tabletop", choices=list(SCENES))
     parser.add_argument("--model-dir", type=Path, help="the actor to start from (default: the shipped one)")
-    parser.add_argument("--seed", type=int, default=defaults.seed)
-    parser.add_argument("--iterations", type=int, default=defaults.iterations)
-    parser.add_argument("--subgoal-episodes", type=int, default=defaults.subgoal_episodes)
-    parser.add_argument("--task-episodes", type=int, default=defaults.task_episodes, help="per task and iteration")
-    parser.add_argument("--epochs", type=int, default=defaults.epochs)
+    parser.add_argument("--seed", type=natural, default=defaults.seed)
+    parser.add_argument("--iterations", type=count, default=defaults.iterations)
+    parser.add_argument("--subgoal-episodes", type=count, default=defaults.subgoal_episodes)
+    parser.add_argument("--task-episodes", type=natural, default=defaults.task_episodes, help="per task and iteration")
+    parser.add_argument("--epochs", type=count, default=defaults.epochs)
     parser.add_argument("--lr", type=float, default=defaults.lr, help="Adam's rate for the fit")
-    parser.add_argument("--envs", type=int, default=8, help="sub-goal envs stepped side by side")
+    parser.add_argument("--envs", type=count, default=8, help="sub-goal envs stepped side by side")
     parser.add_argument("--run-dir", type=Path, help="default runs/SCENE-dagger/seedS")
     parser.add_argument("--resume", action="store_true", help="carry on from the last finished iteration")
     args = parser.parse_args(argv)
-    for name in ("iterations", "subgoal_episodes", "epochs", "envs"):
-        if getattr(args, name) < 1:
-            parser.error(f"--{name.replace('_', '-')} must be at least 1")
-    if args.task_episodes < 0 or not args.lr > 0:
-        parser.error("--task-episodes must be at least 0 and --lr above 0")
+    if not args.lr > 0:
+        parser.error(f"--lr must be above 0, got {args.lr}")
     torch.set_num_threads(1)
     config = DaggerConfig(iterations=args.iterations, subgoal_episodes=args.subgoal_episodes,
                           task_episodes=args.task_episodes, epochs=args.epochs, lr=args.lr, seed=args.seed)

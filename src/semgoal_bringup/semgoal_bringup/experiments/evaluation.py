@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
+from semgoal_core.arguments import count, natural
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TABLETOP_TASKS, TASK_STEP_BUDGET, TASKS, get_task
@@ -453,24 +454,24 @@ def summary(rows: list[Row], task: str) -> dict:
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal eval", description=__doc__.split("\n\n")[0])
     parser.add_argument("--tasks", default="all", help="comma-separated task names, all (the paper's) or tabletop")
-    parser.add_argument("--episodes", type=int, default=50, help="episodes per task and training seed")
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (fixes every start)")
-    parser.add_argument("--seeds", type=int, default=3, help="training seeds to average where actors exist")
+    parser.add_argument("--episodes", type=count, default=50, help="episodes per task and training seed")
+    parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="first task seed (fixes every start)")
+    parser.add_argument("--seeds", type=count, default=3, help="training seeds to average where actors exist")
     parser.add_argument("--agents", default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
-    parser.add_argument("--ros-episodes", type=int, help="episodes per task through the graph (default: --episodes)")
+    parser.add_argument("--ros-episodes", type=count, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones); 'expert': "
                         "the scripted expert, the actors' teacher, drives the hierarchy")
     add_sight_arguments(parser)
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
+    parser.add_argument("--jobs", type=count, default=os.cpu_count() or 1, help="worker processes (in-process episodes)")
     parser.add_argument("--executor", default="local", type=check_executor,
                         help="local (a process pool), dask (a Dask LocalCluster on 127.0.0.1) or dask:ADDRESS (a running "
                              "Dask scheduler)")
-    parser.add_argument("--chunk", type=int, default=10, help="episodes per job (per agent and task; 0: all in one)")
-    parser.add_argument("--linger", type=int, default=0, help="after each success, this many control steps of the idle "
+    parser.add_argument("--chunk", type=natural, default=10, help="episodes per job (per agent and task; 0: all in one)")
+    parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
     args = parser.parse_args(argv)
     try:
@@ -486,8 +487,8 @@ def main(argv: list[str]) -> int:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]
     unknown = [a for a in agents if a not in AGENT_NAMES]
-    if unknown or not agents or not tasks or args.episodes < 1:
-        parser.error(f"need tasks, episodes >= 1 and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
+    if unknown or not agents or not tasks:
+        parser.error(f"need tasks and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
     from semgoal_policy import actor as actor_io
 
     models_dir = args.models or actor_io.models_dir()

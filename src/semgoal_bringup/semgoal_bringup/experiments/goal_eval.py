@@ -23,6 +23,7 @@ from semgoal_bringup.experiments.evaluation import wilson_interval
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, running_graph, sight_of
 from semgoal_core import tasks
+from semgoal_core.arguments import count, natural
 from semgoal_core.goal_families import FAMILIES, GoalCase, goal_cases
 from semgoal_core.vocabulary import SCENES
 
@@ -75,14 +76,14 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--scene", required=True, choices=list(SCENES))
     parser.add_argument("--families", help="comma-separated (default: all of the scene's): "
                         + "; ".join(f"{scene}: {', '.join(names)}" for scene, names in FAMILIES.items()))
-    parser.add_argument("--episodes", type=int, default=50, help="episodes per family")
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
-    parser.add_argument("--jobs", type=int, default=1, help="families evaluated at once")
+    parser.add_argument("--episodes", type=count, default=50, help="episodes per family")
+    parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
+    parser.add_argument("--jobs", type=count, default=1, help="families evaluated at once")
     parser.add_argument("--executor", default="local", type=check_executor, help="local, dask or dask:ADDRESS")
     parser.add_argument("--model-dir", type=Path, help="an exported actor (default: the shipped one; in process only)")
     parser.add_argument("--via-ros", action="store_true", help="also run a sample of the cases through the node graph")
-    parser.add_argument("--ros-episodes", type=int, default=50, help="with --via-ros: cases run through the graph")
-    parser.add_argument("--linger", type=int, default=0, help="after each success, this many control steps of the idle "
+    parser.add_argument("--ros-episodes", type=count, default=50, help="with --via-ros: cases run through the graph")
+    parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (in process)")
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
     add_sight_arguments(parser)
@@ -92,8 +93,8 @@ def main(argv: list[str]) -> int:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
-    if unknown or args.episodes < 1 or args.ros_episodes < 1 or args.linger < 0:
-        parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown}); episodes and ros-episodes >= 1")
+    if unknown:
+        parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown})")
     if args.model_dir and args.via_ros:
         parser.error("--via-ros runs the shipped actor (the policy node's); leave out --model-dir")
     results = run_jobs(run_family, [(args.scene, f, args.episodes, args.seed, args.model_dir, args.linger)

@@ -21,6 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
+from semgoal_core.arguments import count, natural
+
 NEAR_THRESHOLD = 0.005
 """A literal whose true geometry is this close to a threshold (m) counts as a near-threshold case."""
 CONDITION_LOOKS = {"nominal": ("nominal", 0.0), "randomised": ("nominal", 1.0), "moved": ("moved", 0.0)}
@@ -206,8 +208,8 @@ def main(argv: list[str]) -> int:
     from semgoal_sim.perception_data import MEASUREMENT_SEED
 
     parser = argparse.ArgumentParser(prog="semgoal eval perception", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--frames", type=int, default=400)
-    parser.add_argument("--seed", type=int, default=MEASUREMENT_SEED)
+    parser.add_argument("--frames", type=count, default=400)
+    parser.add_argument("--seed", type=natural, default=MEASUREMENT_SEED)
     parser.add_argument("--conditions", default="nominal,randomised,moved", help=f"of {', '.join(CONDITION_LOOKS)}")
     parser.add_argument("--model-dir", type=Path, help="exported voter (default: the shipped one)")
     parser.add_argument("--cache", type=Path, default=Path("runs/perception"))

@@ -14,6 +14,7 @@ import time
 from dataclasses import fields
 from pathlib import Path
 
+from semgoal_core.arguments import count, natural
 from semgoal_core.provenance import provenance
 
 CHECKOUT_PACKAGE = Path(os.environ.get("SEMGOAL_ROOT") or Path.cwd()) / "src" / "semgoal_perception"
@@ -42,9 +43,9 @@ def main(argv: list[str]) -> int:
 
     recipe = json.loads(share_path("semgoal_perception", "recipes", "block_voter.json").read_text())
     parser = argparse.ArgumentParser(prog="semgoal train perception", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--images", type=int, default=recipe["images"], help="labelled frames to render and train on")
-    parser.add_argument("--seed", type=int, default=recipe["seed"], help="task starts seed + episode (8,000,000: training's range)")
-    parser.add_argument("--epochs", type=int, default=recipe["voter"]["epochs"])
+    parser.add_argument("--images", type=count, default=recipe["images"], help="labelled frames to render and train on")
+    parser.add_argument("--seed", type=natural, default=recipe["seed"], help="task starts seed + episode (8,000,000: training's range)")
+    parser.add_argument("--epochs", type=count, default=recipe["voter"]["epochs"])
     parser.add_argument("--out", type=Path, default=CHECKOUT_PACKAGE / "models" / "block_voter",
                         help="export folder (default: the shipped model, in the checkout)")
     parser.add_argument("--cache", type=Path, default=Path("runs/perception"))

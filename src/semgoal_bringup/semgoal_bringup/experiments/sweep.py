@@ -19,6 +19,8 @@ import sys
 from pathlib import Path
 
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
+from semgoal_core.arguments import count
+from semgoal_policy.recipes import RecipeError, load_recipe
 
 ATTEMPTS = 3
 """Times a seed's training process is started before the sweep reports it failed."""
@@ -69,9 +71,13 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--recipe", required=True, help="a shipped recipe (./semgoal train --help lists them)")
     parser.add_argument("--seeds", required=True, type=parse_seeds, help="e.g. 81-90 or 81,85,90")
     parser.add_argument("--executor", default="local", type=check_executor, help="local, dask or dask:ADDRESS")
-    parser.add_argument("--workers", type=int, default=2, help="seeds trained at once (local and a Dask LocalCluster)")
+    parser.add_argument("--workers", type=count, default=2, help="seeds trained at once (local and a Dask LocalCluster)")
     parser.add_argument("--runs-dir", help="the runs' folders: DIR/seedS (default: each recipe run's own under runs/)")
     args, settings = parser.parse_known_args(argv)
+    try:
+        load_recipe(args.recipe)  # refused here, not once per seed and attempt
+    except RecipeError as error:
+        parser.error(str(error))
     jobs = [(args.recipe, seed, settings, args.runs_dir) for seed in args.seeds]
     results = run_jobs(train_seed, jobs, args.executor, args.workers, what="seed")
     for result in results:

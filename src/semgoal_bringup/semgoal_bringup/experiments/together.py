@@ -21,6 +21,7 @@ from semgoal_bringup.experiments.episodes import Outcome
 from semgoal_bringup.experiments.evaluation import wilson_interval
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.tools.console_core import place_position, region_taken, step_place
+from semgoal_core.arguments import count, natural
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.names import Assignee, StepStatus
 from semgoal_core.tasks import get_task
@@ -138,9 +139,9 @@ def paired_parser(prog: str, doc: str) -> argparse.ArgumentParser:
     ``--executor``, ``--json``."""
     parser = argparse.ArgumentParser(prog=prog, description=doc.split("\n\n")[0])
     parser.add_argument("--task", default="DC-4")
-    parser.add_argument("--episodes", type=int, default=50)
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED, help="first task seed (start i: seed + i)")
-    parser.add_argument("--jobs", type=int, default=1, help="starts run at once")
+    parser.add_argument("--episodes", type=count, default=50)
+    parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="first task seed (start i: seed + i)")
+    parser.add_argument("--jobs", type=count, default=1, help="starts run at once")
     parser.add_argument("--executor", default="local", help="local | dask | dask:ADDRESS")
     parser.add_argument("--json", action="store_true", help="only the JSON line")
     return parser
@@ -153,8 +154,6 @@ def check_paired(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
         check_executor(args.executor)
     except (KeyError, ValueError) as error:
         parser.error(str(error.args[0]))
-    if args.episodes < 1:
-        parser.error("--episodes must be positive")
 
 
 def main(argv: list[str]) -> int:

@@ -11,6 +11,7 @@ import sys
 from functools import partial
 from pathlib import Path
 
+from semgoal_core.arguments import count, natural
 from semgoal_core.vocabulary import SCENES
 
 
@@ -110,28 +111,28 @@ def eval_subgoals_main(argv: list[str]) -> int:
 
     parser = argparse.ArgumentParser(prog="semgoal eval subgoals", description=eval_subgoals_main.__doc__)
     parser.add_argument("--scene", required=True, choices=list(SCENES))
-    parser.add_argument("--episodes", type=int, default=200, help="episodes per sub-goal type")
-    parser.add_argument("--seed", type=int, default=2_000_000, help="first episode seed (training uses seeds < 1e6)")
-    parser.add_argument("--horizon", type=int, default=EPISODE_STEPS,
+    parser.add_argument("--episodes", type=count, default=200, help="episodes per sub-goal type")
+    parser.add_argument("--seed", type=natural, default=2_000_000, help="first episode seed (training uses seeds < 1e6)")
+    parser.add_argument("--horizon", type=count, default=EPISODE_STEPS,
                         help=f"control steps per episode (default {EPISODE_STEPS}, the training horizon; the planner "
                              "grants a step stall_steps, 150, before it re-plans)")
     parser.add_argument("--action-mode", choices=ACTION_MODES, default="mean",
                         help="mean: the deterministic actor (default); sample: its Gaussian, seeded by --seed, "
                              "as policy_node runs it (action_mode: sample)")
     parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
-    parser.add_argument("--envs", type=int, default=10)
+    parser.add_argument("--envs", type=count, default=10)
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
-    for name in ("episodes", "horizon", "envs"):
-        if getattr(args, name) < 1:
-            parser.error(f"--{name} must be at least 1, got {getattr(args, name)}")
     import numpy as np
     import torch
 
     torch.set_num_threads(1)
-    actor, meta = load(args.model_dir or models_dir() / args.scene, args.scene)
+    try:
+        actor, meta = load(args.model_dir or models_dir() / args.scene, args.scene)
+    except (FileNotFoundError, ValueError) as error:  # no actor there, or one of another scene
+        parser.error(str(error))
     spec = get_agent("hierarchical")
     envs = [make_env("hierarchical", args.scene, derived_features(meta)) for _ in range(args.envs)]
     for env in envs:

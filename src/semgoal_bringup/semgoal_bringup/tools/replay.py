@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from mcap.exceptions import McapError
 
 from semgoal_core.layout import CONTROL_DT
 
@@ -143,8 +144,8 @@ def main(argv: list[str]) -> int:
         parser.error(f"no such file: {args.file}")
     try:
         episode = read(args.file)
-    except ValueError as error:
-        print(f"semgoal replay: {error}", file=sys.stderr)
+    except (ValueError, McapError) as error:  # not an MCAP file, or not one of ours
+        print(f"semgoal replay: {args.file}: {error}", file=sys.stderr)
         return 2
     if args.summary or not (args.verify or args.gif or args.mp4):
         print(summary(episode))

@@ -14,6 +14,7 @@ import ast
 import dataclasses
 import inspect
 import itertools
+import math
 import textwrap
 import typing
 from pathlib import Path
@@ -77,7 +78,32 @@ def build_config(recipe: dict, overrides: dict) -> TrainConfig:
     for name in ("run_dir", "export_dir"):
         if values.get(name) is not None:
             values[name] = Path(values[name])
+    _check_ranges({**values, **{f"sac.{k}": v for k, v in dataclasses.asdict(sac).items()}})
     return TrainConfig(**{**values, "sac": sac})
+
+
+RANGES: dict[str, tuple[float, float, str]] = {
+    "steps": (1, math.inf, "[]"), "seed": (0, math.inf, "[]"), "n_envs": (1, math.inf, "[]"),
+    "updates_per_step": (0, math.inf, "(]"), "learning_starts": (0, math.inf, "[]"), "refill_steps": (0, math.inf, "[]"),
+    "demo_fraction": (0, 1, "[]"), "demo_noise": (0, math.inf, "[]"), "spawn_margin": (0, math.inf, "[]"),
+    "missed_put_share": (0, 1, "[]"), "max_blocks": (1, math.inf, "[]"), "tower_share": (0, 1, "[]"),
+    "eval_every": (1, math.inf, "[]"), "eval_episodes": (1, math.inf, "[]"), "final_eval_episodes": (0, math.inf, "[]"),
+    "max_wall_s": (0, math.inf, "(]"), "torch_threads": (1, math.inf, "[]"),
+    "sac.gamma": (0, 1, "(]"), "sac.tau": (0, 1, "(]"), "sac.lr": (0, math.inf, "(]"), "sac.batch_size": (1, math.inf, "[]"),
+    "sac.bc_weight": (0, math.inf, "[]"), "sac.actor_average_rate": (0, 1, "[)"), "sac.mean_reg": (0, math.inf, "[]"),
+}
+"""Each number's allowed range (low, high, which ends are in): a setting out of it is refused before training."""
+
+
+def _check_ranges(values: dict) -> None:
+    for name, (low, high, ends) in RANGES.items():
+        value = values.get(name)
+        if value is None:
+            continue
+        inside = (value >= low if ends[0] == "[" else value > low) and (value <= high if ends[1] == "]" else value < high)
+        if not (math.isfinite(value) and inside):
+            bound = f"{ends[0]}{low:g}, " + ("∞)" if high == math.inf else f"{high:g}{ends[1]}")
+            raise RecipeError(f"setting {name} = {value!r} is out of its range {bound}")
 
 
 def add_config_flags(parser: argparse.ArgumentParser) -> None:

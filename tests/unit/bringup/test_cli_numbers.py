@@ -25,6 +25,7 @@ REFUSED = [
     (["goal", "DC-3", "--wait", "--timeout", "-1"], "--timeout"),
     (["train", "dagger", "--scene", "two_blocks", "--epochs", "0"], "--epochs"),
     (["sweep", "--recipe", "two_blocks", "--seeds", "1", "--workers", "0"], "--workers"),
+    (["study", "run", "protocol.yaml", "--participant", "P1", "--row", "-7"], "--row"),
 ]
 
 
@@ -41,6 +42,9 @@ def test_a_number_out_of_range_exits_2_naming_the_option(argv: list[str], option
     (["model-card", "/nonexistent"], "no exported actor (actor.json) in /nonexistent"),
     (["eval", "subgoals", "--scene", "two_blocks", "--model-dir", "/nonexistent"], "no exported actor in /nonexistent"),
     (["sweep", "--recipe", "nonexistent", "--seeds", "1"], "no recipe 'nonexistent'"),
+    (["train", "--recipe", "two_blocks", "--steps", "-5"], "setting steps = -5 is out of its range [1, ∞)"),
+    (["train", "--recipe", "two_blocks", "--lr", "nan"], "setting sac.lr = nan is out of its range (0, ∞)"),
+    (["train", "--recipe", "two_blocks", "--demo-fraction", "1.5"], "setting demo_fraction = 1.5 is out of its range [0, 1]"),
 ])
 def test_a_name_or_folder_that_is_not_there_exits_2_with_the_reason(argv: list[str], words: str, capsys) -> None:
     with pytest.raises(SystemExit) as stopped:

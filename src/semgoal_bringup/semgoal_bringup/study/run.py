@@ -11,6 +11,7 @@ from pathlib import Path
 
 from semgoal_bringup.graph import graph_commands, graph_nodes, stop_graph
 from semgoal_bringup.study.protocol import ProtocolError, check_participant, load_protocol
+from semgoal_core.arguments import count, natural
 from semgoal_core.names import Mode
 from semgoal_core.tasks import get_task
 from semgoal_ros.package_data import share_path
@@ -25,9 +26,9 @@ def main(argv: list[str]) -> int:
                         "desk-together")
     parser.add_argument("--participant", required=True)
     parser.add_argument("--out", type=Path, default=Path("study-results"))
-    parser.add_argument("--port", type=int, default=8080)
+    parser.add_argument("--port", type=count, default=8080)
     parser.add_argument("--token", default="")
-    parser.add_argument("--row", type=int, help="the Latin square's row (default: from the participant's ID)")
+    parser.add_argument("--row", type=natural, help="the Latin square's row (default: from the participant's ID)")
     args = parser.parse_args(argv)
     if not args.protocol.exists() and args.protocol.suffix == "":  # a shipped protocol, by name
         args.protocol = share_path("semgoal_bringup", "study", f"{args.protocol}.yaml")

@@ -32,6 +32,7 @@ import numpy as np
 
 from semgoal_bringup.study.session import Phase
 from semgoal_bringup.tools.console_core import PLACES, StudyLog, place_position, region_taken, sentences, unsure_sentences
+from semgoal_core.arguments import natural
 from semgoal_core.names import Assignee, StepStatus, agent
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
@@ -451,7 +452,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--study", type=Path, help="study mode: a protocol (YAML) to walk the participant through")
     parser.add_argument("--participant", help="study mode: the participant's ID (all that identifies them)")
     parser.add_argument("--out", type=Path, default=Path("study-results"), help="study mode: where sessions go")
-    parser.add_argument("--row", type=int, help="study mode: the row of the conditions' Latin square (default: "
+    parser.add_argument("--row", type=natural, help="study mode: the row of the conditions' Latin square (default: "
                         "from the participant's ID)")
     args, ros_args = parser.parse_known_args(argv)
     try:

@@ -150,26 +150,28 @@ def _turns(actions: list[Operator], hand: int) -> list[int]:
     return numbers
 
 
-def _towers_last(task: Task, plan: list[Operator]) -> list[Operator]:
-    """``plan`` with its turns of the hand in an order its orderings allow (:func:`strips_planner.deorder.deorder`),
-    the turns that stack a block on another last and the rest in their order: a block picked or put beside a tower
-    already built can knock it over, so Sort bins its blocks before it builds its tower. The hand is left out of the
-    orderings (each turn begins and ends with it empty); an order that does not run (a turn begun or ended in the
-    hand) leaves the plan as it was."""
+def _bins_first(task: Task, plan: list[Operator]) -> list[Operator]:
+    """``plan`` with its turns of the hand that put a block in the bin first, as far as its orderings allow
+    (:func:`strips_planner.deorder.deorder`), the rest in their order: a block picked beside a finished tower can
+    knock it over, so Sort clears its blocks into the bin before it builds its tower. (Moving every other turn before
+    the stacking ones too put blocks next to a tower's foot before it was built, and the stacking knocked them.) The
+    hand is left out of the orderings (each turn begins and ends with it empty); an order that does not run (a turn
+    begun or ended in the hand) leaves the plan as it was."""
     hand = _bits(task, Literal(HAND_EMPTY, ()))
+    binning = sum(1 << index for index, atom in enumerate(task.facts) if atom.predicate == "in_bin")
     stacking = sum(1 << index for index, atom in enumerate(task.facts) if atom.predicate == "above")
-    turn = _turns(plan, hand)
-    count = turn[-1] + 1 if plan else 0
-    if count < 2 or not stacking:
+    if not (binning and stacking and any(op.add & stacking for op in plan)):
         return plan
+    turn = _turns(plan, hand)
+    count = turn[-1] + 1
     after: list[set[int]] = [set() for _ in range(count)]
     for j, preds in enumerate(deorder(task, plan, ignore=hand)):
         after[turn[j]] |= {turn[i] for i in preds if turn[i] != turn[j]}
-    stacks = {turn[i] for i, op in enumerate(plan) if op.add & stacking}
+    bins = {turn[i] for i, op in enumerate(plan) if op.add & binning}
     order: list[int] = []
     while len(order) < count:
         ready = [t for t in range(count) if t not in order and after[t] <= set(order)]
-        order.append(min(ready, key=lambda t: (t in stacks, t)))
+        order.append(min(ready, key=lambda t: (t not in bins, t)))
     reordered = [op for t in order for op, of in zip(plan, turn, strict=True) if of == t]
     state = task.init
     for op in reordered:
@@ -254,7 +256,7 @@ class SemanticPlanner:
             goal_text = " & ".join(map(str, goal))
             raise PlanningError(f"no plan reaches {goal_text} from the current state: "
                                 f"{self.conflict(objects, state, goal) or result.reason}")
-        actions = _towers_last(task, list(result.plan))
+        actions = _bins_first(task, list(result.plan))
         return [_relied_upon(task, actions, index) for index in range(len(actions))]
 
     def conflict(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> str:

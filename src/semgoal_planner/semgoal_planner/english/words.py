@@ -67,6 +67,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
     (_LISTED_INTO_A_TOWER + r"(?= and\b|$)", r"stack \g<listed> then"),  # "red, green and blue in a tower, the rest ..."
     (_LISTED_INTO_A_TOWER, r"stack \g<listed> and put \g<base>"),  # "... in a tower next to yellow": its bottom block
+    (rf"(?P<verb>stack|build a tower of|build a stack of) (the )?(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
+     r"( blocks| cubes)? (?P<place>next to|near|beside|close to|by)", r"\g<verb> \g<listed> and put \g<base> \g<place>"),
+    # "stack red, green and blue next to yellow": the tower, so its bottom block, is the one next to yellow
     (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
     (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"

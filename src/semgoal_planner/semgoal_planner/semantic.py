@@ -162,23 +162,25 @@ def _bins_first(task: Task, plan: list[Operator]) -> list[Operator]:
     stacking = sum(1 << index for index, atom in enumerate(task.facts) if atom.predicate == "above")
     if not (binning and stacking and any(op.add & stacking for op in plan)):
         return plan
-    turn = _turns(plan, hand)
-    count = turn[-1] + 1
-    after: list[set[int]] = [set() for _ in range(count)]
-    for j, preds in enumerate(deorder(task, plan, ignore=hand)):
-        after[turn[j]] |= {turn[i] for i in preds if turn[i] != turn[j]}
+    turn, after = _turn_orderings(task, plan, hand)
     bins = {turn[i] for i, op in enumerate(plan) if op.add & binning}
     order: list[int] = []
-    while len(order) < count:
-        ready = [t for t in range(count) if t not in order and after[t] <= set(order)]
+    while len(order) < len(after):
+        ready = [t for t in range(len(after)) if t not in order and after[t] <= set(order)]
         order.append(min(ready, key=lambda t: (t not in bins, t)))
     reordered = [op for t in order for op, of in zip(plan, turn, strict=True) if of == t]
-    state = task.init
-    for op in reordered:
-        if not op.applicable(state):
-            return plan
-        state = op.apply(state)
-    return reordered if task.goal_reached(state) else plan
+    return reordered if _runs(task, task.init, [[op] for op in reordered]) else plan
+
+
+def _turn_orderings(task: Task, actions: list[Operator], hand: int) -> tuple[list[int], list[set[int]]]:
+    """Each action's turn of the hand (:func:`_turns`) and, per turn, the turns it must follow: where one of its
+    steps relies on an effect of the other's or would undo one too early (:func:`strips_planner.deorder.deorder`,
+    the hand left out: each agent has its own)."""
+    turn = _turns(actions, hand)
+    after: list[set[int]] = [set() for _ in range(turn[-1] + 1 if actions else 0)]
+    for j, preds in enumerate(deorder(task, actions, ignore=hand)):
+        after[turn[j]] |= {turn[i] for i in preds if turn[i] != turn[j]}
+    return turn, after
 
 
 def _bits(task: Task, literal: Literal) -> int:
@@ -391,15 +393,12 @@ class SemanticPlanner:
         actions = [next(iter(_operators_for(task, step)), None) for step in steps]
         if None in actions:
             return in_sequence(len(steps))
-        hand = _bits(task, Literal(HAND_EMPTY, ()))
-        turn = _turns(actions, hand)
+        turn, turn_after = _turn_orderings(task, actions, _bits(task, Literal(HAND_EMPTY, ())))
         after: list[set[int]] = [{i - 1} if i and turn[i - 1] == turn[i] else set() for i in range(len(steps))]
         first = {t: turn.index(t) for t in set(turn)}
-        for j, preds in enumerate(deorder(task, actions, ignore=hand)):
-            for i in preds:
-                if turn[i] != turn[j]:  # turn[j] starts after the whole of turn[i]
-                    last = max(k for k, t in enumerate(turn) if t == turn[i])
-                    after[first[turn[j]]].add(last)
+        last = {t: len(turn) - 1 - turn[::-1].index(t) for t in set(turn)}
+        for t, before in enumerate(turn_after):  # a turn starts after the whole of each turn it follows
+            after[first[t]] |= {last[u] for u in before}
         return transitive_reduction(after)
 
     @staticmethod

@@ -83,6 +83,8 @@ def test_unreachable_goal_is_reported() -> None:
      "pick(red), the only action that makes holding(red) true, needs the free gripper that holding(green) takes"),
     ("two_blocks", "holding(red) & above(green,red)",
      "pick(red), the only action that makes holding(red) true, needs above(green,red) false"),
+    ("tabletop", "above(green,red) & in_bin(red)",  # "stack red and green in the bin": no tower stands in the bin
+     "put_on(green,red), the only action that makes above(green,red) true, needs in_bin(red) false"),
 ])
 def test_an_unreachable_goal_names_the_literals_that_conflict(scene: str, goal: str, named: str) -> None:
     """Not only "no state reachable", but which of the goal's literals exclude each other and, where

@@ -9,7 +9,7 @@ from dataclasses import replace
 
 from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
-from semgoal_planner.english.words import LanguageError, examples
+from semgoal_planner.english.words import UNORDERED_TOWER, LanguageError, examples
 
 TOWER_TOP, TOWER_BASE, TOWER_ALL = "tower_top", "tower_base", "tower_all"
 """What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
@@ -111,8 +111,7 @@ class Resolver:
             else:  # "... but not green": the relation of the clause before
                 clause = replace(before, subjects=clause.subjects, negated=before.negated != clause.negated)
         if clause.kind == "tower" and (len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)):
-            raise LanguageError("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks "
-                                "from the bottom up: 'build a tower of red, green and blue'")
+            raise LanguageError(UNORDERED_TOWER)
         subjects = self.subjects_of(clause)
         if not subjects and clause.kind == "release":  # "let go" with nothing picked before: the hand empty
             subjects = self.blocks

@@ -15,6 +15,12 @@ DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 ANY_ORDER = "anyorder"
 """What 'in any order' leaves: nothing for blocks put each in its place; a tower has one order (refused)."""
+INTO_A_TOWER = "intoatower"
+"""What 'in a tower' leaves where no blocks are named in order: nothing after 'stack', else a tower with no order
+(refused in :func:`normalise`)."""
+UNORDERED_TOWER = ("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks from the bottom "
+                   "up: 'build a tower of red, green and blue'")
+"""Why a tower whose blocks are not named in order is refused."""
 TOP_MARK, BASE_MARK = "towertop", "towerbase"
 """The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
 (:func:`_tower_end_named`)."""
@@ -22,7 +28,8 @@ _COLOUR = "|".join(BLOCK_COLOURS)
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
 
-_LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get) )?(the )?(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
+_LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile) )?(the )?"
+                        rf"(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
                         r"( blocks| cubes)? (in|into|as|to) (a|one|another|a second|a separate) (single )?(tower|stack|pile)")
 """Blocks named into a tower, whatever the verb ('put red, green and blue in a tower'): stacked in the order named; where
 the tower goes, its bottom block goes."""
@@ -68,9 +75,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (_LISTED_INTO_A_TOWER + r"(?= and\b|$)", r"stack \g<listed> then"),  # "red, green and blue in a tower, the rest ..."
     (_LISTED_INTO_A_TOWER, r"stack \g<listed> and put \g<base>"),  # "... in a tower next to yellow": its bottom block
     (rf"(?P<verb>stack|build a tower of|build a stack of) (the )?(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
-     r"( blocks| cubes)? (?P<place>next to|near|beside|close to|by)", r"\g<verb> \g<listed> and put \g<base> \g<place>"),
-    # "stack red, green and blue next to yellow": the tower, so its bottom block, is the one next to yellow
-    (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", ""),  # "stack all blocks into one tower"
+     r"( blocks| cubes)? (?P<place>next to|near|beside|close to|by|away from|far from|(in|into|out of)(?= (the )?bin\b)|"
+     rf"(on|onto)(?= (the )?table\b)|(on|onto|on top of)(?= (the )?({_COLOUR}|the_tower)\b))",
+     r"\g<verb> \g<listed> and put \g<base> \g<place>"),
+    # "stack red, green and blue next to yellow", "in the bin", "on the table", "on yellow": the tower, so its bottom
+    # block, goes there
+    (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", INTO_A_TOWER),  # "stack all blocks into one tower"
     (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"
      r"down from) "
@@ -205,6 +215,53 @@ def examples(scene: str, blocks: Sequence[str]) -> str:
     return ", ".join(f"'{s}'" for s in said[:3])
 
 
+_CONDITION_WORDS = frozenset({"in", "to", "out", "from", "near", "away", "on", "under", "off", "down", "together", "apart",
+                              "held"})
+"""The words a place or state starts with in the grammar (``dest``, ``condition``)."""
+
+
+_TAKES_AFTER_A_LIST = {"stack": frozenset(), "remove": frozenset({"from", "out", "off", "from bin", "out bin"}),
+                       "pick": frozenset({"up", "off", "from", "out", "held", "from bin", "out bin"}),
+                       "separate": frozenset({"apart", "out", "from", "away"}), "group": frozenset({"together", "near"}),
+                       "clean": frozenset({"in bin"}), "swap": frozenset(), "unstack": frozenset({"on", "down"}),
+                       "empty": frozenset({"out", "out bin"}), "release": frozenset(), "bin": frozenset()}
+"""Verbs that take a bare list of blocks, with the place words each takes after it, and "bin" after them where that is
+meant (the grammar's ``action``; 'stack' none: a tower going somewhere was rewritten above). Another place after the
+list would split it: all but the last block to the verb, the last to the place."""
+_SPLIT_LIST = ("'{verb} {listed} {place} ...' would {verb} all but the last block and put the last one {place} ...: give "
+               "it a verb of its own (e.g. '{verb} red and green and put blue in the bin')")
+_SPLIT_TOWER = ("a tower of {listed} cannot be '{place}' as a whole: say where its bottom block goes (e.g. 'stack red, "
+                "green and blue next to yellow') or give the last block a verb of its own ('stack red and green and put "
+                "blue in the bin')")
+
+
+def _refuse_a_list_split(words: list[str]) -> None:
+    """'stack red, green and blue apart', 'separate red, green and blue in the bin': a list of blocks after a verb,
+    then a place the verb does not take, is refused (read, it would split the list, see :data:`_TAKES_AFTER_A_LIST`)."""
+    for start in (i for i, word in enumerate(words) if word in _TAKES_AFTER_A_LIST):
+        end, named = start + 1, 0
+        while end < len(words) and words[end] in BLOCK_COLOURS:
+            named += 1
+            end += 2 if end + 2 < len(words) and words[end + 1] == "and" and words[end + 2] in BLOCK_COLOURS else 1
+        place = words[end] if end < len(words) else ""
+        said = f"{place} bin" if words[end + 1:end + 2] == ["bin"] else place
+        if named >= 2 and place in _CONDITION_WORDS and said not in _TAKES_AFTER_A_LIST[words[start]]:
+            listed = ", ".join(w for w in words[start + 1:end] if w != "and")
+            message = _SPLIT_TOWER if words[start] == "stack" else _SPLIT_LIST
+            raise LanguageError(message.format(verb=words[start], listed=listed, place=place))
+
+
+def _stacked_into_a_tower(words: list[str]) -> list[str]:
+    """'stack all blocks into one tower': the mark dropped, 'stack' says it; 'the rest in a tower' (no verb of its own,
+    so it would take the clause before's place): refused, as a tower of blocks not named in order is."""
+    verbs = {"put", "take", "keep", "pick", "remove", "clean", "empty", "group", "separate", "swap", "unstack", "release",
+             "bin", "stack"}
+    for at, word in enumerate(words):
+        if word == INTO_A_TOWER and next((w for w in reversed(words[:at]) if w in verbs), None) != "stack":
+            raise LanguageError(UNORDERED_TOWER)
+    return [w for w in words if w != INTO_A_TOWER]
+
+
 def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (with the
     ``blocks`` present, by colour, and goals the scene can state)."""
@@ -229,6 +286,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     words = [w for w in text.split() if w not in FILLERS]
     for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
+    _refuse_a_list_split(words)
+    words = _stacked_into_a_tower(words)
     if ANY_ORDER in words:
         if "stack" in words:
             raise LanguageError("a tower stands in one order: name its blocks from the bottom up, e.g. 'build a tower "

@@ -220,13 +220,15 @@ _CONDITION_WORDS = frozenset({"in", "to", "out", "from", "near", "away", "on", "
 """The words a place or state starts with in the grammar (``dest``, ``condition``)."""
 
 
-_TAKES_AFTER_A_LIST = {"stack": frozenset(), "remove": frozenset({"from", "out", "off", "from bin", "out bin"}),
-                       "pick": frozenset({"up", "off", "from", "out", "held", "from bin", "out bin"}),
+_TAKES_AFTER_A_LIST = {"stack": frozenset(),
+                       "remove": frozenset({"from", "out", "off", "from bin", "out bin", "from table", "off table"}),
+                       "pick": frozenset({"up", "off", "from", "out", "held", "from bin", "out bin", "from table",
+                                          "off table"}),
                        "separate": frozenset({"apart", "out", "from", "away"}), "group": frozenset({"together", "near"}),
-                       "clean": frozenset({"in bin"}), "swap": frozenset(), "unstack": frozenset({"on", "down"}),
+                       "clean": frozenset({"in bin"}), "swap": frozenset(), "unstack": frozenset({"down", "on table"}),
                        "empty": frozenset({"out", "out bin"}), "release": frozenset(), "bin": frozenset()}
-"""Verbs that take a bare list of blocks, with the place words each takes after it, and "bin" after them where that is
-meant (the grammar's ``action``; 'stack' none: a tower going somewhere was rewritten above). Another place after the
+"""Verbs that take a bare list of blocks, with the place words each takes after it, and "bin" or "table" after them where
+that is meant (the grammar's ``action``; 'stack' none: a tower going somewhere was rewritten above). Another place after the
 list would split it: all but the last block to the verb, the last to the place."""
 _SPLIT_LIST = ("'{verb} {listed} {place} ...' would {verb} all but the last block and put the last one {place} ...: give "
                "it a verb of its own (e.g. '{verb} red and green and put blue in the bin')")
@@ -244,7 +246,7 @@ def _refuse_a_list_split(words: list[str]) -> None:
             named += 1
             end += 2 if end + 2 < len(words) and words[end + 1] == "and" and words[end + 2] in BLOCK_COLOURS else 1
         place = words[end] if end < len(words) else ""
-        said = f"{place} bin" if words[end + 1:end + 2] == ["bin"] else place
+        said = f"{place} {words[end + 1]}" if words[end + 1:end + 2] in (["bin"], ["table"]) else place
         if named >= 2 and place in _CONDITION_WORDS and said not in _TAKES_AFTER_A_LIST[words[start]]:
             listed = ", ".join(w for w in words[start + 1:end] if w != "and")
             message = _SPLIT_TOWER if words[start] == "stack" else _SPLIT_LIST

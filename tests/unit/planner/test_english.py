@@ -308,6 +308,8 @@ PHRASES = [
     ("tabletop", "stack red, green and blue out of the bin", "above(green,red) & above(blue,green) & not in_bin(red)"),
     ("tabletop", "separate red and green from blue", "not close(red,blue) & not close(green,blue)"),
     ("tabletop", "pick red and green out of the bin", "not in_bin(red) & not in_bin(green)"),
+    ("tabletop", "don't move red and stack green on blue", "above(green,blue)"),  # as 'keep red where it is and ...'
+    ("desk_cleanup", "never touch red, put green in the bin", "in_bin(green)"),
     ("tabletop", "pile red, green and blue into one stack next to yellow",
      "above(green,red) & above(blue,green) & close(red,yellow)"),
     ("tabletop", "stack red, green and blue in the bin", "above(green,red) & above(blue,green) & in_bin(red)"),
@@ -333,6 +335,8 @@ REFUSALS = [
     ("desk_cleanup", "hold red and green", "holds one block at a time"),
     ("desk_cleanup", "put red in the bin and take it out", "contradictory goal"),
     ("desk_cleanup", "leave red where it is", "asks for no change"),
+    ("desk_cleanup", "do not move red", "asks for no change"),
+    ("tabletop", "don't knock the tower over", "asks for no change"),
     ("desk_cleanup", "put red in the", "cannot read the goal as a sentence"),
     ("desk_cleanup", "in in in", "cannot read the goal as a sentence"),
     ("desk_cleanup", "", "says nothing to do"),

@@ -36,6 +36,10 @@ the tower goes, its bottom block goes."""
 
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
+    (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red":
+    # as 'keep red where it is', it adds nothing to where the blocks end (alone, it is refused as asking for no change)
+    (r"(don'?t|do not|never|please don'?t) (knock|tear|topple|take)( over| down)?( the| your| that| this)? (tower|stack|pile)"
+     r"( over| down)?", "keep the_whole"),  # "don't knock the tower over": the same, for the tower's blocks
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
      r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))", "release all"),
     (rf"(and )?with (the )?(?P<top>{_COLOUR})( block| cube| one)? (on (the )?top|at the top|as the top|"

@@ -337,6 +337,7 @@ REFUSALS = [
     ("desk_cleanup", "leave red where it is", "asks for no change"),
     ("desk_cleanup", "do not move red", "asks for no change"),
     ("tabletop", "don't knock the tower over", "asks for no change"),
+    ("tabletop", "do not unstack", "'not unstack' asks for nothing"),
     ("desk_cleanup", "put red in the", "cannot read the goal as a sentence"),
     ("desk_cleanup", "in in in", "cannot read the goal as a sentence"),
     ("desk_cleanup", "", "says nothing to do"),

@@ -129,6 +129,9 @@ class Resolver:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "
                                     f"'put {subjects[0]} on the tower'")
             objects = tuple(TOWER_PLACES[clause.kind] if b == "tower" else b for b in objects)
+        if clause.negated and clause.kind == "unstack":  # not every 'not above' at once: that is no state at all
+            raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "
+                                "blocks should be, e.g. 'stack red on green'")
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
         said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]

@@ -74,6 +74,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the other (two|three)|all (of )?(the )?others|all (of )?the other (blocks|cubes|ones)|every other (block|cube|one)",
      "other"),
     (r"as well as|as well|along with", "and"),
+    (rf"(and )?so (does|do|is|are|should|must|will|has|have)(?= (the )?({_COLOUR})\b)", "and"),  # "... and so does green"
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
     (_LISTED_INTO_A_TOWER + r"(?= and\b|$)", r"stack \g<listed> then"),  # "red, green and blue in a tower, the rest ..."

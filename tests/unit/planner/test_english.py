@@ -311,6 +311,8 @@ PHRASES = [
     ("tabletop", "don't move red and stack green on blue", "above(green,blue)"),  # as 'keep red where it is and ...'
     ("desk_cleanup", "never touch red, put green in the bin", "in_bin(green)"),
     ("desk_cleanup", "red goes in the bin and so does green", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "put red in the bin and empty your hand",
+     "in_bin(red) & not holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
     ("tabletop", "pile red, green and blue into one stack next to yellow",
      "above(green,red) & above(blue,green) & close(red,yellow)"),
     ("tabletop", "stack red, green and blue in the bin", "above(green,red) & above(blue,green) & in_bin(red)"),

@@ -101,7 +101,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
-     r"empty[- ]handed|empty (hand|gripper))", "and release all"),
+     r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))", "and release all"),
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"

@@ -311,6 +311,8 @@ PHRASES = [
     ("tabletop", "don't move red and stack green on blue", "above(green,blue)"),  # as 'keep red where it is and ...'
     ("desk_cleanup", "never touch red, put green in the bin", "in_bin(green)"),
     ("desk_cleanup", "red goes in the bin and so does green", "in_bin(red) & in_bin(green)"),
+    ("three_blocks", "red with green, blue alone", "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "leave red alone and put green near blue", "close(green,blue)"),
     ("desk_cleanup", "put red in the bin and empty your hand",
      "in_bin(red) & not holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
     ("tabletop", "pile red, green and blue into one stack next to yellow",

@@ -95,7 +95,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
     (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
-    (r"by (itself|themselves)|on (its|their) own|all alone", "apart"),
+    (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
+    (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|not", "not"),

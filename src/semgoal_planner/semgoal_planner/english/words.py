@@ -262,8 +262,7 @@ def _refuse_a_list_split(words: list[str]) -> None:
 def _stacked_into_a_tower(words: list[str]) -> list[str]:
     """'stack all blocks into one tower': the mark dropped, 'stack' says it; 'the rest in a tower' (no verb of its own,
     so it would take the clause before's place): refused, as a tower of blocks not named in order is."""
-    verbs = {"put", "take", "keep", "pick", "remove", "clean", "empty", "group", "separate", "swap", "unstack", "release",
-             "bin", "stack"}
+    verbs = {"put", "take", "keep", *_TAKES_AFTER_A_LIST}
     for at, word in enumerate(words):
         if word == INTO_A_TOWER and next((w for w in reversed(words[:at]) if w in verbs), None) != "stack":
             raise LanguageError(UNORDERED_TOWER)

@@ -325,6 +325,25 @@ PHRASES = [
     ("tabletop", "stack red and green on the table",
      "above(green,red) & not holding(red) & not in_bin(red) & not above(red,green) & not above(red,blue) & "
      "not above(red,yellow) & not above(red,orange) & not above(red,purple) & not above(red,cyan) & not above(red,pink)"),
+    # a tower said by its blocks' places after 'a stack with'
+    ("tabletop", "make a stack with blue on the bottom, green in the middle and red on top",
+     "above(green,blue) & above(red,green)"),
+    ("tabletop", "a pile with red on top and green at the bottom", "above(red,green)"),
+    # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
+    ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),
+    ("tabletop", "after picking up red, put it on green", "above(red,green)"),
+    ("tabletop", "before you stack red on green, put green in the bin", "in_bin(green) & above(red,green)"),
+    ("tabletop", "put red on green after you have put blue in the bin", "in_bin(blue) & above(red,green)"),
+    ("tabletop", "once red is in the bin, put green on blue", "in_bin(red) & above(green,blue)"),
+    ("desk_cleanup", "put the blocks in the bin one after the other",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    # an ellipsis's 'not' is against the clause that said the relation, not against the ellipsis before it
+    ("desk_cleanup", "put red in the bin, not green and not blue", "in_bin(red) & not in_bin(green) & not in_bin(blue)"),
+    ("three_blocks", "red and green should be next to each other but not blue",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("tabletop", "group red and green, not blue and not yellow",
+     "close(red,green) & not close(red,blue) & not close(green,blue) & not close(red,yellow) & not close(green,yellow)"),
 ]
 
 REFUSALS = [
@@ -386,6 +405,8 @@ REFUSALS = [
     ("three_blocks", "swap red and green", "in scene three_blocks two blocks have no places to trade"),
     ("tabletop", "put red in the bin if it is on the table", "'if' leaves the goal open"),
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
+    ("tabletop", "put red at the bottom of the tower", "a block goes under a standing tower only by building"),
+    ("tabletop", "slide red under the stack", "a block goes under a standing tower only by building"),
 ]
 
 
@@ -548,7 +569,7 @@ def test_what_only_the_world_can_say_is_kept_for_the_state_it_is_planned_in(text
 
 @pytest.mark.parametrize(("scene", "text", "words"), [
     ("tabletop", "the tower should be in the bin", "cannot read the goal"),
-    ("tabletop", "put red under the tower", "cannot read the goal"),
+    ("tabletop", "put red under the tower", "a block goes under a standing tower"),
     ("tabletop", "put orange and red on the tower", "a block goes on one block"),
     ("three_blocks", "put red on the tower", "predicate 'above' is not used in scene 'three_blocks'"),
     ("tabletop", "put the top block on the tower", "a block of the tower cannot be placed on or by itself"),

@@ -43,6 +43,8 @@ class Resolver:
         """The blocks the clause before was about (what 'it' names)."""
         self.last_named: tuple[str, ...] = ()
         """Every block the clause before named, subjects and objects (what 'them' names)."""
+        self.stated: Clause | None = None
+        """The last clause that said its relation (what an ellipsis such as 'but not green' borrows)."""
 
     def blocks_of(self, refs: Iterable[Ref], besides: tuple[str, ...] = ()) -> tuple[str, ...]:
         """The blocks ``refs`` name; ``besides``: the clause's subjects, which an object's 'it' is not."""
@@ -103,13 +105,17 @@ class Resolver:
         """The clause's literals, each with whether it is generic (said of all blocks or the others, so a
         literal on a named block overrides it), and the clause as completed (an ellipsis borrows from
         ``before``)."""
+        borrows_relation = clause.elliptic and not clause.kind
         if clause.elliptic:
             if before is None:
                 raise LanguageError(f"the goal starts mid-sentence: say what to do, e.g. {self.examples}")
+            stated = self.stated or before  # "red in the bin, not green and not blue": each 'not' against 'in the bin'
             if clause.kind:  # "... and away from blue": the subjects of the clause before
                 clause = replace(clause, subjects=clause.subjects or before.subjects, elliptic=False)
-            else:  # "... but not green": the relation of the clause before
-                clause = replace(before, subjects=clause.subjects, negated=before.negated != clause.negated)
+            elif stated.kind == "together" and clause.negated and not stated.negated:  # "red and green together, but
+                clause = replace(clause, kind="away", objects=stated.subjects, elliptic=False, negated=False)  # not blue"
+            else:  # "... but not green": the relation of the clause that said one
+                clause = replace(stated, subjects=clause.subjects, negated=stated.negated != clause.negated)
         if clause.kind == "tower" and (len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)):
             raise LanguageError(UNORDERED_TOWER)
         subjects = self.subjects_of(clause)
@@ -149,6 +155,8 @@ class Resolver:
         self.last = subjects
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
+        if not borrows_relation:
+            self.stated = resolved
         return [(lit.negated() if clause.negated else lit, g) for lit, g in said], resolved
 
     def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:

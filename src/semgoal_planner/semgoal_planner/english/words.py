@@ -21,6 +21,9 @@ INTO_A_TOWER = "intoatower"
 UNORDERED_TOWER = ("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks from the bottom "
                    "up: 'build a tower of red, green and blue'")
 """Why a tower whose blocks are not named in order is refused."""
+UNDER_A_TOWER = "underatower"
+"""What 'under the tower', 'at the bottom of the tower' leave: a block slid under a standing tower, which means building
+the tower again on it (refused in :func:`normalise`, saying how to name the new tower)."""
 TOP_MARK, BASE_MARK = "towertop", "towerbase"
 """The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
 (:func:`_tower_end_named`)."""
@@ -57,6 +60,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      r"the (block|cube|one) (at|on) the (bottom|base|foot)( of (the|that|this|your) (tower|stack|pile))?",
      "the_base"),  # "put the top block in the bin": the tower's ends, placed when planned
+    (r"((at|to|on|in) the (bottom|base|foot) of|under|underneath|beneath|below)( the| that| this| your) (tower|stack|"
+     r"pile)(?! of)", UNDER_A_TOWER),  # "put red at the bottom of the tower"
     (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
@@ -65,7 +70,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
-    (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another)|"
+    (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
@@ -274,7 +279,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text.lower()) + " "
+    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "),
+                        _in_time_order(_GERUND.sub(lambda m: _GERUNDS[m[0]], text.lower()))) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
@@ -300,6 +306,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
             raise LanguageError("a tower stands in one order: name its blocks from the bottom up, e.g. 'build a tower "
                                 "of red, green and blue'")
         words = [w for w in words if w != ANY_ORDER]  # "put the blocks in the bin in any order": where, not when
+    if UNDER_A_TOWER in words:
+        raise LanguageError("a block goes under a standing tower only by building the tower again on it: name the new "
+                            "tower's blocks from the bottom up, e.g. 'build a tower of red, green and blue'")
     if DIRECTION in words:
         raise LanguageError(f"directions (left of, behind) are not among scene {scene}'s predicates "
                             f"({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. {examples(scene, blocks)}")
@@ -517,6 +526,8 @@ _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
                        r"on the bottom|at the base)\b")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
+_A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) with $")
+"""A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
 _LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "at the bottom": 0, "on the bottom": 0,
            "at the base": 0}
 
@@ -530,15 +541,49 @@ def _tower_by_positions(text: str) -> str:
             runs[-1].append(match)
         else:
             runs.append([match])
-    for run in reversed([r for r in runs if len(r) >= 2 and not text[:r[0].start()].endswith("with ")]):
+    for run in reversed([r for r in runs if len(r) >= 2]):
+        before = text[:run[0].start()]
+        if before.endswith("with "):
+            if not _A_TOWER_WITH.search(before):
+                continue  # "a tower of red and green with blue on top": the tower's end, read later
+            before = before[:-len("with ")]  # "a stack with blue on the bottom, green in the middle and red on top"
         levels = [(_LEVELS[m["where"]], m["block"]) for m in run]
         if len({level for level, _ in levels}) < len(levels):
             raise LanguageError("two blocks are said to be at one place in the tower: name its blocks from the bottom "
                                 "up, e.g. 'build a tower of red, green and blue'")
         tower = " and ".join(block for _, block in sorted(levels))
-        before = text[:run[0].start()]
         said = "" if re.search(r"\b(?:tower|stack|pile)(?: and)? *$", before) else "stack "  # "a tower: red on top, ..."
         text = f"{before} {said}{tower} {text[run[-1].end():]}"
+    return text
+
+
+_GERUNDS = {"picking": "pick", "putting": "put", "placing": "place", "taking": "take", "moving": "move",
+            "stacking": "stack", "unstacking": "unstack", "removing": "remove", "building": "build", "lifting": "lift",
+            "grabbing": "grab", "dropping": "drop", "throwing": "throw", "tossing": "toss", "bringing": "bring",
+            "leaving": "leave", "keeping": "keep", "releasing": "release", "clearing": "clear",
+            "cleaning": "clean", "separating": "separate", "grouping": "group", "gathering": "gather",
+            "setting": "set", "getting": "get", "emptying": "empty", "making": "make"}
+_GERUND = re.compile(rf"\b(?:{'|'.join(_GERUNDS)})\b")
+"""'after picking up red': the verb as in a command ('holding' is left as it is: 'keep holding green')."""
+_BLOCKS_ONLY = re.compile(rf"(?:\s|,|\b(?:and|the|block|blocks|cube|cubes|one|{_COLOUR})\b)+")
+_LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you\s+(?:have\s+)?|i\s+)?(?P<first>[^,;]+?)"
+                           r"\s*,\s*(?:then\s+)?(?P<rest>.+)$")
+_TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)\s+(?P<when>after|before)\s+(?:you\s+(?:have\s+)?|i\s+)?"
+                            r"(?P<other>(?!that\b|this\b|which\b).+)$")
+
+
+def _in_time_order(text: str) -> str:
+    """'after A, B', 'B after A', 'A before B', 'before B, A' as 'A then B' (later clauses override earlier ones). 'B
+    after green' names only a block: the verb is B's, said again after it ('B then green'); for a goal's end state
+    the order of two clauses that do not clash does not matter."""
+    if match := _LEADING_WHEN.match(text):
+        first, rest = match["first"], match["rest"]
+        return f"{rest} ; {first}" if match["when"] == "before" else f"{first} ; {rest}"
+    if match := _TRAILING_WHEN.match(text):
+        main, other = match["main"], match["other"]
+        if match["when"] == "before" or _BLOCKS_ONLY.fullmatch(other):
+            return f"{main} ; {other}"
+        return f"{other} ; {main}"
     return text
 
 

@@ -7,6 +7,7 @@ contradictions, so a planner only ever sees goals it can state.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -94,7 +95,7 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
     placeholders = (TOWER_TOP, TOWER_BASE, TOWER_ALL)
     if not any(arg in placeholders for literal in literals for arg in literal.args):
         return list(literals)
-    moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders}
+    moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders} - set(placeholders)
     built = _towers([lit for lit in literals if lit.name == "above" and lit.value and lit.args[-1] not in placeholders])
     if len(built) == 1:
         tower = kept = built[0]
@@ -105,13 +106,17 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
             raise GoalError("no tower stands now (no block is on another): name the block instead of 'the tower'")
         if len(standing) > 1:
             tops = [[b for b in t if b not in moved][-1] for t in standing]
-            raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): say which block, e.g. "
-                            f"'put {sorted(moved)[0]} on {tops[0]}'")
+            said = (f"say which block, e.g. 'put {sorted(moved)[0]} on {tops[0]}'" if moved else
+                    f"name the blocks instead of 'the tower' (the first is {', '.join(standing[0])}, from the bottom)")
+            raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): {said}")
         tower = standing[0]
         kept = [b for b in tower if b not in moved] or tower
-    place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
     placed = []
-    for literal in (each for lit in literals for each in _each_of(lit, tower)):
+    if Literal(SWAP, (TOWER_ALL,)) in literals:  # the tower reversed: each block under the one it was on, and 'the
+        placed = [Literal("above", pair) for pair in itertools.pairwise(tower)]  # tower' after it is the new one
+        tower, kept = tower[::-1], kept[::-1]
+    place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
+    for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, tower)):
         args = tuple(place.get(arg, arg) for arg in literal.args)
         if len(set(args)) < len(args) and not literal.value:  # "put the top block on the table": not on itself
             continue

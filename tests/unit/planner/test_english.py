@@ -329,6 +329,7 @@ PHRASES = [
     ("tabletop", "make a stack with blue on the bottom, green in the middle and red on top",
      "above(green,blue) & above(red,green)"),
     ("tabletop", "a pile with red on top and green at the bottom", "above(red,green)"),
+    ("two_blocks", "put red near green without stacking them", "close(red,green) & not above(red,green) & not above(green,red)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
     ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),
@@ -598,6 +599,29 @@ def test_the_planner_swaps_the_blocks_whichever_is_on_top_now() -> None:
         ok, message = executive.set_goal("swap the two blocks")
         assert ok and f"above({below},{top})" in message, message
         assert [str(s.subgoal) for s in executive.steps][-1] == f"put_on({below},{top})"
+
+
+@pytest.mark.parametrize("sentence", ["reverse the tower", "turn the stack upside down", "invert the pile",
+                                      "reverse the order of the blocks in the tower", "flip the tower over"])
+def test_the_planner_turns_the_tower_standing_now_upside_down(sentence: str) -> None:
+    executive = Executive(SemanticPlanner("tabletop"))
+    objects = ("red", "green", "blue", "orange")
+    tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]
+    executive.observe(Observation(objects, tower, 0))
+    ok, message = executive.set_goal(f"{sentence}, then put orange on the tower")
+    assert ok and "(the goal: above(red,green) & above(green,blue) & above(orange,red))" in message, message
+    assert [str(s.subgoal) for s in executive.steps][-2:] == ["pick(orange)", "put_on(orange,red)"]
+
+
+def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_blocks() -> None:
+    with pytest.raises(LanguageError, match="no block stands on another"):
+        parse_english("reverse the tower", "desk_cleanup")
+    objects = ("red", "green", "blue", "yellow")
+    with pytest.raises(GoalError, match="no tower stands now"):
+        parse_goal("reverse the tower", "tabletop", objects, [])
+    two = [Literal("above", ("green", "red")), Literal("above", ("blue", "yellow"))]
+    with pytest.raises(GoalError, match=r"2 towers stand now .*: name the blocks instead of 'the tower'"):
+        parse_goal("turn the tower upside down", "tabletop", objects, two)
 
 
 def test_readings_of_equal_rank_are_chosen_the_same_in_any_order() -> None:

@@ -22,6 +22,7 @@ What a sentence becomes (``PHRASES`` in the tests hold many more)::
     put orange on the tower                      above(orange,tower_top): the top of the tower standing when planned
     put the bottom block in the bin              in_bin(tower_base): the tower's bottom block when planned
     swap red and green                           swap(red,green): which is on which (or in the bin) when planned
+    reverse the tower                            swap(tower_all): the tower standing when planned, upside down
 
 The literals are what the operator is shown before anything moves.
 """
@@ -102,6 +103,9 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
     if literal.name == SWAP:
         if not literal.value:
             raise VocabularyError("'not swap' asks for nothing: say where the blocks should be")
+        if literal.args == (TOWER_ALL,) and "above" not in layout.scene.predicates:
+            raise VocabularyError(f"in scene {layout.scene.name} no block stands on another (it uses "
+                                  f"{', '.join(layout.scene.predicates)}): there is no tower to turn over")
         if not {"above", "in_bin"} & set(layout.scene.predicates):
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")

@@ -26,7 +26,7 @@ PLACED_WHEN_PLANNED = {
     TOWER_BASE: "the bottom block of the tower standing when the goal is planned",
     TOWER_ALL: "each block of the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
-          "or the one in the bin comes out)",
+          "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
 }
 """What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
@@ -195,6 +195,8 @@ class Resolver:
         if kind == "tower":  # the first named at the bottom
             return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))
         if kind == "swap":
+            if subjects == (TOWER_ALL,):  # "reverse the tower": the tower standing when planned, upside down
+                return [Literal(SWAP, subjects)]
             if len(subjects) != 2:
                 raise LanguageError(f"'swap' trades the places of two blocks, not {len(subjects)}: say which two")
             return [Literal(SWAP, subjects)]

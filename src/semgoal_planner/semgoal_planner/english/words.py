@@ -53,6 +53,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
     (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
      r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
+    (r"(reverse|invert|flip( over)?|turn over|turn upside down|swap|switch|exchange)( the order of)?( the (blocks|cubes) "
+     r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
+     r"this|your) (tower|stack|pile) (upside down|over)", "swap the_whole"),  # "reverse the tower": its blocks'
+    # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
      r"(tower|stack|pile)(?! of)", r"\g<verb> the_whole"),  # "put the tower in the bin": what is moved is each block
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
@@ -109,6 +113,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))", "and release all"),
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
+    (r"without (stack|put (one|it|them) on (top of )?(the other|each other|one another|another))( them| it)?",
+     "and unstack them"),  # "put red near green without stacking them": neither on the other (gerunds read as verbs)
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"

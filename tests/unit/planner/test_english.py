@@ -330,6 +330,12 @@ PHRASES = [
      "above(green,blue) & above(red,green)"),
     ("tabletop", "a pile with red on top and green at the bottom", "above(red,green)"),
     ("two_blocks", "put red near green without stacking them", "close(red,green) & not above(red,green) & not above(green,red)"),
+    ("tabletop", "move the red block from the bin onto the green block", "above(red,green)"),
+    ("tabletop", "take red from the bin and put it next to green", "not in_bin(red) & close(red,green)"),
+    ("tabletop", "make two towers, one of red and green and one of blue and yellow", "above(green,red) & above(yellow,blue)"),
+    ("tabletop", "build two stacks: one with red and green, the other with blue and yellow",
+     "above(green,red) & above(yellow,blue)"),
+    ("desk_cleanup", "keep red and green far from the bin", "not in_bin(red) & not in_bin(green)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
     ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),
@@ -408,6 +414,8 @@ REFUSALS = [
     ("tabletop", "build a tower with purple at the bottom", "say which block goes on which"),
     ("tabletop", "put red at the bottom of the tower", "a block goes under a standing tower only by building"),
     ("tabletop", "slide red under the stack", "a block goes under a standing tower only by building"),
+    ("desk_cleanup", "put red next to the basket", "no predicate says a block is next to the bin"),
+    ("tabletop", "place the tower next to the bin", "no predicate says a block is next to the bin"),
 ]
 
 

@@ -32,6 +32,7 @@ action: ("put" | "keep") refs dest          -> put
       | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
       | "take" refs ("off" refs? | "from" refs) -> off
       | "take" refs dest_to                   -> put
+      | ("put" | "take") refs "from" ("bin" | refs) dest_to -> put
       | "take" refs "up"?                     -> hold
       | "remove" refs ("from" "bin" | "out" "bin"?)? -> out_bin
       | "remove" refs ("from" | "off") refs   -> off
@@ -170,7 +171,7 @@ class Clauses(lark.Transformer):
         return items[0]
 
     # -- actions ------------------------------------------------------------------------------------
-    def put(self, items: list) -> Clause:
+    def put(self, items: list) -> Clause:  # "move red from the bin onto green": where it goes says where it came from
         return replace(items[-1], subjects=items[0])
 
     def release(self, items: list) -> Clause:

@@ -4,6 +4,7 @@ dropped, counted references ('the two blocks') spelled out; an unknown word is r
 from __future__ import annotations
 
 import functools
+import itertools
 import re
 from collections.abc import Sequence
 
@@ -293,6 +294,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
+    if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
+        text = _EACH_TOWER.sub(" stack ", text)
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
@@ -303,6 +306,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
     words = [w for w in text.split() if w not in FILLERS]
+    words = _beside_the_bin(words)
     for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
     _refuse_a_list_split(words)
@@ -593,6 +597,9 @@ def _in_time_order(text: str) -> str:
     return text
 
 
+_SEVERAL_TOWERS = re.compile(r"\b(two|three|2|3|a couple of|several|some) (towers|stacks|piles)\b")
+_EACH_TOWER = re.compile(r"\b(one|the other|another|the (first|second|third|last))( tower| stack| pile)? (of|with|from)\b")
+"""Each of several towers said as 'one of red and green', 'the other of blue and yellow': a tower of those blocks."""
 _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
@@ -601,6 +608,17 @@ _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|of
 def _as_exception(match: re.Match) -> str:
     said = match[1]
     return f"{said} except" if _PLACE.search(said) else match[0]
+
+
+def _beside_the_bin(words: list[str]) -> list[str]:
+    """'keep red away from the bin' as out of it; 'next to the bin' refused: no predicate says a block is beside it."""
+    for at, (word, then) in enumerate(itertools.pairwise(words)):
+        if then == "bin" and word == "near":
+            raise LanguageError("no predicate says a block is next to the bin, only whether it is in it: say 'in the "
+                                "bin', or 'out of the bin'")
+        if then == "bin" and word == "away":
+            words = [*words[:at], "out", *words[at + 1:]]
+    return words
 
 
 def _joined(words: list[str]) -> list[str]:

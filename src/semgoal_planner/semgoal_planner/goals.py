@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
-from semgoal_planner.english import MAX_GOAL_CHARS, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
+from semgoal_planner.english import KEEP, MAX_GOAL_CHARS, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
 
 
 class GoalError(ValueError):
@@ -34,12 +34,14 @@ class Goal:
     def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
         goal in that state, or the literals once every block they name is present, 'the tower' placed
-        (:func:`the_tower`) and swaps made (:func:`swapped`). Nothing is parsed."""
+        (:func:`the_tower`), swaps made (:func:`swapped`) and blocks kept where they are (:func:`kept`). Nothing is
+        parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            goal = [layout.validate(literal, objects) for literal in swapped(the_tower(self.literals, state), state)]
+            placed = swapped(the_tower(self.literals, state), state)
+            goal = [layout.validate(literal, objects) for literal in kept(placed, state, scene, objects)]
             check_consistent(goal)
         except (VocabularyError, ContradictionError) as error:
             raise GoalError(str(error)) from None
@@ -169,6 +171,22 @@ def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Liter
             where = "in the bin" if binned else "out of the bin"
             raise GoalError(f"{a} and {b} have no places to trade now: neither is on the other, and both are {where}")
     return made
+
+
+def kept(literals: Sequence[Literal], state: Sequence[Literal], scene: str, objects: Sequence[str]) -> list[Literal]:
+    """``literals`` with each ``keep(a)`` made a's place in ``state``: in the bin or not, in the hand or not, on which
+    block (the scene's predicates with ``a`` first). Closeness is not kept: another block may still be put next to
+    it. A block the goal itself places (names first) is not kept, and an atom the goal states is left to it."""
+    rest = [literal for literal in literals if literal.name != KEEP]
+    placed = {literal.args[0] for literal in rest}
+    stated = {(literal.name, literal.args) for literal in rest}
+    predicates = LAYOUTS[scene].scene.predicates
+    true = set(state)
+    for block in dict.fromkeys(lit.args[0] for lit in literals if lit.name == KEEP and lit.args[0] not in placed):
+        atoms = [("in_bin", (block,)), ("holding", (block,)), *(("above", (block, o)) for o in objects if o != block)]
+        rest += [Literal(name, args, Literal(name, args) in true) for name, args in atoms
+                 if name in predicates and (name, args) not in stated]
+    return rest
 
 
 def scene_task(name: str, scene: str) -> Task:

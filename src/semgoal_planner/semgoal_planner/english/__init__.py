@@ -21,6 +21,7 @@ What a sentence becomes (``PHRASES`` in the tests hold many more)::
     pick up blue                                 holding(blue)
     put orange on the tower                      above(orange,tower_top): the top of the tower standing when planned
     put the bottom block in the bin              in_bin(tower_base): the tower's bottom block when planned
+    stack green on blue but don't move red       above(green,blue) & keep(red): red's place as it is when planned
     swap red and green                           swap(red,green): which is on which (or in the bin) when planned
     reverse the tower                            swap(tower_all): the tower standing when planned, upside down
 
@@ -36,10 +37,18 @@ import lark
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parser
-from semgoal_planner.english.resolver import PLACED_WHEN_PLANNED, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, Resolver
+from semgoal_planner.english.resolver import (
+    KEEP,
+    PLACED_WHEN_PLANNED,
+    SWAP,
+    TOWER_ALL,
+    TOWER_BASE,
+    TOWER_TOP,
+    Resolver,
+)
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_TOP", "LanguageError",
+__all__ = ["KEEP", "MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_TOP", "LanguageError",
            "examples", "normalise", "parse_english"]
 
 
@@ -88,7 +97,9 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                         raise LanguageError(f"contradictory goal: both {literal} and {literal.negated()}")
                 stage[key] = (literal, generic)
         goal.update({key: literal for key, (literal, _) in stage.items()})
-    if not goal:
+    placed = {literal.args[0] for literal in goal.values() if literal.name != KEEP}  # "pick up blue and keep it": the
+    goal = {key: lit for key, lit in goal.items() if lit.name != KEEP or lit.args[0] not in placed}  # goal says where
+    if all(literal.name == KEEP for literal in goal.values()):  # nothing, or only 'don't move red'
         raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
     try:
         check_consistent(goal.values())
@@ -100,6 +111,10 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
 def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]) -> Literal:
     """``literal`` checked against the scene; one naming the tower (:data:`TOWER_TOP`, :data:`TOWER_BASE`) is checked
     with another block in its place and kept as it is, for :func:`~semgoal_planner.goals.the_tower` to place."""
+    if literal.name == KEEP:
+        if not literal.value:
+            raise VocabularyError("'not keep' asks for nothing: say where the block should be")
+        return literal  # its block named by the resolver, which knows the blocks present
     if literal.name == SWAP:
         if not literal.value:
             raise VocabularyError("'not swap' asks for nothing: say where the blocks should be")

@@ -19,6 +19,9 @@ TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
 SWAP = "swap"
+KEEP = "keep"
+"""A goal's stand-in ``keep(a)`` until it is planned (:func:`~semgoal_planner.goals.kept`): 'don't move red', 'leave
+the rest alone' keep a block's place as the world has it then."""
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
 PLACED_WHEN_PLANNED = {
@@ -27,6 +30,8 @@ PLACED_WHEN_PLANNED = {
     TOWER_ALL: "each block of the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
+    KEEP: "the block's place as it is when the goal is planned: in the bin or not, in the hand or not, on which block "
+          "(not closeness: another block may still be put next to it); a block the goal itself moves is not kept",
 }
 """What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
@@ -165,8 +170,8 @@ class Resolver:
             return (Literal("in_bin", (s,)) for s in subjects)
         if kind == "out_bin":
             return (Literal("in_bin", (s,), False) for s in subjects)
-        if kind == "keep":  # "keep it there": nothing to change
-            return []
+        if kind == "keep":  # "don't move red": red's place kept, as it is when planned
+            return (Literal(KEEP, (s,)) for s in subjects)
         if kind == "hold":
             if len(subjects) > 1:
                 raise LanguageError(f"the hand holds one block at a time, not {' and '.join(subjects)}")

@@ -332,6 +332,16 @@ PHRASES = [
     ("tabletop", "build two stacks: one with red and green, the other with blue and yellow",
      "above(green,red) & above(yellow,blue)"),
     ("desk_cleanup", "keep red and green far from the bin", "not in_bin(red) & not in_bin(green)"),
+    # all the blocks said first, what becomes of them after
+    ("tabletop", "Stack the blocks so that yellow is on blue, blue is on green, and green is on red.",
+     "above(yellow,blue) & above(blue,green) & above(green,red)"),
+    ("tabletop", "arrange the blocks so that red is next to green and blue is in the bin", "close(red,green) & in_bin(blue)"),
+    ("tabletop", "stack the blocks: red on green, green on blue", "above(red,green) & above(green,blue)"),
+    ("tabletop", "Make a four-block tower using red, green, blue and yellow, in that order from the bottom.",
+     "above(green,red) & above(blue,green) & above(yellow,blue)"),
+    ("tabletop", "Place the blocks in a single tower: red, green, blue (bottom to top).",
+     "above(green,red) & above(blue,green)"),
+    ("tabletop", "build a tower of red and green and put it in the bin", "above(green,red) & in_bin(red)"),  # its base
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
     ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),
@@ -639,6 +649,15 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
 ])
 def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, text: str, expected: str) -> None:
     assert {str(literal) for literal in parse_english(text, scene)} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("Make a tower of red and green, and put blue next to it.", "above(green,red) & close(red,blue)"),
+    ("build a tower of red and green and put blue on it", "above(green,red) & above(blue,green)"),
+])
+def test_it_after_a_tower_is_built_is_that_tower(text: str, expected: str) -> None:
+    said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [])
+    assert {str(literal) for literal in said} == set(expected.split(" & "))
 
 
 def test_a_block_left_alone_keeps_its_place_as_it_is_when_planned() -> None:

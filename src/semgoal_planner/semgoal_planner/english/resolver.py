@@ -48,6 +48,8 @@ class Resolver:
         """The blocks the clause before was about (what 'it' names)."""
         self.last_named: tuple[str, ...] = ()
         """Every block the clause before named, subjects and objects (what 'them' names)."""
+        self.last_built = False
+        """Whether the clause before built a tower (what 'it' names then)."""
         self.stated: Clause | None = None
         """The last clause that said its relation (what an ellipsis such as 'but not green' borrows)."""
 
@@ -87,6 +89,8 @@ class Resolver:
                 raise LanguageError("'the other(s)': every block is already named")
             return others
         if ref.kind == "it":
+            if self.last_built and not set(besides) & set(self.last):  # "make a tower of red and green, put blue next
+                return ("tower",) if besides else self.last[:1]  # to it"; "..., put it in the bin": its bottom block
             if besides and set(self.last) <= set(besides):  # "red next to green, not on it": 'it' is green
                 named = tuple(b for b in self.last_named if b not in besides)
                 if len(named) == 1:
@@ -158,6 +162,7 @@ class Resolver:
                                     "say where they go")
             said += [(lit.negated(), False) for b in excluded for lit in self._relation(clause.kind, (b,), objects)]
         self.last = subjects
+        self.last_built = clause.kind == "tower" and not clause.negated
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
         if not borrows_relation:

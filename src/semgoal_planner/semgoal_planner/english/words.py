@@ -75,6 +75,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
+    (r"in (that|this|the same|the given|the listed|the named) order", ""),  # "stack red, green and blue in that order"
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
@@ -103,7 +104,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(off( of)?|(down )?from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
-    (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of)?|tower", "stack"),
+    (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of| using)?|tower", "stack"),
     (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
     (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
@@ -287,7 +288,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "),
-                        _in_time_order(_GERUND.sub(lambda m: _GERUNDS[m[0]], text.lower()))) + " "
+                        _in_time_order(_said_after(_GERUND.sub(lambda m: _GERUNDS[m[0]],
+                                                               re.sub(r"[()\[\]]", " ", text.lower()))))) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
@@ -580,6 +582,23 @@ _LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you\s+(?:
                            r"\s*,\s*(?:then\s+)?(?P<rest>.+)$")
 _TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)\s+(?P<when>after|before)\s+(?:you\s+(?:have\s+)?|i\s+)?"
                             r"(?P<other>(?!that\b|this\b|which\b).+)$")
+
+
+_SAID_AFTER = re.compile(r"\b(?P<verb>stack|pile|arrange|order|place|put|position|set|build|make|assemble|organi[sz]e)"
+                         r"( up)? (all )?(of )?(the |these |those )?((two|three|four|five|six|seven|eight|\d) )?"
+                         r"(blocks|cubes|them|everything)( up)?(?P<tower> (in|into) (a|one|a single) (tower|stack|pile))?"
+                         r"\s*(?P<then>:|,? (so that|such that|so|in such a way that|like this|as follows|this way)\b)")
+"""'stack the blocks so that yellow is on blue, ...', 'place all the blocks in one tower: red, green, ...': all the blocks
+said first, what becomes of them after."""
+
+
+def _said_after(text: str) -> str:
+    """What becomes of 'the blocks' said after them: after a colon, a tower's ('stack' kept before its list), else the
+    clauses that follow alone."""
+    def said(match: re.Match) -> str:
+        towered = match["tower"] or match["verb"] in ("stack", "pile", "build", "assemble")
+        return " stack " if towered and match["then"] == ":" else " "
+    return _SAID_AFTER.sub(said, text)
 
 
 def _in_time_order(text: str) -> str:

@@ -342,6 +342,17 @@ PHRASES = [
     ("tabletop", "Place the blocks in a single tower: red, green, blue (bottom to top).",
      "above(green,red) & above(blue,green)"),
     ("tabletop", "build a tower of red and green and put it in the bin", "above(green,red) & in_bin(red)"),  # its base
+    ("desk_cleanup", "Please clean up the desk by putting all the blocks in the bin.",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "Throw the red and the green blocks in the trash bin.", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "Make sure that no block is left on the desk.",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "Empty the desk.", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "The bin should contain only red.",
+     "in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "Fill the bin with red and blue.", "in_bin(red) & in_bin(blue)"),
+    ("three_blocks", "put red by the green block", "close(red,green)"),
+    ("desk_cleanup", "Put two blocks in the bin: red and green.", "in_bin(red) & in_bin(green)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
     ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),

@@ -114,9 +114,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))", "and release all"),
+    (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
+     r"(block|blocks|cube|cubes)( should| must| will)?( be| is| are| remains?| stays?| left)* (on|upon) (the )?(table|desk|"
+     r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
+     r"tabletop)", "clean the table"),  # "empty the desk", "no block should be left on the table"
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
     (r"without (stack|put (one|it|them) on (top of )?(the other|each other|one another|another))( them| it)?",
      "and unstack them"),  # "put red near green without stacking them": neither on the other (gerunds read as verbs)
+    (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"
+     r"grab|unstack|build|make|empty|get)\b)", "and"),  # "clean up the desk by putting all the blocks in the bin"
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
@@ -129,8 +135,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # near anything": away from every other block
     (r"(on|onto|to) (the )?(table|desk)(?= (next to|near|beside|close to|by)\b)", r"\g<0> and"),  # "put red on the
     # table next to green": both
+    (rf"fill (up )?(the )?(bin|basket|box|trash|bucket)( up)? with (?P<what>(the )?({_COLOUR})(( and|,)? (the )?"
+     rf"({_COLOUR}))*)", r"put \g<what> in the bin"),  # "fill the bin with red and blue"
+    (r"(is|are|be|stays?|gets?) left(?= (on|in|off|out|near|next|by|beside)\b)", ""),  # "no block is left on the desk"
     (rf"(the )?bin (should |must |will |has to |needs to |is to )?(contains?|holds?|has|have|gets?) "
-     rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(the )?({_COLOUR})( block| cube| one)?"
+     rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(only |just )?(the )?({_COLOUR})( block| cube| one)?"
      rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)", r"\g<what> in the bin"),  # "the bin should contain red"
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
     (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
@@ -156,7 +165,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
     (r"in the middle of|midway between|next to|close to|near to|adjacent to|beside|besides|alongside|nearby|"
      r"by the side of|right by|near|with|towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
-     r"closer to|closer", "near"),
+     rf"closer to|closer|by(?= (the )?({_COLOUR}|it|them|other|all|the_tower|the_top|the_base)\b)", "near"),  # "put red
+    # by green"
     (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"out of|outside of|outside|out from", "out"),
@@ -187,7 +197,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
-    (r"basket|box|container|tray|trash can|trash|bucket|crate|bin", "bin"),
+    (r"((trash|waste|garbage|rubbish|recycling|storage) )?(basket|box|container|tray|trash can|trash|bucket|crate|bin|"
+     r"can)", "bin"),
     (r"tabletop|table top|table|desk|workspace|surface", "table"),
 )
 """(regular expression over whole words, canonical word): applied in order."""
@@ -592,12 +603,19 @@ _SAID_AFTER = re.compile(r"\b(?P<verb>stack|pile|arrange|order|place|put|positio
 said first, what becomes of them after."""
 
 
+_COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|stack|take|bring|get) (the )?(any )?"
+                                 r"(two|three|four|five|six|seven|eight|\d) (blocks|cubes) (?P<where>[^:;]+?)\s*:"
+                                 r"\s*(?P<named>[^.;]+)")
+"""'put two blocks in the bin: red and green': the blocks named after the colon, where the count was."""
+
+
 def _said_after(text: str) -> str:
     """What becomes of 'the blocks' said after them: after a colon, a tower's ('stack' kept before its list), else the
-    clauses that follow alone."""
+    clauses that follow alone; blocks counted, then named after a colon, as named."""
     def said(match: re.Match) -> str:
         towered = match["tower"] or match["verb"] in ("stack", "pile", "build", "assemble")
         return " stack " if towered and match["then"] == ":" else " "
+    text = _COUNTED_THEN_NAMED.sub(lambda m: f"{m['verb']} {m['named']} {m['where']}", text)
     return _SAID_AFTER.sub(said, text)
 
 

@@ -353,6 +353,10 @@ PHRASES = [
     ("desk_cleanup", "Fill the bin with red and blue.", "in_bin(red) & in_bin(blue)"),
     ("three_blocks", "put red by the green block", "close(red,green)"),
     ("desk_cleanup", "Put two blocks in the bin: red and green.", "in_bin(red) & in_bin(green)"),
+    ("three_blocks", "Put red, green and blue together in a group.", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "arrange the blocks in a cluster", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "Put green close to red and then move blue far away.",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
     ("desk_cleanup", "put red in the bin after green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "take green out of the bin before putting red in the bin", "not in_bin(green) & in_bin(red)"),

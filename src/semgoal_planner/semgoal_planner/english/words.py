@@ -76,6 +76,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
     (r"in (that|this|the same|the given|the listed|the named) order", ""),  # "stack red, green and blue in that order"
+    (r"(in|into) (a|one|the same) (group|cluster|bunch|huddle|heap|clump)", "together"),  # "red and green in a group"
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
@@ -169,6 +170,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # by green"
     (r"finally|lastly|next|at the end|in the end", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
+    (r"far away|far off|well away", "away"),  # "move blue far away": from every other block
     (r"out of|outside of|outside|out from", "out"),
     (r"into|inside of|inside|within|in", "in"),
     (r"underneath|beneath|below|under", "under"),
@@ -659,11 +661,14 @@ def _beside_the_bin(words: list[str]) -> list[str]:
 
 
 def _joined(words: list[str]) -> list[str]:
-    """Runs of connectives as one ("red, and green" -> "red and green"; "and, then" -> "then")."""
+    """Runs of connectives as one ("red, and green" -> "red and green"; "and, then" -> "then"), and a group said twice
+    once ("together in a group")."""
     joined: list[str] = []
     for word in words:
         if joined and word in ("and", "then") and joined[-1] in ("and", "then"):
             joined[-1] = "then" if "then" in (word, joined[-1]) else "and"
+        elif joined and word in ("together", "apart") and joined[-1] == word:
+            continue
         else:
             joined.append(word)
     return joined

@@ -355,6 +355,9 @@ PHRASES = [
     ("desk_cleanup", "Put two blocks in the bin: red and green.", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "Put red, green and blue together in a group.", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "arrange the blocks in a cluster", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("two_blocks", "Put the green block on the red one instead.", "above(green,red)"),
+    ("two_blocks", "Put the blocks side by side but not stacked.",
+     "close(red,green) & not above(red,green) & not above(green,red)"),
     ("three_blocks", "Put green close to red and then move blue far away.",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
@@ -621,16 +624,19 @@ def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
     assert [str(s.subgoal) for s in executive.steps] == ["pick(orange)", "put_on(orange,blue)"]
 
 
-def test_the_planner_swaps_the_blocks_whichever_is_on_top_now() -> None:
+@pytest.mark.parametrize("sentence", ["swap the two blocks", "Swap the positions of the two blocks.",
+                                      "switch which block is on top"])
+def test_the_planner_swaps_the_blocks_whichever_is_on_top_now(sentence: str) -> None:
     executive = Executive(SemanticPlanner("two_blocks"))
     for top, below in (("red", "green"), ("green", "red")):
         executive.observe(Observation(("red", "green"), [Literal("above", (top, below))], 0))
-        ok, message = executive.set_goal("swap the two blocks")
+        ok, message = executive.set_goal(sentence)
         assert ok and f"above({below},{top})" in message, message
         assert [str(s.subgoal) for s in executive.steps][-1] == f"put_on({below},{top})"
 
 
 @pytest.mark.parametrize("sentence", ["reverse the tower", "turn the stack upside down", "invert the pile",
+                                      "switch which block is on top",
                                       "reverse the order of the blocks in the tower", "flip the tower over"])
 def test_the_planner_turns_the_tower_standing_now_upside_down(sentence: str) -> None:
     executive = Executive(SemanticPlanner("tabletop"))

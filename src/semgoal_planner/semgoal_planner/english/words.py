@@ -54,6 +54,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
     (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
      r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
+    (r"(switch|swap|change|reverse|flip) (which|the) (block|cube|one)( that)? (is|sits|goes|lies) (on top|at the top|on the "
+     r"bottom|at the bottom|underneath|below)", "swap the_whole"),  # "switch which block is on top": the tower reversed
     (r"(reverse|invert|flip( over)?|turn over|turn upside down|swap|switch|exchange)( the order of)?( the (blocks|cubes) "
      r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
      r"this|your) (tower|stack|pile) (upside down|over)", "swap the_whole"),  # "reverse the tower": its blocks'
@@ -120,6 +122,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
      r"tabletop)", "clean the table"),  # "empty the desk", "no block should be left on the table"
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
+    (r"(but |and )?not (be |being )?(stacked|piled)( up)?( on (top of )?(each other|one another|the other))?",
+     "and unstack them"),  # "put the blocks side by side but not stacked"
     (r"without (stack|put (one|it|them) on (top of )?(the other|each other|one another|another))( them| it)?",
      "and unstack them"),  # "put red near green without stacking them": neither on the other (gerunds read as verbs)
     (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"
@@ -187,7 +191,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "separate"),
     (r"put together|bring together|push together|gather|group|cluster|bunch up|bunch|collect|pair up|pair", "group"),
     (r"take down|unstack", "unstack"),
-    (r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
+    (r"(swap|switch|exchange|trade|change|reverse)( around| over)?( the)? (positions|places|spots|locations) of|"
+     r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|put", "put"),
@@ -206,7 +211,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
 """(regular expression over whole words, canonical word): applied in order."""
 
 FILLERS = frozenset({
-    "please", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
+    "please", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",

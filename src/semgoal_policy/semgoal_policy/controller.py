@@ -52,6 +52,35 @@ mean. Sampling is the default: the deterministic mean can hover in place for goo
 3000000+: 10 of 12 solved with the mean, 12 of 12 sampled)."""
 
 
+def kept_on_the_table(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+    """An actor's command (in the arm's own frame), except that a held block beyond :data:`EDGE_MARGIN` of the table's
+    edge, over no other block, is not let go and is moved back inward: no block leaves the table by the robot's hand
+    where the actor aims too far. The policy node applies it (:class:`SubgoalController`), and so can an evaluation of
+    the actor alone (``eval subgoals --shields``)."""
+    held = held_slots(scene, observation)
+    if not held.any():
+        return action
+    blocks = layout.block_slots(scene, observation)
+    block = blocks["position"][held][0]
+    others = blocks["position"][(blocks["present"][:, 0] > 0.5) & ~held]
+    if (np.linalg.norm(others[:, :2] - block[:2], axis=1) < THRESHOLDS.above_xy).any():
+        return action  # over another block: a put on it, which holds it up (a tower at the edge stays allowed)
+    offset = block[:2] - np.asarray(TABLE_CENTER)
+    out = np.abs(offset) > np.asarray(TABLE_HALF_SIZE) - EDGE_MARGIN
+    if out.any():
+        action[3] = min(action[3], 0.0)
+        inward = -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE)
+        action[:2] = np.where(out, inward, action[:2])
+    return action
+
+
+def held_slots(scene: str, observation: np.ndarray) -> np.ndarray:
+    """(max_blocks,) bool: the block slots between the fingers (``holding``'s geometry)."""
+    arm, blocks = layout.arm_state(observation), layout.block_slots(scene, observation)
+    return held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
+                      blocks["present"][:, 0] > 0.5)
+
+
 class SubgoalController:
     """Wraps an exported actor for one scene and one arm; every output is finite and within [-1, 1]. Observations
     and commands are in the world frame; the actor, and every rule here, sees the world in the arm's own frame
@@ -121,28 +150,7 @@ class SubgoalController:
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
         action = np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
-        return self._kept_on_the_table(observation, action)
-
-    def _kept_on_the_table(self, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
-        """The actor's command, except that a held block beyond :data:`EDGE_MARGIN` of the table's edge, over no other
-        block, is not let go and is moved back inward: no block leaves the table by the robot's hand where the actor
-        aims too far."""
-        held = self._held(observation)
-        if not held.any():
-            return action
-        blocks = layout.block_slots(self.scene, observation)
-        block = blocks["position"][held][0]
-        others = blocks["position"][(blocks["present"][:, 0] > 0.5) & ~held]
-        if (np.linalg.norm(others[:, :2] - block[:2], axis=1) < THRESHOLDS.above_xy).any():
-            return action  # over another block: a put on it, which holds it up (a tower at the edge stays allowed)
-        offset = block[:2] - np.asarray(TABLE_CENTER)
-        out = np.abs(offset) > np.asarray(TABLE_HALF_SIZE) - EDGE_MARGIN
-        if out.any():
-            action[3] = min(action[3], 0.0)
-            inward = -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE)
-            action[:2] = np.where(out, inward, action[:2])
-        return action
-
+        return kept_on_the_table(self.scene, observation, action)
 
     def hold(self, observation: np.ndarray) -> np.ndarray:
         """Hold still, keeping a block that sits between the closed fingers (``holding``'s geometry); on a
@@ -154,7 +162,7 @@ class SubgoalController:
 
     def _hold(self, observation: np.ndarray) -> np.ndarray:
         """:meth:`hold` in the arm's own frame."""
-        if self._held(observation).any():
+        if held_slots(self.scene, observation).any():
             return HOLD_GRIP.copy()
         action = HOLD.copy()
         if self.shared:
@@ -193,7 +201,7 @@ class SubgoalController:
         """Keep the block in the hand: squeeze, and where it hangs below :data:`SEATED_DEPTH` under the grip site
         with no neighbour within :data:`SEATING_CLEARANCE`, come down at :data:`SEATING_SPEED` until it is seated."""
         action = HOLD_GRIP.copy()
-        held = self._held(observation)
+        held = held_slots(self.scene, observation)
         if held.any():
             grip = layout.arm_state(observation)["grip_position"]
             blocks = layout.block_slots(self.scene, observation)
@@ -202,13 +210,6 @@ class SubgoalController:
             if clear and grip[2] - blocks["position"][held][0][2] > SEATED_DEPTH:
                 action[2] = -SEATING_SPEED
         return action
-
-    def _held(self, observation: np.ndarray) -> np.ndarray:
-        """(max_blocks,) bool: the block slots between the fingers (``holding``'s geometry)."""
-        arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
-        return held_alone(blocks["position"], arm["grip_position"], float(arm["finger_positions"].sum()),
-                          blocks["present"][:, 0] > 0.5)
-
 
 __all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "RETREAT_HEIGHT", "RETREAT_OPENING", "SubgoalController",
            "VocabularyError"]

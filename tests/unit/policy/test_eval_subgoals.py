@@ -37,6 +37,12 @@ def test_misses_lists_every_failed_episode_with_its_seed_and_why(capsys) -> None
     assert "misses" not in _run(capsys, "--horizon", "1")
 
 
+def test_shields_put_the_policy_nodes_rules_on_top_of_the_actor(capsys) -> None:
+    result = _run(capsys, "--shields", "--horizon", "20")
+    assert result["shields"] is True and set(result["per_subgoal"]) == {"pick", "put_near", "put_away", "put_on"}
+    assert _run(capsys, "--horizon", "20")["shields"] is False
+
+
 def test_the_sampled_actor_is_seeded_so_a_run_repeats(capsys) -> None:
     first, again = (_run(capsys, "--action-mode", "sample", "--horizon", "20") for _ in range(2))
     assert first["action_mode"] == "sample" and first == again

@@ -9,8 +9,17 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TASKS
-from semgoal_core.vocabulary import THRESHOLDS, Literal
-from semgoal_policy.controller import EDGE_MARGIN, EDGE_NUDGE, HOLD, HOLD_GRIP, RETREAT_HEIGHT, RETREAT_OPENING, SubgoalController
+from semgoal_core.vocabulary import THRESHOLDS
+from semgoal_policy.controller import (
+    EDGE_MARGIN,
+    EDGE_NUDGE,
+    HOLD,
+    HOLD_GRIP,
+    RETREAT_HEIGHT,
+    RETREAT_OPENING,
+    SubgoalController,
+    kept_on_the_table,
+)
 from semgoal_sim.rollout import held_blocks
 from semgoal_sim.world import FetchWorld
 
@@ -74,22 +83,21 @@ def test_a_block_the_goal_holds_is_kept_an_unasked_one_let_go_and_a_paused_arm_h
 
 def test_a_held_block_past_the_table_edge_is_not_let_go_and_is_moved_back_in() -> None:
     """No block leaves the table by the robot's hand: a release the actor aims past the edge margin is held back."""
-    world, controller = FetchWorld("two_blocks"), SubgoalController("two_blocks")
+    world = FetchWorld("two_blocks")
     world.reset(TASKS["MC-2"].initial_state(0)[0])
-    controller.set_subgoal([Literal("close", ("red", "green"), False), Literal("holding", ("red",), False)])
     world.place_in_gripper("red")
-    inside = controller._kept_on_the_table(world.observation(), np.array([0.3, -0.4, 0.0, 1.0], dtype=np.float32))
+    inside = kept_on_the_table("two_blocks", world.observation(), np.array([0.3, -0.4, 0.0, 1.0], dtype=np.float32))
     assert inside.tolist() == pytest.approx([0.3, -0.4, 0.0, 1.0])  # well inside: the actor's command as it is
     edge_y = TABLE_CENTER[1] - TABLE_HALF_SIZE[1] + EDGE_MARGIN - 0.01  # the near edge, inside the margin
     for _ in range(40):
         snapshot = world.snapshot()
         world.step(move_to(snapshot.grip_position, np.array([1.3, edge_y, 0.47]), -1.0))
     assert "holding(red)" in world.layout.readable(world.semantic_vector())
-    action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
+    action = kept_on_the_table("two_blocks", world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
     assert action[3] <= 0.0 and action[1] >= EDGE_NUDGE  # not let go; moved back toward the table's middle
     red = world.snapshot().block_positions[0]
     world.set_block_pose("green", np.array([red[0], red[1], 0.425]))  # a block under it there: a put on it
-    action = controller._kept_on_the_table(world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
+    action = kept_on_the_table("two_blocks", world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
     assert action.tolist() == pytest.approx([0.0, -0.5, 0.0, 1.0])
 
 

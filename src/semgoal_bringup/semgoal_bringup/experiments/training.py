@@ -102,10 +102,11 @@ def train_config(argv: list[str]):
 
 def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
+    from semgoal_core import layout
     from semgoal_core.settling import SETTLE_STEPS
     from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
-    from semgoal_policy.controller import ACTION_MODES
+    from semgoal_policy.controller import ACTION_MODES, kept_on_the_table
     from semgoal_policy.evaluate import success_by_kind
     from semgoal_sim.env import EPISODE_STEPS
 
@@ -121,6 +122,9 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "as policy_node runs it (action_mode: sample)")
     parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
     parser.add_argument("--envs", type=count, default=10)
+    parser.add_argument("--shields", action="store_true",
+                        help="the policy node's rule on top of the actor, as the graph runs it (no held block let go off "
+                             "the table's edge); default: the actor alone")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--json", action="store_true")
@@ -139,9 +143,16 @@ def eval_subgoals_main(argv: list[str]) -> int:
         env.max_steps = args.horizon
     noise = np.random.default_rng(args.seed)
 
+    observation_size = layout.observation_size(args.scene)
+
     def act(obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
-        """The actor's mean, or a sample of its Gaussian as the policy node draws it."""
-        return actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
+        """The actor's mean, or a sample of its Gaussian as the policy node draws it; with ``--shields``, the policy
+        node's rule on top."""
+        actions = actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
+        if args.shields:
+            for observation, action in zip(obs, actions, strict=True):
+                action[:] = kept_on_the_table(args.scene, observation[:observation_size], action)
+        return actions
 
     kinds = spec.evaluated_kinds(args.scene)
     misses: list[dict] = []
@@ -152,7 +163,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
 
     rates = success_by_kind(envs, act, kinds, args.episodes, args.seed, on_miss=record if args.misses else None)
     result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon,
-              "action_mode": args.action_mode, "per_subgoal": rates,
+              "action_mode": args.action_mode, "shields": args.shields, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)} | ({"misses": misses} if args.misses else {})
     if not args.json:
         for miss in misses:

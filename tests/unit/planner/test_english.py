@@ -681,6 +681,12 @@ def test_it_after_a_tower_is_built_is_that_tower(text: str, expected: str) -> No
     assert {str(literal) for literal in said} == set(expected.split(" & "))
 
 
+def test_removing_the_top_block_takes_it_off_the_tower() -> None:
+    tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]
+    said = parse_goal("remove the top block", "tabletop", ("red", "green", "blue", "yellow"), tower)
+    assert Literal("above", ("blue", "green"), False) in said and not any(lit.name == "in_bin" for lit in said)
+
+
 def test_a_block_left_alone_keeps_its_place_as_it_is_when_planned() -> None:
     executive = Executive(SemanticPlanner("tabletop"))
     objects = ("red", "green", "blue", "yellow")

@@ -144,6 +144,8 @@ class Resolver:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "
                                     f"'put {subjects[0]} on the tower'")
             objects = tuple(TOWER_PLACES[clause.kind] if b == "tower" else b for b in objects)
+        if clause.kind == "out_bin" and set(subjects) <= {TOWER_TOP, TOWER_BASE}:  # "remove the top block": off the
+            clause = replace(clause, kind="off")  # tower, not out of the bin
         if clause.negated and clause.kind == "unstack":  # not every 'not above' at once: that is no state at all
             raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "
                                 "blocks should be, e.g. 'stack red on green'")

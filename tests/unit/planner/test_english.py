@@ -488,6 +488,25 @@ def test_a_refusal_suggests_goals_the_scene_can_state_with_its_blocks(scene: str
             assert parse_english(sentence, scene, blocks)
 
 
+@pytest.mark.parametrize("text", [
+    " and ".join(["put red and green and blue and yellow and orange and purple and cyan and pink in the bin"] * 3),
+    "red near green, green near blue, blue near yellow, yellow near orange, orange near purple, purple near cyan",
+])
+def test_a_long_sentence_whose_ands_join_blocks_or_clauses_parses_at_once(text: str) -> None:
+    """Each 'and' may join blocks or clauses, so a list of n blocks reads 2^(n-1) ways: three lists of eight took
+    more than 20 s when every reading was built; the parse forest is pruned to the fewest clauses first."""
+    start = time.perf_counter()
+    assert parse_english(text, "tabletop")
+    assert time.perf_counter() - start < 1.0
+
+
+def test_a_goal_of_more_words_than_are_parsed_is_refused_with_the_limit() -> None:
+    start = time.perf_counter()
+    with pytest.raises(LanguageError, match="at most 100 are parsed"):
+        parse_english("red and green and blue and yellow and " * 30, "tabletop")
+    assert time.perf_counter() - start < 0.5
+
+
 def test_a_megabyte_goal_is_refused_at_once() -> None:
     start = time.perf_counter()
     with pytest.raises(GoalError, match="characters long"):

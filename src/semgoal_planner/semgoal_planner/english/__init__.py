@@ -36,7 +36,7 @@ import lark
 
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
-from semgoal_planner.english.grammar import Clause, Clauses, parser
+from semgoal_planner.english.grammar import Clause, Clauses, parse
 from semgoal_planner.english.resolver import (
     KEEP,
     PLACED_WHEN_PLANNED,
@@ -62,7 +62,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
     blocks = tuple(blocks or layout.objects)
     words = normalise(text, scene, blocks)
     try:
-        tree = parser().parse(" ".join(words))
+        tree = parse(" ".join(words))
     except lark.exceptions.LarkError as error:
         raise LanguageError(_parse_error(words, error, examples(scene, blocks))) from None
     try:

@@ -7,6 +7,8 @@ import functools
 from dataclasses import dataclass, replace
 
 import lark
+from lark.parse_tree_builder import ParseTreeBuilder
+from lark.parsers.earley_forest import ForestToParseTree, SymbolNode
 
 from semgoal_core.vocabulary import BLOCK_COLOURS
 from semgoal_planner.english.words import LanguageError
@@ -125,7 +127,43 @@ class Clause:
 
 @functools.cache
 def parser() -> lark.Lark:
-    return lark.Lark(GRAMMAR, parser="earley", lexer="standard", ambiguity="explicit")
+    return lark.Lark(GRAMMAR, parser="earley", lexer="standard", ambiguity="forest")
+
+
+def parse(words: str) -> lark.Tree:
+    """The parse tree of canonical ``words``, its readings with more clauses than the fewest left out (``_ambig``
+    nodes hold the readings left, which :class:`Clauses` ranks). Each "and" may join refs or clauses, so a list of
+    n blocks reads 2^(n-1) ways: expanding them all took 4 s for two lists of eight. LarkError where none."""
+    root = parser().parse(words)
+    _keep_fewest_clauses(root)
+    return ForestToParseTree(lark.Tree, _tree_shapes(), None, resolve_ambiguity=False).transform(root)
+
+
+@functools.cache
+def _tree_shapes() -> dict:
+    """What lark's explicit mode builds trees with (keyword tokens dropped, ``?`` rules inlined), for the forest."""
+    return ParseTreeBuilder(parser().rules, lark.Tree, False, True, False).create_callback(None)
+
+
+def _keep_fewest_clauses(root: SymbolNode) -> None:
+    """Prune the parse forest to the derivations with the fewest clauses: a count that adds up over a derivation, so
+    the fewest at each node (bottom up, each node once) make the fewest in all."""
+    fewest: dict[int, int] = {}
+    reached: set[int] = set()
+    stack: list[tuple[SymbolNode, bool]] = [(root, False)]
+    while stack:
+        node, below_done = stack.pop()
+        if below_done:
+            costs = {packed: sum(fewest.get(id(child), 0) for child in (packed.left, packed.right)
+                                 if isinstance(child, SymbolNode)) for packed in node.children}
+            best = min(costs.values())
+            node._children = {packed for packed, cost in costs.items() if cost == best}
+            fewest[id(node)] = best + (0 if node.is_intermediate or node.s.name != "clause" else 1)
+        elif id(node) not in reached:
+            reached.add(id(node))
+            stack.append((node, True))
+            stack.extend((child, False) for packed in node.children for child in (packed.left, packed.right)
+                         if isinstance(child, SymbolNode))
 
 
 class Clauses(lark.Transformer):

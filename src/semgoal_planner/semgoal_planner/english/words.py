@@ -31,6 +31,9 @@ TOP_MARK, BASE_MARK = "towertop", "towerbase"
 _COLOUR = "|".join(BLOCK_COLOURS)
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
+MAX_GOAL_WORDS = 100
+"""Most words read (after phrases became canonical words): the parser's time grows with the cube of a sentence's
+length where its 'and's may join blocks or clauses (a hundred words: at most 0.4 s)."""
 
 _LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile) )?(the )?"
                         rf"(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
@@ -349,6 +352,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
                             f"({', '.join(blocks)}) and say where they go, e.g. {examples(scene, blocks)}")
+    if len(words) > MAX_GOAL_WORDS:
+        raise LanguageError(f"the goal reads as {len(words)} words; at most {MAX_GOAL_WORDS} are parsed: give it as "
+                            "several goals, one after the other")
     while words and words[0] in ("and", "then"):
         words.pop(0)
     while words and words[-1] in ("and", "then"):

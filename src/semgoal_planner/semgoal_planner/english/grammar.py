@@ -147,7 +147,8 @@ def _tree_shapes() -> dict:
 
 def _keep_fewest_clauses(root: SymbolNode) -> None:
     """Prune the parse forest to the derivations with the fewest clauses: a count that adds up over a derivation, so
-    the fewest at each node (bottom up, each node once) make the fewest in all."""
+    the fewest at each node (bottom up, each node once) make the fewest in all. (A node's derivations are its
+    ``_children`` in lark-parser 0.12's forest, the version pinned.)"""
     fewest: dict[int, int] = {}
     reached: set[int] = set()
     stack: list[tuple[SymbolNode, bool]] = [(root, False)]

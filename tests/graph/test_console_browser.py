@@ -9,6 +9,7 @@ token, as for other machines, refuses a request without it, changing nothing."""
 import asyncio
 import csv
 import os
+import re
 import subprocess
 import time
 import urllib.error
@@ -70,6 +71,11 @@ def drop_in_bin(browser, block: str, wait_s: float = 60) -> None:
         assert time.monotonic() < deadline, browser.find_element(By.TAG_NAME, "body").text
         click_now(browser, "#human-places button[data-place='bin']")
         time.sleep(1.0)
+
+
+def sim_step(browser) -> int:
+    """The control step the page's status line shows."""
+    return int(re.search(r"step (\d+)", browser.find_element(By.ID, "status").text)[1])
 
 
 def approve_and_await_the_persons_step(browser) -> WebDriverWait:
@@ -291,6 +297,8 @@ def test_on_the_tabletop_a_person_tops_the_robots_tower_from_the_page(nodes: Nod
     wait = approve_and_await_the_persons_step(browser)
     assert browser.find_element(By.ID, "human-action").text == "put_on(blue,green)"
     wait.until(lambda b: "green is on red" in b.find_element(By.ID, "holds").text)  # the robot's part of the tower
+    clear = sim_step(browser) + 50  # as a person would, once the robot's hand has let go and risen (a block dropped
+    wait.until(lambda b: sim_step(b) >= clear)  # between its fingers at once read as held, and the plan went astray)
     click_now(browser, "#human-blocks button[data-block='blue']")
     click_now(browser, "#human-places button[data-place='on:green']")
     try:

@@ -19,11 +19,11 @@ TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
 SWAP = "swap"
+"""A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
+trade places, which only the world then can say (which is on which, which is in the bin)."""
 KEEP = "keep"
 """A goal's stand-in ``keep(a)`` until it is planned (:func:`~semgoal_planner.goals.kept`): 'don't move red', 'leave
 the rest alone' keep a block's place as the world has it then."""
-"""A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
-trade places, which only the world then can say (which is on which, which is in the bin)."""
 PLACED_WHEN_PLANNED = {
     TOWER_TOP: "the top block of the tower standing when the goal is planned",
     TOWER_BASE: "the bottom block of the tower standing when the goal is planned",
@@ -206,10 +206,8 @@ class Resolver:
             return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
         if kind == "tower":  # the first named at the bottom
             return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))
-        if kind == "swap":
-            if subjects == (TOWER_ALL,):  # "reverse the tower": the tower standing when planned, upside down
-                return [Literal(SWAP, subjects)]
-            if len(subjects) != 2:
+        if kind == "swap":  # two blocks, or (TOWER_ALL,): "reverse the tower", the one standing when planned
+            if len(subjects) != 2 and subjects != (TOWER_ALL,):
                 raise LanguageError(f"'swap' trades the places of two blocks, not {len(subjects)}: say which two")
             return [Literal(SWAP, subjects)]
         if kind == "unstack":

@@ -43,8 +43,8 @@ the tower goes, its bottom block goes."""
 
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
-    (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red":
-    # as 'keep red where it is', it adds nothing to where the blocks end (alone, it is refused as asking for no change)
+    (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
+    # the world has it when planned (alone, it is refused as asking for no change)
     (r"(don'?t|do not|never|please don'?t) (knock|tear|topple|take)( over| down)?( the| your| that| this)? (tower|stack|pile)"
      r"( over| down)?", "keep the_whole"),  # "don't knock the tower over": the same, for the tower's blocks
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
@@ -308,9 +308,10 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "),
-                        _in_time_order(_said_after(_GERUND.sub(lambda m: _GERUNDS[m[0]],
-                                                               re.sub(r"[()\[\]]", " ", text.lower()))))) + " "
+    text = re.sub(r"[()\[\]]", " ", text.lower())
+    text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
+    text = _in_time_order(_said_after(text))  # before the punctuation they read goes
+    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text) + " "
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"

@@ -14,7 +14,17 @@ from dataclasses import dataclass
 from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.tasks import TASKS, Task, get_task, goal_form, goal_in_state, split_literals
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_literal
-from semgoal_planner.english import KEEP, MAX_GOAL_CHARS, SWAP, TOWER_ALL, TOWER_BASE, TOWER_TOP, LanguageError, parse_english
+from semgoal_planner.english import (
+    KEEP,
+    MAX_GOAL_CHARS,
+    SWAP,
+    TOWER_ALL,
+    TOWER_BASE,
+    TOWER_REST,
+    TOWER_TOP,
+    LanguageError,
+    parse_english,
+)
 
 
 class GoalError(ValueError):
@@ -40,7 +50,7 @@ class Goal:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            placed = swapped(the_tower(self.literals, state), state)
+            placed = swapped(the_tower(self.literals, state, objects), state)
             goal = [layout.validate(literal, objects) for literal in kept(placed, state, scene, objects)]
             check_consistent(goal)
         except (VocabularyError, ContradictionError) as error:
@@ -88,13 +98,13 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
     return read_goal(text, scene, objects).instantiate(scene, objects, state)
 
 
-def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
+def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:
     """``literals`` with 'the tower' placed: the one tower the goal itself builds ("a tower of red and green, then
     yellow next to the tower"), else the one standing in ``state`` (two or more blocks one on another, the blocks the
     goal moves to it set aside). :data:`TOWER_TOP` becomes its top block, and each further block put on the tower goes
-    on the one put there before it; :data:`TOWER_BASE` its bottom block; :data:`TOWER_ALL` each of its blocks.
-    GoalError where no tower stands, or several do."""
-    placeholders = (TOWER_TOP, TOWER_BASE, TOWER_ALL)
+    on the one put there before it; :data:`TOWER_BASE` its bottom block; :data:`TOWER_ALL` each of its blocks;
+    :data:`TOWER_REST` each of ``objects`` not in it. GoalError where no tower stands, or several do."""
+    placeholders = (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST)
     if not any(arg in placeholders for literal in literals for arg in literal.args):
         return list(literals)
     moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders} - set(placeholders)
@@ -116,24 +126,29 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lit
     placed = []
     if Literal(SWAP, (TOWER_ALL,)) in literals:  # the tower reversed: each block under the one it was on, and 'the
         placed = [Literal("above", pair) for pair in itertools.pairwise(tower)]  # tower' after it is the new one
+        literals = [lit for lit in literals if not (lit.name == "above" and set(lit.args) <= set(tower))]  # as built
         tower, kept = tower[::-1], kept[::-1]
     place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
-    for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, tower)):
+    named = {lit.args[0] for lit in literals if TOWER_REST not in lit.args}  # "... and the rest": not these
+    each_of = {TOWER_ALL: tower, TOWER_REST: [o for o in objects if o not in tower and o not in named]}
+    for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, each_of)):
         args = tuple(place.get(arg, arg) for arg in literal.args)
-        if len(set(args)) < len(args) and not literal.value:  # "put the top block on the table": not on itself
-            continue
+        if len(set(args)) < len(args):  # "put the top block on the table", "... and the others next to it": not
+            continue  # on or by itself
         placed.append(Literal(literal.name, args, literal.value))
         if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
             place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
 
 
-def _each_of(literal: Literal, tower: list[str]) -> list[Literal]:
-    """``literal`` once for each block of ``tower`` where it names :data:`TOWER_ALL` (the whole tower), else itself."""
-    if TOWER_ALL not in literal.args:
+def _each_of(literal: Literal, groups: dict[str, list[str]]) -> list[Literal]:
+    """``literal`` once for each block of the group it names (:data:`TOWER_ALL`: the whole tower; :data:`TOWER_REST`:
+    the blocks not in it), else itself."""
+    group = next((arg for arg in literal.args if arg in groups), None)
+    if group is None:
         return [literal]
-    return [Literal(literal.name, tuple(block if arg == TOWER_ALL else arg for arg in literal.args), literal.value)
-            for block in tower]
+    return [Literal(literal.name, tuple(block if arg == group else arg for arg in literal.args), literal.value)
+            for block in groups[group] if block not in literal.args]  # "all but the tower next to blue": not blue
 
 
 def _towers(above: Sequence[Literal]) -> list[list[str]]:

@@ -121,6 +121,12 @@ PHRASES = [
     ("two_blocks", "unstack the blocks", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "put red on the table", "not holding(red) & not above(red,green)"),
     ("two_blocks", "put red on green then put green on red", "above(green,red)"),
+    ("two_blocks", "put red on green and then swap them", "above(green,red) & not above(red,green)"),
+    ("desk_cleanup", "put red in the bin, then swap red and green", "in_bin(green) & not in_bin(red)"),
+    ("desk_cleanup", "pick up red, then swap it with blue", "holding(blue) & not holding(red)"),
+    ("two_blocks", "unstack red and green onto the table",
+     "not holding(red) & not above(red,green) & not holding(green) & not above(green,red)"),
+    ("two_blocks", "unstack the tower onto the table", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "place red next to green and keep it there", "close(red,green)"),
     ("two_blocks", "stack red on green and keep them close", "above(red,green) & close(red,green)"),
     ("two_blocks", "put red above green", "above(red,green)"),
@@ -698,6 +704,40 @@ def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, t
 def test_it_after_a_tower_is_built_is_that_tower(text: str, expected: str) -> None:
     said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [])
     assert {str(literal) for literal in said} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("stack red, green and blue, then put it next to yellow", "above(green,red) & above(blue,green) & close(red,yellow)"),
+    ("stack red, green and blue, then move it away from yellow",
+     "above(green,red) & above(blue,green) & not close(red,yellow)"),
+    ("build a tower of red and green, then put it in the bin and then put green on blue", "in_bin(red) & above(green,blue)"),
+    ("stack red, green and blue then reverse the tower", "above(red,green) & above(green,blue)"),
+])
+def test_a_tower_built_then_moved_or_turned_over_is_moved_whole(text: str, expected: str) -> None:
+    said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [])
+    assert {str(literal) for literal in said} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize("text", ["clear the table except for the tower", "put all blocks except those in the tower into the bin",
+                                  "put every block that is not part of the stack in the bin",
+                                  "put orange on the tower and the rest in the bin"])
+def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_planned(text: str) -> None:
+    executive = Executive(SemanticPlanner("tabletop"))
+    objects = ("red", "green", "blue", "yellow", "orange")
+    executive.observe(Observation(objects, [Literal("above", ("green", "red"))], 0))
+    ok, message = executive.set_goal(text)
+    assert ok and "in_bin(blue) & in_bin(yellow)" in message and not re.search(r"(?<!not )in_bin\(red\)", message), message
+    assert "above(green,red)" in message or "above(orange,green)" in message
+    assert {str(s.subgoal) for s in executive.steps} >= {"put_in_bin(blue)", "put_in_bin(yellow)"}
+    moved = {re.split(r"[(,)]", str(step.subgoal))[1] for step in executive.steps}
+    assert not moved & {"red", "green"}, moved
+
+
+def test_a_tower_left_out_is_left_out_alone() -> None:
+    with pytest.raises(LanguageError, match="either the tower or blocks named one by one"):
+        parse_english("put all except the tower and red in the bin", "tabletop")
+    with pytest.raises(GoalError, match="no tower stands now"):
+        parse_goal("clear the table except for the tower", "tabletop", ("red", "green", "blue"), [])
 
 
 def test_removing_the_top_block_takes_it_off_the_tower() -> None:

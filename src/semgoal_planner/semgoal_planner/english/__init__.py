@@ -43,12 +43,13 @@ from semgoal_planner.english.resolver import (
     SWAP,
     TOWER_ALL,
     TOWER_BASE,
+    TOWER_REST,
     TOWER_TOP,
     Resolver,
 )
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["KEEP", "MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_TOP", "LanguageError",
+__all__ = ["KEEP", "MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST", "TOWER_TOP", "LanguageError",
            "examples", "normalise", "parse_english"]
 
 
@@ -73,13 +74,11 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
         raise
     resolver, goal, before = Resolver(scene, blocks), {}, None
     for conjunction in conjunctions:
-        resolved = []
+        resolved, resolver.carried = [], set()
         for clause in conjunction:
             literals, before = resolver.literals(clause, before)
             resolved.append((before, literals))
-        moved = {b for clause, _ in resolved if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
-        # "... then put green on red": what earlier stages said of a block moved now no longer holds
-        goal = {key: lit for key, lit in goal.items() if not moved & set(lit.args)}
+        goal, resolved = _carried_over(goal, resolved, resolver)
         stage: dict[tuple[str, tuple[str, ...]], tuple[Literal, bool]] = {}
         for i, (clause, literals) in enumerate(resolved):
             if clause.kind in ("hold", "off_table") and _a_means(clause, [c for c, _ in resolved[i + 1:]], resolver):
@@ -125,7 +124,7 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")
         return literal
-    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE, TOWER_ALL)]
+    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST)]
     if not standing:
         return layout.validate(literal, blocks)
     spare = iter(b for b in blocks if b not in literal.args)
@@ -134,6 +133,47 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
         raise VocabularyError(f"{literal}: a tower needs two blocks besides {' and '.join(literal.args[:1])}")
     layout.validate(Literal(literal.name, tuple(stand_ins.get(a, a) for a in literal.args), literal.value), blocks)
     return literal
+
+
+Said = list[tuple[Clause, list[tuple[Literal, bool]]]]
+"""A stage's clauses as resolved, each with its literals (and whether each is generic)."""
+
+
+def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Said]:
+    """What the stages before ``stage`` said that still holds after it, and ``stage`` left to add. A block the stage
+    moves loses what was said of it ("... then put green on red"), but for the blocks of a tower moved whole; a swap
+    of blocks said before trades what was said of them ("put red on green, then swap them": green on red)."""
+    traded = []
+    for clause, literals in stage:
+        pairs = [lit.args for lit, _ in literals if lit.name == SWAP and len(lit.args) == 2]
+        if pairs and any(set(pairs[0]) & set(lit.args) for lit in goal.values()):
+            goal = _traded(goal, *pairs[0])
+            traded.append(clause)
+    stage = [(clause, literals) for clause, literals in stage if clause not in traded]
+    moved = {b for clause, _ in stage if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
+    return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)}, stage
+
+
+def _traded(goal: dict, a: str, b: str) -> dict:
+    """``goal`` after ``a`` and ``b`` trade places: what was said of one is said of the other, and a place only one of
+    them had is no longer its own (red in the bin, then swapped with green: green in the bin, red out)."""
+    other = {a: b, b: a}
+    said = [lit for lit in goal.values() if {a, b} & set(lit.args)]
+    after = {key: lit for key, lit in goal.items() if lit not in said}
+    for lit in said:
+        if lit.name == "close" and set(lit.args) == {a, b}:  # near each other before and after
+            after[(lit.name, lit.args)] = lit
+            continue
+        lit = Literal(lit.name, tuple(other.get(arg, arg) for arg in lit.args), lit.value)
+        after[(lit.name, lit.args)] = lit
+    for lit in said:
+        after.setdefault((lit.name, lit.args), lit.negated() if lit.value else lit)
+    return after
+
+
+def _within(literal: Literal, towers: set[tuple[str, ...]]) -> bool:
+    """Whether ``literal`` stacks one block of one of ``towers`` on another."""
+    return literal.name == "above" and literal.value and any(set(literal.args) <= set(tower) for tower in towers)
 
 
 def _a_means(hold: Clause, later: list[Clause], resolver: Resolver) -> bool:

@@ -60,8 +60,10 @@ action: ("put" | "keep") refs dest          -> put
       | "separate" refs? ("apart" | "out")?   -> apart
       | "separate" refs ("from" | "away") refs -> separate_from
       | "swap" refs?                          -> swap
-      | "unstack" refs?                       -> unstack
+      | "swap" refs near                      -> swap_with
+      | "unstack" (refs | on_table)?          -> unstack
       | "unstack" refs ("on" | "down")        -> unstack
+      | "unstack" refs on_table               -> put
       | "keep" refs                           -> keep
 
 condition: dest | "held" -> held
@@ -271,8 +273,11 @@ class Clauses(lark.Transformer):
         refs = refs_in(items)
         return Clause("swap", subjects=refs[0] if refs else (Ref("all"),))
 
-    def unstack(self, items: list) -> Clause:
-        refs = refs_in(items)
+    def swap_with(self, items: list) -> Clause:  # "swap red with green" ('with' reads as 'near')
+        return Clause("swap", subjects=items[0] + items[1].objects)
+
+    def unstack(self, items: list) -> Clause:  # "unstack onto the table": where unstacked blocks go anyway
+        refs = [item for item in refs_in(items) if isinstance(item, tuple)]
         return Clause("unstack", subjects=refs[0] if refs else (Ref("all"),))
 
     # -- destinations -------------------------------------------------------------------------------

@@ -11,7 +11,7 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
 from semgoal_planner.english.words import UNORDERED_TOWER, LanguageError, examples
 
-TOWER_TOP, TOWER_BASE, TOWER_ALL = "tower_top", "tower_base", "tower_all"
+TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST = "tower_top", "tower_base", "tower_all", "tower_rest"
 """What 'the tower' stands for in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`):
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
@@ -28,6 +28,7 @@ PLACED_WHEN_PLANNED = {
     TOWER_TOP: "the top block of the tower standing when the goal is planned",
     TOWER_BASE: "the bottom block of the tower standing when the goal is planned",
     TOWER_ALL: "each block of the tower standing when the goal is planned",
+    TOWER_REST: "each block not in the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
     KEEP: "the block's place as it is when the goal is planned: in the bin or not, in the hand or not, on which block "
@@ -52,6 +53,11 @@ class Resolver:
         """Whether the clause before built a tower (what 'it' names then)."""
         self.stated: Clause | None = None
         """The last clause that said its relation (what an ellipsis such as 'but not green' borrows)."""
+        self.tower_named = False
+        """Whether a clause before named the tower as a whole, or as where a block goes (what 'the rest' leaves out)."""
+        self.carried: set[tuple[str, ...]] = set()
+        """The towers built before that 'it' moves whole ("stack red, green and blue, then put it next to yellow"):
+        their bottom blocks move, and what stands on them stays."""
 
     def blocks_of(self, refs: Iterable[Ref], besides: tuple[str, ...] = ()) -> tuple[str, ...]:
         """The blocks ``refs`` name; ``besides``: the clause's subjects, which an object's 'it' is not."""
@@ -74,6 +80,11 @@ class Resolver:
             return (TOWER_ENDS[ref.kind],)
         if ref.kind == "all":
             excluded = set(self.blocks_of(ref.excluded))
+            if TOWER_ALL in excluded:  # "all except the tower": which blocks, only the world can say when planned
+                if len(excluded) > 1:
+                    raise LanguageError("leave out either the tower or blocks named one by one, not both: e.g. "
+                                        "'put every block except the tower in the bin'")
+                return (TOWER_REST,)
             return tuple(b for b in self.blocks if b not in excluded)
         if ref.kind == "both":  # "red next to green and blue away from both": the two the clause before named
             pair = tuple(b for b in self.last_named if b not in besides)
@@ -83,6 +94,8 @@ class Resolver:
                 return self.blocks
             raise LanguageError(f"'both' is ambiguous: say which two blocks ({', '.join(self.blocks)})")
         if ref.kind == "other":  # not the blocks named before, nor the clause's own ("red on top") where some remain
+            if self.tower_named:  # "orange on the tower and the rest in the bin": nor the tower's blocks, which only
+                return (TOWER_REST,)  # the world can say when planned
             unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
             others = tuple(b for b in unnamed if b not in besides) or unnamed
             if not others:
@@ -90,7 +103,10 @@ class Resolver:
             return others
         if ref.kind == "it":
             if self.last_built and not set(besides) & set(self.last):  # "make a tower of red and green, put blue next
-                return ("tower",) if besides else self.last[:1]  # to it"; "..., put it in the bin": its bottom block
+                if besides:  # to it"; "..., put it in the bin": its bottom block, the tower on it
+                    return ("tower",)
+                self.carried.add(self.last)
+                return self.last[:1]
             if besides and set(self.last) <= set(besides):  # "red next to green, not on it": 'it' is green
                 named = tuple(b for b in self.last_named if b not in besides)
                 if len(named) == 1:
@@ -135,8 +151,8 @@ class Resolver:
         objects = self.blocks_of(clause.objects, besides=subjects)
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
-        if (TOWER_ALL in objects and clause.kind not in ("near", "away")) or (
-                TOWER_ALL in subjects and clause.kind in ("on", "under", "hold")):
+        if ({TOWER_ALL, TOWER_REST} & set(objects) and clause.kind not in ("near", "away")) or (
+                {TOWER_ALL, TOWER_REST} & set(subjects) and clause.kind in ("on", "under", "hold")):
             raise LanguageError("the whole tower goes in the bin, onto the table, near or away from a block: its "
                                 "blocks cannot go on one block, or into one hand")
         if "tower" in objects:
@@ -150,6 +166,7 @@ class Resolver:
             raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "
                                 "blocks should be, e.g. 'stack red on green'")
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
+        self.tower_named |= TOWER_ALL in subjects or bool(set(objects) & {TOWER_TOP, TOWER_BASE, TOWER_ALL})
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
         said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]
         if not said and objects:
@@ -158,6 +175,9 @@ class Resolver:
         excluded = [b for ref in clause.subjects if ref.kind == "all" for b in self.blocks_of(ref.excluded)]
         if any(ref.kind == "only" for ref in clause.subjects):
             excluded += [b for b in self.blocks if b not in subjects and b not in objects]
+        if excluded == [TOWER_ALL]:  # "clear the table except the tower": it stays as it stands
+            said.append((Literal(KEEP, (TOWER_ALL,)), False))
+            excluded = []
         if excluded and clause.kind not in ("together", "apart"):  # a group says nothing of those left out
             if clause.kind not in OPPOSABLE:
                 raise LanguageError(f"'except' or 'only' leaves {' and '.join(excluded)} unclear here: "

@@ -55,6 +55,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
+    (r"((that|which) (are|is) )?(except( for)?|but( for)?|other than|apart from|besides|save for|not( part of)?) "
+     r"(the (blocks|cubes|ones)|those|what('s| is))?( (that|which) (are|is|stand|make up|form))? ?"
+     r"((in|of|on|forming|making up) )?(the|that|this|your) (tower|stack|pile)"
+     r"(?! of)", "except the_whole"),  # "put every block except those in the tower in the bin": the others, when planned
     (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
      r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
     (r"(switch|swap|change|reverse|flip) (which|the) (block|cube|one)( that)? (is|sits|goes|lies) (on top|at the top|on the "

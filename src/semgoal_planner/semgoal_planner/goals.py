@@ -17,11 +17,13 @@ from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError, parse_lit
 from semgoal_planner.english import (
     KEEP,
     MAX_GOAL_CHARS,
+    ON_PREFIX,
     SWAP,
     TOWER_ALL,
     TOWER_BASE,
     TOWER_REST,
     TOWER_TOP,
+    UNDER_PREFIX,
     LanguageError,
     parse_english,
 )
@@ -43,14 +45,14 @@ class Goal:
 
     def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
-        goal in that state, or the literals once every block they name is present, 'the tower' placed
-        (:func:`the_tower`), swaps made (:func:`swapped`) and blocks kept where they are (:func:`kept`). Nothing is
-        parsed."""
+        goal in that state, or the literals once every block they name is present, a block named by what it stands
+        on or under placed (:func:`relative`), 'the tower' placed (:func:`the_tower`), swaps made (:func:`swapped`) and
+        blocks kept where they are (:func:`kept`). Nothing is parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            placed = swapped(the_tower(self.literals, state, objects), state)
+            placed = swapped(the_tower(relative(self.literals, state), state, objects), state)
             goal = [layout.validate(literal, objects) for literal in kept(placed, state, scene, objects)]
             check_consistent(goal)
         except (VocabularyError, ContradictionError) as error:
@@ -96,6 +98,29 @@ def typed_goal(literals: Sequence[Literal], scene: str, objects: tuple[str, ...]
 def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
     """The goal literals for ``text`` in a world of ``scene`` with ``objects`` present, now in ``state``."""
     return read_goal(text, scene, objects).instantiate(scene, objects, state)
+
+
+def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
+    """``literals`` with each block named by where it stands placed in ``state``: ``block_on_red`` becomes the block
+    on red, ``block_under_green`` the block green is on. GoalError where none is."""
+    on = {lit.args[1]: lit.args[0] for lit in state if lit.name == "above" and lit.value}  # block -> the one on it
+    under = {upper: below for below, upper in on.items()}
+
+    def placed(arg: str) -> str:
+        if arg.startswith(ON_PREFIX):
+            block = arg.removeprefix(ON_PREFIX)
+            if block not in on:
+                raise GoalError(f"no block stands on {block} now: name the block instead")
+            return on[block]
+        if arg.startswith(UNDER_PREFIX):
+            block = arg.removeprefix(UNDER_PREFIX)
+            if block not in under:
+                raise GoalError(f"{block} stands on no block now: name the block instead")
+            return under[block]
+        return arg
+
+    made = [Literal(lit.name, tuple(map(placed, lit.args)), lit.value) for lit in literals]
+    return [lit for lit in made if len(set(lit.args)) == len(lit.args)]  # "... on the table": not on itself
 
 
 def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:

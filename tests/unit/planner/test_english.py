@@ -127,6 +127,11 @@ PHRASES = [
     ("two_blocks", "unstack red and green onto the table",
      "not holding(red) & not above(red,green) & not holding(green) & not above(green,red)"),
     ("two_blocks", "unstack the tower onto the table", "not above(red,green) & not above(green,red)"),
+    ("desk_cleanup", "empty the bin onto the table",
+     "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "add red and green to the bin", "in_bin(red) & in_bin(green)"),
+    ("tabletop", "build a three-block tower with blue on the bottom, red in the middle and green on top",
+     "above(red,blue) & above(green,red)"),
     ("two_blocks", "place red next to green and keep it there", "close(red,green)"),
     ("two_blocks", "stack red on green and keep them close", "above(red,green) & close(red,green)"),
     ("two_blocks", "put red above green", "above(red,green)"),
@@ -731,6 +736,36 @@ def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_p
     assert {str(s.subgoal) for s in executive.steps} >= {"put_in_bin(blue)", "put_in_bin(yellow)"}
     moved = {re.split(r"[(,)]", str(step.subgoal))[1] for step in executive.steps}
     assert not moved & {"red", "green"}, moved
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("put the block on top of red in the bin", "in_bin(green)"),
+    ("pick up the block on red", "holding(green)"),
+    ("put the block that is on green on the table",
+     "not holding(blue) & not in_bin(blue) & not above(blue,red) & not above(blue,green) & not above(blue,yellow)"),
+    ("move the block under green next to yellow", "close(red,yellow)"),
+    ("take the block blue is on and put it in the bin", "in_bin(green)"),
+    ("put whatever is on red next to yellow", "close(green,yellow)"),
+    ("remove the block above red", "not above(green,red) & not above(green,blue) & not above(green,yellow)"),
+    ("pick up yellow and put the block on red", "above(yellow,red)"),  # 'the block' is yellow, put on red
+    ("pick up yellow, then place the block on top of blue", "above(yellow,blue)"),
+    ("add yellow to the tower", "above(yellow,blue)"),
+])
+def test_a_block_named_by_what_it_stands_on_or_under_is_placed_when_planned(text: str, expected: str) -> None:
+    tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]
+    said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), tower)
+    assert {str(literal) for literal in said} == set(expected.split(" & "))
+
+
+def test_a_block_named_by_where_it_stands_must_stand_there() -> None:
+    assert [str(lit) for lit in parse_english("put the block on top of red in the bin", "tabletop")] == [
+        "in_bin(block_on_red)"]
+    with pytest.raises(GoalError, match="no block stands on yellow now"):
+        parse_goal("put the block on yellow in the bin", "tabletop", ("red", "yellow"), [])
+    with pytest.raises(GoalError, match="red stands on no block now"):
+        parse_goal("pick up the block under red", "tabletop", ("red", "yellow"), [])
+    with pytest.raises(LanguageError, match="there is no pink block here"):
+        parse_english("pick up the block on pink", "tabletop", ("red", "yellow"))
 
 
 def test_a_tower_left_out_is_left_out_alone() -> None:

@@ -39,18 +39,21 @@ from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, Vocabulary
 from semgoal_planner.english.grammar import Clause, Clauses, parse
 from semgoal_planner.english.resolver import (
     KEEP,
+    ON_PREFIX,
     PLACED_WHEN_PLANNED,
     SWAP,
     TOWER_ALL,
     TOWER_BASE,
     TOWER_REST,
     TOWER_TOP,
+    UNDER_PREFIX,
     Resolver,
+    is_stand_in,
 )
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["KEEP", "MAX_GOAL_CHARS", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST", "TOWER_TOP", "LanguageError",
-           "examples", "normalise", "parse_english"]
+__all__ = ["KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
+           "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:
@@ -124,7 +127,7 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")
         return literal
-    standing = [arg for arg in literal.args if arg in (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST)]
+    standing = [arg for arg in literal.args if is_stand_in(arg)]
     if not standing:
         return layout.validate(literal, blocks)
     spare = iter(b for b in blocks if b not in literal.args)

@@ -53,7 +53,7 @@ action: ("put" | "keep") refs dest          -> put
       | "clean" refs ("in" "bin" | "table")?  -> clean
       | "bin" refs                            -> clean
       | "put" refs "off" "table"              -> off_table
-      | "empty" "bin"                         -> empty
+      | "empty" "bin" on_table?               -> empty
       | "empty" refs ("out" "bin"?)?          -> empty_refs
       | "group" refs? "together"?             -> together
       | "group" refs near                     -> group_near
@@ -92,6 +92,8 @@ ref: COLOUR                      -> colour
    | "the_top"                   -> top
    | "the_base"                  -> base
    | "the_whole"                 -> whole
+   | "the_upper" COLOUR          -> upper
+   | "the_lower" COLOUR          -> lower
 
 NOT: "not"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
@@ -108,7 +110,7 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 class Ref:
     """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
     ``them``, ``tower`` (the tower standing when the goal is planned), ``top`` and ``base`` (its top and bottom
-    blocks)."""
+    blocks), ``upper`` and ``lower`` (the block on, or under, the one of ``colours`` when planned)."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -349,6 +351,12 @@ class Clauses(lark.Transformer):
 
     def whole(self, _: list) -> Ref:
         return Ref("whole")
+
+    def upper(self, items: list) -> Ref:
+        return Ref("upper", (str(items[0]),))
+
+    def lower(self, items: list) -> Ref:
+        return Ref("lower", (str(items[0]),))
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

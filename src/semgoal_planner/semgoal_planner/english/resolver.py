@@ -18,6 +18,9 @@ TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
+ON_PREFIX, UNDER_PREFIX = "block_on_", "block_under_"
+"""'the block on red', 'the block under green': ``block_on_red``, ``block_under_green`` in a goal's literals until it is
+planned (:func:`~semgoal_planner.goals.relative`)."""
 SWAP = "swap"
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
@@ -31,10 +34,17 @@ PLACED_WHEN_PLANNED = {
     TOWER_REST: "each block not in the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
+    ON_PREFIX: "(block_on_COLOUR) the block standing on that block when the goal is planned",
+    UNDER_PREFIX: "(block_under_COLOUR) the block that block stands on when the goal is planned",
     KEEP: "the block's place as it is when the goal is planned: in the bin or not, in the hand or not, on which block "
           "(not closeness: another block may still be put next to it); a block the goal itself moves is not kept",
 }
 """What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
+
+
+def is_stand_in(name: str) -> bool:
+    """Whether a literal's argument stands for a block only the world can name when the goal is planned."""
+    return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX))
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
 
 
@@ -71,9 +81,12 @@ class Resolver:
     def _one(self, ref: Ref, besides: tuple[str, ...]) -> tuple[str, ...]:
         if ref.kind in ("colours", "only"):
             for colour in ref.colours:
-                if colour not in self.blocks and colour not in PLACED_WHEN_PLANNED:  # a resolved clause's stand-ins
+                if colour not in self.blocks and not is_stand_in(colour):  # a resolved clause's stand-ins
                     raise LanguageError(f"there is no {colour} block here: the blocks are {', '.join(self.blocks)}")
             return ref.colours
+        if ref.kind in ("upper", "lower"):  # "the block on red": the one standing on it when planned
+            self._one(Ref("colours", ref.colours), besides)  # refused where red is not here
+            return ((ON_PREFIX if ref.kind == "upper" else UNDER_PREFIX) + ref.colours[0],)
         if ref.kind == "tower":  # placed by literals(), which knows the relation
             return ("tower",)
         if ref.kind in TOWER_ENDS:  # "the top block": stands in the literals until the goal is planned
@@ -160,8 +173,8 @@ class Resolver:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "
                                     f"'put {subjects[0]} on the tower'")
             objects = tuple(TOWER_PLACES[clause.kind] if b == "tower" else b for b in objects)
-        if clause.kind == "out_bin" and set(subjects) <= {TOWER_TOP, TOWER_BASE}:  # "remove the top block": off the
-            clause = replace(clause, kind="off")  # tower, not out of the bin
+        if clause.kind == "out_bin" and all(s in (TOWER_TOP, TOWER_BASE) or s.startswith(ON_PREFIX) for s in subjects):
+            clause = replace(clause, kind="off")  # "remove the top block", "the block on red": off, not out of the bin
         if clause.negated and clause.kind == "unstack":  # not every 'not above' at once: that is no state at all
             raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "
                                 "blocks should be, e.g. 'stack red on green'")

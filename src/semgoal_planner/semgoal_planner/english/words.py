@@ -41,6 +41,9 @@ _LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile) )?(t
 """Blocks named into a tower, whatever the verb ('put red, green and blue in a tower'): stacked in the order named; where
 the tower goes, its bottom block goes."""
 
+_NOT_AFTER_A_PUT = "".join(rf"(?<!\b{verb} )" for verb in ("put", "place", "move", "stack", "set", "drop", "lay"))
+"""Not right after a verb that puts a block somewhere: there 'the block on red' is a block put on red."""
+
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
@@ -69,13 +72,26 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
      r"(tower|stack|pile)(?! of)", r"\g<verb> the_whole"),  # "put the tower in the bin": what is moved is each block
+    (rf"(the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands| rests)|whatever( is|'s| sits| lies)?) "
+     rf"(on top of|on|atop|upon|above|stacked on) (the )?(?P<below>{_COLOUR})( block| cube| one)?|"
+     rf"{_NOT_AFTER_A_PUT}the (block|cube|one) (on top of|on|atop|upon|above) (the )?(?P<below2>{_COLOUR})( block| cube| one)?"
+     rf"|(?P<verb>put|place|move|stack|set|drop|lay) the (block|cube|one) (on top of|on|atop|upon|above) (the )?"
+     rf"(?P<below3>{_COLOUR})( block| cube| one)?(?= (in|into|on|onto|next|near|beside|by|close|away|far|out|off)\b)",
+     r"\g<verb> the_upper \g<below>\g<below2>\g<below3>"),  # "the block on red": the one standing on it when planned; after
+    # "put" only where a place follows ("put the block on red in the bin"), as "put the block on red" puts it there
+    (rf"the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands)? (under|underneath|below|beneath|supporting) "
+     rf"(the )?(?P<above>{_COLOUR})( block| cube| one)?|the (block|cube|one)( that| which)? (the )?(?P<upper>{_COLOUR})"
+     r"( block| cube| one)? (is|sits|stands|lies|rests) on", r"the_lower \g<above>\g<upper>"),  # "the block under green"
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
-     r"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?", "the_top"),
+     rf"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?(?! of (the )?({_COLOUR}))",
+     "the_top"),
     (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      r"the (block|cube|one) (at|on) the (bottom|base|foot)( of (the|that|this|your) (tower|stack|pile))?",
      "the_base"),  # "put the top block in the bin": the tower's ends, placed when planned
     (r"((at|to|on|in) the (bottom|base|foot) of|under|underneath|beneath|below)( the| that| this| your) (tower|stack|"
      r"pile)(?! of)", UNDER_A_TOWER),  # "put red at the bottom of the tower"
+    (r"add (?P<what>[^,;]+?) (to|onto|on top of) (the|that|this|your) (tower|stack|pile)(?! of)",
+     r"put \g<what> on the_tower"),  # "add blue to the tower": on top of it
     (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
@@ -202,7 +218,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
-     r"return|lay|put", "put"),
+     r"return|lay|add|put", "put"),
     (r"(pile|stack) up|pile|stack", "stack"),
     (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
@@ -232,7 +248,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "swap",
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap",
 })
 """The words the grammar reads (besides the colours)."""
 
@@ -567,7 +583,7 @@ _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
                        r"on the bottom|at the base)\b")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
-_A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) with $")
+_A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with $")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
 _LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "at the bottom": 0, "on the bottom": 0,
            "at the base": 0}

@@ -132,6 +132,13 @@ PHRASES = [
     ("desk_cleanup", "add red and green to the bin", "in_bin(red) & in_bin(green)"),
     ("tabletop", "build a three-block tower with blue on the bottom, red in the middle and green on top",
      "above(red,blue) & above(green,red)"),
+    ("two_blocks", "move red from green to the table", "not holding(red) & not above(red,green)"),
+    ("tabletop", "none of the blocks should be stacked", " & ".join(
+        f"not above({a},{b})" for a in LAYOUTS["tabletop"].objects for b in LAYOUTS["tabletop"].objects if a != b)),
+    ("desk_cleanup", "keep green out of the bin and put everything else in",
+     "not in_bin(green) & in_bin(red) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "clean the desk but leave blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("desk_cleanup", "stop holding the red block", "not holding(red)"),
     ("two_blocks", "place red next to green and keep it there", "close(red,green)"),
     ("two_blocks", "stack red on green and keep them close", "above(red,green) & close(red,green)"),
     ("two_blocks", "put red above green", "above(red,green)"),
@@ -697,6 +704,8 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
     ("three_blocks", "leave red alone and put green near blue", "keep(red) & close(green,blue)"),
     ("tabletop", "don't knock the tower over and put orange in the bin", "keep(tower_all) & in_bin(orange)"),
     ("desk_cleanup", "pick up blue and keep it", "holding(blue)"),  # the goal says where blue is
+    ("desk_cleanup", "put red in the bin but leave blue alone", "in_bin(red) & keep(blue)"),
+    ("tabletop", "put red on green but don't touch blue", "above(red,green) & keep(blue)"),
 ])
 def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, text: str, expected: str) -> None:
     assert {str(literal) for literal in parse_english(text, scene)} == set(expected.split(" & "))
@@ -750,6 +759,11 @@ def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_p
     ("pick up yellow and put the block on red", "above(yellow,red)"),  # 'the block' is yellow, put on red
     ("pick up yellow, then place the block on top of blue", "above(yellow,blue)"),
     ("add yellow to the tower", "above(yellow,blue)"),
+    ("move red from green to blue", "above(red,blue)"),
+    ("leave the tower as it is and put yellow in the bin",
+     "above(green,red) & above(blue,green) & in_bin(yellow) & not in_bin(red) & not holding(red) & not above(red,blue) & "
+     "not above(red,green) & not above(red,yellow) & not in_bin(green) & not holding(green) & not above(green,blue) & "
+     "not above(green,yellow) & not in_bin(blue) & not holding(blue) & not above(blue,red) & not above(blue,yellow)"),
 ])
 def test_a_block_named_by_what_it_stands_on_or_under_is_placed_when_planned(text: str, expected: str) -> None:
     tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]

@@ -22,6 +22,8 @@ INTO_A_TOWER = "intoatower"
 UNORDERED_TOWER = ("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks from the bottom "
                    "up: 'build a tower of red, green and blue'")
 """Why a tower whose blocks are not named in order is refused."""
+BUT_LEAVE = "butleave"
+"""What 'but leave', 'but keep' leave: an exception after an 'all' or a clean-up, else a block kept (:func:`_kept_besides`)."""
 UNDER_A_TOWER = "underatower"
 """What 'under the tower', 'at the bottom of the tower' leave: a block slid under a standing tower, which means building
 the tower again on it (refused in :func:`normalise`, saying how to name the new tower)."""
@@ -48,6 +50,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
     # the world has it when planned (alone, it is refused as asking for no change)
+    (r"(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
+     r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
+    (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"(none of the (blocks|cubes)|no (block|cube)s?|nothing)( should| must| may| can| is| are| will)?( be| stay| remain)?"
+     r" (stacked|piled|on (top of )?(another|any other|each other|one another|other)( blocks?| cubes?| ones?)?)",
+     "unstack"),  # "none of the blocks should be stacked", "no block on top of another"
     (r"(don'?t|do not|never|please don'?t) (knock|tear|topple|take)( over| down)?( the| your| that| this)? (tower|stack|pile)"
      r"( over| down)?", "keep the_whole"),  # "don't knock the tower over": the same, for the tower's blocks
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
@@ -175,7 +183,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
     (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|blocks|cube|cubes|one))+"
-     r"( then\b|$))", "except"),  # "clean the table but leave red and yellow"
+     r"( then\b|$))", BUT_LEAVE),  # "clean the table but leave red and yellow"
     (r"but", "and"),
     (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
@@ -188,6 +196,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"far apart|apart|separated|isolated", "apart"),
     (r"line up|line|arrange in a row", "group"),  # "line up red, green and blue"
     (r"arrange", "put"),  # "arrange red and green side by side"
+    (rf"from (the )?(?P<from>{_COLOUR})( block| cube| one)? to(?= (the )?({_COLOUR})\b)", r"from \g<from> on"),  # "move
+    # red from green to blue": off one block, onto the other
+    (r"in(?=( (and|then)\b)|$)", "in the bin"),  # "put everything else in"
     (r"over to", "to"),
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
@@ -225,6 +236,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"keep|leave|have|let", "keep"),
     (r"everything|every|each|all of them|all of|all", "all"),
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
+    (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
     (r"((trash|waste|garbage|rubbish|recycling|storage) )?(basket|box|container|tray|trash can|trash|bucket|crate|bin|"
@@ -351,7 +363,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
     words = [w for w in text.split() if w not in FILLERS]
     words = _beside_the_bin(words)
-    for rewrite in (_joined, _tower_end_named, _listing_in_order, _chained_on, _top_down, _top_named_last):  # word-level readings, in order
+    for rewrite in (_joined, _kept_besides, _tower_end_named, _listing_in_order, _chained_on, _top_down,
+                    _top_named_last):  # word-level readings, in order
         words = rewrite(words)
     _refuse_a_list_split(words)
     words = _stacked_into_a_tower(words)
@@ -690,6 +703,21 @@ def _beside_the_bin(words: list[str]) -> list[str]:
         if then == "bin" and word == "away":
             words = [*words[:at], "out", *words[at + 1:]]
     return words
+
+
+def _kept_besides(words: list[str]) -> list[str]:
+    """'clean the table but leave red' takes red out of the clean-up; 'put red on green but leave blue (alone)', with no
+    'all' or clean-up before it in the clause, keeps blue where it is."""
+    kept: list[str] = []
+    start = 0
+    for word in words:
+        if word == BUT_LEAVE:
+            kept += ["except"] if {"all", "clean"} & set(kept[start:]) else ["and", "keep"]
+            continue
+        if word == "then":
+            start = len(kept) + 1
+        kept.append(word)
+    return kept
 
 
 def _joined(words: list[str]) -> list[str]:

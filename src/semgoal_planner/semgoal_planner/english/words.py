@@ -53,6 +53,14 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"any (longer|more)", ""),
+    (rf"(?P<verb>stack|pile|build a tower of|build a stack of) (them all|all of them|all( the)?( blocks| cubes)?|everything)"
+     rf"(?= (the )?({_COLOUR})\b)", r"\g<verb>"),  # "stack them all: red first, then green": the blocks listed
+    (rf"(?P<block>{_COLOUR})( block| cube| one)? (is |should be |must be |be )?not (on|on top of|stacked on) (anything|any"
+     r"( other)? (block|cube|one)s?|another( block| cube| one)?|any of the others)", r"take \g<block> off"),  # "blue is
+    # not on anything": on no block
+    (rf"(?P<place>next to|near|beside|close to|by) (the )?(?P<block>{_COLOUR})( block| cube| one)? (on|onto) (the )?"
+     r"(table|desk)", r"\g<place> \g<block> and on the table"),  # "green next to red on the table": both
     (r"(none of the (blocks|cubes)|no (block|cube)s?|nothing)( should| must| may| can| is| are| will)?( be| stay| remain)?"
      r" (stacked|piled|on (top of )?(another|any other|each other|one another|other)( blocks?| cubes?| ones?)?)",
      "unstack"),  # "none of the blocks should be stacked", "no block on top of another"
@@ -252,7 +260,7 @@ FILLERS = frozenset({
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
     "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",
-    "immediately", "right", "straight",
+    "immediately", "right", "straight", "anymore", "still",
 })
 """Words that carry nothing for the goal."""
 

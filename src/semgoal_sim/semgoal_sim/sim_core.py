@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from semgoal_core.arms import robot_name
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.tasks import TASKS, get_task
@@ -56,11 +57,15 @@ STACK_ALIGNMENT = 0.01
 and it would hang over the edge and fall."""
 
 
+HAND_MARGIN = 0.002
+"""How near a block set down may come to a hand's parts (m)."""
+
+
 def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[bool, str]:
     """A person's hand (an operator's intervention, the console, a scripted person): put ``block`` at ``position``
     (x, y; z is set to rest on the table, on the bin's floor inside its walls, or on top of the block or tower
     centred there). Refused off the table, half on another block, across the bin's walls, or for a block with
-    another resting on it (the one on top would fall)."""
+    another resting on it (the one on top would fall), or into a robot's hand (not the one that holds the block)."""
     if block not in world.blocks:
         return False, f"unknown block {block!r}: blocks here are {', '.join(world.blocks)}"
     xy = np.asarray(position, dtype=np.float64)[:2]
@@ -95,7 +100,14 @@ def move_block(world: FetchWorld, block: str, position: np.ndarray) -> tuple[boo
                            f"(|x - {bin_.center[0]}| <= {inner[0] - BLOCK_HALF_SIZE:.3f}, "
                            f"|y - {bin_.center[1]}| <= {inner[1] - BLOCK_HALF_SIZE:.3f}) or clear of them")
     holder = world.holder(block)
-    world.set_block_pose(block, np.array([*xy, rest_z]))
+    placed = np.array([*xy, rest_z])
+    for arm in range(len(world.arms)):  # not into a hand (its own holder's fingers are around it already)
+        if arm != holder and any(np.all(np.abs(centre - placed) < half + BLOCK_HALF_SIZE + HAND_MARGIN)
+                                 for centre, half in world.hand_boxes(arm)):
+            grip = world.hands()[arm][0]
+            return False, (f"{robot_name(arm)}'s hand is at ({grip[0]:.3f}, {grip[1]:.3f}), {grip[2] - TABLE_TOP:.3f} m "
+                           f"over the table: put {block} clear of it, or once it has risen")
+    world.set_block_pose(block, placed)
     if holder is not None:  # taken out of the hand: the hand lets go, so it cannot close on what it held
         world.open_fingers(arm=holder)
         where += ", out of the robot's hand (the fingers opened)"

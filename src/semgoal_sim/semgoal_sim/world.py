@@ -90,6 +90,9 @@ class _Arm:
     """Its geoms' ids: the contacts between two arms' (:attr:`FetchWorld.arm_contacts`)."""
     chain: np.ndarray
     """Its shoulder, elbow, wrist and gripper bodies: with the grip site, the chain the guard keeps apart."""
+    hand_geoms: np.ndarray
+    """The colliding geoms of its gripper and fingers: what a block set down must keep clear of
+    (:meth:`FetchWorld.hand_boxes`)."""
     quaternion: np.ndarray
     """The gripper's fixed orientation: pointing down, turned as the arm's base is."""
 
@@ -155,7 +158,17 @@ class FetchWorld:
             geoms=np.flatnonzero(m.body_rootid[m.geom_bodyid] == m.body_rootid[base]),
             chain=np.array([m.body(f"{prefix}robot0:{link}").id for link in CHAIN_LINKS]),
             quaternion=quaternion,
+            hand_geoms=np.flatnonzero(np.isin(m.geom_bodyid, self._subtree(m.body(f"{prefix}robot0:gripper_link").id))
+                                      & (m.geom_contype > 0)),
         )
+
+    def _subtree(self, body: int) -> list[int]:
+        """``body`` and every body below it."""
+        below = [body]
+        for child in range(body + 1, self.model.nbody):  # MuJoCo numbers a body's children after it
+            if self.model.body_parentid[child] in below:
+                below.append(child)
+        return below
 
     # -- reset ---------------------------------------------------------------------------------------
     def _shared_home(self) -> tuple[dict[str, float], np.ndarray]:
@@ -308,6 +321,16 @@ class FetchWorld:
         """Each arm's grip position and finger opening now."""
         d = self.data
         return [(d.site_xpos[arm.grip_site].copy(), float(d.qpos[arm.finger_qpos].sum())) for arm in self.arms]
+
+    def hand_boxes(self, arm: int = 0) -> list[tuple[np.ndarray, np.ndarray]]:
+        """A world-aligned box (centre, half extents) around each colliding part of an arm's hand now."""
+        m, d = self.model, self.data
+        boxes = []
+        for geom in self.arms[arm].hand_geoms:
+            rotation = d.geom_xmat[geom].reshape(3, 3)
+            local = m.geom_aabb[geom]
+            boxes.append((d.geom_xpos[geom] + rotation @ local[:3], np.abs(rotation) @ local[3:]))
+        return boxes
 
     def holder(self, block: str) -> int | None:
         """The arm whose hand holds ``block`` now (``holding``'s geometry), or None."""

@@ -230,3 +230,21 @@ def test_motion_from_the_semantic_vector_is_the_motion_from_the_geometry(scene: 
             assert np.array_equal(with_vector, world.motion(snapshot)), world.step_count
             held += bool(with_vector[world.scene.max_blocks:].any())
     assert 0 < held < 120
+
+
+def test_a_block_is_not_put_into_a_hand_near_the_table_but_may_be_set_down_from_the_hand_holding_it() -> None:
+    """A person's MoveBlock onto the block a lowered hand holds put the new block into the fingers."""
+    core = SimCore("desk_cleanup", "DC-2", seed=0)
+    world = core.world
+    world.place_in_gripper("red")
+    for _ in range(40):
+        world.step(np.array([0.0, 0.0, -1.0, -1.0]))
+    grip = world.snapshot().grip_position
+    assert world.holder("red") == 0 and grip[2] - TABLE_TOP < 0.1
+    before = core.snapshot().block_positions
+    ok, message = core.move_block("green", grip)
+    assert not ok and message.startswith("robot's hand is at") and "once it has risen" in message
+    np.testing.assert_array_equal(core.snapshot().block_positions, before)
+    assert core.move_block("green", grip + np.array([0.12, 0.0, 0.0]))[0]
+    ok, message = core.move_block("red", grip)  # out of the hand that holds it, straight down
+    assert ok and "out of the robot's hand" in message

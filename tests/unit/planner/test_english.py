@@ -140,6 +140,8 @@ PHRASES = [
     ("desk_cleanup", "clean the desk but leave blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
     ("desk_cleanup", "stop holding the red block", "not holding(red)"),
     ("tabletop", "stack them all: red first, then green, then blue", "above(green,red) & above(blue,green)"),
+    ("tabletop", "stack the blocks in this order: blue, red, green", "above(red,blue) & above(green,red)"),
+    ("desk_cleanup", "place the blocks in the bin in the order red, green, blue", "in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("two_blocks", "red should not be on green anymore", "not above(red,green)"),
     ("two_blocks", "put red on green and make sure green is not on anything", "above(red,green) & not above(green,red)"),
     ("two_blocks", "put the green block down on the red one", "above(green,red)"),

@@ -54,6 +54,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"any (longer|more)", ""),
+    (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) (the |all (of )?the |all |every |each )?(blocks"
+     rf"|cubes|block|cube) (?P<place>([^,:;]*? )?)in (the|this|that) (following )?order:? (?P<listed>(the )?({_COLOUR})"
+     rf"((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),  # "put the blocks in the
+    # bin in the order red, green, blue": the blocks listed
     (rf"(?P<verb>stack|pile|build a tower of|build a stack of) (them all|all of them|all( the)?( blocks| cubes)?|everything)"
      rf"(?= (the )?({_COLOUR})\b)", r"\g<verb>"),  # "stack them all: red first, then green": the blocks listed
     (rf"(?P<block>{_COLOUR})( block| cube| one)? (is |should be |must be |be )?not (on|on top of|stacked on) (anything|any"

@@ -191,6 +191,9 @@ class Resolver:
         if excluded == [TOWER_ALL]:  # "clear the table except the tower": it stays as it stands
             said.append((Literal(KEEP, (TOWER_ALL,)), False))
             excluded = []
+        if excluded and clause.kind == "table" and "in_bin" in LAYOUTS[self.scene].scene.predicates:
+            said += [(Literal("in_bin", (b,)), False) for b in excluded]  # "leave only blue on the table": the rest
+            excluded = []  # cleared into the bin
         if excluded and clause.kind not in ("together", "apart"):  # a group says nothing of those left out
             if clause.kind not in OPPOSABLE:
                 raise LanguageError(f"'except' or 'only' leaves {' and '.join(excluded)} unclear here: "

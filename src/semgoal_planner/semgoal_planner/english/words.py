@@ -54,6 +54,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"any (longer|more)", ""),
+    (r"while|whilst|meanwhile", "and"),
+    (rf"(?P<refs>(the )?({_COLOUR})(( and| ,|,) (the )?({_COLOUR}))*)( blocks| cubes)?( should| must| are| is| will| can)?"
+     r"( not| never)( be)? (stacked|piled)( up)?( on (top of )?(each other|one another))?", r"unstack \g<refs>"),  # "red
+    # and green should not be stacked": neither on a block
     (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) (the |all (of )?the |all |every |each )?(blocks"
      rf"|cubes|block|cube) (?P<place>([^,:;]*? )?)in (the|this|that) (following )?order:? (?P<listed>(the )?({_COLOUR})"
      rf"((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),  # "put the blocks in the
@@ -353,6 +357,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     text = re.sub(r"[()\[\]]", " ", text.lower())
+    text = _NUMBERED.sub(" ; ", text)  # "1. put red in the bin 2. put green in the bin": steps in turn
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text) + " "
@@ -639,6 +644,8 @@ def _tower_by_positions(text: str) -> str:
     return text
 
 
+_NUMBERED = re.compile(r"(?:^|(?<=\s))(?:\d+[.)]|step \d+:?|(?:second|third|fourth|fifth|secondly|thirdly|next),)(?=\s)")
+"""A step's number or ordinal before it ('1.', '2)', 'step 3', 'second,'): the steps come in turn."""
 _GERUNDS = {"picking": "pick", "putting": "put", "placing": "place", "taking": "take", "moving": "move",
             "stacking": "stack", "unstacking": "unstack", "removing": "remove", "building": "build", "lifting": "lift",
             "grabbing": "grab", "dropping": "drop", "throwing": "throw", "tossing": "toss", "bringing": "bring",

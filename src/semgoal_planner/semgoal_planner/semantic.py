@@ -21,7 +21,7 @@ from semgoal_ros.package_data import share_path
 from strips_planner.deorder import deorder, transitive_reduction
 from strips_planner.grounding import Operator, Task, ground
 from strips_planner.pddl import Atom, Condition, Domain, Problem, parse_domain
-from strips_planner.planner import solve_task
+from strips_planner.planner import PlanResult, solve_task
 
 
 def domain_dir() -> Path:
@@ -31,6 +31,12 @@ HAND_EMPTY = "hand-empty"
 CLEAR, GROUNDED = "clear", "grounded"
 """Helpers of domains with towers, derived from ``above`` like ``hand-empty`` from ``holding``: no block on it; on
 no block."""
+SEARCH_SECONDS = 2.0
+"""The time a search for a plan may take before the greedy search takes over (and as long again before the goal is
+refused): a planner node answers within seconds, never stalls (a goal no plan reaches took minutes to prove so on the
+tabletop with six blocks)."""
+FALLBACK_SEARCH = "lazy"
+"""The search that takes over from a shortest-plan search out of time: greedy, its plans longer but found fast."""
 BRIDGE_STEPS = 4
 """Most steps a plan repair adds before a kept step (two turns of the hand); a step further away is dropped."""
 ACTION_SUBGOALS: dict[str, tuple[str, int]] = {
@@ -53,6 +59,24 @@ plan relies on it (:func:`_relied_upon`)."""
 
 class PlanningError(ValueError):
     """No plan, or an invalid one; the message says why in the vocabulary's terms."""
+
+
+def placed_twice(goal: list[Literal]) -> list[tuple[Literal, Literal, str]]:
+    """The pairs of ``goal``'s literals that ask a block to be in two places at once: in the hand, in the bin or on
+    one block (no two), with at most one block on it and none on a block held or in the bin. Every scene's actions
+    keep these true, so no plan reaches such a goal, and a search would visit every state to prove it (minutes on the
+    tabletop with six blocks). Each pair comes with the reason in words."""
+    true = [lit for lit in goal if lit.value and lit.name in ("holding", "in_bin", "above")]
+    pairs = []
+    for first, second in itertools.combinations(true, 2):
+        if first.args[0] == second.args[0]:
+            pairs.append((first, second, "a block is in one place: in the hand, in the bin or on one block"))
+        elif first.name == second.name == "above" and first.args[1] == second.args[1]:
+            pairs.append((first, second, "one block at most stands on a block"))
+        elif any(a.name == "above" and b.name in ("holding", "in_bin") and a.args[1] == b.args[0]
+                 for a, b in ((first, second), (second, first))):
+            pairs.append((first, second, "nothing stands on a block held or in the bin"))
+    return pairs
 
 
 @functools.cache
@@ -133,6 +157,14 @@ def _undoing(task: Task, made: Literal, broken: Literal) -> str:
         (action, why), = reasons.items()
         return f"{action}, the only action that makes {_phrase(made)}, {why}"
     return f"every action that makes {_phrase(made)} ({', '.join(reasons)}) {' or '.join(dict.fromkeys(reasons.values()))}"
+
+
+def _not_both(task: Task, first: Literal, second: Literal,
+              known: str = "no action sequence of the scene's domain reaches both") -> str:
+    """That ``first`` and ``second`` cannot hold together, with the domain's reason where its actions show it, else
+    ``known``."""
+    reasons = [why for made, broken in ((first, second), (second, first)) if (why := _undoing(task, made, broken))]
+    return f"{first} and {second} cannot hold together: {'; '.join(reasons) or known}"
 
 
 def in_sequence(count: int) -> list[tuple[int, ...]]:
@@ -221,6 +253,8 @@ class SemanticPlanner:
     search: str = AUTO_SEARCH
     """A search of ``strips_planner``, or ``auto``: the scene's own (:func:`scene_search`)."""
     heuristic: str | None = None
+    seconds: float = SEARCH_SECONDS
+    """How long the search may take before :data:`FALLBACK_SEARCH` takes over, for as long again."""
 
     def __post_init__(self) -> None:
         self.search = scene_search(self.scene, self.search)
@@ -252,29 +286,40 @@ class SemanticPlanner:
     def plan(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> list[SubGoal]:
         """The sub-goals of a shortest plan (bfs) from ``state`` to ``goal``, each with the promises the rest relies
         on; PlanningError if none exists."""
+        goal_text = " & ".join(map(str, goal))
         task = self.task(objects, state, goal)
-        result = solve_task(task, self.search, self.heuristic)
+        if twice := placed_twice(goal):
+            raise PlanningError(f"no plan reaches {goal_text} from the current state: {_not_both(task, *twice[0])}")
+        result = self.solve(task)
         if result.plan is None:
-            goal_text = " & ".join(map(str, goal))
-            raise PlanningError(f"no plan reaches {goal_text} from the current state: "
-                                f"{self.conflict(objects, state, goal) or result.reason}")
+            why = result.reason if result.stats.timed_out else self.conflict(objects, state, goal) or result.reason
+            raise PlanningError(f"no plan reaches {goal_text} from the current state: {why}")
         actions = _bins_first(task, list(result.plan))
         return [_relied_upon(task, actions, index) for index in range(len(actions))]
 
+    def solve(self, task: Task) -> PlanResult:
+        """The scene's search on ``task`` for :attr:`seconds`, then, where it ran out of time, the greedy
+        :data:`FALLBACK_SEARCH` for as long again (a plan, not the shortest)."""
+        result = solve_task(task, self.search, self.heuristic, self.seconds)
+        if result.plan is None and result.stats.timed_out:
+            greedy = solve_task(task, FALLBACK_SEARCH, None, self.seconds)
+            if greedy.plan is not None or not greedy.stats.timed_out:
+                return greedy
+            greedy.reason = f"no plan found in {2 * self.seconds:g} s by a shortest-plan search and a greedy one"
+            return greedy
+        return result
+
     def conflict(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal]) -> str:
         """Why no plan reaches ``goal``, in its own literals: one no plan reaches alone, or the first pair
-        that no plan reaches together ("" when every pair is reachable: the conflict takes three or more)."""
-        reaches = lambda literals: solve_task(self.task(objects, state, literals), self.search, self.heuristic).plan is not None  # noqa: E731
+        that no plan reaches together ("" when every pair is reachable, or not found so in time: the conflict takes
+        three or more)."""
+        reaches = lambda literals: self.solve(self.task(objects, state, literals)).plan is not None  # noqa: E731
         for literal in goal:
             if not reaches([literal]):
                 return f"{literal} cannot be reached in this scene"
         for first, second in itertools.combinations(goal, 2):
             if not reaches([first, second]):
-                task = self.task(objects, state, [])
-                reasons = [why for made, broken in ((first, second), (second, first))
-                           if (why := _undoing(task, made, broken))]
-                return (f"{first} and {second} cannot hold together: {'; '.join(reasons)}" if reasons else
-                        f"{first} and {second} cannot hold together (no action sequence of the scene's domain reaches both)")
+                return _not_both(self.task(objects, state, []), first, second)
         return ""
 
     def simulate(self, objects: tuple[str, ...], state: list[Literal], goal: list[Literal],
@@ -336,8 +381,7 @@ class SemanticPlanner:
                 continue
             rest += [(plan2goal(op), op) for op in bridge] + [(index, runnable)]
             current = runnable.apply(current)
-        tail = solve_task(Task(task.facts, current, task.goal, task.goal_neg, task.operators), self.search,
-                          self.heuristic)
+        tail = self.solve(Task(task.facts, current, task.goal, task.goal_neg, task.operators))
         if tail.plan is None or task.unsolvable_reason:
             raise PlanningError(f"the goal cannot be reached after the steps kept: {tail.reason or task.unsolvable_reason}")
         rest += [(plan2goal(op), op) for op in tail.plan]
@@ -372,8 +416,7 @@ class SemanticPlanner:
     def _bridge(self, task: Task, state: int, action: Operator) -> list[Operator] | None:
         """A shortest plan from ``state`` to where ``action`` runs, of at most :data:`BRIDGE_STEPS` steps; None if
         there is none."""
-        result = solve_task(Task(task.facts, state, action.pre, action.pre_neg, task.operators), self.search,
-                            self.heuristic)
+        result = self.solve(Task(task.facts, state, action.pre, action.pre_neg, task.operators))
         return result.plan if result.plan is not None and len(result.plan) <= BRIDGE_STEPS else None
 
     @staticmethod

@@ -28,9 +28,11 @@
 #include "_support.h"   /* Python.h, word, Rows, int <-> words */
 
 #include <limits.h>
+#include <time.h>
 
 #define COST_INF INT_MAX
 #define SIGNAL_CHECK_MASK 0xFF /* check for Ctrl-C or an alarm every 256 expansions (a flag's read: free) */
+#define DEADLINE_CHECK_MASK 0xF /* read the clock every 16 expansions where a search has a time limit (~25 ns) */
 
 enum { H_BLIND, H_HMAX, H_HFF, H_LMCUT, H_LMCOUNT, H_COUNT };
 static const char *const HEURISTIC_NAMES[H_COUNT] = {"blind", "hmax", "hff", "lmcut", "lmcount"};
@@ -657,7 +659,26 @@ static int store_init(Store *st, int nwords) {
 typedef struct {
     long goal_state; /* -1: none reachable */
     long expanded, generated;
+    double deadline; /* CLOCK_MONOTONIC seconds at which the search stops (0: none) */
+    int timed_out;   /* 1 where the search stopped at `deadline` */
 } Outcome;
+
+static double monotonic_seconds(void) {
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
+}
+
+/* Counts an expansion; 1 where the deadline has passed (recorded in `out`, the clock read every
+   DEADLINE_CHECK_MASK + 1 expansions), -1 where a signal stops the search (Ctrl-C, an alarm); else 0. */
+static int counting(Outcome *out) {
+    ++out->expanded;
+    if (out->deadline > 0 && !(out->expanded & DEADLINE_CHECK_MASK) && monotonic_seconds() >= out->deadline) {
+        out->timed_out = 1;
+        return 1;
+    }
+    return !(out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals() ? -1 : 0;
+}
 
 typedef enum { S_BFS, S_ASTAR, S_GBFS, S_LAZY } SearchKind;
 
@@ -700,8 +721,9 @@ static int run_bfs(TaskObject *t, Store *st, int *ops, Outcome *out) {
         status = -1;
     }
     for (size_t next = 0; !status && next < st->n; next++) {
-        if (!(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) {
-            status = -1;
+        int stop = counting(out);
+        if (stop) {
+            status = stop > 0 ? 0 : -1;
             break;
         }
         int nops = applicable_ops(t, st->states + next * nw, ops);
@@ -735,14 +757,14 @@ done:
     return status;
 }
 
-/* The searches' goal test on expansion: 1 when state `s` satisfies the goal (recorded in `out`), -1 when a
-   signal stops the search (Ctrl-C, an alarm), else 0 (and the expansion is counted). */
+/* The searches' goal test on expansion: 1 when state `s` satisfies the goal (recorded in `out`) or the search's
+   time is up, -1 when a signal stops the search (Ctrl-C, an alarm), else 0 (and the expansion is counted). */
 static int expanding(const TaskObject *t, const word *state, long s, Outcome *out) {
     if (goal_reached(t, state)) {
         out->goal_state = s;
         return 1;
     }
-    return !(++out->expanded & SIGNAL_CHECK_MASK) && PyErr_CheckSignals() ? -1 : 0;
+    return counting(out);
 }
 
 /* A*: f = g + h, ties to the larger g, then first in; a state reached with a smaller g is reopened. Goal test
@@ -1043,7 +1065,9 @@ static int read_guide(const TaskObject *t, const char *spec, int greedy, Guide *
 
 static PyObject *Task_search(TaskObject *t, PyObject *args) {
     const char *search, *heuristic_name;
-    if (!PyArg_ParseTuple(args, "ss", &search, &heuristic_name)) return NULL;
+    double seconds = 0.0;
+    if (!PyArg_ParseTuple(args, "ss|d", &search, &heuristic_name, &seconds)) return NULL;
+    if (!(seconds >= 0.0)) return PyErr_Format(PyExc_ValueError, "a search's time must be 0 (no limit) or more seconds");
     SearchKind kind;
     if (!strcmp(search, "bfs")) kind = S_BFS;
     else if (!strcmp(search, "astar")) kind = S_ASTAR;
@@ -1055,7 +1079,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
     int heuristic = guide.heuristics[0];
 
     Store st;
-    Outcome out = {-1, 0, 0};
+    Outcome out = {-1, 0, 0, seconds > 0.0 ? monotonic_seconds() + seconds : 0.0, 0};
     word *child = malloc(sizeof(word) * (size_t)t->nwords);
     int *ops = malloc(sizeof(int) * (size_t)(t->nops ? t->nops : 1)), added, status = -1;
     PyObject *result = NULL;
@@ -1094,7 +1118,7 @@ static PyObject *Task_search(TaskObject *t, PyObject *args) {
         for (long s = out.goal_state; st.parent[s] >= 0; s = st.parent[s])
             PyList_SET_ITEM(plan, --length, PyLong_FromLong(st.op[s]));
     }
-    result = Py_BuildValue("(Nll)", plan, out.expanded, out.generated);
+    result = Py_BuildValue("(NllO)", plan, out.expanded, out.generated, out.timed_out ? Py_True : Py_False);
 done:
     guide_free(&guide);
     store_free(&st);
@@ -1530,7 +1554,8 @@ fail:
 
 static PyMethodDef Task_methods[] = {
     {"search", (PyCFunction)Task_search, METH_VARARGS,
-     "search(search, heuristic) -> (plan as operator indices or None, expanded, generated)"},
+     "search(search, heuristic, seconds=0.0) -> (plan as operator indices or None, expanded, generated, whether "
+     "its time ran out first)"},
     {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS, "heuristic(name, state) -> h (inf for a dead end)"},
     {"successors", (PyCFunction)Task_successors, METH_O,
      "successors(state) -> [(child state, operator index)] in generation order"},

@@ -14,7 +14,7 @@ class PlanResult:
     def __init__(self, plan: list[Operator] | None, reason: str = "", stats: SearchStats | None = None,
                  seconds: float = 0.0, cost: int | None = None) -> None:
         self.plan = plan
-        """None: no plan exists."""
+        """None: no plan exists, or none was found in the search's time (``stats.timed_out``)."""
         self.reason, self.stats, self.seconds = reason, stats or SearchStats(), seconds
         self.cost = cost
         """The plan's total-cost where the problem minimises it; None where every action costs 1."""
@@ -40,9 +40,9 @@ def check_choice(search: str, heuristic: str | None) -> str:
     return heuristic
 
 
-def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = None) -> PlanResult:
-    """Search ``task``; with conditional effects A*'s default is hmax, and LM-cut is refused with
-    :class:`PddlUnsupportedError` (its cuts would no longer be admissible)."""
+def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = None, seconds: float = 0.0) -> PlanResult:
+    """Search ``task`` for at most ``seconds`` (0: no limit); with conditional effects A*'s default is hmax, and
+    LM-cut is refused with :class:`PddlUnsupportedError` (its cuts would no longer be admissible)."""
     if heuristic is None and task.conditional_effects and "lmcut" in DEFAULT_HEURISTIC.get(search_name, ""):
         heuristic = "hmax"
     heuristic = check_choice(search_name, heuristic)
@@ -53,8 +53,9 @@ def solve_task(task: Task, search_name: str = "bfs", heuristic: str | None = Non
     if task.unsolvable_reason:
         return PlanResult(None, task.unsolvable_reason, seconds=time.perf_counter() - start)
     stats = SearchStats()
-    plan = search(task, search_name, heuristic, stats)
-    reason = "" if plan is not None else "no state reachable from the initial state satisfies the goal"
+    plan = search(task, search_name, heuristic, stats, seconds)
+    reason = ("" if plan is not None else f"no plan found in {seconds:g} s ({stats.expanded:,} states expanded)"
+              if stats.timed_out else "no state reachable from the initial state satisfies the goal")
     cost = stats.cost if plan is not None and task.costs is not None else None
     return PlanResult(plan, reason, stats, time.perf_counter() - start, cost)
 

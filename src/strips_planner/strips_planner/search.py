@@ -22,19 +22,23 @@ DEFAULT_HEURISTIC = {"bfs": "blind", "astar": "lmcut", "gbfs": "hff", "lazy": "h
 
 
 class SearchStats:
-    __slots__ = ("cost", "expanded", "generated")
+    __slots__ = ("cost", "expanded", "generated", "timed_out")
 
     def __init__(self, expanded: int = 0, generated: int = 0, cost: int = 0) -> None:
         self.expanded, self.generated, self.cost = expanded, generated, cost
+        self.timed_out = False
+        """Whether the search's time ran out before it found a plan or ran out of states."""
 
 
-def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = None) -> list[Operator] | None:
+def search(task: Task, name: str, heuristic: str, stats: SearchStats | None = None,
+           seconds: float = 0.0) -> list[Operator] | None:
     """The plan found by search ``name`` guided by ``heuristic`` (A* keeps reopening states reached more
-    cheaply, greedy best-first never revisits one); None when no reachable state satisfies the goal."""
+    cheaply, greedy best-first never revisits one); None when no reachable state satisfies the goal, or when
+    ``seconds`` (0: no limit) ran out first (``stats.timed_out``; the clock is read every 16 expansions)."""
     compiled = task.compiled_unit_cost if name in GREEDY else task.compiled
-    plan, expanded, generated = compiled.search(name, heuristic)
+    plan, expanded, generated, timed_out = compiled.search(name, heuristic, seconds)
     if stats is not None:
-        stats.expanded, stats.generated = expanded, generated
+        stats.expanded, stats.generated, stats.timed_out = expanded, generated, timed_out
         stats.cost = task.cost(plan) if plan is not None else 0
     return None if plan is None else [task.operators[i] for i in plan if task.operators[i].name != GOAL_REACHED]
 

@@ -2,6 +2,7 @@
 
 import random
 import signal
+import time
 from pathlib import Path
 
 import pytest
@@ -128,6 +129,23 @@ def test_unsolvable_task_returns_no_plan_and_a_reason() -> None:
     for search, heuristic in COMBOS:
         result = solve_pddl(domain_text, unsolvable, search, heuristic)
         assert result.plan is None and result.reason
+
+
+@pytest.mark.parametrize(("search", "heuristic"), COMBOS)
+def test_a_search_stops_when_its_time_is_up_and_says_so(search: str, heuristic: str) -> None:
+    """A planner node must answer: a search given seconds stops then, with no plan and the reason."""
+    domain = parse_domain(DOMAIN_PATH.read_text())
+    task = ground(domain, parse_problem(problem(12, 3), domain))
+    start = time.perf_counter()
+    result = solve_task(task, search, heuristic, seconds=1e-4)
+    elapsed = time.perf_counter() - start
+    assert result.plan is None or search in ("gbfs", "lazy")  # the greedy searches may find one at once
+    if result.plan is None:
+        assert result.stats.timed_out and result.reason.startswith("no plan found in 0.0001 s")
+        assert elapsed < 0.5
+    assert solve_task(task, "gbfs", "hff", seconds=30.0).plan is not None
+    with pytest.raises(ValueError, match="0 \\(no limit\\) or more seconds"):
+        task.compiled.search(search, heuristic, -1.0)
 
 
 def test_negative_preconditions_and_equality_are_honoured() -> None:

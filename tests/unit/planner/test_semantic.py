@@ -1,14 +1,17 @@
 """Scene domains, Plan2Goals and plan simulation: the planner speaks the vocabulary's sub-goals."""
 
+import itertools
 import re
+import time
 
 import pytest
 
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, SubGoal, parse_literal
 from semgoal_planner.goals import parse_goal
-from semgoal_planner.semantic import PlanningError, SemanticPlanner, plan2goal
+from semgoal_planner.semantic import PlanningError, SemanticPlanner, placed_twice, plan2goal
 from strips_planner.grounding import Operator
+from strips_planner.planner import solve_task
 
 STARTS = {  # a typical start state of each task (true literals)
     "MC-2": [], "MA-2": [Literal("close", ("red", "green"))],
@@ -130,3 +133,40 @@ def test_a_step_typed_without_its_whole_effect_runs_as_the_action_that_promises_
     planner.simulate(blocks, [], near, [SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "blue"))])
     with pytest.raises(PlanningError, match="does not reach the goal"):  # kept apart from blue: not near it
         planner.simulate(blocks, [], near, [SubGoal("pick", ("red",)), SubGoal("put_near", ("red", "green"), ("blue",))])
+
+
+@pytest.mark.parametrize(("scene", "goal"), [
+    ("tabletop", "holding(red) & in_bin(red)"), ("tabletop", "holding(red) & above(red,green)"),
+    ("tabletop", "in_bin(red) & above(red,green)"), ("tabletop", "above(red,green) & above(red,blue)"),
+    ("tabletop", "above(red,green) & above(blue,green)"), ("tabletop", "above(red,green) & holding(green)"),
+    ("tabletop", "above(red,green) & in_bin(green)"), ("desk_cleanup", "holding(red) & in_bin(red)"),
+    ("two_blocks", "holding(red) & above(red,green)"), ("two_blocks", "above(red,green) & holding(green)"),
+])
+def test_a_block_asked_into_two_places_is_refused_at_once(scene: str, goal: str) -> None:
+    """With six blocks on the tabletop a search took minutes to prove that no plan reaches such a goal. The check
+    is sound: over three blocks, a search through every state the scene's domain reaches finds none either."""
+    literals = [parse_literal(part) for part in goal.split(" & ")]
+    planner = SemanticPlanner(scene)
+    assert placed_twice(literals)
+    exhaustive = solve_task(planner.task(LAYOUTS[scene].objects[:3], [], literals), "bfs", "blind")
+    assert exhaustive.plan is None and not exhaustive.stats.timed_out
+    start = time.perf_counter()
+    with pytest.raises(PlanningError, match="cannot hold together"):
+        planner.plan(LAYOUTS[scene].objects, [], literals)
+    assert time.perf_counter() - start < 0.5
+    assert not placed_twice([Literal("above", ("red", "green")), Literal("above", ("green", "blue")),
+                             Literal("in_bin", ("yellow",)), Literal("holding", ("orange",))])
+
+
+def test_a_goal_no_shortest_plan_is_found_for_in_time_gets_a_longer_one() -> None:
+    """Every block of five close to every other: a shortest-plan search runs for minutes, the greedy one that takes
+    over after the time given finds a plan that runs."""
+    objects = LAYOUTS["tabletop"].objects
+    goal = [Literal("close", pair) for pair in itertools.combinations(objects[:5], 2)]
+    planner = SemanticPlanner("tabletop", seconds=0.05)
+    start = time.perf_counter()
+    steps = planner.plan(objects, [], goal)
+    assert time.perf_counter() - start < 2.0
+    planner.simulate(objects, [], goal, steps)
+    with pytest.raises(PlanningError, match=r"no plan found in 0.0002 s by a shortest-plan search and a greedy one"):
+        SemanticPlanner("tabletop", seconds=1e-4).plan(objects, [], goal)

@@ -54,12 +54,18 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"any (longer|more)", ""),
+    (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
+    (r"(?P<noun>tower|stack|pile)( of)? (using|with|from|out of|made of|made up of|made from|consisting of|composed of)"
+     rf"(?= (the )?({_COLOUR})\b)", r"\g<noun> of"),  # "a tower of height three using red, green and blue"
+    (rf"((build|make|form|create|construct) )?(a |the |one )?(tower|stack|pile) (with|where|in which|such that|so that)"
+     rf"(?= (the )?({_COLOUR})( block| cube| one)?( is| sits| goes)? (on top of|on|atop|above) (the )?({_COLOUR})\b)",
+     "stack"),  # "a tower with yellow on top of orange on top of red"
     (r"while|whilst|meanwhile", "and"),
     (rf"(?P<refs>(the )?({_COLOUR})(( and| ,|,) (the )?({_COLOUR}))*)( blocks| cubes)?( should| must| are| is| will| can)?"
      r"( not| never)( be)? (stacked|piled)( up)?( on (top of )?(each other|one another))?", r"unstack \g<refs>"),  # "red
     # and green should not be stacked": neither on a block
     (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) (the |all (of )?the |all |every |each )?(blocks"
-     rf"|cubes|block|cube) (?P<place>([^,:;]*? )?)in (the|this|that) (following )?order:? (?P<listed>(the )?({_COLOUR})"
+     rf"|cubes|block|cube) (?P<place>([^,:;]*? )?)in ((the|this|that) )?(following )?order:? (?P<listed>(the )?({_COLOUR})"
      rf"((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),  # "put the blocks in the
     # bin in the order red, green, blue": the blocks listed
     (rf"(?P<verb>stack|pile|build a tower of|build a stack of) (them all|all of them|all( the)?( blocks| cubes)?|everything)"
@@ -594,8 +600,9 @@ _EXCEPTION_AFTER_ALL = re.compile(
 """'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
 where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
 _TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|cube|storey|story|level)s?[- ]"
-                         r"(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) (?P<of>of) (?:\d+|"
-                         + "|".join(NUMBERS) + r")(?: blocks| cubes)?)\b")
+                         r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) (?:(?P<of>of) (?:"
+                         r"height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?|(?:\d+|"
+                         + "|".join(NUMBERS) + r")(?: blocks| cubes)? (?:high|tall)))\b")
 """A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...'): the blocks named say it."""
 _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"

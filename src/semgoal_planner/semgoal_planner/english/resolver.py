@@ -115,6 +115,8 @@ class Resolver:
                 raise LanguageError("'the other(s)': every block is already named")
             return others
         if ref.kind == "it":
+            if self.last == (TOWER_ALL,) and besides:  # "reverse the tower and put yellow on it": the tower, where
+                return ("tower",)  # a block goes on it or by it
             if self.last_built and not set(besides) & set(self.last):  # "make a tower of red and green, put blue next
                 if besides:  # to it"; "..., put it in the bin": its bottom block, the tower on it
                     return ("tower",)

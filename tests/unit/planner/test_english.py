@@ -145,6 +145,13 @@ PHRASES = [
     ("tabletop", "build a tower of height three using red, green and blue", "above(green,red) & above(blue,green)"),
     ("tabletop", "make a tower three blocks tall: red, green, blue", "above(green,red) & above(blue,green)"),
     ("tabletop", "put orange on the top of the red block", "above(orange,red)"),
+    ("desk_cleanup", "put all the blocks on the desk into the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "move the blocks that are in the bin back to the table",
+     "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "finish cleaning the desk", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "store the green block", "in_bin(green)"),
+    ("three_blocks", "put them close together", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "space them out", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("desk_cleanup", "place the blocks in the bin in the order red, green, blue", "in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("desk_cleanup", "1. put red in the bin 2. put green in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "First, put red in the bin. Second, take it out.", "not in_bin(red)"),
@@ -757,7 +764,8 @@ def test_a_tower_built_then_moved_or_turned_over_is_moved_whole(text: str, expec
 
 @pytest.mark.parametrize("text", ["clear the table except for the tower", "put all blocks except those in the tower into the bin",
                                   "put every block that is not part of the stack in the bin",
-                                  "put orange on the tower and the rest in the bin"])
+                                  "put orange on the tower and the rest in the bin", "clean up the table but keep the tower",
+                                  "put the loose blocks in the bin"])
 def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_planned(text: str) -> None:
     executive = Executive(SemanticPlanner("tabletop"))
     objects = ("red", "green", "blue", "yellow", "orange")

@@ -131,11 +131,7 @@ class Resolver:
             if len(self.blocks) == 1:
                 return self.blocks
             raise LanguageError(f"'it' or 'the block' is ambiguous: say which block ({', '.join(self.blocks)})")
-        if self.last_named:  # them
-            return self.last_named
-        if len(self.blocks) == 2:  # "put them next to each other" with two blocks there
-            return self.blocks
-        raise LanguageError(f"'them' is ambiguous: say which blocks ({', '.join(self.blocks)})")
+        return self.last_named or self.blocks  # them: those named before, or, said first, every block here
 
     def subjects_of(self, clause: Clause) -> tuple[str, ...]:
         """The blocks a clause is about (those of the clause before where it names none)."""

@@ -50,11 +50,21 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
     # the world has it when planned (alone, it is refused as asking for no change)
-    (r"(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
+    (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"any (longer|more)", ""),
     (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
+    (r"(?P<verb>move|put|take|bring|return|place|get) (all )?(the |all the )?(blocks|cubes|ones) ((that|which) (are|is) )?"
+     r"(in|inside|from) the (bin|box|basket|trash|container) (back )?(to|on|onto|out on|out onto) the (table|desk)",
+     "take all out of the bin"),  # "move the blocks that are in the bin back to the table"
+    (r"(?P<verb>move|put|place|throw|toss|drop|get|bring|take) (every|each|all( of)?( the)?|the) (blocks?|cubes?)( (that|which)"
+     r" (is|are))? (on|from|lying on|sitting on) the (table|desk)(?= (in|into|to) (the )?(bin|box|basket|trash))",
+     r"\g<verb> all"),  # "put all the blocks on the desk into the bin": every block there
+    (r"(the )?(loose|free|unstacked|scattered|spare) (blocks|cubes|ones)", "all except the_whole"),  # "the loose
+    # blocks": those in no tower
+    (r"(store|stow)( away)?", "clean"),  # "store the green block": in the bin
+    (r"space (?P<what>them|it|everything|all( the)?( blocks| cubes)?|the (blocks|cubes)) out", r"separate \g<what>"),
     (r"(?P<noun>tower|stack|pile)( of)? (using|with|from|out of|made of|made up of|made from|consisting of|composed of)"
      rf"(?= (the )?({_COLOUR})\b)", r"\g<noun> of"),  # "a tower of height three using red, green and blue"
     (rf"((build|make|form|create|construct) )?(a |the |one )?(tower|stack|pile) (with|where|in which|such that|so that)"
@@ -88,7 +98,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
-    (r"((that|which) (are|is) )?(except( for)?|but( for)?|other than|apart from|besides|save for|not( part of)?) "
+    (r"((that|which) (are|is) )?(except( for)?|but( for| leave| keep| spare| skip| not)?|other than|apart from|besides|"
+     r"save for|not( part of)?) "
      r"(the (blocks|cubes|ones)|those|what('s| is))?( (that|which) (are|is|stand|make up|form))? ?"
      r"((in|of|on|forming|making up) )?(the|that|this|your) (tower|stack|pile)"
      r"(?! of)", "except the_whole"),  # "put every block except those in the tower in the bin": the others, when planned
@@ -274,7 +285,7 @@ FILLERS = frozenset({
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
     "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",
-    "immediately", "right", "straight", "anymore", "still",
+    "immediately", "right", "straight", "anymore", "still", "finish",
 })
 """Words that carry nothing for the goal."""
 

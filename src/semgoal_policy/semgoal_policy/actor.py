@@ -10,6 +10,7 @@ code and refuses a mismatch.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +23,7 @@ from semgoal_ros.package_data import share_path
 HIDDEN = (256, 256)
 LOG_STD_MIN, LOG_STD_MAX = -5.0, 2.0
 """Clamp of the Gaussian's log std before tanh; 2 is SB3's and CleanRL's upper bound (see ``SacConfig.log_std_max``)."""
+HALF_LOG_TWO_PI = 0.5 * math.log(2 * math.pi)
 OBS_CLIP = 5.0
 """Normalised observations are clipped to +-5 standard deviations (as in the HER baselines)."""
 def models_dir() -> Path:
@@ -76,12 +78,17 @@ class GaussianPolicy(nn.Module):
 
     def sample(self, obs: torch.Tensor, goal: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
         """(action, log_prob, pre-tanh mean): reparameterised tanh-Gaussian (SAC, appendix C)."""
-        mean, log_std = self(obs, goal)
-        pre_tanh = mean + log_std.exp() * torch.randn_like(mean)
-        action = torch.tanh(pre_tanh)
-        log_prob = torch.distributions.Normal(mean, log_std.exp()).log_prob(pre_tanh)
-        log_prob = (log_prob - torch.log1p(-action.pow(2) + 1e-6)).sum(-1)
-        return action, log_prob, mean
+        return self.squashed(*self(obs, goal))
+
+    @staticmethod
+    def squashed(mean: torch.Tensor, log_std: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
+        """:meth:`sample` from the pre-tanh Gaussian's ``mean`` and ``log_std``. The Gaussian's log density at
+        ``mean + std * noise`` is written out (``-noise²/2 - log std - log √(2π)``): the same value and gradients as
+        ``torch.distributions.Normal.log_prob``, without building a distribution each update."""
+        noise = torch.randn_like(mean)
+        action = torch.tanh(mean + log_std.exp() * noise)
+        log_prob = -0.5 * noise.pow(2) - log_std - HALF_LOG_TWO_PI - torch.log1p(-action.pow(2) + 1e-6)
+        return action, log_prob.sum(-1), mean
 
     @torch.inference_mode()
     def act(self, obs: np.ndarray, goal: np.ndarray, noise: np.ndarray | None = None) -> np.ndarray:

@@ -71,20 +71,25 @@ class EpisodeReplay:
         """Transitions with HER relabelling at ``her_ratio`` (default: the buffer's; 0 for cloning batches)."""
         episodes = rng.integers(0, self.size, batch_size)
         steps = rng.integers(0, self.horizon, batch_size)
-        goal = self.goal[episodes].copy()
+        own = self.goal.take(episodes, axis=0)
+        goal = own.copy()
         relabel = rng.uniform(size=batch_size) < (self.her_ratio if her_ratio is None else her_ratio)
         # "future": a goal achieved later in the same episode (Andrychowicz et al. 2017, section 4.5)
         future = steps + 1 + (rng.uniform(size=batch_size) * (self.horizon - steps)).astype(int)
-        goal[relabel] = self.achieved[episodes[relabel], future[relabel]]
+        # rows of the (episode, step) arrays seen flat: one index per sample, a third of the time of two
+        state = episodes * (self.horizon + 1) + steps
+        step = episodes * self.horizon + steps
+        achieved, obs = _rows(self.achieved), _rows(self.obs)
+        goal[relabel] = achieved.take(state[relabel] - steps[relabel] + future[relabel], axis=0)
         # a relabelled goal equal to the episode's own keeps its label
-        has_label = ~relabel | np.all(goal == self.goal[episodes], axis=1)
+        has_label = ~relabel | np.all(goal == own, axis=1)
         return Batch(
-            obs=self.obs[episodes, steps],
+            obs=obs.take(state, axis=0),
             goal=goal,
-            action=self.action[episodes, steps],
-            reward=self.reward_fn(self.achieved[episodes, steps + 1], goal, self.motion[episodes, steps + 1]),
-            next_obs=self.obs[episodes, steps + 1],
-            expert_action=self.expert_action[episodes, steps],
+            action=_rows(self.action).take(step, axis=0),
+            reward=self.reward_fn(achieved.take(state + 1, axis=0), goal, _rows(self.motion).take(state + 1, axis=0)),
+            next_obs=obs.take(state + 1, axis=0),
+            expert_action=_rows(self.expert_action).take(step, axis=0),
             has_label=has_label.astype(np.float32),
         )
 
@@ -111,3 +116,8 @@ class EpisodeReplay:
             self.size, self.next_index = self.capacity, 0
             for name in self.FIELDS:
                 getattr(self, name)[:] = data[name][newest]
+
+
+def _rows(array: np.ndarray) -> np.ndarray:
+    """An (episode, step, value) array as (episode * step, value) rows: a view, as the buffers are contiguous."""
+    return array.reshape(array.shape[0] * array.shape[1], array.shape[2])

@@ -137,12 +137,18 @@ class SacAgent:
         for p in self._critic_params:  # the actor's loss reads the critic, whose weights it must not move
             p.requires_grad_(False)
         with self._autocast():
-            action, log_pi, pre_tanh_mean = self.actor.sample(t["obs"], t["goal"])
+            obs, goal, size = t["obs"], t["goal"], len(t["obs"])
+            bc = None
+            if cfg.bc_weight != 0.0 and bc_batch is not None:  # one actor pass over both batches, not two
+                bc = {name: torch.as_tensor(value) for name, value in bc_batch._asdict().items()}
+                obs, goal = torch.cat([obs, bc["obs"]]), torch.cat([goal, bc["goal"]])
+            mean, log_std = self.actor(obs, goal)
+            action, log_pi, pre_tanh_mean = self.actor.squashed(mean[:size], log_std[:size])
             min_qf_pi = torch.min(*self.critic(features, action))
             # scale-free SAC term (as TD3+BC does), so the BC weight means the same at every Q magnitude
             q_scale = min_qf_pi.abs().mean().detach().clamp(min=1e-3)
             sac_loss = ((alpha * log_pi - min_qf_pi) / q_scale).mean()
-            bc_loss, bc_fraction = self._bc_loss(bc_batch)
+            bc_loss, bc_fraction = (torch.zeros(()), 0.0) if bc is None else self._bc_loss(bc, torch.tanh(mean[size:]))
             actor_loss = sac_loss + cfg.bc_weight * bc_loss + cfg.mean_reg * pre_tanh_mean.pow(2).sum(-1).mean()
         for p in self._critic_params:
             p.requires_grad_(True)
@@ -168,12 +174,10 @@ class SacAgent:
         """The forward passes' precision (:attr:`SacConfig.precision`); backward passes run outside it."""
         return torch.autocast("cpu", dtype=torch.bfloat16, enabled=self.config.precision == "bf16")
 
-    def _bc_loss(self, batch: Batch | None) -> tuple[torch.Tensor, float]:
-        if self.config.bc_weight == 0.0 or batch is None:
-            return torch.zeros(()), 0.0
-        t = {name: torch.as_tensor(value) for name, value in batch._asdict().items()}
+    def _bc_loss(self, t: dict[str, torch.Tensor], mean_action: torch.Tensor) -> tuple[torch.Tensor, float]:
+        """The cloning loss on batch ``t``, where the actor's mean action is ``mean_action``, and the share of it
+        cloned."""
         features = self.actor.features(t["obs"], t["goal"])
-        mean_action = torch.tanh(self.actor(t["obs"], t["goal"])[0])
         keep = t["has_label"]
         if self.config.q_filter:
             with torch.no_grad():  # the expert's action and the actor's through the critic at once

@@ -460,6 +460,8 @@ REFUSALS = [
     ("two_blocks", "put red on green and green on red", "above.red,green. and above.green,red."),
     ("two_blocks", "stack red on green but keep red away from green", "a block resting on another is close to it"),
     ("two_blocks", "Only green should stay on the table.", "leaves red unclear"),  # no bin to clear it into
+    ("desk_cleanup", "put two blocks in the bin", "'two' blocks, but which\\? a goal names its blocks by colour"),
+    ("desk_cleanup", "put 3 blocks in the bin", "'3' blocks, but which\\?"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "stack all blocks into one tower", "say which block goes on which"),
     ("tabletop", "build a tower", "say which block goes on which"),

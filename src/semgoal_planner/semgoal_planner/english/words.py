@@ -417,6 +417,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if choice := next((w for w in unknown if w in UNDECIDED), None):
         raise LanguageError(f"'{choice}' leaves the goal open: a goal is the one state the world ends in, so say it "
                             f"plainly, e.g. {examples(scene, blocks)}")
+    if count := next((w for w in unknown if w.isdigit() or w in NUMBERS), None):
+        raise LanguageError(f"'{count}' blocks, but which? a goal names its blocks by colour ({', '.join(blocks)}), "
+                            f"e.g. {examples(scene, blocks)}")
     if unknown:
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
                             f"({', '.join(blocks)}) and say where they go, e.g. {examples(scene, blocks)}")

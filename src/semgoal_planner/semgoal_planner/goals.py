@@ -18,6 +18,7 @@ from semgoal_planner.english import (
     KEEP,
     MAX_GOAL_CHARS,
     ON_PREFIX,
+    STACK,
     SWAP,
     TOWER_ALL,
     TOWER_BASE,
@@ -27,6 +28,7 @@ from semgoal_planner.english import (
     LanguageError,
     parse_english,
 )
+from semgoal_planner.english.resolver import stack_order
 
 
 class GoalError(ValueError):
@@ -46,13 +48,14 @@ class Goal:
     def instantiate(self, scene: str, objects: tuple[str, ...], state: list[Literal]) -> list[Literal]:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
         goal in that state, or the literals once every block they name is present, a block named by what it stands
-        on or under placed (:func:`relative`), 'the tower' placed (:func:`the_tower`), swaps made (:func:`swapped`) and
-        blocks kept where they are (:func:`kept`). Nothing is parsed."""
+        on or under placed (:func:`relative`), towers whose order is left open ordered (:func:`stacked`), 'the tower'
+        placed (:func:`the_tower`), swaps made (:func:`swapped`) and blocks kept where they are (:func:`kept`). Nothing
+        is parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
-            placed = swapped(the_tower(relative(self.literals, state), state, objects), state)
+            placed = swapped(the_tower(stacked(relative(self.literals, state), state), state, objects), state)
             goal = [layout.validate(literal, objects) for literal in kept(placed, state, scene, objects)]
             check_consistent(goal)
         except (VocabularyError, ContradictionError) as error:
@@ -121,6 +124,24 @@ def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lite
 
     made = [Literal(lit.name, tuple(map(placed, lit.args)), lit.value) for lit in literals]
     return [lit for lit in made if len(set(lit.args)) == len(lit.args)]  # "... on the table": not on itself
+
+
+def stacked(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
+    """``literals`` with each ``stack(a,b,...)`` made one tower in the order :func:`stack_order` chooses in ``state``:
+    what stands of it on the table kept at the bottom, the goal's own 'x on y' kept."""
+    if not any(literal.name == STACK for literal in literals):
+        return list(literals)
+    fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
+    away = {lit.args[0] for lit in state if lit.name in ("in_bin", "holding") and lit.value}
+    standing = [t for t in _towers([lit for lit in state if lit.name == "above" and lit.value]) if t[0] not in away]
+    made = []
+    for literal in literals:
+        if literal.name != STACK:
+            made.append(literal)
+            continue
+        order = stack_order(literal.args, fixed, standing)
+        made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
+    return made
 
 
 def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:

@@ -7,7 +7,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from semgoal_core.vocabulary import LAYOUTS, Literal
+from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.goals import GoalError, parse_goal, read_goal
+from semgoal_planner.semantic import SemanticPlanner
 
 BLOCKS = ("red", "green", "blue")
 
@@ -89,8 +91,6 @@ def test_a_goal_is_read_once_then_planned_and_run_without_the_parser(monkeypatch
     nothing reads the goal again (every reader is made to fail after the first read)."""
     from semgoal_planner import english, goals
     from semgoal_planner import executive as executive_module
-    from semgoal_planner.executive import Executive, Observation
-    from semgoal_planner.semantic import SemanticPlanner
 
     blocks = ("red", "green")
     said = "put the red block in the bin"
@@ -182,3 +182,34 @@ def test_two_blocks_swapped_trade_the_places_they_have_when_planned(state: list[
 def test_blocks_with_no_places_to_trade_are_not_swapped(state: list[Literal], words: str) -> None:
     with pytest.raises(GoalError, match=words):
         read_goal("swap red and green", "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, state)
+
+
+@pytest.mark.parametrize(("text", "state", "tower"), [
+    # nothing standing: the order named
+    ("stack everything", [], ("red", "green", "blue", "yellow", "orange")),
+    # the tallest tower standing stays at the bottom, the others on it in the order named
+    ("stack everything", on("blue", "yellow") + on("orange", "green", "red"), ("orange", "green", "red", "blue", "yellow")),
+    ("stack red, green and blue in any order", on("blue", "green", "yellow"), ("blue", "green", "red")),
+    # a tower in the bin is no foot for a new one
+    ("stack everything", [*on("blue", "yellow"), Literal("in_bin", ("blue",))], ("red", "green", "blue", "yellow", "orange")),
+    # the goal's own 'x on y' kept, its pair moving as one, and the standing part it allows kept
+    ("stack everything and put red on orange", on("blue", "yellow", "green"), ("blue", "yellow", "green", "orange", "red")),
+    ("stack everything and put yellow on red", on("blue", "yellow", "green"), ("red", "yellow", "green", "blue", "orange")),
+])
+def test_a_tower_whose_order_is_left_open_is_ordered_by_what_stands_when_planned(text: str, state: list[Literal],
+                                                                              tower: tuple[str, ...]) -> None:
+    goal = read_goal(text, "tabletop", TABLETOP)
+    placed = goal.instantiate("tabletop", TABLETOP, state)
+    assert {lit for lit in placed if lit.name == "above"} == set(on(*tower))
+    assert len(placed) == len(dict.fromkeys(placed))
+
+
+def test_a_tower_left_open_is_planned_from_the_tower_standing() -> None:
+    """Three blocks of five already stand: two steps for each of the two others, none to rebuild."""
+    state = on("blue", "green", "red")
+    executive = Executive(SemanticPlanner("tabletop"))
+    executive.observe(Observation(TABLETOP, state, 0))
+    ok, message = executive.set_goal("build one big tower")
+    assert ok, message
+    assert [str(s.subgoal) for s in executive.steps] == ["pick(yellow)", "put_on(yellow,red)", "pick(orange)",
+                                                         "put_on(orange,yellow)"]

@@ -30,7 +30,8 @@ The literals are what the operator is shown before anything moves.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import itertools
+from collections.abc import Iterable, Sequence
 
 import lark
 
@@ -41,6 +42,7 @@ from semgoal_planner.english.resolver import (
     KEEP,
     ON_PREFIX,
     PLACED_WHEN_PLANNED,
+    STACK,
     SWAP,
     TOWER_ALL,
     TOWER_BASE,
@@ -49,10 +51,11 @@ from semgoal_planner.english.resolver import (
     UNDER_PREFIX,
     Resolver,
     is_stand_in,
+    stack_order,
 )
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
+__all__ = ["KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
            "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
 
 
@@ -99,15 +102,42 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                         raise LanguageError(f"contradictory goal: both {literal} and {literal.negated()}")
                 stage[key] = (literal, generic)
         goal.update({key: literal for key, (literal, _) in stage.items()})
-    placed = {literal.args[0] for literal in goal.values() if literal.name != KEEP}  # "pick up blue and keep it": the
+    placed = {block for literal in goal.values() if literal.name != KEEP  # "pick up blue and keep it": the
+              for block in (literal.args if literal.name == STACK else literal.args[:1])}
     goal = {key: lit for key, lit in goal.items() if lit.name != KEEP or lit.args[0] not in placed}  # goal says where
     if all(literal.name == KEEP for literal in goal.values()):  # nothing, or only 'don't move red'
         raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
+    goal = _stacks_left_open(goal)
     try:
-        check_consistent(goal.values())
+        check_consistent(_stacks_ordered(goal.values()))
     except ContradictionError as error:
         raise LanguageError(str(error)) from None
     return list(goal.values())
+
+
+def _stacks_left_open(goal: dict) -> dict:
+    """Each tower whose order is left open (:data:`STACK`) without the blocks the goal puts in the bin or the hand
+    ("stack everything and put red in the bin": the others); refused where fewer than two are left."""
+    away = {lit.args[0] for lit in goal.values() if lit.name in ("in_bin", "holding") and lit.value}
+    made = {}
+    for key, literal in goal.items():
+        if literal.name == STACK:
+            blocks = tuple(b for b in literal.args if b not in away)
+            if len(blocks) < 2:
+                raise LanguageError(f"a tower of {' and '.join(literal.args)} needs two blocks the goal puts nowhere else")
+            literal, key = Literal(STACK, blocks), (STACK, blocks)
+        made[key] = literal
+    return made
+
+
+def _stacks_ordered(literals: Iterable[Literal]) -> list[Literal]:
+    """The literals as the consistency check reads them: each tower left open in one order it may take."""
+    literals = list(literals)
+    fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
+    made = [lit for lit in literals if lit.name != STACK]
+    for order in (stack_order(lit.args, fixed, ()) for lit in literals if lit.name == STACK):
+        made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
+    return made
 
 
 def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]) -> Literal:
@@ -126,6 +156,13 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
         if not {"above", "in_bin"} & set(layout.scene.predicates):
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")
+        return literal
+    if literal.name == STACK:
+        if not literal.value:
+            raise VocabularyError("'not stack' asks for nothing: say where the blocks should be, e.g. 'unstack red'")
+        if "above" not in layout.scene.predicates:
+            raise VocabularyError(f"in scene {layout.scene.name} no block stands on another (it uses "
+                                  f"{', '.join(layout.scene.predicates)}): there is no tower to build")
         return literal
     standing = [arg for arg in literal.args if is_stand_in(arg)]
     if not standing:

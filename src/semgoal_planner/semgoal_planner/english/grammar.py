@@ -31,6 +31,7 @@ action: ("put" | "keep") refs dest          -> put
       | ("put" refs "down" | "put" "down" refs | "release" refs?) -> release
       | "stack" refs dest_on                 -> put
       | "stack" refs?                        -> stack_unsaid
+      | "stack" "anyorder" refs?             -> stack_any_order
       | "take" refs ("out" ("bin" | "from" "bin")? | "from" "bin")  -> out_bin
       | "take" refs ("off" refs? | "from" refs) -> off
       | "take" refs dest_to                   -> put
@@ -101,6 +102,8 @@ COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
 """
 
 
+ANY_ORDER_TOWER = "tower_any_order"
+"""The clause kind of a tower whose order is said to be left open."""
 OPPOSABLE = frozenset({"in_bin", "off_table", "out_bin", "hold", "release", "near", "away", "on", "under"})
 """Relations whose opposite is one literal per block, so 'all except red' and 'only red' can give it to the
 blocks left out (the opposite of 'on the table' or 'apart' is no single place)."""
@@ -264,6 +267,10 @@ class Clauses(lark.Transformer):
         """'stack red, green and blue', 'build a tower of red, green and blue': a tower, the first named at the
         bottom (the resolver refuses blocks not named one by one: they say nothing of the order)."""
         return Clause("tower", subjects=items[0] if items else ())
+
+    def stack_any_order(self, items: list) -> Clause:
+        """'stack red, green and blue in any order': one tower, its order left to the world when planned."""
+        return Clause(ANY_ORDER_TOWER, subjects=items[0] if items else ())
 
     def separate_from(self, items: list) -> Clause:
         return Clause("away", subjects=items[0], objects=items[1])

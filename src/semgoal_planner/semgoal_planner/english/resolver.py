@@ -8,7 +8,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import replace
 
 from semgoal_core.vocabulary import LAYOUTS, Literal
-from semgoal_planner.english.grammar import OPPOSABLE, Clause, Ref
+from semgoal_planner.english.grammar import ANY_ORDER_TOWER, OPPOSABLE, Clause, Ref
 from semgoal_planner.english.words import UNORDERED_TOWER, LanguageError, examples
 
 TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST = "tower_top", "tower_base", "tower_all", "tower_rest"
@@ -24,6 +24,9 @@ planned (:func:`~semgoal_planner.goals.relative`)."""
 SWAP = "swap"
 """A goal's stand-in ``swap(a,b)`` until it is planned (:func:`~semgoal_planner.goals.swapped`): the two blocks
 trade places, which only the world then can say (which is on which, which is in the bin)."""
+STACK = "stack"
+"""A goal's stand-in ``stack(a,b,...)`` until it is planned (:func:`~semgoal_planner.goals.stacked`): one tower of the
+blocks in an order the goal leaves open ("stack everything"), which the world then suggests."""
 KEEP = "keep"
 """A goal's stand-in ``keep(a)`` until it is planned (:func:`~semgoal_planner.goals.kept`): 'don't move red', 'leave
 the rest alone' keep a block's place as the world has it then."""
@@ -36,10 +39,41 @@ PLACED_WHEN_PLANNED = {
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
     ON_PREFIX: "(block_on_COLOUR) the block standing on that block when the goal is planned",
     UNDER_PREFIX: "(block_under_COLOUR) the block that block stands on when the goal is planned",
+    STACK: "one tower of these blocks, in an order left open: what already stands of it (its tallest part on the "
+           "table) at the bottom, the others on it in the order named",
     KEEP: "the block's place as it is when the goal is planned: in the bin or not, in the hand or not, on which block "
           "(not closeness: another block may still be put next to it); a block the goal itself moves is not kept",
 }
 """What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
+
+
+def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]],
+                standing: Iterable[Sequence[str]]) -> list[str]:
+    """The order, bottom first, of one tower of ``blocks`` whose order a goal left open (:data:`STACK`). Each pair the
+    goal ``fixed`` (upper, lower) is kept, its run of blocks moving as one; the most of a tower already ``standing``
+    (bottom first, on the table) that the runs allow stays at the bottom; the other runs go on it in the order named."""
+    below = {upper: lower for upper, lower in fixed if upper in blocks and lower in blocks}
+    on = {lower: upper for upper, lower in below.items()}
+    runs = {}  # each run by its lowest block
+    for block in (b for b in blocks if b not in below):
+        runs[block] = [block]
+        while runs[block][-1] in on and on[runs[block][-1]] not in runs[block]:
+            runs[block].append(on[runs[block][-1]])
+
+    def kept(tower: Sequence[str]) -> tuple[int, list[str]]:
+        """How many of the tower's blocks stay as they stand, and the runs, lowest block first, that keep them."""
+        lowest, height = [], 0
+        while height < len(tower) and tower[height] in runs and tower[height] not in lowest:
+            run = runs[tower[height]]
+            if run[:len(tower) - height] != list(tower[height:height + len(run)]):
+                break
+            lowest.append(tower[height])
+            height = min(height + len(run), len(tower))
+        return height, lowest
+
+    height, lowest = max((kept(tower) for tower in standing), default=(0, []), key=lambda found: found[0])
+    first = lowest if height >= 2 else []
+    return [b for low in (*first, *(low for low in runs if low not in first)) for b in runs[low]]
 
 
 def is_stand_in(name: str) -> bool:
@@ -152,13 +186,14 @@ class Resolver:
                 clause = replace(clause, kind="away", objects=stated.subjects, elliptic=False, negated=False)  # not blue"
             else:  # "... but not green": the relation of the clause that said one
                 clause = replace(stated, subjects=clause.subjects, negated=stated.negated != clause.negated)
-        if clause.kind == "tower" and (len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)):
-            raise LanguageError(UNORDERED_TOWER)
+        unordered = clause.kind == ANY_ORDER_TOWER or (clause.kind == "tower" and (
+            len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
         subjects = self.subjects_of(clause)
         if not subjects and clause.kind == "release":  # "let go" with nothing picked before: the hand empty
             subjects = self.blocks
         if not subjects:
-            raise LanguageError(f"say which block: {', '.join(self.blocks)}")
+            raise LanguageError(UNORDERED_TOWER if clause.kind in ("tower", ANY_ORDER_TOWER) else
+                                f"say which block: {', '.join(self.blocks)}")
         objects = self.blocks_of(clause.objects, besides=subjects)
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
@@ -179,7 +214,8 @@ class Resolver:
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
         self.tower_named |= TOWER_ALL in subjects or bool(set(objects) & {TOWER_TOP, TOWER_BASE, TOWER_ALL})
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
-        said = [(lit, generic) for lit in self._relation(clause.kind, subjects, objects)]
+        said = [(lit, generic) for lit in (self._unordered_tower(subjects, objects) if unordered else
+                                           self._relation(clause.kind, subjects, objects))]
         if not said and objects:
             raise LanguageError(f"{' and '.join(subjects)} cannot be {clause.kind} itself: say which block")
         # "all except red" and "only red": the blocks left out explicitly not
@@ -192,18 +228,26 @@ class Resolver:
         if excluded and clause.kind == "table" and "in_bin" in LAYOUTS[self.scene].scene.predicates:
             said += [(Literal("in_bin", (b,)), False) for b in excluded]  # "leave only blue on the table": the rest
             excluded = []  # cleared into the bin
-        if excluded and clause.kind not in ("together", "apart"):  # a group says nothing of those left out
+        if excluded and clause.kind not in ("together", "apart") and not unordered:  # a group says nothing of those left out
             if clause.kind not in OPPOSABLE:
                 raise LanguageError(f"'except' or 'only' leaves {' and '.join(excluded)} unclear here: "
                                     "say where they go")
             said += [(lit.negated(), False) for b in excluded for lit in self._relation(clause.kind, (b,), objects)]
         self.last = subjects
-        self.last_built = clause.kind == "tower" and not clause.negated
+        self.last_built = clause.kind == "tower" and not clause.negated and not unordered
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
         if not borrows_relation:
             self.stated = resolved
         return [(lit.negated() if clause.negated else lit, g) for lit, g in said], resolved
+
+    def _unordered_tower(self, subjects: tuple[str, ...], objects: tuple[str, ...]) -> list[Literal]:
+        """'stack everything', 'build a tower of them': one tower of ``subjects``, its order left to the world."""
+        if objects or any(is_stand_in(block) for block in subjects):
+            raise LanguageError(UNORDERED_TOWER)
+        if len(subjects) < 2:
+            raise LanguageError(f"a tower needs two or more blocks, not only {subjects[0]}: {UNORDERED_TOWER}")
+        return [Literal(STACK, subjects)]
 
     def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:
         others = lambda block: [b for b in self.blocks if b != block]  # noqa: E731

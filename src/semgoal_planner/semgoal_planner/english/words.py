@@ -15,13 +15,13 @@ TOP_DOWN = "topdown"
 DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 ANY_ORDER = "anyorder"
-"""What 'in any order' leaves: nothing for blocks put each in its place; a tower has one order (refused)."""
+"""What 'in any order' leaves: nothing for blocks put each in its place; after 'stack', a tower left open."""
 INTO_A_TOWER = "intoatower"
 """What 'in a tower' leaves where no blocks are named in order: nothing after 'stack', else a tower with no order
 (refused in :func:`normalise`)."""
-UNORDERED_TOWER = ("say which block goes on which: e.g. 'stack red on green', or name a tower's blocks from the bottom "
-                   "up: 'build a tower of red, green and blue'")
-"""Why a tower whose blocks are not named in order is refused."""
+UNORDERED_TOWER = ("say which blocks to stack and, if it matters, in which order: e.g. 'stack red on green', 'build a "
+                   "tower of red, green and blue' (from the bottom up), 'stack everything' (in any order)")
+"""Why a tower is refused whose blocks the goal does not say."""
 BUT_LEAVE = "butleave"
 """What 'but leave', 'but keep' leave: an exception after an 'all' or a clean-up, else a block kept (:func:`_kept_besides`)."""
 UNDER_A_TOWER = "underatower"
@@ -171,7 +171,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(off( of)?|(down )?from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
-    (r"(build|make|form|create)( a| the)? (tower|stack|pile)( with| of| from| out of| using)?|tower", "stack"),
+    (r"(build|make|form|create|stack|pile)( up)?( them( all)?| everything| all( the)?( blocks| cubes)?)?( in(to)?)? (one|a "
+     r"single|one single|a big|one big|a tall|one tall|a single big|one single big|one large|a large) (tower|stack|pile)"
+     r"(?! (with|of|from|out of|using|made)\b)", "stack all"),  # "make one big tower": of every block
+    (r"(?P<verb>stack|pile)( up)? (?P<what>everything|them( all)?|all( of)?( the)?( blocks| cubes)?|the (blocks|cubes))"
+     r"( up)?( (on|onto) (the )?(table|desk))?(?! (on|onto|next|near|beside|by|in|into|away)\b)", r"stack \g<what>"),
+    # "pile everything up", "stack all blocks on the table": one tower (on the table, where a tower stands)
+    (r"(build|make|form|create)( a| the| one)? (tower|stack|pile)( with| of| from| out of| using)?|tower", "stack"),
     (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
     (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
@@ -293,7 +299,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap",
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap", ANY_ORDER,
 })
 """The words the grammar reads (besides the colours)."""
 
@@ -359,13 +365,44 @@ def _refuse_a_list_split(words: list[str]) -> None:
 
 
 def _stacked_into_a_tower(words: list[str]) -> list[str]:
-    """'stack all blocks into one tower': the mark dropped, 'stack' says it; 'the rest in a tower' (no verb of its own,
-    so it would take the clause before's place): refused, as a tower of blocks not named in order is."""
-    verbs = {"put", "take", "keep", *_TAKES_AFTER_A_LIST}
-    for at, word in enumerate(words):
-        if word == INTO_A_TOWER and next((w for w in reversed(words[:at]) if w in verbs), None) != "stack":
+    """'stack all blocks into one tower', 'put them all in a single stack', '... and the rest in a tower': the blocks
+    named before the mark stacked, their verb (or, with none of their own, a 'stack' put before them) saying it."""
+    words = list(words)
+    while INTO_A_TOWER in words:
+        at = words.index(INTO_A_TOWER)
+        start = at
+        while start > 0 and words[start - 1] in _NAMING:
+            start -= 1
+        while start < at and words[start] == "and":  # the clause's joiner, not its blocks'
+            start += 1
+        verb = words[start - 1] if start > 0 else "then"
+        if start == at or verb not in ("stack", "put", "and", "then"):
             raise LanguageError(UNORDERED_TOWER)
-    return [w for w in words if w != INTO_A_TOWER]
+        if verb == "put":
+            words[start - 1] = "stack"
+        elif verb != "stack":
+            words.insert(start, "stack")
+            at += 1
+        del words[at]
+    return words
+
+
+_NAMING = frozenset({"all", "except", "only", "other", "them", "it", "both", "and", *BLOCK_COLOURS})
+"""The words that name blocks, which a tower's mark may follow."""
+
+
+def _order_left_open(words: list[str]) -> list[str]:
+    """'in any order' said of a tower ('stack red, green and blue in any order'): the mark moved to just after the
+    'stack' it follows (or, said first, precedes), which the grammar reads as a tower left open; of anything else ('put
+    the blocks in the bin in any order'), dropped: it says where, not when."""
+    at = words.index(ANY_ORDER)
+    rest = [w for w in words if w != ANY_ORDER]
+    stacks = [i for i, w in enumerate(rest) if w == "stack"]
+    before = [i for i in stacks if i < at]
+    if not stacks:
+        return rest
+    verb = before[-1] if before else stacks[0]
+    return [*rest[:verb + 1], ANY_ORDER, *rest[verb + 1:]]
 
 
 def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
@@ -403,10 +440,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     _refuse_a_list_split(words)
     words = _stacked_into_a_tower(words)
     if ANY_ORDER in words:
-        if "stack" in words:
-            raise LanguageError("a tower stands in one order: name its blocks from the bottom up, e.g. 'build a tower "
-                                "of red, green and blue'")
-        words = [w for w in words if w != ANY_ORDER]  # "put the blocks in the bin in any order": where, not when
+        words = _order_left_open(words)
     if UNDER_A_TOWER in words:
         raise LanguageError("a block goes under a standing tower only by building the tower again on it: name the new "
                             "tower's blocks from the bottom up, e.g. 'build a tower of red, green and blue'")

@@ -747,6 +747,14 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
     ("desk_cleanup", "pick up blue and keep it", "holding(blue)"),  # the goal says where blue is
     ("desk_cleanup", "put red in the bin but leave blue alone", "in_bin(red) & keep(blue)"),
     ("tabletop", "put red on green but don't touch blue", "above(red,green) & keep(blue)"),
+    # a block said to stay: kept, over what an 'all' or a clean-up said of every block
+    ("desk_cleanup", "put red in the bin but green stays", "in_bin(red) & keep(green)"),
+    ("desk_cleanup", "red goes in the bin, the rest stay where they are", "in_bin(red) & keep(green) & keep(blue) & keep(yellow)"),
+    ("desk_cleanup", "red and green stay and the rest go in the bin", "keep(red) & keep(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "clean up, but red stays put", "in_bin(green) & in_bin(blue) & in_bin(yellow) & keep(red)"),
+    ("desk_cleanup", "put red and green in the bin while blue remains as it is", "in_bin(red) & in_bin(green) & keep(blue)"),
+    ("tabletop", "stack red on green, blue stays where it is", "above(red,green) & keep(blue)"),
+    ("tabletop", "red stays on green", "above(red,green)"),
 ])
 def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, text: str, expected: str) -> None:
     assert {str(literal) for literal in parse_english(text, scene)} == set(expected.split(" & "))

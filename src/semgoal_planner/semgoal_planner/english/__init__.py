@@ -94,6 +94,11 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                     literal = _validated(layout, literal, blocks)
                 except VocabularyError as error:
                     raise LanguageError(str(error)) from None
+                kept = stage.get((KEEP, literal.args[:1]))
+                if generic and kept and not kept[1]:  # "clean up, but red stays": red kept, not cleaned
+                    continue
+                if literal.name == KEEP and not generic:
+                    stage = {k: (lit, g) for k, (lit, g) in stage.items() if not (g and lit.args[0] == literal.args[0])}
                 key = (literal.name, literal.args)
                 if key in stage and stage[key][0].value != literal.value:
                     if generic:  # "clean up the desk but leave green out": the named block wins

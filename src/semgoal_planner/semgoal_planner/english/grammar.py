@@ -65,7 +65,7 @@ action: ("put" | "keep") refs dest          -> put
       | "unstack" (refs | on_table)?          -> unstack
       | "unstack" refs ("on" | "down")        -> unstack
       | "unstack" refs on_table               -> put
-      | "keep" refs                           -> keep
+      | "keep" refs "inplace"?                -> keep
 
 condition: dest | "held" -> held
 

@@ -16,6 +16,8 @@ DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 ANY_ORDER = "anyorder"
 """What 'in any order' leaves: nothing for blocks put each in its place; after 'stack', a tower left open."""
+IN_PLACE = "inplace"
+"""What 'stays', 'remains where it is' leave after the blocks they keep: the end of a clause that keeps them."""
 INTO_A_TOWER = "intoatower"
 """What 'in a tower' leaves where no blocks are named in order: nothing after 'stack', else a tower with no order
 (refused in :func:`normalise`)."""
@@ -53,6 +55,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"(?:(?<=^)|(?<=\band )|(?<=\bthen )|(?<=\bbut )|(?<=\bwhile )|(?<=\bwhereas ))"
+     rf"(?P<who>(the )?({_COLOUR})( block| cube| one)?((,? and|,) (the )?({_COLOUR})( block| cube| one)?)*|the rest|the others|"
+     r"all the others|all (of )?the other (blocks|cubes|ones)|everything else|every other (block|cube|one)|the other (blocks"
+     r"|cubes|ones|two|three)|(all )?(the )?remaining (blocks|cubes|ones)) (should |must |will |can |may )?(stays?|remains?"
+     r"|(is|are|be) left)( (where|as) (it|they) (is|are|was|were|stands?)| put| in place| there| alone| untouched| unmoved"
+     r"| as is)?(?= and\b| then\b| but\b|$)", rf"keep \g<who> {IN_PLACE}"),  # "put red in the bin, green stays": where
+    # it is ("red and green stay, the rest go in the bin": the mark ends the clause, not "keep ... in the bin")
     (r"any (longer|more)", ""),
     (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
     (r"(?P<verb>move|put|take|bring|return|place|get) (all )?(the |all the )?(blocks|cubes|ones) ((that|which) (are|is) )?"
@@ -299,7 +308,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap", ANY_ORDER,
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap", ANY_ORDER, IN_PLACE,
 })
 """The words the grammar reads (besides the colours)."""
 

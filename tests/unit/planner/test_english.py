@@ -404,6 +404,8 @@ PHRASES = [
     ("two_blocks", "Put the green block on the red one instead.", "above(green,red)"),
     ("two_blocks", "Put the blocks side by side but not stacked.",
      "close(red,green) & not above(red,green) & not above(green,red)"),
+    ("three_blocks", "hold on to green", "holding(green)"),
+    ("three_blocks", "move every block away from every other", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "Put green close to red and then move blue far away.",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     # clauses in time order: 'after' and 'before', leading or trailing, with gerunds
@@ -461,6 +463,7 @@ REFUSALS = [
     ("desk_cleanup", "put 3 blocks in the bin", "'3' blocks, but which\\?"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "build a tower", "say which blocks to stack"),
+    ("tabletop", "put one block on the other", "'both' is ambiguous"),
     ("tabletop", "don't stack everything", "'not stack' asks for nothing"),
     ("three_blocks", "stack everything", "in scene three_blocks no block stands on another"),
     ("tabletop", "stack red and green in any order and put red in the bin", "needs two blocks the goal puts nowhere else"),
@@ -872,3 +875,10 @@ def test_readings_of_equal_rank_are_chosen_the_same_in_any_order() -> None:
     other = [[Clause("tower", subjects=(red,)), Clause("in_bin", subjects=(green, blue))]]
     assert reading_cost(one) == reading_cost(other)
     assert Clauses()._ambig([one, other]) == Clauses()._ambig([other, one])
+
+
+def test_one_block_on_the_other_is_a_tower_of_the_two_in_either_order() -> None:
+    assert parse_english("put one block on the other", "two_blocks") == [Literal("stack", ("red", "green"))]
+    for top, below in (("red", "green"), ("green", "red")):
+        standing = [Literal("above", (top, below))]
+        assert parse_goal("put one block on the other", "two_blocks", ("red", "green"), standing) == standing

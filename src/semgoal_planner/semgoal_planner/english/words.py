@@ -55,6 +55,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"(put|place|set|stack) one( block| cube| of them)? (on|onto|on top of|atop) the other( block| cube| one)?",
+     "stack both"),  # of two blocks: a tower in either order
     (r"(?:(?<=^)|(?<=\band )|(?<=\bthen )|(?<=\bbut )|(?<=\bwhile )|(?<=\bwhereas ))"
      rf"(?P<who>(the )?({_COLOUR})( block| cube| one)?((,? and|,) (the )?({_COLOUR})( block| cube| one)?)*|the rest|the others|"
      r"all the others|all (of )?the other (blocks|cubes|ones)|everything else|every other (block|cube|one)|the other (blocks"
@@ -239,7 +242,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
      r"together|neighbou?rs|(touch|touches|touching|adjacent)( each other| one another)?(?= (and|then)\b|$)",
      "together"),
-    (r"(far from|away from|apart from) (each other|one another)", "apart"),
+    (r"(far from|away from|apart from) (each other|one another|every other( block| cube| one)?|each of the others)",
+     "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated|isolated", "apart"),
     (r"line up|line|arrange in a row", "group"),  # "line up red, green and blue"

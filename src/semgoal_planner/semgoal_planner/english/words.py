@@ -39,6 +39,8 @@ MAX_GOAL_WORDS = 100
 """Most words read (after phrases became canonical words): the parser's time grows with the cube of a sentence's
 length where its 'and's may join blocks or clauses (a hundred words: at most 0.4 s)."""
 
+_NOT_A_LIST = rf"(?!( and)?( then)? (the )?({_COLOUR})( block| cube| one)?( and\b| then\b|$))"
+"""Not followed by a block ('red at the bottom, then green': a tower's list, not a block put under a tower)."""
 _LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile) )?(the )?"
                         rf"(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
                         r"( blocks| cubes)? (in|into|as|to) (a|one|another|a second|a separate) (single )?(tower|stack|pile)")
@@ -55,6 +57,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"(put|place|set|stack) one( block| cube| of them)? (on|onto|on top of|atop) the other( block| cube| one)?",
      "stack both"),  # of two blocks: a tower in either order
@@ -141,6 +144,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (bottom|lowest|base) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      r"the (block|cube|one) (at|on) the (bottom|base|foot)( of (the|that|this|your) (tower|stack|pile))?",
      "the_base"),  # "put the top block in the bin": the tower's ends, placed when planned
+    (rf"(put|place|set|stack) (?P<what>(the )?({_COLOUR})( block| cube| one)?) (at|on) the (bottom|base|foot)"
+     rf"(?=( and)?( then)? (the )?({_COLOUR})( block| cube| one)?( and\b| then\b|$))", r"stack \g<what>"),  # "put red at the
+    # bottom, then green, then blue": a tower listed from the bottom
+    (rf"(?P<verb>put|place|move|set|stack|get) (?P<what>(the )?({_COLOUR})( block| cube| one)?) (at|to|on|onto) the (very )?"
+     r"top( of (the|that|this|your) (tower|stack|pile))?(?= and\b| then\b|$)" + _NOT_A_LIST, r"\g<verb> \g<what> on the_tower"),
+    (rf"(?P<verb>put|place|move|set|stack|get) (?P<what>(the )?({_COLOUR})( block| cube| one)?) (at|to|on|onto) the "
+     r"(bottom|base|foot)( of (the|that|this|your) (tower|stack|pile))?(?= and\b| then\b|$)" + _NOT_A_LIST,
+     rf"\g<verb> \g<what> {UNDER_A_TOWER}"),
+    # "put red at the top": on the tower; "put yellow at the bottom": under it
     (r"((at|to|on|in) the (bottom|base|foot) of|under|underneath|beneath|below)( the| that| this| your) (tower|stack|"
      r"pile)(?! of)", UNDER_A_TOWER),  # "put red at the bottom of the tower"
     (r"add (?P<what>[^,;]+?) (to|onto|on top of) (the|that|this|your) (tower|stack|pile)(?! of)",

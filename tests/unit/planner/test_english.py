@@ -406,6 +406,10 @@ PHRASES = [
      "close(red,green) & not above(red,green) & not above(green,red)"),
     ("three_blocks", "hold on to green", "holding(green)"),
     ("tabletop", "put red at the bottom, then green, then blue", "above(green,red) & above(blue,green)"),
+    ("tabletop", "make sure nothing is on red", "not above(green,red) & not above(blue,red) & not above(yellow,red) & "
+     "not above(orange,red) & not above(purple,red) & not above(cyan,red) & not above(pink,red)"),
+    ("two_blocks", "clear the top of red", "not above(green,red)"),
+    ("two_blocks", "there should be no block on top of green and red next to green", "not above(red,green) & close(red,green)"),
     ("three_blocks", "move every block away from every other", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "Put green close to red and then move blue far away.",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),

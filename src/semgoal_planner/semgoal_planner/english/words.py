@@ -100,6 +100,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # not on anything": on no block
     (rf"(?P<place>next to|near|beside|close to|by) (the )?(?P<block>{_COLOUR})( block| cube| one)? (on|onto) (the )?"
      r"(table|desk)", r"\g<place> \g<block> and on the table"),  # "green next to red on the table": both
+    (r"(make sure |ensure )?(that )?(none of the (blocks|cubes)|no (other )?(block|cube)s?|nothing|no one)( else)?( should| must"
+     r"| may| can| is| are| will)?( be| stay| remain| sit| sits| rest| rests)?( stacked| piled| left| put| placed)? (on|on top "
+     rf"of|onto|atop|upon) (the )?(?P<block>{_COLOUR})( block| cube| one)?\b", r"take all off \g<block>"),  # "nothing
+    # should be on red": no block on it
+    (rf"clear (off )?(the )?top of (the )?(?P<block>{_COLOUR})( block| cube| one)?\b", r"take all off \g<block>"),
     (r"(none of the (blocks|cubes)|no (block|cube)s?|nothing)( should| must| may| can| is| are| will)?( be| stay| remain)?"
      r" (stacked|piled|on (top of )?(another|any other|each other|one another|other)( blocks?| cubes?| ones?)?)",
      "unstack"),  # "none of the blocks should be stacked", "no block on top of another"

@@ -409,6 +409,9 @@ PHRASES = [
     ("tabletop", "make sure nothing is on red", "not above(green,red) & not above(blue,red) & not above(yellow,red) & "
      "not above(orange,red) & not above(purple,red) & not above(cyan,red) & not above(pink,red)"),
     ("two_blocks", "clear the top of red", "not above(green,red)"),
+    ("tabletop", "make a tower of red, green and blue and another of yellow, orange and purple",
+     "above(green,red) & above(blue,green) & above(orange,yellow) & above(purple,orange)"),
+    ("tabletop", "stack red and green and make another tower with blue and yellow", "above(green,red) & above(yellow,blue)"),
     ("two_blocks", "there should be no block on top of green and red next to green", "not above(red,green) & close(red,green)"),
     ("three_blocks", "move every block away from every other", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "Put green close to red and then move blue far away.",

@@ -409,6 +409,9 @@ PHRASES = [
     ("tabletop", "make sure nothing is on red", "not above(green,red) & not above(blue,red) & not above(yellow,red) & "
      "not above(orange,red) & not above(purple,red) & not above(cyan,red) & not above(pink,red)"),
     ("two_blocks", "clear the top of red", "not above(green,red)"),
+    ("tabletop", "set down red next to yellow", "close(red,yellow)"),
+    ("desk_cleanup", "let go of red in the bin", "in_bin(red)"),
+    ("desk_cleanup", "put yellow in the bin unless it is already there", "in_bin(yellow)"),
     ("tabletop", "make a tower of red, green and blue and another of yellow, orange and purple",
      "above(green,red) & above(blue,green) & above(orange,yellow) & above(purple,orange)"),
     ("tabletop", "stack red and green and make another tower with blue and yellow", "above(green,red) & above(yellow,blue)"),

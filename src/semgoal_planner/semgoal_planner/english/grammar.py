@@ -26,7 +26,7 @@ clause: NOT? action              -> act
       | refs NOT                 -> ellipsis_refs_negated
 
 action: ("put" | "keep") refs dest          -> put
-      | "put" refs "down" (near | away | in_bin | on) -> put
+      | ("put" refs "down" | "release" refs) (near | away | in_bin | on | on_table) -> put
       | "put" refs                           -> release
       | ("put" refs "down" | "put" "down" refs | "release" refs?) -> release
       | "stack" refs dest_on                 -> put

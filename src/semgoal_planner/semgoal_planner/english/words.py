@@ -59,6 +59,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"(unless|if|in case) (it|they|that|this) (is|are|isn't|aren't|is not|are not) (not )?(already|yet) (there|so|done|in place"
+     r"|in (the )?(bin|box|basket|trash))", ""),  # "put purple in the bin unless it is already there": the goal says so
     (r"(?P<join>and|then) (build |make )?(another|a second|a separate|one more)( tower| stack| pile| one)? (of|with|from|using"
      r"|out of)", r"\g<join> stack"),  # "a tower of red and green and another of blue and yellow"
     (r"(put|place|set|stack) one( block| cube| of them)? (on|onto|on top of|atop) the other( block| cube| one)?",

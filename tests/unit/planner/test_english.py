@@ -409,6 +409,14 @@ PHRASES = [
     ("tabletop", "make sure nothing is on red", "not above(green,red) & not above(blue,red) & not above(yellow,red) & "
      "not above(orange,red) & not above(purple,red) & not above(cyan,red) & not above(pink,red)"),
     ("two_blocks", "clear the top of red", "not above(green,red)"),
+    # politeness carries no goal
+    ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
+    ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
+    ("desk_cleanup", "would you mind putting red in the bin when you get a chance", "in_bin(red)"),
+    ("desk_cleanup", "I'd appreciate it if red were in the bin", "in_bin(red)"),
+    ("desk_cleanup", "kindly try to put red in the bin", "in_bin(red)"),
+    ("two_blocks", "red on green would be great", "above(red,green)"),
+    ("two_blocks", "it would be nice if red were on green", "above(red,green)"),
     ("tabletop", "set down red next to yellow", "close(red,yellow)"),
     ("desk_cleanup", "let go of red in the bin", "in_bin(red)"),
     ("desk_cleanup", "put yellow in the bin unless it is already there", "in_bin(yellow)"),
@@ -495,6 +503,7 @@ REFUSALS = [
     ("tabletop", "don't swap red and green", "'not swap' asks for nothing"),
     ("three_blocks", "swap red and green", "in scene three_blocks two blocks have no places to trade"),
     ("tabletop", "put red in the bin if it is on the table", "'if' leaves the goal open"),
+    ("tabletop", "put red in the bin if green is on blue", "'if' leaves the goal open"),
     ("tabletop", "build a tower with purple at the bottom", "a tower needs two or more blocks, not only purple"),
     ("tabletop", "put red at the bottom of the tower", "a block goes under a standing tower only by building"),
     ("tabletop", "slide red under the stack", "a block goes under a standing tower only by building"),

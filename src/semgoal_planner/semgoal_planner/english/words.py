@@ -170,6 +170,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
      r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
+    (r"(thanks|thank you)( (very|so) much| a lot| in advance)?|if you (don'?t|do not) mind|(would|do) you mind|if (it is|it's"
+     r"|that is|that's) (ok|okay|alright|all right|possible|not too much trouble)|if (possible|you can|you could|you would|you"
+     r" please)|when(ever)? you (can|get a chance|have (a moment|time|a minute|a second|a sec))|at your (earliest )?convenience"
+     r"|as soon as (you can|possible)|(i|we)( would|'d) appreciate( it)? if|it would be (great|nice|good|ideal) if|(that |it )?"
+     r"(would|will) be (great|nice|good|perfect|ideal|lovely|fine|appreciated|helpful)|for me|for us|kindly|try to|attempt to"
+     r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
     (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
@@ -325,7 +331,7 @@ FILLERS = frozenset({
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
     "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",
-    "immediately", "right", "straight", "anymore", "still", "finish",
+    "immediately", "right", "straight", "anymore", "still", "finish", "were", "was",
 })
 """Words that carry nothing for the goal."""
 

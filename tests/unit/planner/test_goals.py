@@ -130,6 +130,11 @@ def on(*chain: str) -> list[Literal]:
     # blocks put on the tower one after another: each on the one before
     ("put orange on the tower, then put yellow on the tower", on("red", "green"),
      [Literal("above", ("orange", "green")), Literal("above", ("yellow", "orange"))]),
+    # several blocks put on it: each on the one before; 'the rest': every block not in it, in the order of the world's
+    ("put orange and yellow on the tower", on("red", "green"),
+     [Literal("above", ("orange", "green")), Literal("above", ("yellow", "orange"))]),
+    ("put blue in the bin and the rest on the tower", on("red", "green"),
+     [Literal("in_bin", ("blue",)), Literal("above", ("yellow", "green")), Literal("above", ("orange", "yellow"))]),
     # the tower the goal builds, whatever stands
     ("build a tower of red and green, then put yellow next to the tower", on("blue", "orange"),
      [Literal("above", ("green", "red")), Literal("close", ("red", "yellow"))]),

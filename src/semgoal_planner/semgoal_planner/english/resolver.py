@@ -189,6 +189,9 @@ class Resolver:
         unordered = clause.kind == ANY_ORDER_TOWER or (clause.kind == "tower" and (
             len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
         subjects = self.subjects_of(clause)
+        if clause.kind == "on" and clause.subjects and all(r.kind in ("all", "other") and not r.excluded for r in
+                                                            clause.subjects) and Ref("tower") in clause.objects:
+            subjects = (TOWER_REST,)  # "put the rest on the tower": the blocks not in it, each on the one before
         if not subjects and clause.kind == "release":  # "let go" with nothing picked before: the hand empty
             subjects = self.blocks
         if not subjects:
@@ -198,7 +201,8 @@ class Resolver:
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
         if ({TOWER_ALL, TOWER_REST} & set(objects) and clause.kind not in ("near", "away")) or (
-                {TOWER_ALL, TOWER_REST} & set(subjects) and clause.kind in ("on", "under", "hold")):
+                {TOWER_ALL, TOWER_REST} & set(subjects) and clause.kind in ("on", "under", "hold")
+                and not (subjects == (TOWER_REST,) and objects == ("tower",))):
             raise LanguageError("the whole tower goes in the bin, onto the table, near or away from a block: its "
                                 "blocks cannot go on one block, or into one hand")
         if "tower" in objects:
@@ -276,6 +280,9 @@ class Resolver:
             return (Literal("close", p) for p in pairs)
         if kind == "away":
             return (Literal("close", p, False) for p in pairs)
+        if kind == "on" and objects == (TOWER_TOP,) and (subjects == (TOWER_REST,) or not any(map(is_stand_in, subjects))):
+            return (Literal("above", (s, TOWER_TOP)) for s in subjects)  # "put orange and red on the tower", "the rest":
+            # each on the one put there before
         if kind in ("on", "under"):
             if len(objects) > 1 or len(subjects) > 1:
                 raise LanguageError("a block goes on one block, and one block on it: say which on which")

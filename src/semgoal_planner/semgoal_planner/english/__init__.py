@@ -196,7 +196,15 @@ def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Sa
             traded.append(clause)
     stage = [(clause, literals) for clause, literals in stage if clause not in traded]
     moved = {b for clause, _ in stage if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
+    goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()}
     return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)}, stage
+
+
+def _without(stack: Literal, moved: set[str]) -> Literal:
+    """A tower left open without the blocks a later clause moves ("stack everything, then put red in the bin"), where
+    two or more remain."""
+    rest = tuple(b for b in stack.args if b not in moved)
+    return Literal(STACK, rest) if len(rest) >= 2 else stack
 
 
 def _traded(goal: dict, a: str, b: str) -> dict:

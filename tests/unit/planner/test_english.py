@@ -409,6 +409,13 @@ PHRASES = [
     ("tabletop", "make sure nothing is on red", "not above(green,red) & not above(blue,red) & not above(yellow,red) & "
      "not above(orange,red) & not above(purple,red) & not above(cyan,red) & not above(pink,red)"),
     ("two_blocks", "clear the top of red", "not above(green,red)"),
+    ("desk_cleanup", "put all 4 blocks in the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "put three of the blocks in the bin: red, green and blue", "in_bin(red) & in_bin(green) & in_bin(blue)"),
+    ("desk_cleanup", "throw red and green out", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "throw out yellow", "in_bin(yellow)"),
+    ("desk_cleanup", "throw red out of the bin", "not in_bin(red)"),
+    ("desk_cleanup", "clear the desk of all blocks except yellow",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & not in_bin(yellow)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
@@ -480,6 +487,7 @@ REFUSALS = [
     ("two_blocks", "Only green should stay on the table.", "leaves red unclear"),  # no bin to clear it into
     ("desk_cleanup", "put two blocks in the bin", "'two' blocks, but which\\? a goal names its blocks by colour"),
     ("desk_cleanup", "put 3 blocks in the bin", "'3' blocks, but which\\?"),
+    ("desk_cleanup", "put all 3 blocks in the bin", "speaks of 3 blocks, but this world has 4"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "build a tower", "say which blocks to stack"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),

@@ -59,6 +59,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
+    # all blocks except yellow"
     (r"(unless|if|in case) (it|they|that|this) (is|are|isn't|aren't|is not|are not) (not )?(already|yet) (there|so|done|in place"
      r"|in (the )?(bin|box|basket|trash))", ""),  # "put purple in the bin unless it is already there": the goal says so
     (r"(?P<join>and|then) (build |make )?(another|a second|a separate|one more)( tower| stack| pile| one)? (of|with|from|using"
@@ -466,7 +468,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
-        text = _THROWN_AWAY.sub(r" clean \g<what> ", text)  # "throw everything away except red"
+        text = _THROWN_AWAY.sub(lambda m: f" clean {m['what'] or m['out'] or ''} ", text)  # "throw everything away
+        # except red", "throw red out": into the bin
     text = re.sub(r"&+", " and ", text)
     text = re.sub(r"\b(it|that|there|here|what)'s\b", r"\1 is", text)
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
@@ -668,15 +671,15 @@ def _listing_start(words: list[str], end: int) -> int:
 
 
 NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}
-_COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r")(?: blocks| cubes| ones)?"
-                      r"|the (?P<the>" + "|".join(NUMBERS) + r") (?:blocks|cubes|ones))\b")
+_COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
+                      r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
 
 
 def _all_counted(match: re.Match, blocks: Sequence[str]) -> str:
     """'all' where the count is the number of blocks present, else the refusal names the blocks there are."""
     said = match["all"] or match["the"]
-    if NUMBERS[said] != len(blocks):
+    if (NUMBERS[said] if said in NUMBERS else int(said)) != len(blocks):
         raise LanguageError(f"{match[0]!r} speaks of {said} blocks, but this world has {len(blocks)} "
                             f"({', '.join(blocks)}): name the blocks by colour")
     return " all "
@@ -765,7 +768,7 @@ said first, what becomes of them after."""
 
 
 _COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|stack|take|bring|get) (the )?(any )?"
-                                 r"(two|three|four|five|six|seven|eight|\d) (blocks|cubes) (?P<where>[^:;]+?)\s*:"
+                                 r"(two|three|four|five|six|seven|eight|\d) (of the )?(blocks|cubes) (?P<where>[^:;]+?)\s*:"
                                  r"\s*(?P<named>[^.;]+)")
 """'put two blocks in the bin: red and green': the blocks named after the colon, where the count was."""
 
@@ -798,7 +801,9 @@ def _in_time_order(text: str) -> str:
 _SEVERAL_TOWERS = re.compile(r"\b(two|three|2|3|a couple of|several|some) (towers|stacks|piles)\b")
 _EACH_TOWER = re.compile(r"\b(one|the other|another|the (first|second|third|last))( tower| stack| pile)? (of|with|from)\b")
 """Each of several towers said as 'one of red and green', 'the other of blue and yellow': a tower of those blocks."""
-_THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)")
+_THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)|"
+                          r"\b(?:throw|toss|chuck)\b(?P<out>(?: +[\w']+){1,12}?) +out\b(?! +(?:of|from))|"
+                          r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
 

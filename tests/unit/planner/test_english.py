@@ -416,6 +416,10 @@ PHRASES = [
     ("desk_cleanup", "throw red out of the bin", "not in_bin(red)"),
     ("desk_cleanup", "clear the desk of all blocks except yellow",
      "in_bin(red) & in_bin(green) & in_bin(blue) & not in_bin(yellow)"),
+    ("three_blocks", "red should not be near anything", "not close(red,green) & not close(red,blue)"),
+    ("three_blocks", "don't let blue touch any other block", "not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "keep red away from everything", "not close(red,green) & not close(red,blue)"),
+    ("three_blocks", "put the blocks in a row", "close(red,green) & close(red,blue) & close(green,blue)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

@@ -59,6 +59,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"(?P<rel>(away|far|apart) from|(not|\w*n't|never)( \w+){0,3}? (near|next to|close to|beside|by|touching|touch|touches))"
+     r" (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing| other "
+     r"(block|cube|one)))(?! else\b)", r"\g<rel> the others"),  # "red should not be near anything": any other block
+    (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"
     (r"(unless|if|in case) (it|they|that|this) (is|are|isn't|aren't|is not|are not) (not )?(already|yet) (there|so|done|in place"

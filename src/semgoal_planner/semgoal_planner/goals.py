@@ -28,7 +28,7 @@ from semgoal_planner.english import (
     LanguageError,
     parse_english,
 )
-from semgoal_planner.english.resolver import stack_order
+from semgoal_planner.english.resolver import HELD, stack_order
 
 
 class GoalError(ValueError):
@@ -105,11 +105,16 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
 
 def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with each block named by where it stands placed in ``state``: ``block_on_red`` becomes the block
-    on red, ``block_under_green`` the block green is on. GoalError where none is."""
+    on red, ``block_under_green`` the block green is on, ``block_held`` the block in the hand. GoalError where none is."""
     on = {lit.args[1]: lit.args[0] for lit in state if lit.name == "above" and lit.value}  # block -> the one on it
     under = {upper: below for below, upper in on.items()}
+    held = [lit.args[0] for lit in state if lit.name == "holding" and lit.value]
 
     def placed(arg: str) -> str:
+        if arg == HELD:
+            if not held:
+                raise GoalError("the hand holds no block now: name the block instead")
+            return held[0]
         if arg.startswith(ON_PREFIX):
             block = arg.removeprefix(ON_PREFIX)
             if block not in on:
@@ -123,6 +128,10 @@ def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lite
         return arg
 
     made = [Literal(lit.name, tuple(map(placed, lit.args)), lit.value) for lit in literals]
+    itself = next((lit for lit in made if lit.value and len(set(lit.args)) < len(lit.args)), None)
+    if itself:
+        raise GoalError(f"{itself.args[0]} would be {itself.name} itself: the block named by where it is now is "
+                        f"{itself.args[0]}, so name another block")
     return [lit for lit in made if len(set(lit.args)) == len(lit.args)]  # "... on the table": not on itself
 
 

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from semgoal_core.consistency import contradictions
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
-from semgoal_planner.english import LanguageError, parse_english
+from semgoal_planner.english import HELD, LanguageError, parse_english
 from semgoal_planner.english.grammar import Clause, Clauses, Ref, reading_cost
 from semgoal_planner.english.words import BASE_MARK, CANONICAL, DIRECTION, TOP_MARK
 from semgoal_planner.executive import Executive, Observation
@@ -921,3 +921,23 @@ def test_one_block_on_the_other_is_a_tower_of_the_two_in_either_order() -> None:
     for top, below in (("red", "green"), ("green", "red")):
         standing = [Literal("above", (top, below))]
         assert parse_goal("put one block on the other", "two_blocks", ("red", "green"), standing) == standing
+
+
+@pytest.mark.parametrize(("text", "held", "expected"), [
+    ("put whatever you are holding in the bin", "red", "in_bin(red)"),
+    ("put the block you are holding on green", "blue", "above(blue,green)"),
+    ("put down the block in your hand next to yellow", "green", "close(green,yellow)"),
+    ("drop what you have", "yellow", "not holding(yellow)"),
+])
+def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str, expected: str) -> None:
+    assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
+    goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
+    assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+def test_the_block_held_must_be_held_and_not_put_by_itself() -> None:
+    objects = ("red", "green")
+    with pytest.raises(GoalError, match="the hand holds no block now"):
+        parse_goal("put whatever you are holding in the bin", "tabletop", objects, [])
+    with pytest.raises(GoalError, match="green would be above itself"):
+        parse_goal("put the block you are holding on green", "tabletop", objects, [Literal("holding", ("green",))])

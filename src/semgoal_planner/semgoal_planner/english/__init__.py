@@ -39,6 +39,7 @@ from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parse
 from semgoal_planner.english.resolver import (
+    HELD,
     KEEP,
     ON_PREFIX,
     PLACED_WHEN_PLANNED,
@@ -55,7 +56,7 @@ from semgoal_planner.english.resolver import (
 )
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
-__all__ = ["KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
+__all__ = ["HELD", "KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
            "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
 
 

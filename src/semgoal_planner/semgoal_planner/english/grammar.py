@@ -94,6 +94,7 @@ ref: COLOUR                      -> colour
    | "the_base"                  -> base
    | "the_whole"                 -> whole
    | "the_upper" COLOUR          -> upper
+   | "the_held"                  -> held_block
    | "the_lower" COLOUR          -> lower
 
 NOT: "not"
@@ -113,7 +114,8 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 class Ref:
     """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
     ``them``, ``tower`` (the tower standing when the goal is planned), ``top`` and ``base`` (its top and bottom
-    blocks), ``upper`` and ``lower`` (the block on, or under, the one of ``colours`` when planned)."""
+    blocks), ``upper`` and ``lower`` (the block on, or under, the one of ``colours`` when planned), ``held`` (the block in the hand
+    when planned)."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -364,6 +366,9 @@ class Clauses(lark.Transformer):
 
     def lower(self, items: list) -> Ref:
         return Ref("lower", (str(items[0]),))
+
+    def held_block(self, _: list) -> Ref:
+        return Ref("held")
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

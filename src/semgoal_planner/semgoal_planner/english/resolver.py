@@ -18,6 +18,9 @@ TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
+HELD = "block_held"
+"""'whatever you are holding': ``block_held`` in a goal's literals until it is planned
+(:func:`~semgoal_planner.goals.relative`)."""
 ON_PREFIX, UNDER_PREFIX = "block_on_", "block_under_"
 """'the block on red', 'the block under green': ``block_on_red``, ``block_under_green`` in a goal's literals until it is
 planned (:func:`~semgoal_planner.goals.relative`)."""
@@ -37,6 +40,7 @@ PLACED_WHEN_PLANNED = {
     TOWER_REST: "each block not in the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
+    HELD: "the block in the hand when the goal is planned",
     ON_PREFIX: "(block_on_COLOUR) the block standing on that block when the goal is planned",
     UNDER_PREFIX: "(block_under_COLOUR) the block that block stands on when the goal is planned",
     STACK: "one tower of these blocks, in an order left open: what already stands of it (its tallest part on the "
@@ -121,6 +125,8 @@ class Resolver:
         if ref.kind in ("upper", "lower"):  # "the block on red": the one standing on it when planned
             self._one(Ref("colours", ref.colours), besides)  # refused where red is not here
             return ((ON_PREFIX if ref.kind == "upper" else UNDER_PREFIX) + ref.colours[0],)
+        if ref.kind == "held":  # "whatever you are holding": the block in the hand when planned
+            return (HELD,)
         if ref.kind == "tower":  # placed by literals(), which knows the relation
             return ("tower",)
         if ref.kind in TOWER_ENDS:  # "the top block": stands in the literals until the goal is planned

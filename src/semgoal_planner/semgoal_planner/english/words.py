@@ -153,6 +153,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands)? (under|underneath|below|beneath|supporting) "
      rf"(the )?(?P<above>{_COLOUR})( block| cube| one)?|the (block|cube|one)( that| which)? (the )?(?P<upper>{_COLOUR})"
      r"( block| cube| one)? (is|sits|stands|lies|rests) on", r"the_lower \g<above>\g<upper>"),  # "the block under green"
+    (r"(whatever|what|the (block|cube|one|thing)( that| which)?) (you are|you're|you have|you've got|the robot is|the robot"
+     r" has|the hand is|the gripper is|is)( currently| now| still)? (holding|carrying|gripping|grasping|got|in (your|the|its) "
+     r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
+     r"(hold|have|carry)", "the_held"),  # "put whatever you are holding in the bin": the block held when planned
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      rf"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?(?! of (the )?({_COLOUR}))",
      "the_top"),
@@ -345,7 +349,7 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "swap", ANY_ORDER, IN_PLACE,
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "swap", ANY_ORDER, IN_PLACE,
 })
 """The words the grammar reads (besides the colours)."""
 

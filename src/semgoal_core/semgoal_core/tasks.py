@@ -266,8 +266,12 @@ def scene_tasks(scene: str) -> tuple[str, ...]:
 
 
 def is_task_name(text: str) -> bool:
-    """Whether ``text`` names a task (case-insensitive)."""
-    return any(text.strip().lower() == name.lower() for name in ALL_TASKS)
+    """Whether ``text`` names a task (case-insensitive, a space or '_' for its hyphen: ``tower 5``)."""
+    return any(_task_key(text) == _task_key(name) for name in ALL_TASKS)
+
+
+def _task_key(name: str) -> str:
+    return re.sub(r"[\s_\-\u2013]+", "-", name.strip().lower())
 
 
 _SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
@@ -328,6 +332,6 @@ def goal_form(text: str) -> str:
 def get_task(name: str) -> Task:
     """Look a task up by its name (case-insensitive), or raise with the list of valid names."""
     for task_name, task in ALL_TASKS.items():
-        if task_name.lower() == name.strip().lower():
+        if _task_key(task_name) == _task_key(name):
             return task
     raise KeyError(f"unknown task {name!r}: tasks are {', '.join(ALL_TASKS)}")

@@ -212,8 +212,8 @@ class VocabularyError(ValueError):
     """A literal or goal that does not fit the scene; the message says what is wrong and what is valid."""
 
 
-_LITERAL = re.compile(r"^\s*(?P<neg>not\s+|!\s*|~\s*|¬\s*)?(?P<name>[A-Za-z_][\w-]*)\s*\((?P<args>[^()]*)\)\s*$")
-_NEGATED = re.compile(r"^\s*(?:not|!|~|¬)\s*\((?P<literal>[^()]*\([^()]*\)\s*)\)\s*$")
+_LITERAL = re.compile(r"^\s*(?P<neg>not\s+|!\s*|~\s*|¬\s*)?(?P<name>[A-Za-z_][\w-]*)\s*\((?P<args>[^()]*)\)\s*$", re.IGNORECASE)
+_NEGATED = re.compile(r"^\s*(?:not|!|~|¬)\s*\((?P<literal>[^()]*\([^()]*\)\s*)\)\s*$", re.IGNORECASE)
 """A negation written as a call: ``not(in_bin(red))``."""
 
 

@@ -697,6 +697,9 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put red at the top and green in the bin", "above(red,tower_top) & in_bin(green)"),
     ("add yellow and then orange to the tower", "above(yellow,tower_top) & above(orange,tower_top)"),
     ("put the other blocks on the tower", "above(tower_rest,tower_top)"),
+    # a block between two clauses joins the first one's list
+    ("build a tower of red, green and blue and make sure orange is not near it",
+     "above(green,red) & above(blue,green) & not close(orange,tower_base)"),
     ("stack everything, then put red and green in the bin",
      "stack(blue,yellow,orange,purple,cyan,pink) & in_bin(red) & in_bin(green)"),
     ("put the tower's top block next to red", "close(tower_top,red)"),

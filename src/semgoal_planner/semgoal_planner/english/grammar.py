@@ -187,9 +187,10 @@ class Clauses(lark.Transformer):
 
     def _ambig(self, alternatives: list) -> object:
         # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
-        # longest exception ("all except red and blue" leaves out both); between equals, the same one on every run (the
-        # parser lists them in an order that follows string hashing)
-        return min(alternatives, key=lambda reading: (reading_cost(reading), repr(reading)))
+        # longest exception ("all except red and blue" leaves out both), then the earlier clauses' lists the longest
+        # ("a tower of red, green and blue and orange not near it": blue in the tower); between equals, the same one on
+        # every run (the parser lists them in an order that follows string hashing)
+        return min(alternatives, key=lambda reading: (reading_cost(reading), _lists_first(reading), repr(reading)))
 
     # -- clauses ------------------------------------------------------------------------------------
     def act(self, items: list) -> Clause:
@@ -383,6 +384,15 @@ def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:
 def refs_in(items: list) -> list:
     """The reference tuples (and clauses) among a rule's children, tokens left out."""
     return [i for i in items if not isinstance(i, lark.Token)]
+
+
+def _lists_first(node: object) -> tuple[int, ...]:
+    """Minus each clause's number of subjects, in the order said: a block between two clauses joins the first."""
+    if isinstance(node, Clause):
+        return (-len(node.subjects),)
+    if isinstance(node, (list, tuple)):
+        return tuple(count for n in node for count in _lists_first(n))
+    return ()
 
 
 def reading_cost(node: object) -> tuple[int, int]:

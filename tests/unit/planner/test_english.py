@@ -420,6 +420,8 @@ PHRASES = [
     ("three_blocks", "don't let blue touch any other block", "not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "keep red away from everything", "not close(red,green) & not close(red,blue)"),
     ("three_blocks", "put the blocks in a row", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("tabletop", "put yellow, orange and purple on top of red", "above(yellow,red) & above(orange,yellow) & above(purple,orange)"),
+    ("tabletop", "avoid stacking red on green", "not above(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
@@ -494,6 +496,7 @@ REFUSALS = [
     ("desk_cleanup", "put all 3 blocks in the bin", "speaks of 3 blocks, but this world has 4"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "build a tower", "say which blocks to stack"),
+    ("tabletop", "put all on red", "a block goes on one block, and one block on it"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),
     ("tabletop", "don't stack everything", "'not stack' asks for nothing"),
     ("three_blocks", "stack everything", "in scene three_blocks no block stands on another"),

@@ -289,6 +289,10 @@ class Resolver:
         if kind == "on" and objects == (TOWER_TOP,) and (subjects == (TOWER_REST,) or not any(map(is_stand_in, subjects))):
             return (Literal("above", (s, TOWER_TOP)) for s in subjects)  # "put orange and red on the tower", "the rest":
             # each on the one put there before
+        if (kind == "on" and len(objects) == 1 and len(subjects) > 1 and objects[0] not in subjects
+                and not any(map(is_stand_in, (*subjects, *objects)))):
+            chain = (*objects, *subjects)  # "put yellow, orange and purple on red": each on the one named before it
+            return (Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(chain))
         if kind in ("on", "under"):
             if len(objects) > 1 or len(subjects) > 1:
                 raise LanguageError("a block goes on one block, and one block on it: say which on which")

@@ -59,6 +59,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"avoid|refrain from", "do not"),  # "avoid stacking red on green"
     (r"(?P<rel>(away|far|apart) from|(not|\w*n't|never)( \w+){0,3}? (near|next to|close to|beside|by|touching|touch|touches))"
      r" (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing| other "
      r"(block|cube|one)))(?! else\b)", r"\g<rel> the others"),  # "red should not be near anything": any other block

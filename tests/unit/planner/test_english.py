@@ -422,6 +422,9 @@ PHRASES = [
     ("three_blocks", "put the blocks in a row", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("tabletop", "put yellow, orange and purple on top of red", "above(yellow,red) & above(orange,yellow) & above(purple,orange)"),
     ("tabletop", "avoid stacking red on green", "not above(red,green)"),
+    ("tabletop", "put red in the bin, put yellow next to orange and keep purple away from everything",
+     "in_bin(red) & close(yellow,orange) & not close(red,purple) & not close(green,purple) & not close(blue,purple) & "
+     "not close(yellow,purple) & not close(orange,purple) & not close(purple,cyan) & not close(purple,pink)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

@@ -60,9 +60,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"avoid|refrain from", "do not"),  # "avoid stacking red on green"
-    (r"(?P<rel>(away|far|apart) from|(not|\w*n't|never)( \w+){0,3}? (near|next to|close to|beside|by|touching|touch|touches))"
-     r" (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing| other "
-     r"(block|cube|one)))(?! else\b)", r"\g<rel> the others"),  # "red should not be near anything": any other block
+    (r"((away|far|apart) from|(not|\w*n't|never)(?P<between>( \w+){0,3}?) (near|next to|close to|beside|by|touching|touch"
+     r"|touches)) (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing|"
+     r" other (block|cube|one)))(?! else\b)", r"\g<between> away"),  # "red should not be near anything": away from
+    # every other block, named before or not
     (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"

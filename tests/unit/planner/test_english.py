@@ -425,6 +425,10 @@ PHRASES = [
     ("tabletop", "put red in the bin, put yellow next to orange and keep purple away from everything",
      "in_bin(red) & close(yellow,orange) & not close(red,purple) & not close(green,purple) & not close(blue,purple) & "
      "not close(yellow,purple) & not close(orange,purple) & not close(purple,cyan) & not close(purple,pink)"),
+    ("tabletop", "make a tower: yellow on top, then orange, then purple at the bottom", "above(orange,purple) & above(yellow,orange)"),
+    ("tabletop", "purple at the bottom, orange, yellow and red on top",
+     "above(orange,purple) & above(yellow,orange) & above(red,yellow)"),
+    ("tabletop", "put red on top and green at the bottom", "above(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
@@ -499,6 +503,7 @@ REFUSALS = [
     ("desk_cleanup", "put all 3 blocks in the bin", "speaks of 3 blocks, but this world has 4"),
     ("three_blocks", "put red on top", "a block goes on one block"),
     ("tabletop", "build a tower", "say which blocks to stack"),
+    ("tabletop", "red on top, green, blue in the middle", "a tower's blocks named between its top and its bottom"),
     ("tabletop", "put all on red", "a block goes on one block, and one block on it"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),
     ("tabletop", "don't stack everything", "'not stack' asks for nothing"),

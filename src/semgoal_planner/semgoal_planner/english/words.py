@@ -723,30 +723,45 @@ _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
 _A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with $")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
+_BETWEEN_PLACES = re.compile(rf"(?: |and|then|(?:{_COLOUR})(?: block| cube| one)?)*")
+"""What may stand between two blocks' places in a tower said in a run: joining words, and blocks named bare."""
 _LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "at the bottom": 0, "on the bottom": 0,
            "at the base": 0}
 
 
 def _tower_by_positions(text: str) -> str:
     """Two or more blocks' places in a tower said one after another ('red on top, green in the middle, blue at the
-    bottom', any order) as the tower from the bottom up ('stack blue and green and red')."""
+    bottom', any order) as the tower from the bottom up ('stack blue and green and red'); blocks named bare between its
+    two ends go between them in the order said ('yellow on top, then orange, then purple at the bottom')."""
     runs: list[list[re.Match]] = []
+    bare: list[list[str]] = []  # each run's blocks named between its places, without one
     for match in _POSITION.finditer(text):
-        if runs and re.fullmatch(r"(?: |and|then)*", text[runs[-1][-1].end():match.start()]):
+        gap = text[runs[-1][-1].end():match.start()] if runs else ""
+        if runs and _BETWEEN_PLACES.fullmatch(gap) and (not re.search(_COLOUR, gap) or not bare[-1]):
             runs[-1].append(match)
+            bare[-1] += re.findall(rf"\b(?:{_COLOUR})\b", gap)
         else:
             runs.append([match])
-    for run in reversed([r for r in runs if len(r) >= 2]):
+            bare.append([])
+    for run, between in reversed([(r, b) for r, b in zip(runs, bare, strict=True) if len(r) >= 2]):
         before = text[:run[0].start()]
         if before.endswith("with "):
             if not _A_TOWER_WITH.search(before):
                 continue  # "a tower of red and green with blue on top": the tower's end, read later
             before = before[:-len("with ")]  # "a stack with blue on the bottom, green in the middle and red on top"
         levels = [(_LEVELS[m["where"]], m["block"]) for m in run]
+        if between:
+            if len(run) != 2 or {level for level, _ in levels} != {0, 2}:
+                raise LanguageError("a tower's blocks named between its top and its bottom go in the order said: name "
+                                    "its top and bottom blocks around them, e.g. 'red on top, then green, then blue at "
+                                    "the bottom'")
+            said = [levels[0][1], *between, levels[1][1]]
+            levels = list(enumerate(said[::-1] if levels[0][0] == 2 else said))
         if len({level for level, _ in levels}) < len(levels):
             raise LanguageError("two blocks are said to be at one place in the tower: name its blocks from the bottom "
                                 "up, e.g. 'build a tower of red, green and blue'")
         tower = " and ".join(block for _, block in sorted(levels))
+        before = re.sub(r"\b(?:put|place|set|arrange|position)\s*$", "", before)  # "put red on top and green at the bottom"
         said = "" if re.search(r"\b(?:tower|stack|pile)(?: and)? *$", before) else "stack "  # "a tower: red on top, ..."
         text = f"{before} {said}{tower} {text[run[-1].end():]}"
     return text

@@ -505,6 +505,7 @@ REFUSALS = [
     ("tabletop", "build a tower", "say which blocks to stack"),
     ("tabletop", "red on top, green, blue in the middle", "a tower's blocks named between its top and its bottom"),
     ("tabletop", "put all on red", "a block goes on one block, and one block on it"),
+    ("tabletop", "make two stacks", "say which blocks each tower has"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),
     ("tabletop", "don't stack everything", "'not stack' asks for nothing"),
     ("three_blocks", "stack everything", "in scene three_blocks no block stands on another"),

@@ -462,7 +462,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    text = re.sub(r"[()\[\]]", " ", text.lower())
+    said = text.lower()
+    text = re.sub(r"[()\[\]]", " ", said)
     text = _NUMBERED.sub(" ; ", text)  # "1. put red in the bin 2. put green in the bin": steps in turn
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
@@ -518,6 +519,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     while words and words[-1] in ("and", "then"):
         words.pop()
     if not words:
+        if _SEVERAL_TOWERS.search(said):  # "make two towers": each tower's blocks left unsaid
+            raise LanguageError("say which blocks each tower has: e.g. 'a tower of red and green and another of blue "
+                                "and yellow'")
         raise LanguageError(f"the goal says nothing to do: e.g. {examples(scene, blocks)}")
     return words
 

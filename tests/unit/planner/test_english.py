@@ -429,6 +429,8 @@ PHRASES = [
     ("tabletop", "purple at the bottom, orange, yellow and red on top",
      "above(orange,purple) & above(yellow,orange) & above(red,yellow)"),
     ("tabletop", "put red on top and green at the bottom", "above(red,green)"),
+    ("two_blocks", "make them touch but not stack", "close(red,green) & not above(red,green) & not above(green,red)"),
+    ("two_blocks", "don't stack everything", "not above(red,green) & not above(green,red)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
@@ -507,7 +509,6 @@ REFUSALS = [
     ("tabletop", "put all on red", "a block goes on one block, and one block on it"),
     ("tabletop", "make two stacks", "say which blocks each tower has"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),
-    ("tabletop", "don't stack everything", "'not stack' asks for nothing"),
     ("three_blocks", "stack everything", "in scene three_blocks no block stands on another"),
     ("tabletop", "stack red and green in any order and put red in the bin", "needs two blocks the goal puts nowhere else"),
     ("three_blocks", "red near green or blue", "'or' leaves the goal open"),

@@ -194,6 +194,8 @@ class Resolver:
                 clause = replace(stated, subjects=clause.subjects, negated=stated.negated != clause.negated)
         unordered = clause.kind == ANY_ORDER_TOWER or (clause.kind == "tower" and (
             len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
+        if unordered and clause.negated:  # "make them touch but not stack": none of them on another
+            clause, unordered = replace(clause, kind="unstack", negated=False), False
         subjects = self.subjects_of(clause)
         if clause.kind == "on" and clause.subjects and all(r.kind in ("all", "other") and not r.excluded for r in
                                                             clause.subjects) and Ref("tower") in clause.objects:

@@ -221,7 +221,7 @@ def _towers(above: Sequence[Literal]) -> list[list[str]]:
 
 def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with each ``swap(a,b)`` made what the two blocks trading places means in ``state``: the one on the
-    other goes under it, or the one in the bin comes out as the other goes in. GoalError where they have no places to
+    other goes under it (and onto what the other stood on), or the one in the bin comes out as the other goes in. GoalError where they have no places to
     trade (neither on the other, both in the bin or both out)."""
     true = set(state)
     made: list[Literal] = []
@@ -234,6 +234,10 @@ def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Liter
         binned = [block for block in (a, b) if Literal("in_bin", (block,)) in true]
         if on:
             made += [Literal("above", on[::-1]), Literal("above", on, False)]
+            support = next((lit.args[1] for lit in state if lit.name == "above" and lit.value and lit.args[0] == on[1]),
+                           None)
+            if support:  # in a tower: the upper block takes the lower one's place on what it stood on
+                made.append(Literal("above", (on[0], support)))
         elif len(binned) == 1:
             outside = b if binned == [a] else a
             made += [Literal("in_bin", (outside,)), Literal("in_bin", (binned[0],), False)]

@@ -187,6 +187,13 @@ def test_two_blocks_swapped_trade_the_places_they_have_when_planned(state: list[
     assert read_goal("swap green and red", "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, state) == expected
 
 
+def test_two_blocks_swapped_in_a_tower_keep_it_standing() -> None:
+    """Green on blue, red on green: swapped, red stands on blue and green on red."""
+    goal = read_goal("swap red and green", "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, on("blue", "green", "red"))
+    assert goal == [Literal("above", ("green", "red")), Literal("above", ("red", "green"), False),
+                    Literal("above", ("red", "blue"))]
+
+
 @pytest.mark.parametrize(("state", "words"), [
     ([], "neither is on the other, and both are out of the bin"),
     ([Literal("in_bin", ("red",)), Literal("in_bin", ("green",))], "both are in the bin"),

@@ -221,8 +221,8 @@ def _towers(above: Sequence[Literal]) -> list[list[str]]:
 
 def swapped(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with each ``swap(a,b)`` made what the two blocks trading places means in ``state``: the one on the
-    other goes under it (and onto what the other stood on), or the one in the bin comes out as the other goes in. GoalError where they have no places to
-    trade (neither on the other, both in the bin or both out)."""
+    other goes under it (and onto what the other stood on), or the one in the bin comes out as the other goes in.
+    GoalError where they have no places to trade (neither on the other, both in the bin or both out)."""
     true = set(state)
     made: list[Literal] = []
     for literal in literals:

@@ -28,7 +28,13 @@ from semgoal_planner.english import (
     LanguageError,
     parse_english,
 )
-from semgoal_planner.english.resolver import HELD, stack_order
+from semgoal_planner.english.resolver import (
+    HELD,
+    TOP_PREFIX,
+    TOWER_MIDDLE,
+    is_tower_place,
+    stack_order,
+)
 
 
 class GoalError(ValueError):
@@ -159,11 +165,10 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
     goal moves to it set aside). :data:`TOWER_TOP` becomes its top block, and each further block put on the tower goes
     on the one put there before it; :data:`TOWER_BASE` its bottom block; :data:`TOWER_ALL` each of its blocks;
     :data:`TOWER_REST` each of ``objects`` not in it. GoalError where no tower stands, or several do."""
-    placeholders = (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST)
-    if not any(arg in placeholders for literal in literals for arg in literal.args):
+    if not any(is_tower_place(arg) for literal in literals for arg in literal.args):
         return list(literals)
-    moved = {literal.args[0] for literal in literals if literal.args[-1] in placeholders} - set(placeholders)
-    built = _towers([lit for lit in literals if lit.name == "above" and lit.value and lit.args[-1] not in placeholders])
+    moved = {lit.args[0] for lit in literals if is_tower_place(lit.args[-1]) and not is_tower_place(lit.args[0])}
+    built = _towers([lit for lit in literals if lit.name == "above" and lit.value and not is_tower_place(lit.args[-1])])
     if len(built) == 1:
         tower = kept = built[0]
     else:
@@ -183,7 +188,9 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
         placed = [Literal("above", pair) for pair in itertools.pairwise(tower)]  # tower' after it is the new one
         literals = [lit for lit in literals if not (lit.name == "above" and set(lit.args) <= set(tower))]  # as built
         tower, kept = tower[::-1], kept[::-1]
-    place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0]}
+    place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0],
+             **{arg: _counted(arg, tower) for lit in literals for arg in lit.args if arg not in (TOWER_TOP, TOWER_BASE)
+                and is_tower_place(arg) and arg not in (TOWER_ALL, TOWER_REST)}}
     named = {lit.args[0] for lit in literals if TOWER_REST not in lit.args}  # "... and the rest": not these
     each_of = {TOWER_ALL: tower, TOWER_REST: [o for o in objects if o not in tower and o not in named]}
     for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, each_of)):
@@ -194,6 +201,21 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
         if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
             place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
+
+
+def _counted(place: str, tower: Sequence[str]) -> str:
+    """The block of ``tower`` (bottom first) a counted place names: :data:`TOWER_MIDDLE`, ``tower_top_K``,
+    ``tower_bottom_K``. GoalError where the tower has no such block."""
+    if place == TOWER_MIDDLE:
+        if len(tower) % 2 == 0:
+            raise GoalError(f"the tower has {len(tower)} blocks ({', '.join(tower)}, from the bottom), so no middle one: "
+                            "name the block instead")
+        return tower[len(tower) // 2]
+    k = int(place.rsplit("_", 1)[1])
+    if k > len(tower):
+        raise GoalError(f"the tower has {len(tower)} blocks ({', '.join(tower)}, from the bottom), not {k}: name the "
+                        "block instead")
+    return tower[-k] if place.startswith(TOP_PREFIX) else tower[k - 1]
 
 
 def _each_of(literal: Literal, groups: dict[str, list[str]]) -> list[Literal]:

@@ -710,6 +710,10 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put red at the top and green in the bin", "above(red,tower_top) & in_bin(green)"),
     ("add yellow and then orange to the tower", "above(yellow,tower_top) & above(orange,tower_top)"),
     ("put the other blocks on the tower", "above(tower_rest,tower_top)"),
+    ("put the second block from the top in the bin", "in_bin(tower_top_2)"),
+    ("swap the top two blocks of the tower", "swap(tower_top_2,tower_top)"),
+    ("put the bottom two blocks next to purple", "close(tower_bottom_2,purple) & close(tower_base,purple)"),
+    ("put the middle block next to purple", "close(tower_middle,purple)"),
     # a block between two clauses joins the first one's list
     ("build a tower of red, green and blue and make sure orange is not near it",
      "above(green,red) & above(blue,green) & not close(orange,tower_base)"),

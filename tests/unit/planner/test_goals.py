@@ -142,6 +142,13 @@ def on(*chain: str) -> list[Literal]:
      [Literal("above", ("orange", "green")), Literal("above", ("yellow", "orange"))]),
     ("put blue in the bin and the rest on the tower", on("red", "green"),
      [Literal("in_bin", ("blue",)), Literal("above", ("yellow", "green")), Literal("above", ("orange", "yellow"))]),
+    # a block counted in the tower from either end, or its middle one
+    ("put the second block from the top in the bin", on("red", "green", "blue", "yellow"), [Literal("in_bin", ("blue",))]),
+    ("put the third block from the bottom next to orange", on("red", "green", "blue", "yellow"),
+     [Literal("close", ("blue", "orange"))]),
+    ("put the middle block in the bin", on("red", "green", "blue"), [Literal("in_bin", ("green",))]),
+    ("swap the top two blocks", on("red", "green", "blue"),
+     [Literal("above", ("green", "blue")), Literal("above", ("blue", "green"), False), Literal("above", ("blue", "red"))]),
     # the tower the goal builds, whatever stands
     ("build a tower of red and green, then put yellow next to the tower", on("blue", "orange"),
      [Literal("above", ("green", "red")), Literal("close", ("red", "yellow"))]),
@@ -163,6 +170,14 @@ def test_the_tower_is_the_one_standing_when_the_goal_is_planned(text: str, state
     goal = read_goal(text, "tabletop", TABLETOP)
     assert parse_goal(text, "tabletop", TABLETOP, state) == expected
     assert goal.instantiate("tabletop", TABLETOP, state) == expected  # read once, placed when planned
+
+
+def test_a_counted_block_must_be_in_the_tower() -> None:
+    tower = on("red", "green", "blue", "yellow")
+    with pytest.raises(GoalError, match=r"the tower has 4 blocks \(red, green, blue, yellow, from the bottom\), not 5"):
+        parse_goal("put the fifth block from the top in the bin", "tabletop", TABLETOP, tower)
+    with pytest.raises(GoalError, match="so no middle one"):
+        parse_goal("put the middle block in the bin", "tabletop", TABLETOP, tower)
 
 
 @pytest.mark.parametrize(("state", "words"), [

@@ -95,9 +95,11 @@ ref: COLOUR                      -> colour
    | "the_whole"                 -> whole
    | "the_upper" COLOUR          -> upper
    | "the_held"                  -> held_block
+   | LEVEL                       -> level
    | "the_lower" COLOUR          -> lower
 
 NOT: "not"
+LEVEL: /the_(top|bottom)[2-8]/ | "the_middle"
 COLOUR: """ + " | ".join(f'"{c}"' for c in BLOCK_COLOURS) + r"""
 %ignore " "
 """
@@ -115,7 +117,7 @@ class Ref:
     """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
     ``them``, ``tower`` (the tower standing when the goal is planned), ``top`` and ``base`` (its top and bottom
     blocks), ``upper`` and ``lower`` (the block on, or under, the one of ``colours`` when planned), ``held`` (the block in the hand
-    when planned)."""
+    when planned), ``level`` (a block counted in the tower: ``the_top2``, ``the_bottom3``, ``the_middle``)."""
 
     kind: str
     colours: tuple[str, ...] = ()
@@ -370,6 +372,9 @@ class Clauses(lark.Transformer):
 
     def held_block(self, _: list) -> Ref:
         return Ref("held")
+
+    def level(self, items: list) -> Ref:
+        return Ref("level", (str(items[0]),))
 
 
 def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:

@@ -18,6 +18,9 @@ TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
+TOP_PREFIX, BOTTOM_PREFIX, TOWER_MIDDLE = "tower_top_", "tower_bottom_", "tower_middle"
+"""'the second block from the top' (``tower_top_2``), '... from the bottom' (``tower_bottom_2``), 'the middle block':
+in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`)."""
 HELD = "block_held"
 """'whatever you are holding': ``block_held`` in a goal's literals until it is planned
 (:func:`~semgoal_planner.goals.relative`)."""
@@ -41,6 +44,9 @@ PLACED_WHEN_PLANNED = {
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
           "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
     HELD: "the block in the hand when the goal is planned",
+    TOP_PREFIX: "(tower_top_K) the K-th block from the top of the tower standing when the goal is planned",
+    BOTTOM_PREFIX: "(tower_bottom_K) the K-th block from the bottom of the tower standing when the goal is planned",
+    TOWER_MIDDLE: "the middle block of the tower standing when the goal is planned (of an odd number of blocks)",
     ON_PREFIX: "(block_on_COLOUR) the block standing on that block when the goal is planned",
     UNDER_PREFIX: "(block_under_COLOUR) the block that block stands on when the goal is planned",
     STACK: "one tower of these blocks, in an order left open: what already stands of it (its tallest part on the "
@@ -82,7 +88,13 @@ def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]],
 
 def is_stand_in(name: str) -> bool:
     """Whether a literal's argument stands for a block only the world can name when the goal is planned."""
-    return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX))
+    return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX, TOP_PREFIX, BOTTOM_PREFIX))
+
+
+def is_tower_place(name: str) -> bool:
+    """Whether a literal's argument stands for a block of 'the tower' (its top, bottom, a level, all or the rest)."""
+    return name in (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST, TOWER_MIDDLE) or name.startswith((TOP_PREFIX,
+                                                                                                   BOTTOM_PREFIX))
 """The relations 'the tower' may be the object of, and which of its blocks each one means."""
 
 
@@ -127,6 +139,10 @@ class Resolver:
             return ((ON_PREFIX if ref.kind == "upper" else UNDER_PREFIX) + ref.colours[0],)
         if ref.kind == "held":  # "whatever you are holding": the block in the hand when planned
             return (HELD,)
+        if ref.kind == "level":  # "the second block from the top": counted in the tower when planned
+            said = ref.colours[0]
+            return (TOWER_MIDDLE if said == "the_middle" else
+                    (TOP_PREFIX if said.startswith("the_top") else BOTTOM_PREFIX) + said[-1],)
         if ref.kind == "tower":  # placed by literals(), which knows the relation
             return ("tower",)
         if ref.kind in TOWER_ENDS:  # "the top block": stands in the literals until the goal is planned
@@ -218,7 +234,8 @@ class Resolver:
                 raise LanguageError(f"a block goes on the tower, next to it or away from it: e.g. "
                                     f"'put {subjects[0]} on the tower'")
             objects = tuple(TOWER_PLACES[clause.kind] if b == "tower" else b for b in objects)
-        if clause.kind == "out_bin" and all(s in (TOWER_TOP, TOWER_BASE) or s.startswith(ON_PREFIX) for s in subjects):
+        if clause.kind == "out_bin" and all(s.startswith(ON_PREFIX) or (is_tower_place(s) and s not in (TOWER_ALL, TOWER_REST))
+                                            for s in subjects):
             clause = replace(clause, kind="off")  # "remove the top block", "the block on red": off, not out of the bin
         if clause.negated and clause.kind == "unstack":  # not every 'not above' at once: that is no state at all
             raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "

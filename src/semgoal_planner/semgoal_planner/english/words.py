@@ -50,6 +50,10 @@ the tower goes, its bottom block goes."""
 _NOT_AFTER_A_PUT = "".join(rf"(?<!\b{verb} )" for verb in ("put", "place", "move", "stack", "set", "drop", "lay"))
 """Not right after a verb that puts a block somewhere: there 'the block on red' is a block put on red."""
 
+NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}
+_ORDINALS = {"second": 2, "third": 3, "fourth": 4, "fifth": 5, "sixth": 6, "seventh": 7}
+"""A block's place counted in a tower ('the second block from the top'), the end itself being 'the top block'."""
+
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
@@ -159,6 +163,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r" has|the hand is|the gripper is|is)( currently| now| still)? (holding|carrying|gripping|grasping|got|in (your|the|its) "
      r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
      r"(hold|have|carry)", "the_held"),  # "put whatever you are holding in the bin": the block held when planned
+    *((rf"the ({word}|{k}(st|nd|rd|th)) (block|cube|one) (from|counting from) the (?P<end>top|bottom)( of (the|that|this|"
+       r"your) (tower|stack|pile))?", rf"the_\g<end>{k}") for word, k in _ORDINALS.items()),  # "the second block from
+    # the top": placed when planned
+    *((rf"the {end} {word} (blocks|cubes)( (of|in) (the|that|this|your) (tower|stack|pile))?",
+       " and ".join([*(f"the_{end}{i}" for i in range(k, 1, -1)), "the_top" if end == "top" else "the_base"]))
+      for word, k in NUMBERS.items() for end in ("top", "bottom")),  # "the top two blocks": the top one and the one
+    # under it
+    (r"the (middle|central) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|the (block|cube|one) in the "
+     r"middle( of (the|that|this|your) (tower|stack|pile))?", "the_middle"),
     (r"the (top|topmost|uppermost|highest) (block|cube|one)( (of|in) (the|that|this|your) (tower|stack|pile))?|"
      rf"the (block|cube|one) (on|at) (the )?top( of (the|that|this|your) (tower|stack|pile))?(?! of (the )?({_COLOUR}))",
      "the_top"),
@@ -351,7 +364,9 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "swap", ANY_ORDER, IN_PLACE,
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "the_middle", "swap", ANY_ORDER,
+    IN_PLACE,
+    *(f"the_{end}{k}" for end in ("top", "bottom") for k in range(2, 9)),
 })
 """The words the grammar reads (besides the colours)."""
 
@@ -684,7 +699,6 @@ def _listing_start(words: list[str], end: int) -> int:
     return start
 
 
-NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8}
 _COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
                       r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""

@@ -42,7 +42,8 @@ PLACED_WHEN_PLANNED = {
     TOWER_ALL: "each block of the tower standing when the goal is planned",
     TOWER_REST: "each block not in the tower standing when the goal is planned",
     SWAP: "the two blocks trade the places they have when the goal is planned (the one on the other goes under it, "
-          "or the one in the bin comes out); swap(tower_all): the tower standing then, built again upside down",
+          "onto what the other stood on, or the one in the bin comes out); swap(tower_all): the tower standing then, "
+          "built again upside down",
     HELD: "the block in the hand when the goal is planned",
     TOP_PREFIX: "(tower_top_K) the K-th block from the top of the tower standing when the goal is planned",
     BOTTOM_PREFIX: "(tower_bottom_K) the K-th block from the bottom of the tower standing when the goal is planned",

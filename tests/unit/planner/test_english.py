@@ -714,6 +714,9 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("swap the top two blocks of the tower", "swap(tower_top_2,tower_top)"),
     ("put the bottom two blocks next to purple", "close(tower_bottom_2,purple) & close(tower_base,purple)"),
     ("put the middle block next to purple", "close(tower_middle,purple)"),
+    ("put the block second from the top in the bin", "in_bin(tower_top_2)"),
+    ("put the second-from-top block in the bin", "in_bin(tower_top_2)"),
+    ("put the third lowest block next to purple", "close(tower_bottom_3,purple)"),
     # a block between two clauses joins the first one's list
     ("build a tower of red, green and blue and make sure orange is not near it",
      "above(green,red) & above(blue,green) & not close(orange,tower_base)"),

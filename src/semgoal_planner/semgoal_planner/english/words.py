@@ -163,9 +163,16 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r" has|the hand is|the gripper is|is)( currently| now| still)? (holding|carrying|gripping|grasping|got|in (your|the|its) "
      r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
      r"(hold|have|carry)", "the_held"),  # "put whatever you are holding in the bin": the block held when planned
-    *((rf"the ({word}|{k}(st|nd|rd|th)) (block|cube|one) (from|counting from) the (?P<end>top|bottom)( of (the|that|this|"
-       r"your) (tower|stack|pile))?", rf"the_\g<end>{k}") for word, k in _ORDINALS.items()),  # "the second block from
-    # the top": placed when planned
+    *((rf"the ({word}|{k}(st|nd|rd|th))[- ](block |cube |one )?(from|counting from)[- ](the[- ])?(?P<end>top|bottom)"
+       r"( block| cube| one)?( of (the|that|this|your) (tower|stack|pile))?", rf"the_\g<end>{k}")
+      for word, k in _ORDINALS.items()),  # "the second block from the top", "the second-from-top block": when planned
+    *((rf"the (block|cube|one) ({word}|{k}(st|nd|rd|th)) from the (?P<end>top|bottom)( of (the|that|this|your) (tower|"
+       r"stack|pile))?", rf"the_\g<end>{k}") for word, k in _ORDINALS.items()),  # "the block second from the top"
+    *((rf"the ({word}|{k}(st|nd|rd|th))[- ]{side}( block| cube| one)?( (of|in) (the|that|this|your) (tower|stack|pile))?",
+       f"the_{end}{k}") for word, k in _ORDINALS.items()
+      for side, end in (("(highest|topmost|uppermost)", "top"), ("(lowest|bottommost)", "bottom"))),  # "the second
+    # highest block"
+    (r"(take|lift|pull) off(?= the\b)", "remove"),  # "take off the top three blocks"
     *((rf"the {end} {word} (blocks|cubes)( (of|in) (the|that|this|your) (tower|stack|pile))?",
        " and ".join([*(f"the_{end}{i}" for i in range(k, 1, -1)), "the_top" if end == "top" else "the_base"]))
       for word, k in NUMBERS.items() for end in ("top", "bottom")),  # "the top two blocks": the top one and the one

@@ -431,6 +431,8 @@ PHRASES = [
     ("tabletop", "put red on top and green at the bottom", "above(red,green)"),
     ("two_blocks", "make them touch but not stack", "close(red,green) & not above(red,green) & not above(green,red)"),
     ("two_blocks", "don't stack everything", "not above(red,green) & not above(green,red)"),
+    ("desk_cleanup", "ok robot, now put the green one in the bin", "in_bin(green)"),
+    ("desk_cleanup", "um, the yellow block goes in the bin next", "in_bin(yellow)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

@@ -63,6 +63,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
+     r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
+    (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
     (r"avoid|refrain from", "do not"),  # "avoid stacking red on green"
     (r"((away|far|apart) from|(not|\w*n't|never)(?P<between>( \w+){0,3}?) (near|next to|close to|beside|by|touching|touch"
      r"|touches)) (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing|"

@@ -433,6 +433,8 @@ PHRASES = [
     ("two_blocks", "don't stack everything", "not above(red,green) & not above(green,red)"),
     ("desk_cleanup", "ok robot, now put the green one in the bin", "in_bin(green)"),
     ("desk_cleanup", "um, the yellow block goes in the bin next", "in_bin(yellow)"),
+    ("tabletop", "put neither red nor green in the bin", "not in_bin(red) & not in_bin(green)"),
+    ("tabletop", "place neither red nor blue on green", "not above(red,green) & not above(blue,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

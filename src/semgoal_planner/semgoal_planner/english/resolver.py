@@ -245,7 +245,7 @@ class Resolver:
         self.tower_named |= TOWER_ALL in subjects or bool(set(objects) & {TOWER_TOP, TOWER_BASE, TOWER_ALL})
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
         said = [(lit, generic) for lit in (self._unordered_tower(subjects, objects) if unordered else
-                                           self._relation(clause.kind, subjects, objects))]
+                                           self._relation(clause.kind, subjects, objects, clause.negated))]
         if not said and objects:
             raise LanguageError(f"{' and '.join(subjects)} cannot be {clause.kind} itself: say which block")
         # "all except red" and "only red": the blocks left out explicitly not
@@ -279,7 +279,10 @@ class Resolver:
             raise LanguageError(f"a tower needs two or more blocks, not only {subjects[0]}: {UNORDERED_TOWER}")
         return [Literal(STACK, subjects)]
 
-    def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...]) -> Iterable[Literal]:
+    def _relation(self, kind: str, subjects: tuple[str, ...], objects: tuple[str, ...],
+                  negated: bool = False) -> Iterable[Literal]:
+        """The literals of ``kind`` over the blocks; ``negated``: said with 'not', so several blocks 'not on green'
+        are each not on it, where said plainly they stand one on another."""
         others = lambda block: [b for b in self.blocks if b != block]  # noqa: E731
         if kind in ("in_bin", "off_table"):
             return (Literal("in_bin", (s,)) for s in subjects)
@@ -309,6 +312,8 @@ class Resolver:
         if kind == "on" and objects == (TOWER_TOP,) and (subjects == (TOWER_REST,) or not any(map(is_stand_in, subjects))):
             return (Literal("above", (s, TOWER_TOP)) for s in subjects)  # "put orange and red on the tower", "the rest":
             # each on the one put there before
+        if kind == "on" and negated and len(objects) == 1 and objects[0] not in subjects:  # "neither red nor blue
+            return (Literal("above", (s, objects[0])) for s in subjects)  # on green": each not on it
         if (kind == "on" and len(objects) == 1 and len(subjects) > 1 and objects[0] not in subjects
                 and not any(map(is_stand_in, (*subjects, *objects)))):
             chain = (*objects, *subjects)  # "put yellow, orange and purple on red": each on the one named before it

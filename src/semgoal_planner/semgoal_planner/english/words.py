@@ -738,9 +738,10 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
-_NEITHER = re.compile(rf"\bneither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
+_NEITHER = re.compile(r"\b(?:(?:put|place|move|set|stack|drop|throw|toss|get|bring|lay) )?"
+                      rf"neither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
-"""'neither red nor green (should be) in the bin': both, not."""
+"""'neither red nor green (should be) in the bin', 'put neither red nor green in the bin': both, not."""
 _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next to|close to|beside|by|touch|touches|"
                          r"touching|in contact with|on|on top of|above)|(?:away|far|apart) from) "
                          rf"(?P<first>{_BLOCK_SAID}) or (?P<second>{_BLOCK_SAID})\b")

@@ -435,6 +435,10 @@ PHRASES = [
     ("desk_cleanup", "um, the yellow block goes in the bin next", "in_bin(yellow)"),
     ("tabletop", "put neither red nor green in the bin", "not in_bin(red) & not in_bin(green)"),
     ("tabletop", "place neither red nor blue on green", "not above(red,green) & not above(blue,green)"),
+    ("tabletop", "do not put red or green on blue", "not above(red,blue) & not above(green,blue)"),
+    ("desk_cleanup", "don't put red or green in the bin", "not in_bin(red) & not in_bin(green)"),
+    ("three_blocks", "stop red from touching green", "not close(red,green)"),
+    ("desk_cleanup", "keep red and green from going in the bin", "not in_bin(red) & not in_bin(green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

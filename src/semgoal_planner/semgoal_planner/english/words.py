@@ -501,6 +501,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
         text = _EACH_TOWER.sub(" stack ", text)
+    text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
+    text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
@@ -738,6 +740,12 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
+                               rf"bring|lay)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
+"""'don't put red or green in the bin': neither (the 'or' under a 'not')."""
+_KEPT_FROM = re.compile(rf"\b(?:stop|prevent|keep)\s+(?P<blocks>{_BLOCK_SAID}(?:,? and {_BLOCK_SAID})*)\s+from\s+"
+                        r"(?:being |going |getting |ending up )?")
+"""'stop red from touching green', 'prevent red from being in the bin': red, not."""
 _NEITHER = re.compile(r"\b(?:(?:put|place|move|set|stack|drop|throw|toss|get|bring|lay) )?"
                       rf"neither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")

@@ -734,6 +734,8 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put the stack's bottom block in the bin", "in_bin(tower_base)"),
     ("stack everything", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
     ("make one big tower", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
+    ("build the tallest tower you can", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
+    ("build a tower as high as possible", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
     ("put all the blocks in one tower", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
     ("pile everything up on the table", "stack(red,green,blue,yellow,orange,purple,cyan,pink)"),
     ("stack all the blocks except purple and pink", "stack(red,green,blue,yellow,orange,cyan)"),

@@ -247,7 +247,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create|stack|pile)( up)?( them( all)?| everything| all( the)?( blocks| cubes)?)?( in(to)?)? (one|a "
      r"single|one single|a big|one big|a tall|one tall|a single big|one single big|one large|a large) (tower|stack|pile)"
-     r"(?! (with|of|from|out of|using|made)\b)", "stack all"),  # "make one big tower": of every block
+     r"(?! (with|of|from|out of|using|made)\b)|(build|make|form|create|stack)( up)? (the|a|one) (tallest|highest|biggest|"
+     r"largest) (tower|stack|pile)( (that )?(you can|possible|there can be))?|(build|make|form|create) (a|one) (tower|stack|"
+     r"pile) as (high|tall|big|large) as (possible|you can)", "stack all"),  # "make one big tower": of every block
     (r"(?P<verb>stack|pile)( up)? (?P<what>everything|them( all)?|all( of)?( the)?( blocks| cubes)?|the (blocks|cubes))"
      r"( up)?( (on|onto) (the )?(table|desk))?(?! (on|onto|next|near|beside|by|in|into|away)\b)", r"stack \g<what>"),
     # "pile everything up", "stack all blocks on the table": one tower (on the table, where a tower stands)

@@ -163,9 +163,7 @@ def _validated(layout: SemanticLayout, literal: Literal, blocks: tuple[str, ...]
             raise VocabularyError(f"in scene {layout.scene.name} two blocks have no places to trade (it uses "
                                   f"{', '.join(layout.scene.predicates)}): say where each goes")
         return literal
-    if literal.name == STACK:
-        if not literal.value:
-            raise VocabularyError("'not stack' asks for nothing: say where the blocks should be, e.g. 'unstack red'")
+    if literal.name == STACK:  # never negated: 'not stack' is read as unstacking
         if "above" not in layout.scene.predicates:
             raise VocabularyError(f"in scene {layout.scene.name} no block stands on another (it uses "
                                   f"{', '.join(layout.scene.predicates)}): there is no tower to build")

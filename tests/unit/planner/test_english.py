@@ -516,6 +516,8 @@ REFUSALS = [
     ("tabletop", "red on top, green, blue in the middle", "a tower's blocks named between its top and its bottom"),
     ("tabletop", "put all on red", "a block goes on one block, and one block on it"),
     ("tabletop", "make two stacks", "say which blocks each tower has"),
+    ("desk_cleanup", "put one of the blocks in the bin", "'one of the blocks' leaves open which"),
+    ("desk_cleanup", "put some of them in the bin", "'some of them' leaves open which"),
     ("tabletop", "put one block on the other", "'both' is ambiguous"),
     ("three_blocks", "stack everything", "in scene three_blocks no block stands on another"),
     ("tabletop", "stack red and green in any order and put red in the bin", "needs two blocks the goal puts nowhere else"),

@@ -63,6 +63,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
+    (r"(every|each)( single)? one of", "all of"),  # "put every one of the blocks in the bin"
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
@@ -503,6 +504,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
         text = _EACH_TOWER.sub(" stack ", text)
+    if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
+        raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
     text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
     text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
@@ -742,6 +745,9 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|two|three|four|five|six|seven|"
+                      r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b")
+"""'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
 _NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
                                rf"bring|lay)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""

@@ -226,7 +226,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(north|south|east|west) of", DIRECTION),
     (r"the other (two|three)|all (of )?(the )?others|all (of )?the other (blocks|cubes|ones)|every other (block|cube|one)",
      "other"),
-    (r"as well as|as well|along with", "and"),
+    (r"as well as|as well|along with|plus", "and"),
+    (rf"(all|every|each|both)( of)?( the)? (?P<colour>{_COLOUR}) (blocks|cubes|ones)", r"\g<colour>"),  # "all red blocks":
+    # the one red block
     (rf"(and )?so (does|do|is|are|should|must|will|has|have)(?= (the )?({_COLOUR})\b)", "and"),  # "... and so does green"
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"

@@ -530,8 +530,9 @@ REFUSALS = [
     ("tabletop", "stack red, green and blue with green on top", "green is named inside the tower's list and at its top"),
     ("tabletop", "put red on green with red at the bottom", "red is in the tower said, not at its bottom"),
     ("tabletop", "put red in the bin with blue on top", "'with blue on top' names the top of a tower listed after"),
-    ("tabletop", "place the green block to the left of red", r"directions \(left of, behind\) are not among scene "
-     r"tabletop's predicates \(close, above, holding, in_bin\)"),
+    ("tabletop", "place the green block to the left of red", r"directions and places on the table \(left of, behind, the "
+     r"corner\) are not among scene tabletop's predicates \(close, above, holding, in_bin\)"),
+    ("tabletop", "put red in the corner of the table", "directions and places on the table"),
     ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
     ("tabletop", "red on top, green in the middle, blue in the middle", "two blocks are said to be at one place"),
     ("desk_cleanup", "put red or green in the bin", "'or' leaves the goal open"),

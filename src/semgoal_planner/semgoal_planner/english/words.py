@@ -223,7 +223,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
-     r"(north|south|east|west) of", DIRECTION),
+     r"(north|south|east|west) of|(in|at|to|near|by|on|into) the (far |near )?((edge|corner|center|centre)( of the (table|desk|"
+     r"tabletop))?|(middle|side|end|front|back) of the (table|desk|tabletop))", DIRECTION),
     (r"the other (two|three)|all (of )?(the )?others|all (of )?the other (blocks|cubes|ones)|every other (block|cube|one)",
      "other"),
     (r"as well as|as well|along with|plus", "and"),
@@ -533,8 +534,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError("a block goes under a standing tower only by building the tower again on it: name the new "
                             "tower's blocks from the bottom up, e.g. 'build a tower of red, green and blue'")
     if DIRECTION in words:
-        raise LanguageError(f"directions (left of, behind) are not among scene {scene}'s predicates "
-                            f"({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. {examples(scene, blocks)}")
+        raise LanguageError(f"directions and places on the table (left of, behind, the corner) are not among scene "
+                            f"{scene}'s predicates ({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. "
+                            f"{examples(scene, blocks)}")
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]
     if choice := next((w for w in unknown if w in UNDECIDED), None):
         raise LanguageError(f"'{choice}' leaves the goal open: a goal is the one state the world ends in, so say it "

@@ -440,6 +440,9 @@ PHRASES = [
     ("three_blocks", "stop red from touching green", "not close(red,green)"),
     ("desk_cleanup", "keep red and green from going in the bin", "not in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "put all red blocks in the bin plus green", "in_bin(red) & in_bin(green)"),
+    ("tabletop", "stack red on green and then green on blue", "above(red,green) & above(green,blue)"),
+    ("tabletop", "put red on green, then put green on red", "above(green,red)"),
+    ("tabletop", "put red on green, then put green in the bin", "in_bin(green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

@@ -185,7 +185,8 @@ Said = list[tuple[Clause, list[tuple[Literal, bool]]]]
 
 def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Said]:
     """What the stages before ``stage`` said that still holds after it, and ``stage`` left to add. A block the stage
-    moves loses what was said of it ("... then put green on red"), but for the blocks of a tower moved whole; a swap
+    moves loses what was said of it ("... then put green on red"), but for the blocks of a tower moved whole and a block
+    left on one the stage stacks on another (:func:`_still_on_it`); a swap
     of blocks said before trades what was said of them ("put red on green, then swap them": green on red)."""
     traded = []
     for clause, literals in stage:
@@ -196,7 +197,18 @@ def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Sa
     stage = [(clause, literals) for clause, literals in stage if clause not in traded]
     moved = {b for clause, _ in stage if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
     goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()}
-    return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)}, stage
+    put_on = {lit.args for _, literals in stage for lit, _ in literals if lit.name == "above" and lit.value}
+    return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)
+            or _still_on_it(lit, moved, put_on)}, stage
+
+
+def _still_on_it(literal: Literal, moved: set[str], put_on: set[tuple[str, ...]]) -> bool:
+    """Whether ``literal`` puts a block not moved on one that a later stage puts on a third block ("stack red on green
+    and then green on blue": red stays on green, the tower grows under it)."""
+    if literal.name != "above" or not literal.value or literal.args[0] in moved or literal.args[1] not in moved:
+        return False
+    upper, lower = literal.args
+    return any(block == lower and below != upper for block, below in put_on)
 
 
 def _without(stack: Literal, moved: set[str]) -> Literal:

@@ -349,7 +349,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
     (r"pull|retrieve|fetch|extract", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
-     r"return|lay|add|put", "put"),
+     r"return|lay|add|load|put", "put"),
     (r"(pile|stack) up|pile|stack", "stack"),
     (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
@@ -841,10 +841,12 @@ _SAID_AFTER = re.compile(r"\b(?P<verb>stack|pile|arrange|order|place|put|positio
 said first, what becomes of them after."""
 
 
-_COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|stack|take|bring|get) (the )?(any )?"
-                                 r"(two|three|four|five|six|seven|eight|\d) (of the )?(blocks|cubes) (?P<where>[^:;]+?)\s*:"
-                                 r"\s*(?P<named>[^.;]+)")
-"""'put two blocks in the bin: red and green': the blocks named after the colon, where the count was."""
+_COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|stack|take|bring|get|load) (?:(the )?(any )?"
+                                 r"(two|three|four|five|six|seven|eight|\d) (of the )?(blocks|cubes)|these|those|them|the "
+                                 r"following( blocks| cubes)?) (?P<where>(in|into|on|onto|next|near|beside|by|close|away|"
+                                 r"far|out|off|to|inside)\b[^:;]*?)\s*:\s*(?P<named>[^.;]+)")
+"""'put two blocks in the bin: red and green', 'put these in the bin: red, green': the blocks named after the colon,
+where the count was."""
 
 
 def _said_after(text: str) -> str:

@@ -445,6 +445,8 @@ PHRASES = [
     ("tabletop", "put red on green, then put green in the bin", "in_bin(green)"),
     ("desk_cleanup", "put these in the bin: red, green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "load the following blocks into the bin: red and blue", "in_bin(red) & in_bin(blue)"),
+    ("tabletop", "build a tower where red is at the bottom and blue at the top, with green in between",
+     "above(green,red) & above(blue,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

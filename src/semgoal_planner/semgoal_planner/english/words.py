@@ -767,14 +767,15 @@ _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next
                          rf"(?P<first>{_BLOCK_SAID}) or (?P<second>{_BLOCK_SAID})\b")
 """'blue must not be near red or green', 'away from red or green': from both (a denied 'or' is an 'and' of denials)."""
 _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
-                       r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|at the bottom|"
-                       r"on the bottom|at the base)\b")
+                       r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|in between|"
+                       r"at the bottom|on the bottom|at the base)\b")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
 _A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with $")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
-_BETWEEN_PLACES = re.compile(rf"(?: |and|then|(?:{_COLOUR})(?: block| cube| one)?)*")
+_BETWEEN_PLACES = re.compile(rf"(?: |and|then|with|(?:{_COLOUR})(?: block| cube| one)?)*")
 """What may stand between two blocks' places in a tower said in a run: joining words, and blocks named bare."""
-_LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "at the bottom": 0, "on the bottom": 0,
+_LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "in between": 1, "at the bottom": 0,
+           "on the bottom": 0,
            "at the base": 0}
 
 
@@ -811,6 +812,8 @@ def _tower_by_positions(text: str) -> str:
                                 "up, e.g. 'build a tower of red, green and blue'")
         tower = " and ".join(block for _, block in sorted(levels))
         before = re.sub(r"\b(?:put|place|set|arrange|position)\s*$", "", before)  # "put red on top and green at the bottom"
+        before = re.sub(r"\b(tower|stack|pile) (where|in which|such that|so that) *$", r"\1 ", before)  # "a tower where red
+        # is at the bottom and ..."
         said = "" if re.search(r"\b(?:tower|stack|pile)(?: and)? *$", before) else "stack "  # "a tower: red on top, ..."
         text = f"{before} {said}{tower} {text[run[-1].end():]}"
     return text

@@ -447,6 +447,9 @@ PHRASES = [
     ("desk_cleanup", "load the following blocks into the bin: red and blue", "in_bin(red) & in_bin(blue)"),
     ("tabletop", "build a tower where red is at the bottom and blue at the top, with green in between",
      "above(green,red) & above(blue,green)"),
+    ("tabletop", "take the red block off the top of green", "not above(red,green)"),
+    ("tabletop", "knock red off green", "not above(red,green)"),
+    ("two_blocks", "move red to an empty spot", "not holding(red) & not above(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

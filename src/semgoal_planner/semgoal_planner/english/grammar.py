@@ -64,6 +64,7 @@ action: ("put" | "keep") refs dest          -> put
       | "swap" refs near                      -> swap_with
       | "unstack" (refs | on_table)?          -> unstack
       | "unstack" refs ("on" | "down")        -> unstack
+      | "unstack" refs "off" refs             -> off
       | "unstack" refs on_table               -> put
       | "keep" refs "inplace"?                -> keep
 

@@ -90,6 +90,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # it is ("red and green stay, the rest go in the bin": the mark ends the clause, not "keep ... in the bin")
     (r"any (longer|more)", ""),
     (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
+    (r"off (of )?(the )?top of|from (the )?top of", "off"),  # "take red off the top of green"
+    (r"(to|in|on|onto|into|at) (an? |some )?(empty|free|clear|open|clean)( spot| place| space| area| part)( (on|of) the (table|"
+     r"desk))?", "on the table"),  # "move red to an empty spot": out of the hand and the bin, on no block
     (r"(?P<verb>move|put|take|bring|return|place|get) (all )?(the |all the )?(blocks|cubes|ones) ((that|which) (are|is) )?"
      r"(in|inside|from) the (bin|box|basket|trash|container) (back )?(to|on|onto|out on|out onto) the (table|desk)",
      "take all out of the bin"),  # "move the blocks that are in the bin back to the table"

@@ -450,6 +450,9 @@ PHRASES = [
     ("tabletop", "take the red block off the top of green", "not above(red,green)"),
     ("tabletop", "knock red off green", "not above(red,green)"),
     ("two_blocks", "move red to an empty spot", "not holding(red) & not above(red,green)"),
+    ("three_blocks", "red and green touching, blue not touching either",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "keep red near green at all times", "close(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

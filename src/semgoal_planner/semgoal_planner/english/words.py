@@ -64,6 +64,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"(every|each)( single)? one of", "all of"),  # "put every one of the blocks in the bin"
+    (r"(?P<head>(not|\w*n't|never)( \w+){0,2}? (touching|touch|touches|near|next to|close to|beside|by)) either"
+     r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
+    (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"

@@ -453,6 +453,9 @@ PHRASES = [
     ("three_blocks", "red and green touching, blue not touching either",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "keep red near green at all times", "close(red,green)"),
+    ("tabletop", "put everything in the bin and stack green on blue",
+     "in_bin(red) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink) & above(green,blue)"),
+    ("desk_cleanup", "put all blocks in the bin and hold yellow", "in_bin(red) & in_bin(green) & in_bin(blue) & holding(yellow)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

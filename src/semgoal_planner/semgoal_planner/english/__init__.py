@@ -107,7 +107,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
                     if not stage[key][1]:
                         raise LanguageError(f"contradictory goal: both {literal} and {literal.negated()}")
                 stage[key] = (literal, generic)
-        goal.update({key: literal for key, (literal, _) in stage.items()})
+        goal.update({key: literal for key, (literal, _) in _named_places_first(stage).items()})
     placed = {block for literal in goal.values() if literal.name != KEEP  # "pick up blue and keep it": the
               for block in (literal.args if literal.name == STACK else literal.args[:1])}
     goal = {key: lit for key, lit in goal.items() if lit.name != KEEP or lit.args[0] not in placed}  # goal says where
@@ -119,6 +119,15 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
     except ContradictionError as error:
         raise LanguageError(str(error)) from None
     return list(goal.values())
+
+
+def _named_places_first(stage: dict) -> dict:
+    """``stage`` without what an 'all' said of a block that a named clause puts in the hand or in a tower ("put everything
+    in the bin and stack green on blue": green and blue stay out of the bin, which takes no tower and no held block)."""
+    placed = {b for lit, generic in stage.values() if not generic and lit.value and lit.name in ("above", "holding")
+              for b in lit.args}
+    return {key: (lit, generic) for key, (lit, generic) in stage.items()
+            if not (generic and lit.name == "in_bin" and lit.value and lit.args[0] in placed)}
 
 
 def _stacks_left_open(goal: dict) -> dict:

@@ -748,6 +748,7 @@ def test_parse_goal_cli_contract(capsys) -> None:
     # a block between two clauses joins the first one's list
     ("build a tower of red, green and blue and make sure orange is not near it",
      "above(green,red) & above(blue,green) & not close(orange,tower_base)"),
+    ("put red on green and the others in a tower", "above(red,green) & stack(blue,yellow,orange,purple,cyan,pink)"),
     ("stack everything, then put red and green in the bin",
      "stack(blue,yellow,orange,purple,cyan,pink) & in_bin(red) & in_bin(green)"),
     ("put the tower's top block next to red", "close(tower_top,red)"),

@@ -462,6 +462,8 @@ def _stacked_into_a_tower(words: list[str]) -> list[str]:
         start = at
         while start > 0 and words[start - 1] in _NAMING:
             start -= 1
+        if start > 0 and words[start - 1] in _PLACE_WORDS and "and" in words[start:at]:  # "put red on green and the
+            start += words[start:at].index("and")  # others in a tower": green is where red goes, not in the tower
         while start < at and words[start] == "and":  # the clause's joiner, not its blocks'
             start += 1
         verb = words[start - 1] if start > 0 else "then"
@@ -476,6 +478,8 @@ def _stacked_into_a_tower(words: list[str]) -> list[str]:
     return words
 
 
+_PLACE_WORDS = frozenset({"on", "near", "in", "away", "under", "off", "to", "from", "out"})
+"""Words after which a block is where another goes, not one a tower's mark may take."""
 _NAMING = frozenset({"all", "except", "only", "other", "them", "it", "both", "and", *BLOCK_COLOURS})
 """The words that name blocks, which a tower's mark may follow."""
 

@@ -456,6 +456,8 @@ PHRASES = [
     ("tabletop", "put everything in the bin and stack green on blue",
      "in_bin(red) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink) & above(green,blue)"),
     ("desk_cleanup", "put all blocks in the bin and hold yellow", "in_bin(red) & in_bin(green) & in_bin(blue) & holding(yellow)"),
+    ("two_blocks", "the green block should have the red block on it", "above(red,green)"),
+    ("two_blocks", "green supports red", "above(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),

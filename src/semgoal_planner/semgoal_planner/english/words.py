@@ -64,6 +64,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"(every|each)( single)? one of", "all of"),  # "put every one of the blocks in the bin"
+    (rf"(?P<lower>(the )?({_COLOUR}))( block| cube| one)? (should |must |will )?(be )?(supports?|supporting|bears?|bearing)"
+     rf"(?= (the )?({_COLOUR})\b)", r"\g<lower> under"),  # "green supports red": red on green
+    (rf"(?P<lower>(the )?({_COLOUR}))( block| cube| one)? (should |must |will )?(have|has) (?P<upper>(the )?({_COLOUR}))"
+     r"( block| cube| one)? (on it|on top( of it)?|stacked on it)", r"\g<upper> on \g<lower>"),  # "green should have red on
+    # it"
     (r"(?P<head>(not|\w*n't|never)( \w+){0,2}? (touching|touch|touches|near|next to|close to|beside|by)) either"
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in

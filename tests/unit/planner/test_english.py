@@ -458,6 +458,7 @@ PHRASES = [
     ("desk_cleanup", "put all blocks in the bin and hold yellow", "in_bin(red) & in_bin(green) & in_bin(blue) & holding(yellow)"),
     ("two_blocks", "the green block should have the red block on it", "above(red,green)"),
     ("two_blocks", "green supports red", "above(red,green)"),
+    ("tabletop", "stack them in the order blue, green, red", "above(green,blue) & above(red,green)"),
     # politeness carries no goal
     ("desk_cleanup", "put red in the bin, thanks", "in_bin(red)"),
     ("desk_cleanup", "could you put red in the bin for me if you don't mind", "in_bin(red)"),
@@ -599,6 +600,11 @@ def test_a_block_not_present_is_named() -> None:
 def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() -> None:
     with pytest.raises(LanguageError, match=r"unknown word 'violet': goals name blocks by colour \(red, green, blue\)"):
         parse_english("put violet near red", "three_blocks")
+
+
+def test_a_word_close_to_one_of_the_readers_own_marks_is_not_offered_it() -> None:
+    with pytest.raises(LanguageError, match=r"unknown word 'order': goals name"):
+        parse_english("the order from the bottom is red, green", "tabletop")
 
 
 @pytest.mark.parametrize("scene", list(SCENES))

@@ -120,10 +120,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(?P<refs>(the )?({_COLOUR})(( and| ,|,) (the )?({_COLOUR}))*)( blocks| cubes)?( should| must| are| is| will| can)?"
      r"( not| never)( be)? (stacked|piled)( up)?( on (top of )?(each other|one another))?", r"unstack \g<refs>"),  # "red
     # and green should not be stacked": neither on a block
-    (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) (the |all (of )?the |all |every |each )?(blocks"
-     rf"|cubes|block|cube) (?P<place>([^,:;]*? )?)in ((the|this|that) )?(following )?order:? (?P<listed>(the )?({_COLOUR})"
-     rf"((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),  # "put the blocks in the
-    # bin in the order red, green, blue": the blocks listed
+    (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) ((the |all (of )?the |all |every |each )?(blocks"
+     rf"|cubes|block|cube)|them|these|those) (?P<place>([^,:;]*? )?)in ((the|this|that) )?(following )?order:? "
+     rf"(?P<listed>(the )?({_COLOUR})((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),
+    # "put the blocks in the bin in the order red, green, blue": the blocks listed
     (rf"(?P<verb>stack|pile|build a tower of|build a stack of) (them all|all of them|all( the)?( blocks| cubes)?|everything)"
      rf"(?= (the )?({_COLOUR})\b)", r"\g<verb>"),  # "stack them all: red first, then green": the blocks listed
     (rf"(?P<block>{_COLOUR})( block| cube| one)? (is |should be |must be |be )?not (on|on top of|stacked on) (anything|any"
@@ -595,7 +595,9 @@ def _did_you_mean(word: str) -> str:
 def _known_words() -> tuple[str, ...]:
     """Every word the reader takes: colours, canonical words, fillers and the words of its phrases."""
     phrased = {word for pattern, _ in PHRASES for word in re.findall(r"[a-z]{3,}", pattern)}
-    return tuple(sorted(set(BLOCK_COLOURS) | CANONICAL | FILLERS | phrased))
+    marks = {TOP_DOWN, DIRECTION, ANY_ORDER, IN_PLACE, INTO_A_TOWER, BUT_LEAVE, UNDER_A_TOWER, TOP_MARK, BASE_MARK}
+    said = (set(BLOCK_COLOURS) | CANONICAL | FILLERS | phrased) - marks  # the reader's own marks are no words anyone says
+    return tuple(sorted(word for word in said if "_" not in word))
 
 
 def _listing_in_order(words: list[str]) -> list[str]:

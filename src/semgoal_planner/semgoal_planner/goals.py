@@ -33,7 +33,7 @@ from semgoal_planner.english.resolver import (
     TOP_PREFIX,
     TOWER_MIDDLE,
     is_tower_place,
-    stack_order,
+    stacks_in_order,
 )
 
 
@@ -142,21 +142,13 @@ def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lite
 
 
 def stacked(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
-    """``literals`` with each ``stack(a,b,...)`` made one tower in the order :func:`stack_order` chooses in ``state``:
-    what stands of it on the table kept at the bottom, the goal's own 'x on y' kept."""
+    """``literals`` with each ``stack(a,b,...)`` made one tower in ``state``: what stands of it on the table kept at
+    the bottom, the goal's own 'x on y' kept (:func:`~semgoal_planner.english.resolver.stacks_in_order`)."""
     if not any(literal.name == STACK for literal in literals):
         return list(literals)
-    fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
     away = {lit.args[0] for lit in state if lit.name in ("in_bin", "holding") and lit.value}
     standing = [t for t in _towers([lit for lit in state if lit.name == "above" and lit.value]) if t[0] not in away]
-    made = []
-    for literal in literals:
-        if literal.name != STACK:
-            made.append(literal)
-            continue
-        order = stack_order(literal.args, fixed, standing)
-        made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
-    return made
+    return stacks_in_order(literals, standing)
 
 
 def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:

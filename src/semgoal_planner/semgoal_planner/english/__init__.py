@@ -30,8 +30,7 @@ The literals are what the operator is shown before anything moves.
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
 
 import lark
 
@@ -52,7 +51,7 @@ from semgoal_planner.english.resolver import (
     UNDER_PREFIX,
     Resolver,
     is_stand_in,
-    stack_order,
+    stacks_in_order,
 )
 from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
 
@@ -115,7 +114,7 @@ def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) ->
         raise LanguageError(f"the goal asks for no change: say where a block should be, e.g. {resolver.examples}")
     goal = _stacks_left_open(goal)
     try:
-        check_consistent(_stacks_ordered(goal.values()))
+        check_consistent(stacks_in_order(list(goal.values())))
     except ContradictionError as error:
         raise LanguageError(str(error)) from None
     return list(goal.values())
@@ -142,16 +141,6 @@ def _stacks_left_open(goal: dict) -> dict:
                 raise LanguageError(f"a tower of {' and '.join(literal.args)} needs two blocks the goal puts nowhere else")
             literal, key = Literal(STACK, blocks), (STACK, blocks)
         made[key] = literal
-    return made
-
-
-def _stacks_ordered(literals: Iterable[Literal]) -> list[Literal]:
-    """The literals as the consistency check reads them: each tower left open in one order it may take."""
-    literals = list(literals)
-    fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
-    made = [lit for lit in literals if lit.name != STACK]
-    for order in (stack_order(lit.args, fixed, ()) for lit in literals if lit.name == STACK):
-        made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
     return made
 
 

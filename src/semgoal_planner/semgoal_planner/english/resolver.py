@@ -87,6 +87,21 @@ def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]],
     return [b for low in (*first, *(low for low in runs if low not in first)) for b in runs[low]]
 
 
+def stacks_in_order(literals: Sequence[Literal], standing: Iterable[Sequence[str]] = ()) -> list[Literal]:
+    """``literals`` with each tower left open (:data:`STACK`) made 'x on y' in the order :func:`stack_order` chooses:
+    the goal's own 'x on y' kept, the most of a tower ``standing`` (bottom first) kept at the bottom."""
+    fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
+    standing = list(standing)
+    made = []
+    for literal in literals:
+        if literal.name != STACK:
+            made.append(literal)
+            continue
+        order = stack_order(literal.args, fixed, standing)
+        made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
+    return made
+
+
 def is_stand_in(name: str) -> bool:
     """Whether a literal's argument stands for a block only the world can name when the goal is planned."""
     return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX, TOP_PREFIX, BOTTOM_PREFIX))

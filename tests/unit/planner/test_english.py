@@ -492,6 +492,25 @@ PHRASES = [
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("tabletop", "group red and green, not blue and not yellow",
      "close(red,green) & not close(red,blue) & not close(green,blue) & not close(red,yellow) & not close(green,yellow)"),
+    # a tower said with 'not': none of its blocks on another, either way
+    ("tabletop", "do not stack red and green", "not above(red,green) & not above(green,red)"),
+    ("tabletop", "don't put red and green on top of each other", "not above(red,green) & not above(green,red)"),
+    ("tabletop", "red and green should not be stacked on each other", "not above(red,green) & not above(green,red)"),
+    ("tabletop", "put red in the bin and don't stack green and blue",
+     "in_bin(red) & not above(green,blue) & not above(blue,green)"),
+    ("tabletop", "never stack red, green and blue", "not above(red,green) & not above(red,blue) & not above(green,red) & "
+                                                    "not above(green,blue) & not above(blue,red) & not above(blue,green)"),
+    # 'instead of', 'rather than', and a block left out between the verb and its place
+    ("desk_cleanup", "put red in the bin rather than green", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put red, not green, in the bin", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put red but not green in the bin", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put red, instead of green, in the bin", "in_bin(red) & not in_bin(green)"),
+    ("tabletop", "put red and not green on blue", "above(red,blue) & not above(green,blue)"),
+    ("tabletop", "put red in the bin instead of on green", "in_bin(red) & not above(red,green)"),
+    ("tabletop", "instead of putting red in the bin, put it on green", "not in_bin(red) & above(red,green)"),
+    ("tabletop", "rather than stacking red on green, put red near green", "not above(red,green) & close(red,green)"),
+    ("tabletop", "make it so that red is on green", "above(red,green)"),
+    ("tabletop", "keep red above green", "above(red,green)"),
 ]
 
 REFUSALS = [
@@ -566,6 +585,8 @@ REFUSALS = [
     ("tabletop", "put yellow at the bottom", "a block goes under a standing tower only by building"),
     ("desk_cleanup", "put red next to the basket", "no predicate says a block is next to the bin"),
     ("tabletop", "place the tower next to the bin", "no predicate says a block is next to the bin"),
+    ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
+    ("two_blocks", "hold the red block over green and let go of it later", "where the hand is is none of scene two_blocks's"),
 ]
 
 
@@ -978,11 +999,13 @@ def test_readings_of_equal_rank_are_chosen_the_same_in_any_order() -> None:
     assert Clauses()._ambig([one, other]) == Clauses()._ambig([other, one])
 
 
-def test_one_block_on_the_other_is_a_tower_of_the_two_in_either_order() -> None:
-    assert parse_english("put one block on the other", "two_blocks") == [Literal("stack", ("red", "green"))]
+@pytest.mark.parametrize("sentence", ["put one block on the other", "put red and green on top of each other",
+                                      "red and green should be on top of each other", "stack red and green on one another"])
+def test_one_block_on_the_other_is_a_tower_of_the_two_in_either_order(sentence: str) -> None:
+    assert parse_english(sentence, "two_blocks") == [Literal("stack", ("red", "green"))]
     for top, below in (("red", "green"), ("green", "red")):
         standing = [Literal("above", (top, below))]
-        assert parse_goal("put one block on the other", "two_blocks", ("red", "green"), standing) == standing
+        assert parse_goal(sentence, "two_blocks", ("red", "green"), standing) == standing
 
 
 @pytest.mark.parametrize(("text", "held", "expected"), [

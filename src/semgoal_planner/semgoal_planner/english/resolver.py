@@ -227,7 +227,7 @@ class Resolver:
         unordered = clause.kind == ANY_ORDER_TOWER or (clause.kind == "tower" and (
             len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
         if unordered and clause.negated:  # "make them touch but not stack": none of them on another
-            clause, unordered = replace(clause, kind="unstack", negated=False), False
+            clause, unordered = replace(clause, kind="tower"), False
         subjects = self.subjects_of(clause)
         if clause.kind == "on" and clause.subjects and all(r.kind in ("all", "other") and not r.excluded for r in
                                                             clause.subjects) and Ref("tower") in clause.objects:
@@ -339,6 +339,8 @@ class Resolver:
             return (Literal("above", p if kind == "on" else p[::-1]) for p in pairs)
         if kind == "off":
             return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
+        if kind == "tower" and negated:  # "do not stack red and green": none of them on another, either way
+            return (Literal("above", pair) for pair in itertools.permutations(subjects, 2))
         if kind == "tower":  # the first named at the bottom
             return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))
         if kind == "swap":  # two blocks, or (TOWER_ALL,): "reverse the tower", the one standing when planned

@@ -33,6 +33,8 @@ TOP_MARK, BASE_MARK = "towertop", "towerbase"
 """The marks 'with blue on top' and 'with red at the bottom' leave before the block they name
 (:func:`_tower_end_named`)."""
 _COLOUR = "|".join(BLOCK_COLOURS)
+_LISTED = rf"(the )?({_COLOUR})(( and| ,|,) (the )?({_COLOUR}))*"
+"""Blocks named in a list ('red, green and the blue')."""
 MAX_GOAL_CHARS = 2_000
 """Longest sentence read (characters): an operator's goal is a line; longer input is refused at once."""
 MAX_GOAL_WORDS = 100
@@ -75,7 +77,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
-    (r"avoid|refrain from", "do not"),  # "avoid stacking red on green"
+    (r"avoid|refrain from|^(instead of|rather than)", "do not"),  # "avoid stacking red on green", "instead of putting red
+    # in the bin, put it on green"
+    (r"(,? )?(instead of|rather than)", "and not"),  # "put red in the bin rather than green": as ', not green'
+    (rf"(?P<verb>put|place|move|set|lay|stack|drop|throw|toss|get|bring|take) (?P<said>{_LISTED}) (and |but )*not "
+     rf"(?P<other>{_LISTED}) (and )?(?P<place>(in|into|inside|on|onto|upon|atop|near|next to|beside|close to|by|away from|"
+     r"far from|out of|off)\b.*?)(?= and\b| then\b|$)", r"\g<verb> \g<said> \g<place> and not \g<other>"),  # "put red, not
+    # green, in the bin": the place said after both
     (r"((away|far|apart) from|(not|\w*n't|never)(?P<between>( \w+){0,3}?) (near|next to|close to|beside|by|touching|touch"
      r"|touches)) (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing|"
      r" other (block|cube|one)))(?! else\b)", r"\g<between> away"),  # "red should not be near anything": away from
@@ -117,9 +125,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
      rf"(?= (the )?({_COLOUR})( block| cube| one)?( is| sits| goes)? (on top of|on|atop|above) (the )?({_COLOUR})\b)",
      "stack"),  # "a tower with yellow on top of orange on top of red"
     (r"while|whilst|meanwhile", "and"),
-    (rf"(?P<refs>(the )?({_COLOUR})(( and| ,|,) (the )?({_COLOUR}))*)( blocks| cubes)?( should| must| are| is| will| can)?"
-     r"( not| never)( be)? (stacked|piled)( up)?( on (top of )?(each other|one another))?", r"unstack \g<refs>"),  # "red
-    # and green should not be stacked": neither on a block
+    (rf"(?P<refs>{_LISTED})( blocks| cubes)?( should| must| are| is| will| can)?( not| never)( be)? (stacked|piled|put|placed|"
+     r"set)( up)? (on|onto|upon|atop|on top of) (each other|one another)", r"do not stack \g<refs>"),  # "red and green should
+    # not be stacked on each other": neither on the other
+    (rf"(?P<verb>(put|place|set|stack|pile|move) )?(?P<refs>{_LISTED})( blocks| cubes)?(( should| must| will| can)? be)?"
+     rf"( stacked| piled| placed| put| set)?( up)? (on|onto|upon|atop|on top of) (each other|one another)",
+     rf"stack \g<refs> {ANY_ORDER}"),  # "put red and green on top of each other": one on the other, either way
+    (rf"(?P<refs>{_LISTED})( blocks| cubes)?( should| must| are| is| will| can)?"
+     r"( not| never)( be)? (stacked|piled)( up)?", r"unstack \g<refs>"),  # "red and green should not be stacked": neither
+    # on a block
     (rf"(?P<verb>put|place|move|stack|pile|drop|throw|toss|set|lay|arrange) ((the |all (of )?the |all |every |each )?(blocks"
      rf"|cubes|block|cube)|them|these|those) (?P<place>([^,:;]*? )?)in ((the|this|that) )?(following )?order:? "
      rf"(?P<listed>(the )?({_COLOUR})((,| ,)? (and |then )?(the )?({_COLOUR}))+)", r"\g<verb> \g<listed> \g<place>"),
@@ -223,7 +237,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|as soon as (you can|possible)|(i|we)( would|'d) appreciate( it)? if|it would be (great|nice|good|ideal) if|(that |it )?"
      r"(would|will) be (great|nice|good|perfect|ideal|lovely|fine|appreciated|helpful)|for me|for us|kindly|try to|attempt to"
      r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
-    (r"(make sure|make certain|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
+    (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
@@ -524,6 +538,10 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         text = _EACH_TOWER.sub(" stack ", text)
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
+    if held := _HELD_OVER.search(text):
+        raise LanguageError(f"'{held[0].strip()}': where the hand is is none of scene {scene}'s predicates ("
+                            f"{', '.join(LAYOUTS[scene].scene.predicates)}); holding says only which block is in the hand: "
+                            f"say 'hold {held['block']}' or where the block should go, e.g. {examples(scene, blocks)}")
     text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
     text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
     text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
@@ -769,6 +787,9 @@ _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|two|three|four|five|six|seven|"
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
+_HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID})\s+(?:up\s+)?(?:above|"
+                        r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
+"""'hold blue above the bin': a place in the air, which no predicate says (refused)."""
 _NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
                                rf"bring|lay)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""

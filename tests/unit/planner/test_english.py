@@ -511,6 +511,15 @@ PHRASES = [
     ("tabletop", "rather than stacking red on green, put red near green", "not above(red,green) & close(red,green)"),
     ("tabletop", "make it so that red is on green", "above(red,green)"),
     ("tabletop", "keep red above green", "above(red,green)"),
+    # 'either' under a 'not': neither
+    ("three_blocks", "red and green should touch, blue should not touch either of them",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("tabletop", "put red on green, not on either of the others",
+     "above(red,green) & " + " & ".join(f"not above(red,{b})" for b in ("blue", "yellow", "orange", "purple", "cyan", "pink"))),
+    ("tabletop", "red should not be on blue or yellow", "not above(red,blue) & not above(red,yellow)"),
+    ("three_blocks", "nothing should touch anything", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "no block should be near another", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("desk_cleanup", "fish green out of the bin", "not in_bin(green)"),
 ]
 
 REFUSALS = [
@@ -585,6 +594,8 @@ REFUSALS = [
     ("tabletop", "put yellow at the bottom", "a block goes under a standing tower only by building"),
     ("desk_cleanup", "put red next to the basket", "no predicate says a block is next to the bin"),
     ("tabletop", "place the tower next to the bin", "no predicate says a block is next to the bin"),
+    ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),
+    ("three_blocks", "move most of them next to red", "'most of them' leaves open which"),
     ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
     ("two_blocks", "hold the red block over green and let go of it later", "where the hand is is none of scene two_blocks's"),
 ]

@@ -238,6 +238,25 @@ def test_a_tower_whose_order_is_left_open_is_ordered_by_what_stands_when_planned
     assert len(placed) == len(dict.fromkeys(placed))
 
 
+@pytest.mark.parametrize(("text", "state", "tower"), [
+    # an end named, the others in the order named between
+    ("stack everything with yellow at the bottom", [], ("yellow", "red", "green", "blue", "orange")),
+    ("stack all the blocks with red on top", [], ("green", "blue", "yellow", "orange", "red")),
+    ("put all the blocks in one tower with the green one at the bottom and red at the top", [],
+     ("green", "blue", "yellow", "orange", "red")),
+    ("stack everything with orange on top and blue at the bottom", [], ("blue", "red", "green", "yellow", "orange")),
+    # a tower standing kept only where it starts at the named bottom, and only up to the named top
+    ("stack everything with yellow at the bottom", on("blue", "green"), ("yellow", "red", "green", "blue", "orange")),
+    ("stack everything with blue at the bottom", on("blue", "green"), ("blue", "green", "red", "yellow", "orange")),
+    ("stack everything with green on top", on("blue", "red", "green"), ("blue", "red", "yellow", "orange", "green")),
+    # a block the goal puts in the bin afterwards leaves the others' tower whole
+    ("stack all the blocks with red at the bottom, then put yellow in the bin", [], ("red", "green", "blue", "orange")),
+])
+def test_a_tower_left_open_keeps_the_end_the_goal_names(text: str, state: list[Literal], tower: tuple[str, ...]) -> None:
+    placed = read_goal(text, "tabletop", TABLETOP).instantiate("tabletop", TABLETOP, state)
+    assert {lit for lit in placed if lit.name == "above" and lit.value} == set(on(*tower))
+
+
 def test_a_tower_left_open_is_planned_from_the_tower_standing() -> None:
     """Three blocks of five already stand: two steps for each of the two others, none to rebuild."""
     state = on("blue", "green", "red")

@@ -58,11 +58,12 @@ PLACED_WHEN_PLANNED = {
 """What each stand-in of a goal's literals means, for people reading them (``./semgoal parse-goal``)."""
 
 
-def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]],
-                standing: Iterable[Sequence[str]]) -> list[str]:
+def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]], standing: Iterable[Sequence[str]],
+                bottom: str | None = None, top: str | None = None) -> list[str]:
     """The order, bottom first, of one tower of ``blocks`` whose order a goal left open (:data:`STACK`). Each pair the
-    goal ``fixed`` (upper, lower) is kept, its run of blocks moving as one; the most of a tower already ``standing``
-    (bottom first, on the table) that the runs allow stays at the bottom; the other runs go on it in the order named."""
+    goal ``fixed`` (upper, lower) is kept, its run of blocks moving as one; the goal's ``bottom`` block (on no other)
+    goes first and its ``top`` block (none on it) last; the most of a tower already ``standing`` (bottom first, on the
+    table) that all this allows stays at the bottom; the other runs go on it in the order named."""
     below = {upper: lower for upper, lower in fixed if upper in blocks and lower in blocks}
     on = {lower: upper for upper, lower in below.items()}
     runs = {}  # each run by its lowest block
@@ -70,34 +71,45 @@ def stack_order(blocks: Sequence[str], fixed: Iterable[tuple[str, str]],
         runs[block] = [block]
         while runs[block][-1] in on and on[runs[block][-1]] not in runs[block]:
             runs[block].append(on[runs[block][-1]])
+    last = next((low for low, run in runs.items() if run[-1] == top), None)
 
     def kept(tower: Sequence[str]) -> tuple[int, list[str]]:
         """How many of the tower's blocks stay as they stand, and the runs, lowest block first, that keep them."""
         lowest, height = [], 0
+        if bottom in runs and tower[:1] != [bottom]:
+            return 0, []
         while height < len(tower) and tower[height] in runs and tower[height] not in lowest:
             run = runs[tower[height]]
-            if run[:len(tower) - height] != list(tower[height:height + len(run)]):
+            if run[:len(tower) - height] != list(tower[height:height + len(run)]) or (
+                    tower[height] == last and len(lowest) + 1 < len(runs)):  # the top run stays for the top
                 break
             lowest.append(tower[height])
             height = min(height + len(run), len(tower))
         return height, lowest
 
-    height, lowest = max((kept(tower) for tower in standing), default=(0, []), key=lambda found: found[0])
-    first = lowest if height >= 2 else []
-    return [b for low in (*first, *(low for low in runs if low not in first)) for b in runs[low]]
+    height, lowest = max((kept(list(tower)) for tower in standing), default=(0, []), key=lambda found: found[0])
+    first = lowest if height >= 2 else [bottom] if bottom in runs else []
+    then = [low for low in runs if low not in first and low != last] + ([last] if last and last not in first else [])
+    return [b for low in (*first, *then) for b in runs[low]]
 
 
 def stacks_in_order(literals: Sequence[Literal], standing: Iterable[Sequence[str]] = ()) -> list[Literal]:
     """``literals`` with each tower left open (:data:`STACK`) made 'x on y' in the order :func:`stack_order` chooses:
-    the goal's own 'x on y' kept, the most of a tower ``standing`` (bottom first) kept at the bottom."""
+    the goal's own 'x on y' kept, a block it puts on none of the others at the bottom ("stack everything with red at
+    the bottom") and one it puts none of them on at the top, the most of a tower ``standing`` (bottom first) kept at
+    the bottom."""
     fixed = [lit.args for lit in literals if lit.name == "above" and lit.value]
+    denied = {lit.args for lit in literals if lit.name == "above" and not lit.value}
     standing = list(standing)
     made = []
     for literal in literals:
         if literal.name != STACK:
             made.append(literal)
             continue
-        order = stack_order(literal.args, fixed, standing)
+        blocks = literal.args
+        bottom = next((b for b in blocks if all((b, o) in denied for o in blocks if o != b)), None)
+        top = next((b for b in blocks if all((o, b) in denied for o in blocks if o != b)), None)
+        order = stack_order(blocks, fixed, standing, bottom, top)
         made += [Literal("above", (upper, lower)) for lower, upper in itertools.pairwise(order)]
     return made
 
@@ -327,8 +339,8 @@ class Resolver:
         if kind == "on" and objects == (TOWER_TOP,) and (subjects == (TOWER_REST,) or not any(map(is_stand_in, subjects))):
             return (Literal("above", (s, TOWER_TOP)) for s in subjects)  # "put orange and red on the tower", "the rest":
             # each on the one put there before
-        if kind == "on" and negated and len(objects) == 1 and objects[0] not in subjects:  # "neither red nor blue
-            return (Literal("above", (s, objects[0])) for s in subjects)  # on green": each not on it
+        if kind == "on" and negated and not set(objects) & set(subjects):  # "neither red nor blue on green", "red not
+            return (Literal("above", pair) for pair in pairs)  # on blue or yellow": each not on any of them
         if (kind == "on" and len(objects) == 1 and len(subjects) > 1 and objects[0] not in subjects
                 and not any(map(is_stand_in, (*subjects, *objects)))):
             chain = (*objects, *subjects)  # "put yellow, orange and purple on red": each on the one named before it

@@ -120,7 +120,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(store|stow)( away)?", "clean"),  # "store the green block": in the bin
     (r"space (?P<what>them|it|everything|all( the)?( blocks| cubes)?|the (blocks|cubes)) out", r"separate \g<what>"),
     (r"(?P<noun>tower|stack|pile)( of)? (using|with|from|out of|made of|made up of|made from|consisting of|composed of)"
-     rf"(?= (the )?({_COLOUR})\b)", r"\g<noun> of"),  # "a tower of height three using red, green and blue"
+     rf"(?= (the )?({_COLOUR})\b)(?! (the )?({_COLOUR})( block| cube| one)? (on (the )?top|(at|on) the (top|bottom|base|foot)|as "
+     r"the (top|bottom|base)|uppermost|highest|lowest)\b)", r"\g<noun> of"),  # "a tower of height three using red, green
+    # and blue", not "a tower with red at the bottom" (that names its end)
     (rf"((build|make|form|create|construct) )?(a |the |one )?(tower|stack|pile) (with|where|in which|such that|so that)"
      rf"(?= (the )?({_COLOUR})( block| cube| one)?( is| sits| goes)? (on top of|on|atop|above) (the )?({_COLOUR})\b)",
      "stack"),  # "a tower with yellow on top of orange on top of red"
@@ -157,6 +159,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"( over| down)?", "keep the_whole"),  # "don't knock the tower over": the same, for the tower's blocks
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
      r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))", "release all"),
+    (rf"(?P<base>(at|on) the (bottom|base|foot)) and (the )?(?P<top>{_COLOUR})( block| cube| one)? (on (the )?top|at the top|"
+     r"as the top)", r"\g<base> and with \g<top> on top"),  # "with red at the bottom and purple at the top"
+    (rf"(?P<top>on (the )?top|at the top|as the top) and (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|"
+     r"base|foot)|as the (bottom|base))", r"\g<top> and with \g<base> at the bottom"),  # "... and red at the bottom"
     (rf"(and )?with (the )?(?P<top>{_COLOUR})( block| cube| one)? (on (the )?top|at the top|as the top|"
      r"uppermost|highest)(?! of\b)", rf"{TOP_MARK} \g<top>"),  # "a tower of red and green with blue on top"
     (rf"(and )?with (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|base|foot)|"
@@ -296,6 +302,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(block|blocks|cube|cubes)( should| must| will)?( be| is| are| remains?| stays?| left)* (on|upon) (the )?(table|desk|"
      r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
      r"tabletop)", "clean the table"),  # "empty the desk", "no block should be left on the table"
+    (r"(nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?))( should| must| may| can| is| are| will)?"
+     r"( be)? (touch|touches|touching|near|next to|close to|beside|by|in contact with) (anything|any other( block| cube| one)?|"
+     r"another( block| cube| one)?|each other|one another)", "all apart"),  # "nothing should touch anything"
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
     (r"(but |and )?not (be |being )?(stacked|piled)( up)?( on (top of )?(each other|one another|the other))?",
      "and unstack them"),  # "put the blocks side by side but not stacked"
@@ -372,7 +381,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"take down|unstack", "unstack"),
     (r"(swap|switch|exchange|trade|change|reverse)( around| over)?( the)? (positions|places|spots|locations) of|"
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
-    (r"pull|retrieve|fetch|extract", "take"),
+    (r"pull|retrieve|fetch|extract|fish|dig", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|add|load|put", "put"),
     (r"(pile|stack) up|pile|stack", "stack"),
@@ -536,6 +545,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
         text = _EACH_TOWER.sub(" stack ", text)
+    text = _NOT_EITHER_OF.sub(lambda m: f"{m['head']} {'other' if m['others'] else 'both'}", text)
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
     if held := _HELD_OVER.search(text):
@@ -673,6 +683,14 @@ def _tower_end_named(words: list[str]) -> list[str]:
         if before[-1:] == ["stack"]:  # "a tower with red on top" (on the other block), "with red at the bottom, then ..."
             words = [*before, named, *(("on", "other") if top else ()), *after]
             continue
+        if before[-3:] in (["put", "all", INTO_A_TOWER], ["stack", "all", INTO_A_TOWER]):  # "put all the blocks in one
+            before = [*before[:-3], "stack", "all"]  # tower with purple on top"
+        if before[-2:] == ["stack", "all"]:  # "stack all the blocks with purple on top": the others under it, any order
+            words = [*before, "and", *_end_pinned(words[mark], named)]
+            if after[:1] == [BASE_MARK if top else TOP_MARK] and after[1:2] and after[1] in BLOCK_COLOURS:  # "... and
+                words, after = [*words, "and", *_end_pinned(after[0], after[1])], after[2:]  # purple at the top"
+            words += after
+            continue
         if start == 0 or before[start - 1] != "stack" or not colours:
             others = " and ".join([c for c in BLOCK_COLOURS if c != named][:2])
             raise LanguageError(f"'{said}' names the {end} of a tower listed after 'stack': e.g. 'build a tower of "
@@ -688,6 +706,12 @@ def _tower_end_named(words: list[str]) -> list[str]:
                                 f"from the bottom up, e.g. 'build a tower of {', '.join(colours)}'")
         words = [*before[:start], *" and ".join(listing).split(), *after]
     return words
+
+
+def _end_pinned(mark: str, block: str) -> list[str]:
+    """A tower's end said of a tower whose order is left open: nothing on its top block, its bottom one on the table
+    (:func:`~semgoal_planner.english.resolver.stack_order` then builds the tower between them)."""
+    return ["take", "all", "off", block] if mark == TOP_MARK else ["put", block, "on", "table"]
 
 
 def _chain_ends(words: list[str]) -> tuple[str, str, set[str]] | None:
@@ -784,7 +808,7 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
-_SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|two|three|four|five|six|seven|"
+_SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|half|most|many|two|three|four|five|six|seven|"
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
 _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID})\s+(?:up\s+)?(?:above|"
@@ -800,6 +824,10 @@ _NEITHER = re.compile(r"\b(?:(?:put|place|move|set|stack|drop|throw|toss|get|bri
                       rf"neither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
 """'neither red nor green (should be) in the bin', 'put neither red nor green in the bin': both, not."""
+_NOT_EITHER_OF = re.compile(r"(?P<head>(?:\bnot|n't|\bnever)(?: \w+){0,3}?) either(?: of (?:them|the two|those|these)(?: blocks|"
+                            r" cubes)?| one| of (?P<others>the others|the other (?:two|blocks|cubes|ones)))?\b")
+"""'blue should not touch either of them': neither, so both; 'not on either of the others': on none of them (before
+'either of' is refused as leaving open which)."""
 _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next to|close to|beside|by|touch|touches|"
                          r"touching|in contact with|on|on top of|above)|(?:away|far|apart) from) "
                          rf"(?P<first>{_BLOCK_SAID}) or (?P<second>{_BLOCK_SAID})\b")
@@ -808,8 +836,11 @@ _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|in between|"
                        r"at the bottom|on the bottom|at the base)\b")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
-_A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with $")
+_WITH = re.compile(r"\bwith (?:the )?$")
+_A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with (?:the )?$")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
+_ALL_IN_A_TOWER_WITH = re.compile(r"\b(?:all|every|everything|each)\b[^,;.]*\b(?:tower|stack|pile) +with (?:the )?$")
+"""Every block put in the tower whose places follow ('all the blocks in one tower with red at the bottom and ...')."""
 _BETWEEN_PLACES = re.compile(rf"(?: |and|then|with|(?:{_COLOUR})(?: block| cube| one)?)*")
 """What may stand between two blocks' places in a tower said in a run: joining words, and blocks named bare."""
 _LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "in between": 1, "at the bottom": 0,
@@ -833,10 +864,11 @@ def _tower_by_positions(text: str) -> str:
             bare.append([])
     for run, between in reversed([(r, b) for r, b in zip(runs, bare, strict=True) if len(r) >= 2]):
         before = text[:run[0].start()]
-        if before.endswith("with "):
-            if not _A_TOWER_WITH.search(before):
-                continue  # "a tower of red and green with blue on top": the tower's end, read later
-            before = before[:-len("with ")]  # "a stack with blue on the bottom, green in the middle and red on top"
+        if with_ := _WITH.search(before):
+            if not _A_TOWER_WITH.search(before) or _ALL_IN_A_TOWER_WITH.search(before):
+                continue  # "a tower of red and green with blue on top", "all the blocks in a tower with red at the
+                # bottom and blue on top": the tower's ends, read later
+            before = before[:with_.start()]  # "a stack with blue on the bottom, green in the middle and red on top"
         levels = [(_LEVELS[m["where"]], m["block"]) for m in run]
         if between:
             if len(run) != 2 or {level for level, _ in levels} != {0, 2}:

@@ -520,6 +520,13 @@ PHRASES = [
     ("three_blocks", "nothing should touch anything", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "no block should be near another", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("desk_cleanup", "fish green out of the bin", "not in_bin(green)"),
+    # where the goal ends, and what else stays out
+    ("desk_cleanup", "red in the bin and that's it", "in_bin(red)"),
+    ("tabletop", "just red on green, nothing else", "above(red,green)"),
+    ("desk_cleanup", "put red in the bin and nothing else in the bin",
+     "in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "red and green in the bin, none of the others", "in_bin(red) & in_bin(green) & not in_bin(blue) & "
+                                                                     "not in_bin(yellow)"),
 ]
 
 REFUSALS = [
@@ -1029,6 +1036,17 @@ def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str
     assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
     goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
     assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("drop what you are holding in the bin", "in_bin(block_held)"),
+    ("drop the block you are holding onto green", "above(block_held,green)"),
+    ("drop it", "not holding(block_held)"),
+    ("release the block", "not holding(block_held)"),
+    ("pick up red and drop it", "not holding(red)"),
+])
+def test_the_block_dropped_is_the_one_held_where_no_other_was_named(text: str, expected: str) -> None:
+    assert set(parse_english(text, "tabletop", ("red", "green", "blue"))) == literals(expected)
 
 
 def test_the_block_held_must_be_held_and_not_put_by_itself() -> None:

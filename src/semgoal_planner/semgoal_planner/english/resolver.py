@@ -240,6 +240,8 @@ class Resolver:
             len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
         if unordered and clause.negated:  # "make them touch but not stack": none of them on another
             clause, unordered = replace(clause, kind="tower"), False
+        if clause.kind == "release" and not self.last and clause.subjects and all(r.kind == "it" for r in clause.subjects):
+            clause = replace(clause, subjects=(Ref("held"),))  # "drop it", said first: the block in the hand
         subjects = self.subjects_of(clause)
         if clause.kind == "on" and clause.subjects and all(r.kind in ("all", "other") and not r.excluded for r in
                                                             clause.subjects) and Ref("tower") in clause.objects:

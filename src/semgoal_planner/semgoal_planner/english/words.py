@@ -73,6 +73,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # it"
     (r"(?P<head>(not|\w*n't|never)( \w+){0,2}? (touching|touch|touches|near|next to|close to|beside|by)) either"
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
+    (r"(and )?(that is (it|all)|nothing (else|more)|(and )?(we are|you are|we're|you're) done)(?= and\b| then\b|$)", ""),  #
+    # "red on green and that's it": the goal ends there
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -158,7 +160,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(don'?t|do not|never|please don'?t) (knock|tear|topple|take)( over| down)?( the| your| that| this)? (tower|stack|pile)"
      r"( over| down)?", "keep the_whole"),  # "don't knock the tower over": the same, for the tower's blocks
     (r"(drop|release|let go of|put down|set down) (the )?(block|cube|one|what|whatever)( that)? (you are|you're|"
-     r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))", "release all"),
+     r"you have|is|it is) (holding|carrying|gripping|in (your|the) (hand|gripper))(?! (in|into|inside|on|onto|atop|upon|next|"
+     r"near|beside|close|by|away|far|to)\b)", "release all"),  # not "drop what you are holding in the bin": the_held
     (rf"(?P<base>(at|on) the (bottom|base|foot)) and (the )?(?P<top>{_COLOUR})( block| cube| one)? (on (the )?top|at the top|"
      r"as the top)", r"\g<base> and with \g<top> on top"),  # "with red at the bottom and purple at the top"
     (rf"(?P<top>on (the )?top|at the top|as the top) and (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|"
@@ -252,6 +255,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
+    (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
+    # bin": the blocks not named
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
      r"(north|south|east|west) of|(in|at|to|near|by|on|into) the (far |near )?((edge|corner|center|centre)( of the (table|desk|"

@@ -844,7 +844,7 @@ def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
 
 
 @pytest.mark.parametrize("sentence", ["swap the two blocks", "Swap the positions of the two blocks.",
-                                      "switch which block is on top"])
+                                      "switch which block is on top", "reverse them", "flip red and green"])
 def test_the_planner_swaps_the_blocks_whichever_is_on_top_now(sentence: str) -> None:
     executive = Executive(SemanticPlanner("two_blocks"))
     for top, below in (("red", "green"), ("green", "red")):

@@ -183,7 +183,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"bottom|at the bottom|underneath|below)", "swap the_whole"),  # "switch which block is on top": the tower reversed
     (r"(reverse|invert|flip( over)?|turn over|turn upside down|swap|switch|exchange)( the order of)?( the (blocks|cubes) "
      r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
-     r"this|your) (tower|stack|pile) (upside down|over)", "swap the_whole"),  # "reverse the tower": its blocks'
+     r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert) the order of (all )?(the )?(blocks|cubes)",
+     "swap the_whole"),  # "reverse the tower": its blocks'
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
      r"(tower|stack|pile)(?! of)", r"\g<verb> the_whole"),  # "put the tower in the bin": what is moved is each block
@@ -386,6 +387,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"take down|unstack", "unstack"),
     (r"(swap|switch|exchange|trade|change|reverse)( around| over)?( the)? (positions|places|spots|locations) of|"
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
+    (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
+    # green": two blocks swapped
     (r"pull|retrieve|fetch|extract|fish|dig", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|add|load|put", "put"),

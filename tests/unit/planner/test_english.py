@@ -522,6 +522,8 @@ PHRASES = [
     ("desk_cleanup", "fish green out of the bin", "not in_bin(green)"),
     # where the goal ends, and what else stays out
     ("desk_cleanup", "red in the bin and that's it", "in_bin(red)"),
+    ("desk_cleanup", "actually, put red in the bin", "in_bin(red)"),
+    ("desk_cleanup", "sorry, put red in the bin", "in_bin(red)"),
     ("tabletop", "just red on green, nothing else", "above(red,green)"),
     ("desk_cleanup", "put red in the bin and nothing else in the bin",
      "in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
@@ -601,6 +603,12 @@ REFUSALS = [
     ("tabletop", "put yellow at the bottom", "a block goes under a standing tower only by building"),
     ("desk_cleanup", "put red next to the basket", "no predicate says a block is next to the bin"),
     ("tabletop", "place the tower next to the bin", "no predicate says a block is next to the bin"),
+    ("desk_cleanup", "put red in the bin. no wait, put green in the bin", "'no wait' takes back what was said before it"),
+    ("tabletop", "put red on green, actually on blue", "'actually' takes back what was said before it"),
+    ("desk_cleanup", "put red in the bin, or rather green", "'or rather' takes back"),
+    ("tabletop", "put red where green was", "directions and places on the table"),
+    ("three_blocks", "place red and green on opposite sides of the table", "directions and places on the table"),
+    ("three_blocks", "line them up from left to right", "directions and places on the table"),
     ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),
     ("three_blocks", "move most of them next to red", "'most of them' leaves open which"),
     ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
@@ -1036,6 +1044,13 @@ def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str
     assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
     goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
     assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize("undone", ["unstack it", "knock it down", "take it apart"])
+def test_a_tower_built_then_taken_down_leaves_each_of_its_blocks_off_the_others(undone: str) -> None:
+    said = parse_english(f"build a tower of red, green and blue, then {undone}", "tabletop", ("red", "green", "blue", "yellow"))
+    assert set(said) == {Literal("above", (a, b), False) for a in ("red", "green", "blue")
+                         for b in ("red", "green", "blue", "yellow") if a != b}
 
 
 @pytest.mark.parametrize(("text", "expected"), [

@@ -242,6 +242,9 @@ class Resolver:
             clause, unordered = replace(clause, kind="tower"), False
         if clause.kind == "release" and not self.last and clause.subjects and all(r.kind == "it" for r in clause.subjects):
             clause = replace(clause, subjects=(Ref("held"),))  # "drop it", said first: the block in the hand
+        if clause.kind == "unstack" and self.last_built and clause.subjects and all(r.kind == "it" for r in clause.subjects):
+            clause = replace(clause, subjects=(Ref("colours", self.last),))  # "build a tower ..., then knock it down":
+            # each of its blocks off the others
         subjects = self.subjects_of(clause)
         if clause.kind == "on" and clause.subjects and all(r.kind in ("all", "other") and not r.excluded for r in
                                                             clause.subjects) and Ref("tower") in clause.objects:

@@ -76,7 +76,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(and )?(that is (it|all)|nothing (else|more)|(and )?(we are|you are|we're|you're) done)(?= and\b| then\b|$)", ""),  #
     # "red on green and that's it": the goal ends there
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
-    (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool)( and| then)?"
+    (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
     (r"avoid|refrain from|^(instead of|rather than)", "do not"),  # "avoid stacking red on green", "instead of putting red
@@ -171,7 +171,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(and )?with (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|base|foot)|"
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
-     r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),  # blocks on the table
+     r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),
+    (r"(take|pull|break) (?P<what>it|them) (apart|down)", r"unstack \g<what>"),  # "... then take it apart"  # blocks on the table
     (r"((that|which) (are|is) )?(except( for)?|but( for| leave| keep| spare| skip| not)?|other than|apart from|besides|"
      r"save for|not( part of)?) "
      r"(the (blocks|cubes|ones)|those|what('s| is))?( (that|which) (are|is|stand|make up|form))? ?"
@@ -259,6 +260,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
+    (rf"((to|in|into|at) (the )?(spot|place|position|location) )?where (the )?({_COLOUR})( block| cube| one)? (is|was|sits|sat|"
+     rf"stands|stood|lies|lay|used to be)( before| now)?|from (left|right) to (left|right)|(on |at |to )?(the )?opposite "
+     r"(sides|ends|corners|edges)( of the (table|desk))?", DIRECTION),  # "put red where green was": a place on the table
     (r"(to|on|at) the (left|right)( hand)?( side)?( of)?|(left|right) of|in front of|behind|in back of|"
      r"(north|south|east|west) of|(in|at|to|near|by|on|into) the (far |near )?((edge|corner|center|centre)( of the (table|desk|"
      r"tabletop))?|(middle|side|end|front|back) of the (table|desk|tabletop))", DIRECTION),
@@ -556,6 +560,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NOT_EITHER_OF.sub(lambda m: f"{m['head']} {'other' if m['others'] else 'both'}", text)
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
+    if (taken_back := _CORRECTION.search(said)) and re.search(r"\w", said[:taken_back.start()]):
+        raise LanguageError(f"'{taken_back[0]}' takes back what was said before it: say the goal once, as the world "
+                            f"should end, e.g. {examples(scene, blocks)}")
     if held := _HELD_OVER.search(text):
         raise LanguageError(f"'{held[0].strip()}': where the hand is is none of scene {scene}'s predicates ("
                             f"{', '.join(LAYOUTS[scene].scene.predicates)}); holding says only which block is in the hand: "
@@ -819,6 +826,9 @@ _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|half|most|many|two|three|four|five|six|seven|"
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
+_CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch that|i mean|on second thought|or rather|correction|"
+                         r"actually|make that)\b")
+"""'put red in the bin, no wait, green': words that take back what came before them (refused after a word)."""
 _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID})\s+(?:up\s+)?(?:above|"
                         r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
 """'hold blue above the bin': a place in the air, which no predicate says (refused)."""

@@ -266,3 +266,14 @@ def test_a_tower_left_open_is_planned_from_the_tower_standing() -> None:
     assert ok, message
     assert [str(s.subgoal) for s in executive.steps] == ["pick(yellow)", "put_on(yellow,red)", "pick(orange)",
                                                          "put_on(orange,yellow)"]
+
+
+def test_a_tower_left_open_with_its_top_named_is_planned_from_what_stands_below_it() -> None:
+    """Red tops a tower of three: it comes off, the two under it stay, and it goes back on last."""
+    executive = Executive(SemanticPlanner("tabletop"))
+    executive.observe(Observation(TABLETOP, on("blue", "green", "red"), 0))
+    ok, message = executive.set_goal("stack everything with red on top")
+    assert ok, message
+    assert [str(s.subgoal) for s in executive.steps] == ["pick(red)", "put_on_table(red)", "pick(yellow)",
+                                                         "put_on(yellow,green)", "pick(orange)", "put_on(orange,yellow)",
+                                                         "pick(red)", "put_on(red,orange)"]

@@ -521,6 +521,18 @@ PHRASES = [
     ("three_blocks", "no block should be near another", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("desk_cleanup", "fish green out of the bin", "not in_bin(green)"),
     # where the goal ends, and what else stays out
+    # the paper's own names of its tasks (its Figure 4 and section 4.1)
+    ("two_blocks", "Move 2 blocks closer", "close(red,green)"),
+    ("two_blocks", "Move 2 blocks away", "not close(red,green)"),
+    ("two_blocks", "Move blocks close", "close(red,green)"),
+    ("two_blocks", "Move blocks apart", "not close(red,green)"),
+    ("three_blocks", "Move 3 blocks closer", "close(red,green) & close(red,blue) & close(green,blue)"),
+    ("three_blocks", "Move 3 blocks away", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("three_blocks", "move blocks further apart", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
+    ("desk_cleanup", "Desk clean up", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "clean up the desk and place all the blocks inside the bin",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("three_blocks", "move red further away from green", "not close(red,green)"),
     ("desk_cleanup", "red in the bin and that's it", "in_bin(red)"),
     ("desk_cleanup", "actually, put red in the bin", "in_bin(red)"),
     ("desk_cleanup", "sorry, put red in the bin", "in_bin(red)"),
@@ -610,6 +622,7 @@ REFUSALS = [
     ("three_blocks", "place red and green on opposite sides of the table", "directions and places on the table"),
     ("three_blocks", "line them up from left to right", "directions and places on the table"),
     ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),
+    ("desk_cleanup", "move 2 blocks to the bin", "'2' blocks, but which"),
     ("three_blocks", "move most of them next to red", "'most of them' leaves open which"),
     ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
     ("two_blocks", "hold the red block over green and let go of it later", "where the hand is is none of scene two_blocks's"),
@@ -852,7 +865,9 @@ def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
 
 
 @pytest.mark.parametrize("sentence", ["swap the two blocks", "Swap the positions of the two blocks.",
-                                      "switch which block is on top", "reverse them", "flip red and green"])
+                                      "switch which block is on top", "reverse them", "flip red and green",
+                                      "Swap 2 stacked blocks", "swap the order", "Swap blocks",
+                                      "swap the blocks so the bottom one is on top", "put the bottom block on top"])
 def test_the_planner_swaps_the_blocks_whichever_is_on_top_now(sentence: str) -> None:
     executive = Executive(SemanticPlanner("two_blocks"))
     for top, below in (("red", "green"), ("green", "red")):

@@ -63,6 +63,15 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"(?P<moved>(the )?(bottom|lowest)( block| cube| one)) (on top|at the top|to the top)( of (the )?(tower|stack|pile|other( "
+     r"block| cube| one)?))?", r"\g<moved> on the tower"),  # "put the bottom block on top"
+    (r"(?P<head>(swap|switch|exchange|reverse|flip|invert)\b[^,;]*?) so (that )?(the )?(bottom|lower|lowest|top|upper)( one|"
+     r" block| cube)? (is|ends up|goes|sits|comes|will be)( on| at the)? (top|bottom)", r"\g<head>"),  # "swap the blocks
+    # so the bottom one is on top": what swapping does
+    (r"(closer|nearer)( together| to each other| to one another)?(?= and\b| then\b|$)", "together"),  # "move 2 blocks
+    # closer"
+    (r"(further|farther) (apart|away)( from each other| from one another)?(?= and\b| then\b|$)", "apart"),
+    (r"(further|farther|much|well|far)(?= (away|apart) from\b)", ""),  # "move red further away from green"
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"(every|each)( single)? one of", "all of"),  # "put every one of the blocks in the bin"
@@ -391,6 +400,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"take down|unstack", "unstack"),
     (r"(swap|switch|exchange|trade|change|reverse)( around| over)?( the)? (positions|places|spots|locations) of|"
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
+    (r"(swap|switch|change|reverse|invert|flip) the order( of (the )?(stacked )?(blocks|cubes|tower|stack|pile))?(?! of)",
+     "swap the_whole"),  # "swap the order", as the paper's Swap-2 says it: the tower standing turned over
     (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
     # green": two blocks swapped
     (r"pull|retrieve|fetch|extract|fish|dig", "take"),
@@ -552,6 +563,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
+    text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
     text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
@@ -797,15 +809,32 @@ def _listing_start(words: list[str], end: int) -> int:
 _COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
                       r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
+_BLOCKS_AFTER_A_VERB = re.compile(r"^\s*(?P<verb>move|put|place|bring|get|push|pull|swap|switch|exchange|stack|separate|gather|"
+                                  r"group|arrange|spread|set|lay) (?:(?P<count>" + "|".join(NUMBERS) + r"|[2-8]) )?(?:stacked "
+                                  r"|scattered |loose )?(?:blocks|cubes)\b")
+"""A goal's first words naming the blocks bare, with or without their count ('move blocks apart', 'Move 2 blocks
+closer', 'swap 2 stacked blocks', as the paper names its tasks): all of them."""
 
 
 def _all_counted(match: re.Match, blocks: Sequence[str]) -> str:
     """'all' where the count is the number of blocks present, else the refusal names the blocks there are."""
     said = match["all"] or match["the"]
-    if (NUMBERS[said] if said in NUMBERS else int(said)) != len(blocks):
+    if not _counts_all(said, blocks):
         raise LanguageError(f"{match[0]!r} speaks of {said} blocks, but this world has {len(blocks)} "
                             f"({', '.join(blocks)}): name the blocks by colour")
     return " all "
+
+
+def _counts_all(said: str, blocks: Sequence[str]) -> bool:
+    return (NUMBERS[said] if said in NUMBERS else int(said)) == len(blocks)
+
+
+def _verb_on_all(match: re.Match, blocks: Sequence[str]) -> str:
+    """'move blocks apart', 'Move 2 blocks closer': the verb on all the blocks; a count of fewer than there are is
+    left as said (and refused later as leaving open which)."""
+    if match["count"] and not _counts_all(match["count"], blocks):
+        return match[0]
+    return f" {match['verb']} all "
 
 
 _EXCEPTION_AFTER_ALL = re.compile(

@@ -274,7 +274,7 @@ def _task_key(name: str) -> str:
     return re.sub(r"[\s_\-\u2013]+", "-", name.strip().lower())
 
 
-_SEPARATORS = re.compile(r"\s*(?:&&?|∧|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
+_SEPARATORS = re.compile(r"\s*(?:&&?|∧|;|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)
 
 
 def split_literals(text: str) -> list[str]:

@@ -215,6 +215,8 @@ class VocabularyError(ValueError):
 _LITERAL = re.compile(r"^\s*(?P<neg>not\s+|!\s*|~\s*|¬\s*)?(?P<name>[A-Za-z_][\w-]*)\s*\((?P<args>[^()]*)\)\s*$", re.IGNORECASE)
 _NEGATED = re.compile(r"^\s*(?:not|!|~|¬)\s*\((?P<literal>[^()]*\([^()]*\)\s*)\)\s*$", re.IGNORECASE)
 """A negation written as a call: ``not(in_bin(red))``."""
+PREDICATE_ALIASES = {"on": "above", "near": "close", "inbin": "in_bin", "held": "holding"}
+"""Other names people give the predicates in a literal (blocksworld's ``on(a,b)``): read as the predicate itself."""
 
 
 def parse_literal(text: str) -> Literal:
@@ -226,7 +228,8 @@ def parse_literal(text: str) -> Literal:
     if not match:
         raise VocabularyError(f"cannot read literal {text!r}: expected e.g. 'close(red,green)' or 'not in_bin(red)'")
     args = tuple(arg.strip().lower() for arg in match["args"].split(",")) if match["args"].strip() else ()
-    return Literal(match["name"].lower().replace("-", "_"), args, value=match["neg"] is None)
+    name = match["name"].lower().replace("-", "_")
+    return Literal(PREDICATE_ALIASES.get(name, name), args, value=match["neg"] is None)
 
 
 class SemanticLayout:

@@ -21,6 +21,13 @@ def test_conjunctions_with_every_separator() -> None:
                     Literal("close", ("green", "blue")), Literal("holding", ("red",))]
 
 
+def test_literals_may_be_joined_by_semicolons_and_name_the_predicates_as_people_do() -> None:
+    goal = parse_goal("on(red,green); near(red, blue); held(green)", "tabletop", BLOCKS, [])
+    assert goal == [Literal("above", ("red", "green")), Literal("close", ("red", "blue")), Literal("holding", ("green",))]
+    assert parse_goal("(and (on red green) (not (inbin blue)))", "tabletop", BLOCKS, []) == [
+        Literal("above", ("red", "green")), Literal("in_bin", ("blue",), False)]
+
+
 def test_pddl_goal_syntax_reads_as_the_same_literals() -> None:
     goal = parse_goal("(AND (close red green) (not (close red blue)) (holding red))", "three_blocks", BLOCKS, [])
     assert goal == [Literal("close", ("red", "green")), Literal("close", ("red", "blue"), False),

@@ -184,8 +184,8 @@ Said = list[tuple[Clause, list[tuple[Literal, bool]]]]
 def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Said]:
     """What the stages before ``stage`` said that still holds after it, and ``stage`` left to add. A block the stage
     moves loses what was said of it ("... then put green on red"), but for the blocks of a tower moved whole and a block
-    left on one the stage stacks on another (:func:`_still_on_it`); a swap
-    of blocks said before trades what was said of them ("put red on green, then swap them": green on red)."""
+    left on one the stage stacks on another (:func:`_still_on_it`); a swap of blocks said before trades what was said
+    of them ("put red on green, then swap them": green on red)."""
     traded = []
     for clause, literals in stage:
         pairs = [lit.args for lit, _ in literals if lit.name == SWAP and len(lit.args) == 2]
@@ -193,11 +193,17 @@ def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Sa
             goal = _traded(goal, *pairs[0])
             traded.append(clause)
     stage = [(clause, literals) for clause, literals in stage if clause not in traded]
-    moved = {b for clause, _ in stage if clause.kind not in ("keep", "") for b in resolver.subjects_of(clause)}
+    moved = {b for clause, _ in stage if not _moves_none(clause) for b in resolver.subjects_of(clause)}
     goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()}
     put_on = {lit.args for _, literals in stage for lit, _ in literals if lit.name == "above" and lit.value}
     return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)
             or _still_on_it(lit, moved, put_on)}, stage
+
+
+def _moves_none(clause: Clause) -> bool:
+    """Whether a clause leaves every block where it is: one that keeps them, or lets go ("put red on green, then let go
+    of green": red stays on it)."""
+    return clause.kind in ("keep", "release", "") or (clause.kind == "hold" and clause.negated)
 
 
 def _still_on_it(literal: Literal, moved: set[str], put_on: set[tuple[str, ...]]) -> bool:

@@ -63,6 +63,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (rf"(?:(?<=^)|(?<=\band )|(?<=\bthen ))(holding|held|in hand)(?= (the )?({_COLOUR})\b)", "hold"),  # "holding red", as
+    # the predicate reads
     (r"(?P<moved>(the )?(bottom|lowest)( block| cube| one)) (on top|at the top|to the top)( of (the )?(tower|stack|pile|other( "
      r"block| cube| one)?))?", r"\g<moved> on the tower"),  # "put the bottom block on top"
     (r"(?P<head>(swap|switch|exchange|reverse|flip|invert)\b[^,;]*?) so (that )?(the )?(bottom|lower|lowest|top|upper)( one|"

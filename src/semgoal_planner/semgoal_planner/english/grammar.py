@@ -24,6 +24,7 @@ clause: NOT? action              -> act
       | NOT? condition           -> ellipsis_state
       | NOT? refs                -> ellipsis_refs
       | refs NOT                 -> ellipsis_refs_negated
+      | refs "affirmed"          -> ellipsis_refs_affirmed
 
 action: ("put" | "keep") refs dest          -> put
       | ("put" refs "down" | "release" refs) (near | away | in_bin | on | on_table) -> put
@@ -134,6 +135,8 @@ class Clause:
     objects: tuple[Ref, ...] = ()
     negated: bool = False
     elliptic: bool = False
+    affirmed: bool = False
+    """An ellipsis said with its verb ('... and green is'): the relation holds, whatever the clause before denied."""
     """Borrows what it lacks (the relation, or the subjects) from the clause before it."""
 
 
@@ -218,6 +221,9 @@ class Clauses(lark.Transformer):
 
     def ellipsis_refs_negated(self, items: list) -> Clause:  # "..., blue should not"
         return Clause("", subjects=items[0], negated=True, elliptic=True)
+
+    def ellipsis_refs_affirmed(self, items: list) -> Clause:  # "red is not in the bin and green is"
+        return Clause("", subjects=items[0], elliptic=True, affirmed=True)
 
     def condition(self, items: list) -> Clause:
         return items[0]

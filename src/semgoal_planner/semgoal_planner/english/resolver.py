@@ -235,7 +235,8 @@ class Resolver:
             elif stated.kind == "together" and clause.negated and not stated.negated:  # "red and green together, but
                 clause = replace(clause, kind="away", objects=stated.subjects, elliptic=False, negated=False)  # not blue"
             else:  # "... but not green": the relation of the clause that said one
-                clause = replace(stated, subjects=clause.subjects, negated=stated.negated != clause.negated)
+                clause = replace(stated, subjects=clause.subjects,
+                                 negated=not clause.affirmed and stated.negated != clause.negated)
         unordered = clause.kind == ANY_ORDER_TOWER or (clause.kind == "tower" and (
             len(clause.subjects) < 2 or any(ref.kind != "colours" for ref in clause.subjects)))
         if unordered and clause.negated:  # "make them touch but not stack": none of them on another

@@ -15,6 +15,8 @@ TOP_DOWN = "topdown"
 DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 ANY_ORDER = "anyorder"
+AFFIRMED = "affirmed"
+"""What a verb ending an ellipsis leaves ('red is not in the bin and green is'): the relation holds for it."""
 """What 'in any order' leaves: nothing for blocks put each in its place; after 'stack', a tower left open."""
 IN_PLACE = "inplace"
 """What 'stays', 'remains where it is' leave after the blocks they keep: the end of a clause that keeps them."""
@@ -117,6 +119,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|(is|are|be) left)( (where|as) (it|they) (is|are|was|were|stands?)| put| in place| there| alone| untouched| unmoved"
      r"| as is)?(?= and\b| then\b| but\b|$)", rf"keep \g<who> {IN_PLACE}"),  # "put red in the bin, green stays": where
     # it is ("red and green stay, the rest go in the bin": the mark ends the clause, not "keep ... in the bin")
+    (rf"(?:(?<=\band )|(?<=\bbut ))(?P<refs>{_LISTED})( blocks?| cubes?| ones?)? (is|are|does|do|should|must|will|can|has|have)( to)?( be)?"
+     r"(?= and\b| then\b|$)", rf"\g<refs> {AFFIRMED}"),  # "red is not in the bin and green is": green is in it
     (r"any (longer|more)", ""),
     (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
     (r"off (of )?(the )?top of|from (the )?top of", "off"),  # "take red off the top of green"
@@ -267,7 +271,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(in|into) (a|one|the same) (group|cluster|bunch|huddle|heap|clump)", "together"),  # "red and green in a group"
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
-    (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up", ""),
+    (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up|(needs?|has|"
+     r"have|ought|got|is going|are going) to (go|get|move)(?= (in|into|inside|on|onto|next|near|beside|by|away|far|out|off|"
+     r"back)\b)", ""),  # "red needs to go in the bin"
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
@@ -440,7 +446,7 @@ CANONICAL = frozenset({
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
     "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "the_middle", "swap", ANY_ORDER,
-    IN_PLACE,
+    IN_PLACE, AFFIRMED,
     *(f"the_{end}{k}" for end in ("top", "bottom") for k in range(2, 9)),
 })
 """The words the grammar reads (besides the colours)."""
@@ -652,7 +658,7 @@ def _did_you_mean(word: str) -> str:
 def _known_words() -> tuple[str, ...]:
     """Every word the reader takes: colours, canonical words, fillers and the words of its phrases."""
     phrased = {word for pattern, _ in PHRASES for word in re.findall(r"[a-z]{3,}", pattern)}
-    marks = {TOP_DOWN, DIRECTION, ANY_ORDER, IN_PLACE, INTO_A_TOWER, BUT_LEAVE, UNDER_A_TOWER, TOP_MARK, BASE_MARK}
+    marks = {TOP_DOWN, DIRECTION, ANY_ORDER, IN_PLACE, INTO_A_TOWER, BUT_LEAVE, UNDER_A_TOWER, TOP_MARK, BASE_MARK, AFFIRMED}
     said = (set(BLOCK_COLOURS) | CANONICAL | FILLERS | phrased) - marks  # the reader's own marks are no words anyone says
     return tuple(sorted(word for word in said if "_" not in word))
 
@@ -971,6 +977,11 @@ _COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|sta
 where the count was."""
 
 
+_PLACE_THEN_NAMED = re.compile(r"^\s*(?P<where>(?:in|into|inside|onto|on top of|on|next to|near|away from) (?:the )?\w+)(?: please)?"
+                               r"\s*:\s*(?P<named>[^.;:]+)$")
+"""'into the bin: red, green': the place said first, the blocks after the colon."""
+
+
 def _said_after(text: str) -> str:
     """What becomes of 'the blocks' said after them: after a colon, a tower's ('stack' kept before its list), else the
     clauses that follow alone; blocks counted, then named after a colon, as named."""
@@ -978,6 +989,7 @@ def _said_after(text: str) -> str:
         towered = match["tower"] or match["verb"] in ("stack", "pile", "build", "assemble")
         return " stack " if towered and match["then"] == ":" else " "
     text = _COUNTED_THEN_NAMED.sub(lambda m: f"{m['verb']} {m['named']} {m['where']}", text)
+    text = _PLACE_THEN_NAMED.sub(lambda m: f"put {m['named']} {m['where']}", text)
     return _SAID_AFTER.sub(said, text)
 
 

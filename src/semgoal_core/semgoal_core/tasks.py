@@ -266,12 +266,17 @@ def scene_tasks(scene: str) -> tuple[str, ...]:
 
 
 def is_task_name(text: str) -> bool:
-    """Whether ``text`` names a task (case-insensitive, a space or '_' for its hyphen: ``tower 5``)."""
+    """Whether ``text`` names a task (case-insensitive, its hyphen a space, '_' or nothing: ``tower 5``, ``DC3``;
+    said as an order: ``run DC-3``, ``task MC-2 please``)."""
     return any(_task_key(text) == _task_key(name) for name in ALL_TASKS)
 
 
+_TASK_ORDERED = re.compile(r"^(?:(?:please|now)\s+)?(?:(?:run|do|start|perform|execute|solve|try)\s+(?:the\s+)?(?:task\s+)?|"
+                           r"(?:the\s+)?task\s+)|\s+(?:task|please)$")
+
+
 def _task_key(name: str) -> str:
-    return re.sub(r"[\s_\-\u2013]+", "-", name.strip().lower())
+    return re.sub(r"[\s_\-\u2013]+", "", _TASK_ORDERED.sub("", name.strip().lower()))
 
 
 _SEPARATORS = re.compile(r"\s*(?:&&?|∧|;|\band\b|,(?![^()]*\)))\s*", re.IGNORECASE)

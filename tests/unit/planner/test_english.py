@@ -542,6 +542,9 @@ PHRASES = [
     ("desk_cleanup", "the red block needs to go in the bin", "in_bin(red)"),
     ("desk_cleanup", "into the bin: red, green", "in_bin(red) & in_bin(green)"),
     ("tabletop", "on green: red", "above(red,green)"),
+    ("tabletop", "a tower of red, green and blue; yellow and orange in the bin",
+     "above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)"),
+    ("tabletop", "move green from on top of red onto blue", "above(green,blue)"),
     ("tabletop", "put red on green then release green", "above(red,green) & not holding(green)"),
     ("tabletop", "red on green; green not held", "above(red,green) & not holding(green)"),
     ("desk_cleanup", "actually, put red in the bin", "in_bin(red)"),
@@ -939,6 +942,7 @@ def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, t
 @pytest.mark.parametrize(("text", "expected"), [
     ("Make a tower of red and green, and put blue next to it.", "above(green,red) & close(red,blue)"),
     ("build a tower of red and green and put blue on it", "above(green,red) & above(blue,green)"),
+    ("make a two-block tower of red and green, with blue beside it", "above(green,red) & close(red,blue)"),
 ])
 def test_it_after_a_tower_is_built_is_that_tower(text: str, expected: str) -> None:
     said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [])

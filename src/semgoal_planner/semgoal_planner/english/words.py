@@ -123,7 +123,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(?= and\b| then\b|$)", rf"\g<refs> {AFFIRMED}"),  # "red is not in the bin and green is": green is in it
     (r"any (longer|more)", ""),
     (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
-    (r"off (of )?(the )?top of|from (the )?top of", "off"),  # "take red off the top of green"
+    (r"off (of )?(the )?top of", "off"),
+    (r"from (on )?(the )?top of|from (on|atop|upon)(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", "from"),  # "move
+    # green from on top of red onto blue"  # "take red off the top of green"
     (r"(to|in|on|onto|into|at) (an? |some )?(empty|free|clear|open|clean)( spot| place| space| area| part)( (on|of) the (table|"
      r"desk))?", "on the table"),  # "move red to an empty spot": out of the hand and the bin, on no block
     (r"(?P<verb>move|put|take|bring|return|place|get) (all )?(the |all the )?(blocks|cubes|ones) ((that|which) (are|is) )?"
@@ -255,6 +257,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"put \g<what> on the_tower"),  # "add blue to the tower": on top of it
     (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
      r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
+    (rf"with (?P<what>(the )?({_COLOUR})( block| cube| one)?) (?P<place>beside|next to|near|close to|by|away from|far from) "
+     r"(?P<it>it|them|the (tower|stack|pile))", r"and put \g<what> \g<place> \g<it>"),  # "a tower of red and green, with
+    # blue beside it"
     (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
      r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
     (r"(thanks|thank you)( (very|so) much| a lot| in advance)?|if you (don'?t|do not) mind|(would|do) you mind|if (it is|it's"
@@ -665,10 +670,12 @@ def _known_words() -> tuple[str, ...]:
 
 def _listing_in_order(words: list[str]) -> list[str]:
     """'stack red then green then blue', 'put red, then blue, then green in the bin': the blocks of one action named
-    in order (a tower's from the bottom), not clauses after one another."""
+    in order (a tower's from the bottom), not clauses after one another ('a tower of red and green; blue and yellow in
+    the bin': a 'then' before two blocks starts a clause)."""
     joined = []
     for i, word in enumerate(words):
         listed = (word == "then" and 0 < i < len(words) - 1 and words[i + 1] in BLOCK_COLOURS
+                  and not (words[i + 2:i + 3] == ["and"] and words[i + 3:i + 4] and words[i + 3] in BLOCK_COLOURS)
                   and _listing_after_verb(words[:i]))
         joined.append("and" if listed else word)
     return joined

@@ -542,6 +542,12 @@ PHRASES = [
     ("desk_cleanup", "the red block needs to go in the bin", "in_bin(red)"),
     ("desk_cleanup", "into the bin: red, green", "in_bin(red) & in_bin(green)"),
     ("tabletop", "on green: red", "above(red,green)"),
+    # what word processors and phones type for plain characters, and symbols that say nothing
+    ("desk_cleanup", "Don\u2019t put red in the bin", "not in_bin(red)"),
+    ("desk_cleanup", "put \u201cred\u201d in the bin \U0001F642", "in_bin(red)"),
+    ("desk_cleanup", "put red\u2014not green\u2014in the bin\u2026", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put red in the bin - green too", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "plz put red + green in the bin", "in_bin(red) & in_bin(green)"),
     ("tabletop", "a tower of red, green and blue; yellow and orange in the bin",
      "above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)"),
     ("tabletop", "move green from on top of red onto blue", "above(green,blue)"),

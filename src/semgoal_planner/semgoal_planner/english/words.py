@@ -6,6 +6,7 @@ from __future__ import annotations
 import functools
 import itertools
 import re
+import unicodedata
 from collections.abc import Sequence
 
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS
@@ -436,7 +437,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
 """(regular expression over whole words, canonical word): applied in order."""
 
 FILLERS = frozenset({
-    "please", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
+    "please", "pls", "plz", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
@@ -562,13 +563,25 @@ def _order_left_open(words: list[str]) -> list[str]:
     return [*rest[:verb + 1], ANY_ORDER, *rest[verb + 1:]]
 
 
+_TYPOGRAPHY = str.maketrans({"\u2018": "'", "\u2019": "'", "\u201b": "'", "\u00b4": "'", "`": "'", "\u201c": '"',
+                             "\u201d": '"', "\u201e": '"', "\u2014": ", ", "\u2013": ", ", "\u2015": ", ", "\u2026": ".",
+                             "\u00a0": " ", "+": " and "})
+"""What word processors and phones put for plain characters ('Don\u2019t', \u201cred\u201d, a dash between clauses)."""
+
+
+def _plain(text: str) -> str:
+    """``text`` in plain characters, without emoji and other symbols that say nothing of where a block goes."""
+    text = re.sub(r"\s+-+\s+", ", ", text.translate(_TYPOGRAPHY))  # "put red in the bin - green too"
+    return "".join(c for c in text if unicodedata.category(c) not in ("So", "Sk", "Cf", "Cs", "Co"))
+
+
 def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (with the
     ``blocks`` present, by colour, and goals the scene can state)."""
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
-    said = text.lower()
-    text = re.sub(r"[()\[\]]", " ", said)
+    said = _plain(text).lower()
+    text = re.sub(r"[()\[\]\"]", " ", said)
     text = _NUMBERED.sub(" ; ", text)  # "1. put red in the bin 2. put green in the bin": steps in turn
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes

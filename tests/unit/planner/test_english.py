@@ -681,6 +681,13 @@ def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() ->
         parse_english("put violet near red", "three_blocks")
 
 
+@pytest.mark.parametrize(("sentence", "meant"), [("put red in teh bin", "the"), ("put red in the bni", "bin"),
+                                                  ("ptu red in the bin", "put"), ("put red in the bim", "bin")])
+def test_a_word_with_two_letters_swapped_or_one_wrong_is_answered_with_the_word_meant(sentence: str, meant: str) -> None:
+    with pytest.raises(LanguageError, match=rf"\(did you mean '{meant}'\?\)"):
+        parse_english(sentence, "desk_cleanup")
+
+
 def test_a_word_close_to_one_of_the_readers_own_marks_is_not_offered_it() -> None:
     with pytest.raises(LanguageError, match=r"unknown word 'order': goals name"):
         parse_english("the order from the bottom is red, green", "tabletop")

@@ -664,12 +664,21 @@ Not 'pick' ('pick up red, then green' ends with green in the hand)."""
 
 
 def _did_you_mean(word: str) -> str:
-    """' (did you mean 'green'?)' for a word a letter or two away from one the reader knows, else ''."""
+    """' (did you mean 'green'?)' for a word a letter or two away from one the reader knows (two letters swapped, one
+    letter wrong), else ''."""
     import difflib
 
     known = _known_words()
-    close = [w for w in difflib.get_close_matches(word, known, n=2, cutoff=0.75) if w != word] if len(word) > 2 else []
-    return f" (did you mean {close[0]!r}?)" if close else ""  # a word known only inside a phrase is not offered
+    if len(word) <= 2:
+        return ""
+    swapped = {word[:i] + word[i + 1] + word[i] + word[i + 2:] for i in range(len(word) - 1)}  # 'teh', 'bni'
+    close = {w for w in known if w in swapped or (len(w) == len(word) and sum(map(str.__ne__, w, word)) == 1)}  # 'bim'
+    close |= set(difflib.get_close_matches(word, known, n=2, cutoff=0.75))
+    close.discard(word)
+    if not close:
+        return ""
+    best = max(sorted(close), key=lambda w: (difflib.SequenceMatcher(None, word, w).ratio(), w in CANONICAL or w in BLOCK_COLOURS))
+    return f" (did you mean {best!r}?)"
 
 
 @functools.cache

@@ -272,7 +272,7 @@ def is_task_name(text: str) -> bool:
 
 
 _TASK_ORDERED = re.compile(r"^(?:(?:please|now)\s+)?(?:(?:run|do|start|perform|execute|solve|try)\s+(?:the\s+)?(?:task\s+)?|"
-                           r"(?:the\s+)?task\s+)|\s+(?:task|please)$")
+                           r"(?:the\s+)?task:?\s+)|\s+(?:task|please)$")
 
 
 def _task_key(name: str) -> str:

@@ -548,6 +548,14 @@ PHRASES = [
     ("desk_cleanup", "put red\u2014not green\u2014in the bin\u2026", "in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "put red in the bin - green too", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "plz put red + green in the bin", "in_bin(red) & in_bin(green)"),
+    # how a study participant frames a goal
+    ("tabletop", "The goal is to have red on green.", "above(red,green)"),
+    ("desk_cleanup", "Your task is to put every block in the bin.",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("tabletop", "Goal: red in bin, green on blue.", "in_bin(red) & above(green,blue)"),
+    ("desk_cleanup", "Put red in the bin as fast as you can", "in_bin(red)"),
+    ("tabletop", "Take your time and put red on green", "above(red,green)"),
+    ("tabletop", "Build me a tower with green on the bottom and red on top of it", "above(red,green)"),
     ("tabletop", "a tower of red, green and blue; yellow and orange in the bin",
      "above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)"),
     ("tabletop", "move green from on top of red onto blue", "above(green,blue)"),
@@ -947,6 +955,8 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
     ("desk_cleanup", "put red and green in the bin while blue remains as it is", "in_bin(red) & in_bin(green) & keep(blue)"),
     ("tabletop", "stack red on green, blue stays where it is", "above(red,green) & keep(blue)"),
     ("tabletop", "red stays on green", "above(red,green)"),
+    ("desk_cleanup", "move the yellow cube into the bin and then leave everything else as is",
+     "in_bin(yellow) & keep(red) & keep(green) & keep(blue)"),
 ])
 def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, text: str, expected: str) -> None:
     assert {str(literal) for literal in parse_english(text, scene)} == set(expected.split(" & "))

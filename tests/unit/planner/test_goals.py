@@ -45,7 +45,7 @@ def test_pddl_goals_beyond_a_conjunction_of_literals_are_refused(text: str) -> N
 def test_task_names_are_case_insensitive_and_resolved_against_the_state() -> None:
     goal = parse_goal("dc-2", "desk_cleanup", ("red", "green"), [])
     assert Literal("in_bin", ("red",)) in goal and Literal("holding", ("green",), False) in goal
-    for said in ("DC 2", "dc_2", " Dc-2 ", "DC2", "run DC-2", "task dc2", "please do the task DC-2", "DC-2 please"):
+    for said in ("DC 2", "dc_2", " Dc-2 ", "DC2", "run DC-2", "task dc2", "please do the task DC-2", "DC-2 please", "Task: DC-2"):
         assert read_goal(said, "desk_cleanup", ("red", "green")).task == "DC-2"
 
 

@@ -89,6 +89,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
     (r"(and )?(that is (it|all)|nothing (else|more)|(and )?(we are|you are|we're|you're) done)(?= and\b| then\b|$)", ""),  #
     # "red on green and that's it": the goal ends there
+    (r"^((the|your|my|our) )?(goal|task|objective|aim|job|mission)( here| for you)?( is| will be)?( (to|that)( have| get| make"
+     r"| achieve)?)?(?= )", ""),  # "the goal is to have red on green", "Task: stack red on green"
+    (r"as (fast|quickly|soon|carefully|gently|slowly) as (you can|possible|you like)|take your time( and)?|no rush|no hurry"
+     r"|hurry( up)?", ""),  # how, not where
+    (r"(?P<verb>build|make|construct|create|stack|assemble) me", r"\g<verb>"),  # "build me a tower"
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -271,7 +276,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
     (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
-     r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)", ""),
+     r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
     (r"in (that|this|the same|the given|the listed|the named) order", ""),  # "stack red, green and blue in that order"
     (r"(in|into) (a|one|the same) (group|cluster|bunch|huddle|heap|clump)", "together"),  # "red and green in a group"
@@ -918,8 +923,9 @@ _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next
 """'blue must not be near red or green', 'away from red or green': from both (a denied 'or' is an 'and' of denials)."""
 _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|in between|"
-                       r"at the bottom|on the bottom|at the base)\b")
-"""A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom'."""
+                       r"at the bottom|on the bottom|at the base)\b(?: of (?:it|that|them)\b)?")
+"""A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom' ('red on top of it' after
+another block's place)."""
 _WITH = re.compile(r"\bwith (?:the )?$")
 _A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with (?:the )?$")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""

@@ -556,6 +556,17 @@ PHRASES = [
     ("desk_cleanup", "Put red in the bin as fast as you can", "in_bin(red)"),
     ("tabletop", "Take your time and put red on green", "above(red,green)"),
     ("tabletop", "Build me a tower with green on the bottom and red on top of it", "above(red,green)"),
+    # nothing in the hand, no tower, the only block
+    ("desk_cleanup", "the hand should be empty", "not holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
+    ("desk_cleanup", "make sure no block is held", "not holding(red) & not holding(green) & not holding(blue) & "
+                                                   "not holding(yellow)"),
+    ("desk_cleanup", "don't hold anything", "not holding(red) & not holding(green) & not holding(blue) & not holding(yellow)"),
+    ("desk_cleanup", "red and green should not be held", "not holding(red) & not holding(green)"),
+    ("desk_cleanup", "don't hold red or green", "not holding(red) & not holding(green)"),
+    ("desk_cleanup", "hold neither red nor green", "not holding(red) & not holding(green)"),
+    ("two_blocks", "there should be no tower", "not above(red,green) & not above(green,red)"),
+    ("desk_cleanup", "red is the only block in the bin", "in_bin(red) & not in_bin(green) & not in_bin(blue) & "
+                                                         "not in_bin(yellow)"),
     ("tabletop", "a tower of red, green and blue; yellow and orange in the bin",
      "above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)"),
     ("tabletop", "move green from on top of red onto blue", "above(green,blue)"),
@@ -650,6 +661,7 @@ REFUSALS = [
     ("three_blocks", "line them up from left to right", "directions and places on the table"),
     ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),
     ("desk_cleanup", "move 2 blocks to the bin", "'2' blocks, but which"),
+    ("desk_cleanup", "put all blocks but one in the bin", "'all blocks but one' leaves open which"),
     ("three_blocks", "move most of them next to red", "'most of them' leaves open which"),
     ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
     ("two_blocks", "hold the red block over green and let go of it later", "where the hand is is none of scene two_blocks's"),

@@ -324,9 +324,9 @@ class Resolver:
         if kind == "keep":  # "don't move red": red's place kept, as it is when planned
             return (Literal(KEEP, (s,)) for s in subjects)
         if kind == "hold":
-            if len(subjects) > 1:
+            if len(subjects) > 1 and not negated:  # "red and green should not be held": neither is
                 raise LanguageError(f"the hand holds one block at a time, not {' and '.join(subjects)}")
-            return [Literal("holding", subjects)]
+            return (Literal("holding", (s,)) for s in subjects)
         if kind == "release":
             return (Literal("holding", (s,), False) for s in subjects)
         if kind == "away" and not objects:  # "move green away": from every other block; on a desk, into the bin

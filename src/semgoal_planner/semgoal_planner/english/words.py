@@ -94,6 +94,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"as (fast|quickly|soon|carefully|gently|slowly) as (you can|possible|you like)|take your time( and)?|no rush|no hurry"
      r"|hurry( up)?", ""),  # how, not where
     (r"(?P<verb>build|make|construct|create|stack|assemble) me", r"\g<verb>"),  # "build me a tower"
+    (r"(there (should|must|will) be |leave |make sure (that )?there (is|are) )?no (towers?|stacks?|piles?)( (left|standing|"
+     r"remaining|at all))?", "unstack all"),  # "there should be no tower"
+    (rf"(?P<block>{_COLOUR})( block| cube| one)? (is|should be|must be|will be) the only (block|cube|one)(?= (in|on|near|next|"
+     r"held)\b)", r"only \g<block>"),  # "red is the only block in the bin"
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -335,7 +339,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"doesn'?t|does not|won'?t|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
-     r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))", "and release all"),
+     r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))|(the|your|its) (hand|gripper)( should| must| will| "
+     r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
+     r"gripper)|held)|(do not|don'?t|never|not) (hold|carry|grip|grasp)( on to| onto)? anything", "and release all"),  # "the
+    # hand should be empty", "don't hold anything"
     (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
      r"(block|blocks|cube|cubes)( should| must| will)?( be| is| are| remains?| stays?| left)* (on|upon) (the )?(table|desk|"
      r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
@@ -612,7 +619,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
                             f"say 'hold {held['block']}' or where the block should go, e.g. {examples(scene, blocks)}")
     text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
     text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
-    text = _NEITHER.sub(r" \g<first> and \g<second> not ", text)  # "neither red nor green should be in the bin"
+    text = _NEITHER.sub(lambda m: f" {m['first']} and {m['second']} not {'held' if m['verb'] in _HOLDING_VERBS else ''} ",
+                        text)  # "neither red nor green should be in the bin", "hold neither red nor green"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN_AWAY.sub(lambda m: f" clean {m['what'] or m['out'] or ''} ", text)  # "throw everything away
@@ -895,7 +903,8 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|half|most|many|two|three|four|five|six|seven|"
-                      r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b")
+                      r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\ball (?:the )?(?:blocks |cubes )?(?:but|"
+                      r"except(?: for)?|save) (?:one|two|three|four|five|six|\d)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
 _CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch that|i mean|on second thought|or rather|correction|"
                          r"actually|make that)\b")
@@ -904,12 +913,14 @@ _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK
                         r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
 """'hold blue above the bin': a place in the air, which no predicate says (refused)."""
 _NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
-                               rf"bring|lay)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
+                               rf"bring|lay|hold|carry|grab|pick up|lift)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""
 _KEPT_FROM = re.compile(rf"\b(?:stop|prevent|keep)\s+(?P<blocks>{_BLOCK_SAID}(?:,? and {_BLOCK_SAID})*)\s+from\s+"
                         r"(?:being |going |getting |ending up )?")
 """'stop red from touching green', 'prevent red from being in the bin': red, not."""
-_NEITHER = re.compile(r"\b(?:(?:put|place|move|set|stack|drop|throw|toss|get|bring|lay) )?"
+_HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")
+_NEITHER = re.compile(r"\b(?:(?P<verb>put|place|move|set|stack|drop|throw|toss|get|bring|lay|"
+                      + "|".join(_HOLDING_VERBS) + r") )?"
                       rf"neither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
 """'neither red nor green (should be) in the bin', 'put neither red nor green in the bin': both, not."""

@@ -913,7 +913,8 @@ _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK
                         r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
 """'hold blue above the bin': a place in the air, which no predicate says (refused)."""
 _NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
-                               rf"bring|lay|hold|carry|grab|pick up|lift)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
+                               rf"bring|lay|hold|carry|grab|pick up|lift)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or "
+                               rf"(?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""
 _KEPT_FROM = re.compile(rf"\b(?:stop|prevent|keep)\s+(?P<blocks>{_BLOCK_SAID}(?:,? and {_BLOCK_SAID})*)\s+from\s+"
                         r"(?:being |going |getting |ending up )?")

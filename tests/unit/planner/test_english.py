@@ -548,6 +548,8 @@ PHRASES = [
     ("desk_cleanup", "put red\u2014not green\u2014in the bin\u2026", "in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "put red in the bin - green too", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "plz put red + green in the bin", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "drop red in the dustbin and green in the wastebasket", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "put red in the garbage", "in_bin(red)"),
     # how a study participant frames a goal
     ("tabletop", "The goal is to have red on green.", "above(red,green)"),
     ("desk_cleanup", "Your task is to put every block in the bin.",

@@ -442,8 +442,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
-    (r"((trash|waste|garbage|rubbish|recycling|storage) )?(basket|box|container|tray|trash can|trash|bucket|crate|bin|"
-     r"can)", "bin"),
+    (r"((trash|waste|garbage|rubbish|recycling|storage|dust) ?)?(basket|box|container|tray|trash can|trash|bucket|crate|bin|"
+     r"can|receptacle)|garbage|rubbish|recycling", "bin"),
     (r"tabletop|table top|table|desk|workspace|surface", "table"),
 )
 """(regular expression over whole words, canonical word): applied in order."""

@@ -550,6 +550,13 @@ PHRASES = [
     ("desk_cleanup", "plz put red + green in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "drop red in the dustbin and green in the wastebasket", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "put red in the garbage", "in_bin(red)"),
+    ("desk_cleanup", "chuck red in the bin, pop green in the bin and insert blue into the bin",
+     "in_bin(red) & in_bin(green) & in_bin(blue)"),
+    ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
+    ("tabletop", "rest red on green", "above(red,green)"),
+    ("tabletop", "lower red onto the top of green", "above(red,green)"),
+    ("three_blocks", "nudge red toward green and relocate blue away from both", "close(red,green) & not close(red,blue) & "
+                                                                                 "not close(green,blue)"),
     # how a study participant frames a goal
     ("tabletop", "The goal is to have red on green.", "above(red,green)"),
     ("desk_cleanup", "Your task is to put every block in the bin.",
@@ -845,6 +852,8 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("put the top block in the bin", "in_bin(tower_top)"),
     ("pick up the block on top of the tower", "holding(tower_top)"),
     ("put the bottom block of the stack in the bin", "in_bin(tower_base)"),
+    ("put the lower block in the bin", "in_bin(tower_base)"),
+    ("move the upper one next to blue", "close(tower_top,blue)"),
     ("put the block at the bottom of the tower next to red", "close(tower_base,red)"),
     ("put red on the topmost block", "above(red,tower_top)"),
     ("put the top block next to the bottom block", "close(tower_top,tower_base)"),

@@ -66,6 +66,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"the lower (?P<noun>block|cube|one)", r"the bottom \g<noun>"),  # "put the lower block in the bin": the tower's
+    (r"the upper (?P<noun>block|cube|one)", r"the top \g<noun>"),
     (rf"(?:(?<=^)|(?<=\band )|(?<=\bthen ))(holding|held|in hand)(?= (the )?({_COLOUR})\b)", "hold"),  # "holding red", as
     # the predicate reads
     (r"(?P<moved>(the )?(bottom|lowest)( block| cube| one)) (on top|at the top|to the top)( of (the )?(tower|stack|pile|other( "
@@ -132,7 +134,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(?:(?<=\band )|(?<=\bbut ))(?P<refs>{_LISTED})( blocks?| cubes?| ones?)? (is|are|does|do|should|must|will|can|has|have)( to)?( be)?"
      r"(?= and\b| then\b|$)", rf"\g<refs> {AFFIRMED}"),  # "red is not in the bin and green is": green is in it
     (r"any (longer|more)", ""),
-    (r"on the (very )?top of", "on top of"),  # "put orange on the top of the tower"
+    (r"(on|onto|to) the (very )?top of", "on top of"),  # "put orange on the top of the tower"
     (r"off (of )?(the )?top of", "off"),
     (r"from (on )?(the )?top of|from (on|atop|upon)(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", "from"),  # "move
     # green from on top of red onto blue"  # "take red off the top of green"
@@ -430,9 +432,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "swap the_whole"),  # "swap the order", as the paper's Swap-2 says it: the tower standing turned over
     (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
     # green": two blocks swapped
-    (r"pull|retrieve|fetch|extract|fish|dig", "take"),
+    (r"pull|retrieve|fetch|extract|fish|dig|unload", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
-     r"return|lay|add|load|put", "put"),
+     r"return|lay|add|load|put|relocate|nudge|chuck|pop|insert|plop|perch|balance|cent(er|re)|reposition", "put"),
+    (rf"^rest(?= (the )?({_COLOUR})\b)|lower(?= (the )?({_COLOUR})\b)", "put"),  # "rest red on green", "lower red onto
+    # green"; not "the rest", "the lower block"
     (r"(pile|stack) up|pile|stack", "stack"),
     (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
@@ -697,7 +701,7 @@ def _did_you_mean(word: str) -> str:
 @functools.cache
 def _known_words() -> tuple[str, ...]:
     """Every word the reader takes: colours, canonical words, fillers and the words of its phrases."""
-    phrased = {word for pattern, _ in PHRASES for word in re.findall(r"[a-z]{3,}", pattern)}
+    phrased = {word for pattern, _ in PHRASES for word in re.findall(r"[a-z]{3,}", re.sub(r"\\[a-zA-Z]", " ", pattern))}
     marks = {TOP_DOWN, DIRECTION, ANY_ORDER, IN_PLACE, INTO_A_TOWER, BUT_LEAVE, UNDER_A_TOWER, TOP_MARK, BASE_MARK, AFFIRMED}
     said = (set(BLOCK_COLOURS) | CANONICAL | FILLERS | phrased) - marks  # the reader's own marks are no words anyone says
     return tuple(sorted(word for word in said if "_" not in word))

@@ -554,6 +554,7 @@ PHRASES = [
      "in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
     ("tabletop", "rest red on green", "above(red,green)"),
+    ("tabletop", "two towers, one of red and green and one of blue and yellow", "above(green,red) & above(yellow,blue)"),
     ("tabletop", "lower red onto the top of green", "above(red,green)"),
     ("three_blocks", "nudge red toward green and relocate blue away from both", "close(red,green) & not close(red,blue) & "
                                                                                  "not close(green,blue)"),
@@ -1145,3 +1146,10 @@ def test_the_block_held_must_be_held_and_not_put_by_itself() -> None:
         parse_goal("put whatever you are holding in the bin", "tabletop", objects, [])
     with pytest.raises(GoalError, match="green would be above itself"):
         parse_goal("put the block you are holding on green", "tabletop", objects, [Literal("holding", ("green",))])
+
+
+@pytest.mark.parametrize("text", ["red green blue tower, others in bin", "tower of red, green, blue; bin yellow and orange",
+                                  "make a tower from red, green and blue and throw the others away"])
+def test_a_sort_said_tersely_is_a_tower_and_the_rest_binned(text: str) -> None:
+    said = parse_english(text, "tabletop", ("red", "green", "blue", "yellow", "orange"))
+    assert set(said) == literals("above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)")

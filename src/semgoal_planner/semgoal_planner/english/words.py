@@ -100,6 +100,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"remaining|at all))?", "unstack all"),  # "there should be no tower"
     (rf"(?P<block>{_COLOUR})( block| cube| one)? (is|should be|must be|will be) the only (block|cube|one)(?= (in|on|near|next|"
      r"held)\b)", r"only \g<block>"),  # "red is the only block in the bin"
+    (rf"(?P<refs>(the )?({_COLOUR})((,| and|,? then)? (the )?({_COLOUR}))+)( blocks| cubes)? (tower|stack|pile)(?= and\b| then\b|$)",
+     r"stack \g<refs>"),  # "red green blue tower, others in bin"
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -317,7 +319,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # "stack red, green and blue next to yellow", "in the bin", "on the table", "on yellow": the tower, so its bottom
     # block, goes there
     (r"(in|into|as|to) (a|one) (single )?(tower|stack|pile)", INTO_A_TOWER),  # "stack all blocks into one tower"
-    (r"(build|make|form|create) (two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
+    (r"((build|make|form|create) |^)(two|three|2|3|a couple of|several|some) (towers|stacks|piles)", ""),  # then each said
     (r"(take|remove|get|lift|move|put) (everything|all( the)?( blocks| cubes)?|them all|every block|each block) (off|from|"
      r"down from) "
      r"(the|that|this|your) (tower|stack|pile)", "unstack"),

@@ -1002,6 +1002,8 @@ def test_it_after_a_tower_is_built_is_that_tower(text: str, expected: str) -> No
      "above(green,red) & above(blue,green) & not close(red,yellow)"),
     ("build a tower of red and green, then put it in the bin and then put green on blue", "in_bin(red) & above(green,blue)"),
     ("stack red, green and blue then reverse the tower", "above(red,green) & above(green,blue)"),
+    ("build a tower of red, green and blue and turn it upside down", "above(red,green) & above(green,blue)"),
+    ("build a tower of red and green, wait, then reverse it", "above(red,green)"),
 ])
 def test_a_tower_built_then_moved_or_turned_over_is_moved_whole(text: str, expected: str) -> None:
     said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [])

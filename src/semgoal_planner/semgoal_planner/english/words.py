@@ -102,6 +102,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"held)\b)", r"only \g<block>"),  # "red is the only block in the bin"
     (rf"(?P<refs>(the )?({_COLOUR})((,| and|,? then)? (the )?({_COLOUR}))+)( blocks| cubes)? (tower|stack|pile)(?= and\b| then\b|$)",
      r"stack \g<refs>"),  # "red green blue tower, others in bin"
+    (r"wait( a (moment|second|bit|while|sec|minute))?(?! (for|until)\b)", ""),  # "put red in the bin, wait, then ..."
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -432,6 +433,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"swap( around| over)?|switch( around)?|exchange|trade places of|change places of", "swap"),
     (r"(swap|switch|change|reverse|invert|flip) the order( of (the )?(stacked )?(blocks|cubes|tower|stack|pile))?(?! of)",
      "swap the_whole"),  # "swap the order", as the paper's Swap-2 says it: the tower standing turned over
+    (r"(reverse|invert|flip( over)?|turn (over|upside down)) it|turn it (over|upside down)", "swap the_whole"),  # "build a
+    # tower of red and green, then reverse it"
     (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
     # green": two blocks swapped
     (r"pull|retrieve|fetch|extract|fish|dig|unload", "take"),

@@ -554,6 +554,8 @@ PHRASES = [
      "in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
     ("tabletop", "rest red on green", "above(red,green)"),
+    ("tabletop", "put red on green and blue on top", "above(red,green) & above(blue,red)"),
+    ("tabletop", "stack red on green, then put blue on top", "above(red,green) & above(blue,red)"),
     ("tabletop", "two towers, one of red and green and one of blue and yellow", "above(green,red) & above(yellow,blue)"),
     ("tabletop", "lower red onto the top of green", "above(red,green)"),
     ("three_blocks", "nudge red toward green and relocate blue away from both", "close(red,green) & not close(red,blue) & "

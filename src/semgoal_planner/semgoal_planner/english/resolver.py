@@ -143,6 +143,8 @@ class Resolver:
         """The last clause that said its relation (what an ellipsis such as 'but not green' borrows)."""
         self.tower_named = False
         """Whether a clause before named the tower as a whole, or as where a block goes (what 'the rest' leaves out)."""
+        self.built_top: str | None = None
+        """The top block of the last tower a clause built ("put red on green and blue on top": blue goes on red)."""
         self.carried: set[tuple[str, ...]] = set()
         """The towers built before that 'it' moves whole ("stack red, green and blue, then put it next to yellow"):
         their bottom blocks move, and what stands on them stays."""
@@ -255,7 +257,10 @@ class Resolver:
         if not subjects:
             raise LanguageError(UNORDERED_TOWER if clause.kind in ("tower", ANY_ORDER_TOWER) else
                                 f"say which block: {', '.join(self.blocks)}")
-        objects = self.blocks_of(clause.objects, besides=subjects)
+        if clause.kind == "on" and clause.objects == (Ref("other"),) and self.built_top and self.built_top not in subjects:
+            objects = (self.built_top,)  # "... and blue on top": on the tower just built, not on a block not named
+        else:
+            objects = self.blocks_of(clause.objects, besides=subjects)
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
         if ({TOWER_ALL, TOWER_REST} & set(objects) and clause.kind not in ("near", "away")) or (
@@ -298,6 +303,8 @@ class Resolver:
             said += [(lit.negated(), False) for b in excluded for lit in self._relation(clause.kind, (b,), objects)]
         self.last = subjects
         self.last_built = clause.kind == "tower" and not clause.negated and not unordered
+        if clause.kind in ("on", "tower") and not clause.negated and not unordered and not any(map(is_stand_in, subjects)):
+            self.built_top = subjects[-1]
         self.last_named = subjects + tuple(b for b in objects if b not in subjects)
         resolved = replace(clause, subjects=(Ref("colours", subjects),), objects=(Ref("colours", objects),) if objects else ())
         if not borrows_relation:

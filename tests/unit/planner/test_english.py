@@ -554,6 +554,7 @@ PHRASES = [
      "in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
     ("tabletop", "rest red on green", "above(red,green)"),
+    ("two_blocks", "make sure red isn't stacked on green", "not above(red,green)"),
     ("tabletop", "put red on green and blue on top", "above(red,green) & above(blue,red)"),
     ("tabletop", "stack red on green, then put blue on top", "above(red,green) & above(blue,red)"),
     ("tabletop", "two towers, one of red and green and one of blue and yellow", "above(green,red) & above(yellow,blue)"),
@@ -927,7 +928,9 @@ def test_the_planner_puts_a_block_on_the_tower_standing_now() -> None:
 @pytest.mark.parametrize("sentence", ["swap the two blocks", "Swap the positions of the two blocks.",
                                       "switch which block is on top", "reverse them", "flip red and green",
                                       "Swap 2 stacked blocks", "swap the order", "Swap blocks",
-                                      "swap the blocks so the bottom one is on top", "put the bottom block on top"])
+                                      "swap the blocks so the bottom one is on top", "put the bottom block on top",
+                                      "make red and green swap places", "have them trade places",
+                                      "red and green should switch places", "put each block where the other one is"])
 def test_the_planner_swaps_the_blocks_whichever_is_on_top_now(sentence: str) -> None:
     executive = Executive(SemanticPlanner("two_blocks"))
     for top, below in (("red", "green"), ("green", "red")):

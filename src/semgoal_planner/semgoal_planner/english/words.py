@@ -102,7 +102,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"held)\b)", r"only \g<block>"),  # "red is the only block in the bin"
     (rf"(?P<refs>(the )?({_COLOUR})((,| and|,? then)? (the )?({_COLOUR}))+)( blocks| cubes)? (tower|stack|pile)(?= and\b| then\b|$)",
      r"stack \g<refs>"),  # "red green blue tower, others in bin"
-    (r"wait( a (moment|second|bit|while|sec|minute))?(?! (for|until)\b)", ""),  # "put red in the bin, wait, then ..."
+    (r"wait( a (moment|second|bit|while|sec|minute))?(?! (for|until)\b)", ""),
+    (rf"((make|have|let) )?(?P<refs>{_LISTED}|them|the two( blocks| cubes)?|both( blocks| cubes)?)( should| must| will| can| "
+     r"need to| have to)? (swap|trade|switch|exchange|"
+     r"change) (places|positions|spots)( with each other| with one another)?|(put|move|place) (each|both|the two) (blocks? |cubes? )?"
+     r"(where|in the place of|in place of) the other( one| block| cube)?( is| was)?", r"swap \g<refs>"),  # "make red and green
+    # swap places", "put each block where the other one is"  # "put red in the bin, wait, then ..."
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
@@ -356,8 +361,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"( be)? (touch|touches|touching|near|next to|close to|beside|by|in contact with) (anything|any other( block| cube| one)?|"
      r"another( block| cube| one)?|each other|one another)", "all apart"),  # "nothing should touch anything"
     (r"nothing|none( of them| of the (blocks|cubes))?|no (two )?(blocks?|cubes?|ones?)", "all not"),
-    (r"(but |and )?not (be |being )?(stacked|piled)( up)?( on (top of )?(each other|one another|the other))?",
-     "and unstack them"),  # "put the blocks side by side but not stacked"
+    (r"(but |and )?not (be |being )?(stacked|piled)( up)?( on (top of )?(each other|one another|the other))?(?! (on|onto|upon|"
+     r"atop|on top of) )", "and unstack them"),  # "put the blocks side by side but not stacked"
     (r"without (stack|put (one|it|them) on (top of )?(the other|each other|one another|another))( them| it)?",
      "and unstack them"),  # "put red near green without stacking them": neither on the other (gerunds read as verbs)
     (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"

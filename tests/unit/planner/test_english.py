@@ -650,7 +650,9 @@ REFUSALS = [
     ("tabletop", "put red on green with red at the bottom", "red is in the tower said, not at its bottom"),
     ("tabletop", "put red in the bin with blue on top", "'with blue on top' names the top of a tower listed after"),
     ("tabletop", "place the green block to the left of red", r"directions and places on the table \(left of, behind, the "
-     r"corner\) are not among scene tabletop's predicates \(close, above, holding, in_bin\)"),
+     r"corner, a triangle\) are not among scene tabletop's predicates \(close, above, holding, in_bin\)"),
+    ("three_blocks", "arrange the blocks in a triangle", "directions and places on the table"),
+    ("three_blocks", "put them in a corner", "directions and places on the table"),
     ("tabletop", "put red in the corner of the table", "directions and places on the table"),
     ("three_blocks", "put red behind blue", r"not among scene three_blocks's predicates \(close, holding\)"),
     ("tabletop", "red on top, green in the middle, blue in the middle", "two blocks are said to be at one place"),

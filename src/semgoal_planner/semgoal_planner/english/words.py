@@ -302,6 +302,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
+    (r"(in|into|as) (a|an|the shape of an?) (triangle|circle|square|ring|cross|pyramid|diamond|l[- ]shape|t[- ]shape|star|"
+     r"rectangle|zig-?zag|v[- ]shape)|(form|make|build|create) an? (triangle|circle|square|ring|cross|pyramid|diamond|star)|"
+     r"(in|into|at|to) (a|the) (corner|edge|side)( of the (table|desk))?|(in|into|at|to) the (middle|center|centre) of the "
+     r"(table|desk)", DIRECTION),  # shapes and
+    # places on the table
     (rf"((to|in|into|at) (the )?(spot|place|position|location) )?where (the )?({_COLOUR})( block| cube| one)? (is|was|sits|sat|"
      rf"stands|stood|lies|lay|used to be)( before| now)?|from (left|right) to (left|right)|(on |at |to )?(the )?opposite "
      r"(sides|ends|corners|edges)( of the (table|desk))?", DIRECTION),  # "put red where green was": a place on the table
@@ -657,7 +662,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError("a block goes under a standing tower only by building the tower again on it: name the new "
                             "tower's blocks from the bottom up, e.g. 'build a tower of red, green and blue'")
     if DIRECTION in words:
-        raise LanguageError(f"directions and places on the table (left of, behind, the corner) are not among scene "
+        raise LanguageError(f"directions and places on the table (left of, behind, the corner, a triangle) are not among scene "
                             f"{scene}'s predicates ({', '.join(LAYOUTS[scene].scene.predicates)}): say e.g. "
                             f"{examples(scene, blocks)}")
     unknown = [w for w in words if w not in CANONICAL and w not in BLOCK_COLOURS]

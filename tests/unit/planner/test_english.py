@@ -555,6 +555,12 @@ PHRASES = [
     ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
     ("tabletop", "rest red on green", "above(red,green)"),
     ("two_blocks", "make sure red isn't stacked on green", "not above(red,green)"),
+    # one step a line, bulleted or lettered
+    ("tabletop", "put red in the bin\nput green on blue", "in_bin(red) & above(green,blue)"),
+    ("tabletop", "- red in the bin\n- green on blue", "in_bin(red) & above(green,blue)"),
+    ("tabletop", "\u2022 red in the bin\n  \u2022 green on blue", "in_bin(red) & above(green,blue)"),
+    ("tabletop", "a) put red in the bin b) put green on blue", "in_bin(red) & above(green,blue)"),
+    ("tabletop", "1) red in bin 2) green on blue", "in_bin(red) & above(green,blue)"),
     ("tabletop", "put red on green and blue on top", "above(red,green) & above(blue,red)"),
     ("tabletop", "stack red on green, then put blue on top", "above(red,green) & above(blue,red)"),
     ("tabletop", "two towers, one of red and green and one of blue and yellow", "above(green,red) & above(yellow,blue)"),

@@ -612,8 +612,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if len(text) > MAX_GOAL_CHARS:
         raise LanguageError(f"the goal is {len(text)} characters long; at most {MAX_GOAL_CHARS} are read")
     said = _plain(text).lower()
-    text = re.sub(r"[()\[\]\"]", " ", said)
-    text = _NUMBERED.sub(" ; ", text)  # "1. put red in the bin 2. put green in the bin": steps in turn
+    text = _NUMBERED.sub(" ; ", re.sub(r"\s*\n\s*", "\n", said))  # "1. put red in the bin 2. put green in the bin",
+    # one step a line: steps in turn
+    text = re.sub(r"[()\[\]\"]", " ", text)
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text) + " "
@@ -1010,8 +1011,10 @@ def _tower_by_positions(text: str) -> str:
     return text
 
 
-_NUMBERED = re.compile(r"(?:^|(?<=\s))(?:\d+[.)]|step \d+:?|(?:second|third|fourth|fifth|secondly|thirdly|next),)(?=\s)")
-"""A step's number or ordinal before it ('1.', '2)', 'step 3', 'second,'): the steps come in turn."""
+_NUMBERED = re.compile(r"(?:^|(?<=\s))(?:\d+[.)]|[a-h]\)|step \d+:?|(?:second|third|fourth|fifth|secondly|thirdly|next),)(?=\s)"
+                       r"|\n(?:[-*\u2022\u00b7]\s)?|^[-*\u2022\u00b7]\s")
+"""A step's number, letter, bullet or ordinal before it ('1.', '2)', 'b)', '- ', 'step 3', 'second,'), or a line of
+its own: the steps come in turn."""
 _GERUNDS = {"picking": "pick", "putting": "put", "placing": "place", "taking": "take", "moving": "move",
             "stacking": "stack", "unstacking": "unstack", "removing": "remove", "building": "build", "lifting": "lift",
             "grabbing": "grab", "dropping": "drop", "throwing": "throw", "tossing": "toss", "bringing": "bring",

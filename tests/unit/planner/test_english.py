@@ -555,6 +555,12 @@ PHRASES = [
     ("desk_cleanup", "unload red from the bin", "not in_bin(red)"),
     ("tabletop", "rest red on green", "above(red,green)"),
     ("two_blocks", "make sure red isn't stacked on green", "not above(red,green)"),
+    ("desk_cleanup", "clear everything off the desk except red and blue, which stay",
+     "in_bin(green) & in_bin(yellow) & not in_bin(red) & not in_bin(blue)"),
+    ("desk_cleanup", "everything goes in the bin, except yellow which stays on the desk",
+     "in_bin(red) & in_bin(green) & in_bin(blue) & not in_bin(yellow)"),
+    ("desk_cleanup", "only leave yellow on the desk",
+     "not holding(yellow) & not in_bin(yellow) & in_bin(red) & in_bin(green) & in_bin(blue)"),
     # one step a line, bulleted or lettered
     ("tabletop", "put red in the bin\nput green on blue", "in_bin(red) & above(green,blue)"),
     ("tabletop", "- red in the bin\n- green on blue", "in_bin(red) & above(green,blue)"),

@@ -102,6 +102,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"held)\b)", r"only \g<block>"),  # "red is the only block in the bin"
     (rf"(?P<refs>(the )?({_COLOUR})((,| and|,? then)? (the )?({_COLOUR}))+)( blocks| cubes)? (tower|stack|pile)(?= and\b| then\b|$)",
      r"stack \g<refs>"),  # "red green blue tower, others in bin"
+    (r"(and )?(which|who|that) (stays?|remains?|(is|are) (left|kept|staying|remaining))( on the (desk|table)| where (it|they) "
+     r"(is|are)| put| there| behind| out)?(?= and\b| then\b|$)", ""),  # "everything in the bin, except yellow which stays"
+    (r"only (?P<verb>leave|keep)", r"\g<verb> only"),  # "only leave yellow on the desk"
     (r"wait( a (moment|second|bit|while|sec|minute))?(?! (for|until)\b)", ""),
     (rf"((make|have|let) )?(?P<refs>{_LISTED}|them|the two( blocks| cubes)?|both( blocks| cubes)?)( should| must| will| can| "
      r"need to| have to)? (swap|trade|switch|exchange|"
@@ -358,7 +361,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
      r"gripper)|held)|(do not|don'?t|never|not) (hold|carry|grip|grasp)( on to| onto)? anything", "and release all"),  # "the
     # hand should be empty", "don't hold anything"
-    (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
+    (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|(clear|clean) (everything|all( the)?( blocks| "
+     r"cubes)?) (off|from) (of )?(the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
      r"(block|blocks|cube|cubes)( should| must| will)?( be| is| are| remains?| stays?| left)* (on|upon) (the )?(table|desk|"
      r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
      r"tabletop)", "clean the table"),  # "empty the desk", "no block should be left on the table"

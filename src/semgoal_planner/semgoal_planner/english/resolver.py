@@ -330,10 +330,9 @@ class Resolver:
             return (Literal("in_bin", (s,), False) for s in subjects)
         if kind == "keep":  # "don't move red": red's place kept, as it is when planned
             return (Literal(KEEP, (s,)) for s in subjects)
-        if kind == "hold":
-            if len(subjects) > 1 and not negated:  # "red and green should not be held": neither is
-                raise LanguageError(f"the hand holds one block at a time, not {' and '.join(subjects)}")
-            return (Literal("holding", (s,)) for s in subjects)
+        if kind == "hold":  # two held at once are refused by the consistency check, unless a later clause of the
+            return (Literal("holding", (s,)) for s in subjects)  # conjunction moves them ("pick up red and green and put
+            # both in the bin"); "red and green should not be held": neither is
         if kind == "release":
             return (Literal("holding", (s,), False) for s in subjects)
         if kind == "away" and not objects:  # "move green away": from every other block; on a desk, into the bin

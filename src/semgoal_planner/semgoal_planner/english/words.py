@@ -66,6 +66,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"along with|as well as", "and"),  # "red along with green in the bin"
     (r"the lower (?P<noun>block|cube|one)", r"the bottom \g<noun>"),  # "put the lower block in the bin": the tower's
     (r"the upper (?P<noun>block|cube|one)", r"the top \g<noun>"),
     (rf"(?:(?<=^)|(?<=\band )|(?<=\bthen ))(holding|held|in hand)(?= (the )?({_COLOUR})\b)", "hold"),  # "holding red", as
@@ -1043,7 +1044,8 @@ said first, what becomes of them after."""
 
 
 _COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|stack|take|bring|get|load) (?:(the )?(any )?"
-                                 r"(two|three|four|five|six|seven|eight|\d) (of the )?(blocks|cubes)|these|those|them|the "
+                                 r"(two|three|four|five|six|seven|eight|\d) (of the )?(blocks|cubes)|(these|those)( two| three| four| "
+                                 r"five| six| \d)?( blocks| cubes)?|them|the "
                                  r"following( blocks| cubes)?) (?P<where>(in|into|on|onto|next|near|beside|by|close|away|"
                                  r"far|out|off|to|inside)\b[^:;]*?)\s*:\s*(?P<named>[^.;]+)")
 """'put two blocks in the bin: red and green', 'put these in the bin: red, green': the blocks named after the colon,

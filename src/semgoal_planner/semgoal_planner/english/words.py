@@ -82,7 +82,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(further|farther|much|well|far)(?= (away|apart) from\b)", ""),  # "move red further away from green"
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
-    (r"(every|each)( single)? one of", "all of"),  # "put every one of the blocks in the bin"
+    (r"(every|each)( single)? one of", "all of"),
+    (r"(every|each|all( of)?( the)?) (block|cube)s? (of|in|from) (the|that|this|your) (tower|stack|pile)", "the whole tower"),  #
+    # "put every block of the tower on the table"  # "put every one of the blocks in the bin"
     (rf"(?P<lower>(the )?({_COLOUR}))( block| cube| one)? (should |must |will )?(be )?(supports?|supporting|bears?|bearing)"
      rf"(?= (the )?({_COLOUR})\b)", r"\g<lower> under"),  # "green supports red": red on green
     (rf"(?P<lower>(the )?({_COLOUR}))( block| cube| one)? (should |must |will )?(have|has) (?P<upper>(the )?({_COLOUR}))"
@@ -211,7 +213,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"uppermost|highest)(?! of\b)", rf"{TOP_MARK} \g<top>"),  # "a tower of red and green with blue on top"
     (rf"(and )?with (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|base|foot)|"
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
-    (r"(unstack|dismantle|disassemble|take apart|break up|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
+    (r"(spread|lay|put|take|break)( the| your| that| this)? (tower|stack|pile) (out|down|apart)( on the (table|desk))?|"
+     r"(unstack|dismantle|disassemble|take apart|break up|break down|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),
     (r"(take|pull|break) (?P<what>it|them) (apart|down)", r"unstack \g<what>"),  # "... then take it apart"  # blocks on the table
     (r"((that|which) (are|is) )?(except( for)?|but( for| leave| keep| spare| skip| not)?|other than|apart from|besides|"
@@ -299,7 +302,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"in (that|this|the same|the given|the listed|the named) order", ""),  # "stack red, green and blue in that order"
     (r"(in|into) (a|one|the same) (group|cluster|bunch|huddle|heap|clump)", "together"),  # "red and green in a group"
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
-     r"one at a time|(each )?in turn", ""),  # how soon, or in what turns, says nothing of where the blocks end
+     r"one at a time|(each )?in turn|(block|cube|piece|one) by (block|cube|piece|one)|one (block|cube|piece) at a time|"
+     r"flat(?= (on|upon)\b)", ""),  # how soon, or in what turns, says nothing of where the blocks end
     (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up|(needs?|has|"
      r"have|ought|got|is going|are going) to (go|get|move)(?= (in|into|inside|on|onto|next|near|beside|by|away|far|out|off|"
      r"back)\b)", ""),  # "red needs to go in the bin"
@@ -413,6 +417,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "apart"),
     (r"apart from", "away"),
     (r"far apart|apart|separated|isolated", "apart"),
+    (rf"line (?P<what>them|all|it|(the )?({_COLOUR})( and (the )?({_COLOUR}))*) up", r"group \g<what>"),  # "line the blocks up"
     (r"line up|line|arrange in a row", "group"),  # "line up red, green and blue"
     (r"arrange", "put"),  # "arrange red and green side by side"
     (rf"from (the )?(?P<from>{_COLOUR})( block| cube| one)? to(?= (the )?({_COLOUR})\b)", r"from \g<from> on"),  # "move

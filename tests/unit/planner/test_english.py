@@ -559,6 +559,11 @@ PHRASES = [
     ("desk_cleanup", "put these two in the bin: red and green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "red along with green in the bin", "in_bin(red) & in_bin(green)"),
     ("two_blocks", "unstack the tower block by block", "not above(red,green) & not above(green,red)"),
+    ("desk_cleanup", "take out every block except blue", "not in_bin(red) & not in_bin(green) & not in_bin(yellow) & "
+                                                         "in_bin(blue)"),
+    ("desk_cleanup", "empty the bin but keep blue in it", "not in_bin(red) & not in_bin(green) & in_bin(blue) & "
+                                                          "not in_bin(yellow)"),
+    ("desk_cleanup", "put red in the bin and put green in it too", "in_bin(red) & in_bin(green)"),
     ("two_blocks", "take the tower down one block at a time", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "break down the stack", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "spread the tower out on the table", "not above(red,green) & not above(green,red)"),
@@ -692,6 +697,7 @@ REFUSALS = [
     ("tabletop", "put red on green, actually on blue", "'actually' takes back what was said before it"),
     ("desk_cleanup", "put red in the bin, or rather green", "'or rather' takes back"),
     ("tabletop", "put red where green was", "directions and places on the table"),
+    ("desk_cleanup", "put red back where it was", "directions and places on the table"),
     ("three_blocks", "place red and green on opposite sides of the table", "directions and places on the table"),
     ("three_blocks", "line them up from left to right", "directions and places on the table"),
     ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),

@@ -66,6 +66,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"(?P<verb>take|get|pull|lift|fish) out (?P<what>(?!of\b)[^,;]+?)(?= (of|from) (the )?(bin|box|basket|trash)\b|$| and\b| "
+     r"then\b)", r"\g<verb> \g<what> out"),  # "take out every block except blue"
+    (r"(in|into|inside) it(?=( too| as well| also)?( and\b| then\b|$))", "in the bin"),  # "empty the bin but keep blue in it": no block holds one
     (r"along with|as well as", "and"),  # "red along with green in the bin"
     (r"the lower (?P<noun>block|cube|one)", r"the bottom \g<noun>"),  # "put the lower block in the bin": the tower's
     (r"the upper (?P<noun>block|cube|one)", r"the top \g<noun>"),
@@ -315,6 +318,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(in|into|at|to) (a|the) (corner|edge|side)( of the (table|desk))?|(in|into|at|to) the (middle|center|centre) of the "
      r"(table|desk)", DIRECTION),  # shapes and
     # places on the table
+    (r"(back )?((to|in|into|at) (the )?(spot|place|position|location) )?where (it|they) (was|were|used to be|came from|"
+     r"started|stood|lay)", DIRECTION),  # "put red back where it was": a place the goal cannot name
     (rf"((to|in|into|at) (the )?(spot|place|position|location) )?where (the )?({_COLOUR})( block| cube| one)? (is|was|sits|sat|"
      rf"stands|stood|lies|lay|used to be)( before| now)?|from (left|right) to (left|right)|(on |at |to )?(the )?opposite "
      r"(sides|ends|corners|edges)( of the (table|desk))?", DIRECTION),  # "put red where green was": a place on the table

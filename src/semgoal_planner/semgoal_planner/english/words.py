@@ -68,7 +68,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"stop (holding|carrying|gripping|grasping)", "release"),
     (r"(?P<verb>take|get|pull|lift|fish) out (?P<what>(?!of\b)[^,;]+?)(?= (of|from) (the )?(bin|box|basket|trash)\b|$| "
      r"and\b| then\b)", r"\g<verb> \g<what> out"),  # "take out every block except blue"
-    (r"(in|into|inside) it(?=( too| as well| also)?( and\b| then\b|$))", "in the bin"),  # "empty the bin but keep blue in it": no block holds one
+    (r"(in|into|inside) it(?=( too| as well| also)?( and\b| then\b|$))", "in the bin"),  # "empty the bin but keep blue
+    # in it": no block holds one
     (r"along with|as well as", "and"),  # "red along with green in the bin"
     (r"the lower (?P<noun>block|cube|one)", r"the bottom \g<noun>"),  # "put the lower block in the bin": the tower's
     (r"the upper (?P<noun>block|cube|one)", r"the top \g<noun>"),

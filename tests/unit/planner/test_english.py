@@ -564,6 +564,9 @@ PHRASES = [
     ("desk_cleanup", "empty the bin but keep blue in it", "not in_bin(red) & not in_bin(green) & in_bin(blue) & "
                                                           "not in_bin(yellow)"),
     ("desk_cleanup", "put red in the bin and put green in it too", "in_bin(red) & in_bin(green)"),
+    ("tabletop", "put the violet block in the bin and the turquoise one on the navy blue one",
+     "in_bin(purple) & above(cyan,blue)"),
+    ("desk_cleanup", "put the crimson, lime and golden blocks in the bin", "in_bin(red) & in_bin(green) & in_bin(yellow)"),
     ("two_blocks", "take the tower down one block at a time", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "break down the stack", "not above(red,green) & not above(green,red)"),
     ("two_blocks", "spread the tower out on the table", "not above(red,green) & not above(green,red)"),
@@ -623,7 +626,8 @@ REFUSALS = [
     ("desk_cleanup", "put it in the bin", "'it' or 'the block' is ambiguous"),
     ("desk_cleanup", "put the block in the bin", "'it' or 'the block' is ambiguous"),
     ("three_blocks", "move a cube next to green", "'it' or 'the block' is ambiguous"),
-    ("desk_cleanup", "put violet in the bin", "unknown word 'violet'"),
+    ("desk_cleanup", "put brown in the bin", "unknown word 'brown'"),
+    ("desk_cleanup", "put violet in the bin", "there is no purple block here: the blocks are red, green, blue, yellow"),
     ("desk_cleanup", "put purple in the bin", "there is no purple block here"),
     ("desk_cleanup", "swap the blocks", "'swap' trades the places of two blocks, not 4"),
     ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
@@ -738,8 +742,8 @@ def test_a_block_not_present_is_named() -> None:
 
 
 def test_an_unknown_word_is_answered_with_the_colours_of_the_blocks_present() -> None:
-    with pytest.raises(LanguageError, match=r"unknown word 'violet': goals name blocks by colour \(red, green, blue\)"):
-        parse_english("put violet near red", "three_blocks")
+    with pytest.raises(LanguageError, match=r"unknown word 'brown': goals name blocks by colour \(red, green, blue\)"):
+        parse_english("put brown near red", "three_blocks")
 
 
 @pytest.mark.parametrize(("sentence", "meant"), [("put red in teh bin", "the"), ("put red in the bni", "bin"),

@@ -59,8 +59,13 @@ NUMBERS = {"two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "ei
 _ORDINALS = {"second": 2, "third": 3, "fourth": 4, "fifth": 5, "sixth": 6, "seventh": 7}
 """A block's place counted in a tower ('the second block from the top'), the end itself being 'the top block'."""
 
+_SHADES = {"purple": r"violet|lilac|lavender", "cyan": r"turquoise|teal|aqua(marine)?|(light|sky) blue", "yellow": r"gold(en)?",
+           "red": r"scarlet|crimson", "green": r"lime|emerald", "blue": r"navy( blue)?|(dark|royal) blue"}
+"""Other names of the blocks' colours, each for the one colour of the eight it can only mean."""
+
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
+    *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
     (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
     # the world has it when planned (alone, it is refused as asking for no change)
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "

@@ -1172,6 +1172,7 @@ def test_a_tower_built_then_taken_down_leaves_each_of_its_blocks_off_the_others(
 @pytest.mark.parametrize(("text", "expected"), [
     ("drop what you are holding in the bin", "in_bin(block_held)"),
     ("drop the block you are holding onto green", "above(block_held,green)"),
+    ("put the block that is held in the bin", "in_bin(block_held)"),
     ("drop it", "not holding(block_held)"),
     ("release the block", "not holding(block_held)"),
     ("pick up red and drop it", "not holding(red)"),

@@ -255,7 +255,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(whatever|what|the (block|cube|one|thing)( that| which)?) (you are|you're|you have|you've got|the robot is|the robot"
      r" has|the hand is|the gripper is|is)( currently| now| still)? (holding|carrying|gripping|grasping|got|in (your|the|its) "
      r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
-     r"(hold|have|carry)", "the_held"),  # "put whatever you are holding in the bin": the block held when planned
+     r"(hold|have|carry)|the (block|cube|one) (that|which) (is|'s) (held|being held|in (your|the|its) (hand|gripper))",
+     "the_held"),  # "put whatever you are holding in the bin": the block held when planned
     *((rf"the ({word}|{k}(st|nd|rd|th))[- ](block |cube |one )?(from|counting from)[- ](the[- ])?(?P<end>top|bottom)"
        r"( block| cube| one)?( of (the|that|this|your) (tower|stack|pile))?", rf"the_\g<end>{k}")
       for word, k in _ORDINALS.items()),  # "the second block from the top", "the second-from-top block": when planned

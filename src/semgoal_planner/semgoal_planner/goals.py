@@ -30,6 +30,7 @@ from semgoal_planner.english import (
 )
 from semgoal_planner.english.resolver import (
     HELD,
+    IN_BIN_BLOCK,
     TOP_PREFIX,
     TOWER_MIDDLE,
     is_tower_place,
@@ -111,16 +112,23 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
 
 def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with each block named by where it stands placed in ``state``: ``block_on_red`` becomes the block
-    on red, ``block_under_green`` the block green is on, ``block_held`` the block in the hand. GoalError where none is."""
+    on red, ``block_under_green`` the block green is on, ``block_held`` the block in the hand, ``block_in_bin`` the one
+    block in the bin. GoalError where none is, or several are."""
     on = {lit.args[1]: lit.args[0] for lit in state if lit.name == "above" and lit.value}  # block -> the one on it
     under = {upper: below for below, upper in on.items()}
     held = [lit.args[0] for lit in state if lit.name == "holding" and lit.value]
+    binned = [lit.args[0] for lit in state if lit.name == "in_bin" and lit.value]
 
     def placed(arg: str) -> str:
         if arg == HELD:
             if not held:
                 raise GoalError("the hand holds no block now: name the block instead")
             return held[0]
+        if arg == IN_BIN_BLOCK:
+            if len(binned) != 1:
+                raise GoalError(f"{'no block is' if not binned else f'{len(binned)} blocks are'} in the bin now"
+                                f"{' (' + ', '.join(binned) + ')' if binned else ''}: name the block instead")
+            return binned[0]
         if arg.startswith(ON_PREFIX):
             block = arg.removeprefix(ON_PREFIX)
             if block not in on:

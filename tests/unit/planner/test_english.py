@@ -1189,6 +1189,24 @@ def test_the_block_held_must_be_held_and_not_put_by_itself() -> None:
         parse_goal("put the block you are holding on green", "tabletop", objects, [Literal("holding", ("green",))])
 
 
+@pytest.mark.parametrize(("text", "expected"), [
+    ("take the block that is in the bin out", "not in_bin(green)"),
+    ("take the block out of the bin and put it on red", "not in_bin(green) & above(green,red)"),
+    ("put the block in the bin next to red", "close(red,green)"),
+])
+def test_the_block_in_the_bin_is_the_one_there_when_planned(text: str, expected: str) -> None:
+    goal = parse_goal(text, "tabletop", ("red", "green", "blue"), [Literal("in_bin", ("green",))])
+    assert {str(literal) for literal in goal} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("binned", "reason"), [((), "no block is in the bin now"),
+                                                (("green", "red"), r"2 blocks are in the bin now \(green, red\)")])
+def test_the_block_in_the_bin_must_be_one(binned: tuple[str, ...], reason: str) -> None:
+    with pytest.raises(GoalError, match=reason):
+        parse_goal("take the block out of the bin", "tabletop", ("red", "green", "blue"),
+                   [Literal("in_bin", (b,)) for b in binned])
+
+
 @pytest.mark.parametrize("text", ["red green blue tower, others in bin", "tower of red, green, blue; bin yellow and orange",
                                   "make a tower from red, green and blue and throw the others away"])
 def test_a_sort_said_tersely_is_a_tower_and_the_rest_binned(text: str) -> None:

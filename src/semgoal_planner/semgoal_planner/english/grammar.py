@@ -97,6 +97,7 @@ ref: COLOUR                      -> colour
    | "the_whole"                 -> whole
    | "the_upper" COLOUR          -> upper
    | "the_held"                  -> held_block
+   | "the_binned"                -> binned_block
    | LEVEL                       -> level
    | "the_lower" COLOUR          -> lower
 
@@ -379,6 +380,9 @@ class Clauses(lark.Transformer):
 
     def held_block(self, _: list) -> Ref:
         return Ref("held")
+
+    def binned_block(self, _: list) -> Ref:
+        return Ref("binned")
 
     def level(self, items: list) -> Ref:
         return Ref("level", (str(items[0]),))

@@ -24,6 +24,9 @@ in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_towe
 HELD = "block_held"
 """'whatever you are holding': ``block_held`` in a goal's literals until it is planned
 (:func:`~semgoal_planner.goals.relative`)."""
+IN_BIN_BLOCK = "block_in_bin"
+"""'the block that is in the bin': ``block_in_bin`` in a goal's literals until it is planned
+(:func:`~semgoal_planner.goals.relative`)."""
 ON_PREFIX, UNDER_PREFIX = "block_on_", "block_under_"
 """'the block on red', 'the block under green': ``block_on_red``, ``block_under_green`` in a goal's literals until it is
 planned (:func:`~semgoal_planner.goals.relative`)."""
@@ -45,6 +48,7 @@ PLACED_WHEN_PLANNED = {
           "onto what the other stood on, or the one in the bin comes out); swap(tower_all): the tower standing then, "
           "built again upside down",
     HELD: "the block in the hand when the goal is planned",
+    IN_BIN_BLOCK: "the one block in the bin when the goal is planned",
     TOP_PREFIX: "(tower_top_K) the K-th block from the top of the tower standing when the goal is planned",
     BOTTOM_PREFIX: "(tower_bottom_K) the K-th block from the bottom of the tower standing when the goal is planned",
     TOWER_MIDDLE: "the middle block of the tower standing when the goal is planned (of an odd number of blocks)",
@@ -169,6 +173,8 @@ class Resolver:
             return ((ON_PREFIX if ref.kind == "upper" else UNDER_PREFIX) + ref.colours[0],)
         if ref.kind == "held":  # "whatever you are holding": the block in the hand when planned
             return (HELD,)
+        if ref.kind == "binned":  # "the block that is in the bin": the one there when planned
+            return (IN_BIN_BLOCK,)
         if ref.kind == "level":  # "the second block from the top": counted in the tower when planned
             said = ref.colours[0]
             return (TOWER_MIDDLE if said == "the_middle" else

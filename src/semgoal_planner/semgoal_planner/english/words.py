@@ -257,6 +257,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
      r"(hold|have|carry)|the (block|cube|one) (that|which) (is|'s) (held|being held|in (your|the|its) (hand|gripper))",
      "the_held"),  # "put whatever you are holding in the bin": the block held when planned
+    (r"the (block|cube|one) (that|which) (is|'s) (in|inside) the (bin|box|basket|trash|container)|the (block|cube|one) (in|"
+     r"inside) the (bin|box|basket|trash|container)(?= (out|on|onto|next|near|beside|by|away|back|to)\b)|the (block|cube|one)"
+     r"(?= (out of|from) the (bin|box|basket|trash|container)\b)", "the_binned"),  # "take the block that is in the bin
+    # out", "put the block in the bin on the table": the one there when planned
     *((rf"the ({word}|{k}(st|nd|rd|th))[- ](block |cube |one )?(from|counting from)[- ](the[- ])?(?P<end>top|bottom)"
        r"( block| cube| one)?( of (the|that|this|your) (tower|stack|pile))?", rf"the_\g<end>{k}")
       for word, k in _ORDINALS.items()),  # "the second block from the top", "the second-from-top block": when planned
@@ -504,7 +508,8 @@ CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
     "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
-    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "the_middle", "swap", ANY_ORDER,
+    "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "the_binned", "the_middle", "swap",
+    ANY_ORDER,
     IN_PLACE, AFFIRMED,
     *(f"the_{end}{k}" for end in ("top", "bottom") for k in range(2, 9)),
 })

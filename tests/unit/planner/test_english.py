@@ -564,6 +564,10 @@ PHRASES = [
     ("desk_cleanup", "empty the bin but keep blue in it", "not in_bin(red) & not in_bin(green) & in_bin(blue) & "
                                                           "not in_bin(yellow)"),
     ("desk_cleanup", "put red in the bin and put green in it too", "in_bin(red) & in_bin(green)"),
+    ("three_blocks", "place red on the table far from green", "not holding(red) & not close(red,green)"),
+    ("desk_cleanup", "let red fall into the bin", "in_bin(red)"),
+    ("desk_cleanup", "pick red off the table", "holding(red)"),
+    ("desk_cleanup", "lift red from the table", "holding(red)"),
     ("tabletop", "put the violet block in the bin and the turquoise one on the navy blue one",
      "in_bin(purple) & above(cyan,blue)"),
     ("desk_cleanup", "put the crimson, lime and golden blocks in the bin", "in_bin(red) & in_bin(green) & in_bin(yellow)"),

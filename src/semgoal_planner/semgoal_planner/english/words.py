@@ -71,6 +71,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (rf"let (?P<what>(the )?({_COLOUR})( block| cube| one)?|it|them) (fall|drop|go)(?= (in|into|on|onto|next|near|beside|"
+     r"by)\b)", r"put \g<what>"),  # "let red fall into the bin"
+    (rf"(?P<verb>pick|lift|grab|raise) (?P<what>(the )?({_COLOUR})( block| cube| one)?|it) (up )?(off|from) (of )?the "
+     r"(table|desk)", r"\g<verb> \g<what> up"),  # "pick red off the table": into the hand
     (r"(?P<verb>take|get|pull|lift|fish) out (?P<what>(?!of\b)[^,;]+?)(?= (of|from) (the )?(bin|box|basket|trash)\b|$| "
      r"and\b| then\b)", r"\g<verb> \g<what> out"),  # "take out every block except blue"
     (r"(in|into|inside) it(?=( too| as well| also)?( and\b| then\b|$))", "in the bin"),  # "empty the bin but keep blue
@@ -407,7 +411,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # the blocks from the desk into the bin": where they go
     (r"not (near|next to|close to|by|beside|touching) (anything|any( other)? (block|cube|one))", "away"),  # "not
     # near anything": away from every other block
-    (r"(on|onto|to) (the )?(table|desk)(?= (next to|near|beside|close to|by)\b)", r"\g<0> and"),  # "put red on the
+    (r"(on|onto|to) (the )?(table|desk)(?= (next to|near|beside|close to|by|away from|far from|apart from)\b)",
+     r"\g<0> and"),  # "put red on the
     # table next to green": both
     (rf"fill (up )?(the )?(bin|basket|box|trash|bucket)( up)? with (?P<what>(the )?({_COLOUR})(( and|,)? (the )?"
      rf"({_COLOUR}))*)", r"put \g<what> in the bin"),  # "fill the bin with red and blue"

@@ -412,8 +412,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"not (near|next to|close to|by|beside|touching) (anything|any( other)? (block|cube|one))", "away"),  # "not
     # near anything": away from every other block
     (r"(on|onto|to) (the )?(table|desk)(?= (next to|near|beside|close to|by|away from|far from|apart from)\b)",
-     r"\g<0> and"),  # "put red on the
-    # table next to green": both
+     r"\g<0> and"),  # "put red on the table next to green": both
     (rf"fill (up )?(the )?(bin|basket|box|trash|bucket)( up)? with (?P<what>(the )?({_COLOUR})(( and|,)? (the )?"
      rf"({_COLOUR}))*)", r"put \g<what> in the bin"),  # "fill the bin with red and blue"
     (r"(is|are|be|stays?|gets?) left(?= (on|in|off|out|near|next|by|beside)\b)", ""),  # "no block is left on the desk"

@@ -910,8 +910,8 @@ def _listing_start(words: list[str], end: int) -> int:
 _COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
                       r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
-_BLOCKS_AFTER_A_VERB = re.compile(r"^\s*(?P<verb>move|put|place|bring|get|push|pull|swap|switch|exchange|stack|separate|gather|"
-                                  r"group|arrange|spread|set|lay) (?:(?P<count>" + "|".join(NUMBERS) + r"|[2-8]) )?(?:stacked "
+_BLOCKS_AFTER_A_VERB = re.compile(r"^\s*(?:(?P<verb>move|put|place|bring|get|push|pull|swap|switch|exchange|stack|separate|gather|"
+                                  r"group|arrange|spread|set|lay) )?(?:(?P<count>" + "|".join(NUMBERS) + r"|[2-8]) )?(?:stacked "
                                   r"|scattered |loose )?(?:blocks|cubes)\b")
 """A goal's first words naming the blocks bare, with or without their count ('move blocks apart', 'Move 2 blocks
 closer', 'swap 2 stacked blocks', as the paper names its tasks): all of them."""
@@ -935,7 +935,7 @@ def _verb_on_all(match: re.Match, blocks: Sequence[str]) -> str:
     left as said (and refused later as leaving open which)."""
     if match["count"] and not _counts_all(match["count"], blocks):
         return match[0]
-    return f" {match['verb']} all "
+    return f" {match['verb'] or ''} all "
 
 
 _EXCEPTION_AFTER_ALL = re.compile(

@@ -531,6 +531,7 @@ PHRASES = [
     ("three_blocks", "move blocks further apart", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("three_blocks", "three blocks close", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("desk_cleanup", "4 blocks in the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "first of all, put red in the bin, and to begin with green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "Desk clean up", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("desk_cleanup", "clean up the desk and place all the blocks inside the bin",
      "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),

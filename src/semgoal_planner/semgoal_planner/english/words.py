@@ -374,7 +374,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"( up)?( (on|onto) (the )?(table|desk))?(?! (on|onto|next|near|beside|by|in|into|away)\b)", r"stack \g<what>"),
     # "pile everything up", "stack all blocks on the table": one tower (on the table, where a tower stands)
     (r"(build|make|form|create)( a| the| one)? (tower|stack|pile)( with| of| from| out of| using)?|tower", "stack"),
-    (r"(at|on) the (bottom|base|foot)|at first|first|to start with|to start|bottom up|from the bottom( up)?", ""),
+    (r"(at|on) the (bottom|base|foot)|first of all|first off|to begin with|for starters|at first|first|to start with|to start|"
+     r"bottom up|from the bottom( up)?", ""),
     (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),

@@ -127,6 +127,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"change) (places|positions|spots)( with each other| with one another)?|(put|move|place) (each|both|the two) (blocks? |cubes? )?"
      r"(where|in the place of|in place of) the other( one| block| cube)?( is| was)?", r"swap \g<refs>"),  # "make red and green
     # swap places", "put each block where the other one is"  # "put red in the bin, wait, then ..."
+    (r"(is it|would it be|will it be|could it be) possible( for you)? to|(i|we) (was|were|am|are) (hoping|wondering)( if| "
+     r"whether| that)?( you)?( could| can| would| might| will)?|^you( really)? (should|must|need to|have to|will|can|could|"
+     r"ought to|are to)", ""),  # "is it possible to put red on green", "you should put red in the bin"
+    (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
+     r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with

@@ -132,6 +132,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"ought to|are to)", ""),  # "is it possible to put red on green", "you should put red in the bin"
     (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
      r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
+    (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
+    (r"in contact(?= and\b| then\b|$)", "together"),  # "red and green in contact"
+    (rf"(?<=\band )that(?= (the )?({_COLOUR})\b)", ""),  # "ensure that red sits on green and that blue ..."
     (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with

@@ -105,7 +105,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # it"
     (r"(?P<head>(not|\w*n't|never)( \w+){0,2}? (touching|touch|touches|near|next to|close to|beside|by)) either"
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
-    (r"(and )?(that is (it|all)|nothing (else|more)|(and )?(we are|you are|we're|you're) done)(?= and\b| then\b|$)", ""),  #
+    (r"(and )?(that is (it|all)|nothing (else|more)|(and |when |once )?(we are |you are |we're |you're |are )?(done|finished))"
+     r"(?= and\b| then\b|$)", ""),  #
     # "red on green and that's it": the goal ends there
     (r"^((the|your|my|our) )?(goal|task|objective|aim|job|mission)( here| for you)?( is| will be)?( (to|that)( have| get| make"
      r"| achieve)?)?(?= )", ""),  # "the goal is to have red on green", "Task: stack red on green"
@@ -135,7 +136,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
     (r"in contact(?= and\b| then\b|$)", "together"),  # "red and green in contact"
     (rf"(?<=\band )that(?= (the )?({_COLOUR})\b)", ""),  # "ensure that red sits on green and that blue ..."
-    (r"at all times|all the time|always|forever|for good|permanently", ""),  # the goal's state is the one it ends in
+    (r"at all times|all the time|always|forever|for good|permanently|no matter what|whatever happens|in any case|regardless|"
+     r"eventually|(by|at) the end( of (it|the (task|episode|run|day)))?|(when|once) (you are|you're|you've|you have) (done|"
+     r"finished)", ""),  # the goal's state is the one it ends in
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
@@ -153,6 +156,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"
+    (rf"if (?P<refs>(the )?({_COLOUR})( block| cube| one)?) (is not|isn't|is n't) (?P<place>(in|on|onto|next to|near|beside|"
+     r"by|away from|out of) [^,]+?),? (then )?(put|move|place|get) it there", r"put \g<refs> \g<place>"),  # "if red isn't in
+    # the bin, put it there": the goal says so
     (r"(unless|if|in case) (it|they|that|this) (is|are|isn't|aren't|is not|are not) (not )?(already|yet) (there|so|done|in place"
      r"|in (the )?(bin|box|basket|trash))", ""),  # "put purple in the bin unless it is already there": the goal says so
     (r"(?P<join>and|then) (build |make )?(another|a second|a separate|one more)( tower| stack| pile| one)? (of|with|from|using"

@@ -727,6 +727,8 @@ REFUSALS = [
     ("desk_cleanup", "put red back where it was", "directions and places on the table"),
     ("three_blocks", "place red and green on opposite sides of the table", "directions and places on the table"),
     ("three_blocks", "line them up from left to right", "directions and places on the table"),
+    ("desk_cleanup", "Stop!", "'stop' is an order to the robot, not a goal"),
+    ("tabletop", "undo that", "'undo' is an order to the robot, not a goal"),
     ("desk_cleanup", "put half of the blocks in the bin", "'half of the blocks' leaves open which"),
     ("desk_cleanup", "move 2 blocks to the bin", "'2' blocks, but which"),
     ("desk_cleanup", "put all blocks but one in the bin", "'all blocks but one' leaves open which"),

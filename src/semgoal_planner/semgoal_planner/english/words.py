@@ -676,6 +676,10 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NOT_EITHER_OF.sub(lambda m: f"{m['head']} {'other' if m['others'] else 'both'}", text)
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
+    if order := _AN_ORDER.match(said):
+        raise LanguageError(f"'{order['order']}' is an order to the robot, not a goal (the state the world should end in): "
+                            f"pause, resume or re-plan with './semgoal plan pause|resume|replan', start again with the "
+                            f"sim's reset_world service; a goal says where the blocks go, e.g. {examples(scene, blocks)}")
     if (taken_back := _CORRECTION.search(said)) and re.search(r"\w", said[:taken_back.start()]):
         raise LanguageError(f"'{taken_back[0]}' takes back what was said before it: say the goal once, as the world "
                             f"should end, e.g. {examples(scene, blocks)}")
@@ -972,6 +976,9 @@ _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a c
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\ball (?:the )?(?:blocks |cubes )?(?:but|"
                       r"except(?: for)?|save) (?:one|two|three|four|five|six|\d)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
+_AN_ORDER = re.compile(r"^\W*(?:please\W+)?(?P<order>stop|cancel|abort|halt|pause|resume|continue|reset|restart|undo|redo|"
+                       r"never ?mind|help|quit|exit|start over)\W*(?:please|now|it|that|everything)?\W*$")
+"""'stop', 'undo', 'help': an order about the run, not a state to reach (refused with where those orders go)."""
 _CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch that|i mean|on second thought|or rather|correction|"
                          r"actually|make that)\b")
 """'put red in the bin, no wait, green': words that take back what came before them (refused after a word)."""

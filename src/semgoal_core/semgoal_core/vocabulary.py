@@ -232,6 +232,11 @@ def parse_literal(text: str) -> Literal:
     return Literal(PREDICATE_ALIASES.get(name, name), args, value=match["neg"] is None)
 
 
+_ABSENT = {"close": "it does not say which blocks are near each other", "above": "no block stands on another there",
+           "holding": "it does not say which block is in the hand", "in_bin": "it has no bin"}
+"""What a scene without a predicate lacks, as a person would say it."""
+
+
 class SemanticLayout:
     """The canonical semantic vector of one scene: which literal each entry holds, and conversions.
 
@@ -297,7 +302,7 @@ class SemanticLayout:
             raise VocabularyError(f"unknown predicate {literal.name!r} in {literal}: known are {', '.join(PREDICATE_ARITY)}")
         if literal.name not in self.scene.predicates:
             raise VocabularyError(f"predicate {literal.name!r} is not used in scene {self.scene.name!r} "
-                                  f"(it uses {', '.join(self.scene.predicates)})")
+                                  f"(it uses {', '.join(self.scene.predicates)}): {_ABSENT[literal.name]}")
         arity = PREDICATE_ARITY[literal.name]
         if len(literal.args) != arity:
             raise VocabularyError(f"{literal}: {literal.name} takes {arity} argument(s), got {len(literal.args)}")

@@ -654,7 +654,7 @@ REFUSALS = [
     ("desk_cleanup", "put purple in the bin", "there is no purple block here"),
     ("desk_cleanup", "swap the blocks", "'swap' trades the places of two blocks, not 4"),
     ("desk_cleanup", "stack red on green", "'above' is not used in scene 'desk_cleanup'"),
-    ("three_blocks", "put red in the bin", "'in_bin' is not used in scene 'three_blocks'"),
+    ("three_blocks", "put red in the bin", "'in_bin' is not used in scene 'three_blocks' \\(it uses close, holding\\): it has no bin"),
     ("three_blocks", "put yellow near red", "there is no yellow block here"),
     ("desk_cleanup", "hold red and green", "holds one block at a time"),
     ("desk_cleanup", "put red in the bin and take it out", "contradictory goal"),

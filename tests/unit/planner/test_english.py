@@ -545,6 +545,13 @@ PHRASES = [
     ("desk_cleanup", "if red isn't in the bin, put it there", "in_bin(red)"),
     ("desk_cleanup", "make sure red ends up in the bin no matter what", "in_bin(red)"),
     ("desk_cleanup", "red in the bin by the end", "in_bin(red)"),
+    # what a person wants, or does not
+    ("desk_cleanup", "I don't want any block in the bin", "not in_bin(red) & not in_bin(green) & not in_bin(blue) & "
+                                                          "not in_bin(yellow)"),
+    ("tabletop", "I don't want red on green", "not above(red,green)"),
+    ("desk_cleanup", "I'd rather have red in the bin", "in_bin(red)"),
+    ("tabletop", "it would be nice to have red on green", "above(red,green)"),
+    ("tabletop", "what I want is red on green", "above(red,green)"),
     ("desk_cleanup", "when you are done, red should be in the bin", "in_bin(red)"),
     ("tabletop", "eventually put red in the bin, and by the end of the task green must be on blue",
      "in_bin(red) & above(green,blue)"),

@@ -133,6 +133,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"ought to|are to)", ""),  # "is it possible to put red on green", "you should put red in the bin"
     (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
      r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
+    (r"(i|we) (do not|don'?t) want( you to)?( have| put| see| leave)?", "do not put"),  # "I don't want red on green"
+    (r"(?<=\bnot put )(any|a single|a) (block|cube|one)s?", "all"),  # "I don't want any block in the bin": none there
+    (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
+     r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
     (r"in contact(?= and\b| then\b|$)", "together"),  # "red and green in contact"
     (rf"(?<=\band )that(?= (the )?({_COLOUR})\b)", ""),  # "ensure that red sits on green and that blue ..."

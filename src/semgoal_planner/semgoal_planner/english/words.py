@@ -71,6 +71,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (rf"(?P<block>(the )?({_COLOUR}))( block| cube| one)?'s? (top|upper side|top face)", r"the top of \g<block>"),  # "put red on
+    # green's top"
+    (rf"^(?P<place>(on top of|on|onto|atop|in|into|inside|next to|near|beside|close to|away from) (the )?({_COLOUR}|bin|box|"
+     rf"basket)( block| cube| one)?)( and)? (?P<verb>put|place|stack|set|drop) (?P<what>(the )?({_COLOUR})( block| cube| "
+     r"one)?)(?= and\b| then\b|$)", r"\g<verb> \g<what> \g<place>"),  # "on top of green put red": the place said first
     (rf"let (?P<what>(the )?({_COLOUR})( block| cube| one)?|it|them) (fall|drop|go)(?= (in|into|on|onto|next|near|beside|"
      r"by)\b)", r"put \g<what>"),  # "let red fall into the bin"
     (rf"(?P<verb>pick|lift|grab|raise) (?P<what>(the )?({_COLOUR})( block| cube| one)?|it) (up )?(off|from) (of )?the "

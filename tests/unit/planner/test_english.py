@@ -549,6 +549,11 @@ PHRASES = [
     ("desk_cleanup", "I don't want any block in the bin", "not in_bin(red) & not in_bin(green) & not in_bin(blue) & "
                                                           "not in_bin(yellow)"),
     ("tabletop", "I don't want red on green", "not above(red,green)"),
+    ("desk_cleanup", "don't put any block in the bin", "not in_bin(red) & not in_bin(green) & not in_bin(blue) & "
+                                                       "not in_bin(yellow)"),
+    ("tabletop", "red should not be on another block", "not above(red,green) & not above(red,blue) & not above(red,yellow) & "
+                                                       "not above(red,orange) & not above(red,purple) & not above(red,cyan) & "
+                                                       "not above(red,pink)"),
     ("desk_cleanup", "I'd rather have red in the bin", "in_bin(red)"),
     ("tabletop", "it would be nice to have red on green", "above(red,green)"),
     ("tabletop", "what I want is red on green", "above(red,green)"),
@@ -659,7 +664,9 @@ PHRASES = [
 REFUSALS = [
     ("desk_cleanup", "put it in the bin", "'it' or 'the block' is ambiguous"),
     ("desk_cleanup", "put the block in the bin", "'it' or 'the block' is ambiguous"),
-    ("three_blocks", "move a cube next to green", "'it' or 'the block' is ambiguous"),
+    ("three_blocks", "move a cube next to green", r"'a cube' leaves open which block: name it by colour \(red, green, blue\)"),
+    ("tabletop", "add another block to the tower", "'another block' leaves open which block"),
+    ("tabletop", "put one more block on the tower", "'one more block' leaves open which block"),
     ("desk_cleanup", "put brown in the bin", "unknown word 'brown'"),
     ("desk_cleanup", "put violet in the bin", "there is no purple block here: the blocks are red, green, blue, yellow"),
     ("desk_cleanup", "put purple in the bin", "there is no purple block here"),

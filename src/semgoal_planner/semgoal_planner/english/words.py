@@ -139,7 +139,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
      r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
     (r"(i|we) (do not|don'?t) want( you to)?( have| put| see| leave)?", "do not put"),  # "I don't want red on green"
-    (r"(?<=\bnot put )(any|a single|a) (block|cube|one)s?", "all"),  # "I don't want any block in the bin": none there
+    (r"(?P<neg>(don'?t|do not|never|not) (put|place|move|leave|have|keep|stack|set|drop)) (any|a single|a) (block|cube|one)s?",
+     r"\g<neg> all"),  # "I don't want any block in the bin": none there
     (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
      r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
@@ -683,6 +684,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
         text = _EACH_TOWER.sub(" stack ", text)
     text = _NOT_EITHER_OF.sub(lambda m: f"{m['head']} {'other' if m['others'] else 'both'}", text)
+    if one := _ONE_NOT_NAMED.search(text):
+        raise LanguageError(f"'{one['said'].strip()}' leaves open which block: name it by colour ({', '.join(blocks)})")
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
     if order := _AN_ORDER.match(said):
@@ -981,6 +984,10 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_ONE_NOT_NAMED = re.compile(r"^(?!.*(?:\b(?:not|never|no|nothing|without|nor)\b|n't\b))(?:.*\s)?(?P<said>(?:another|any|some|one "
+                            r"more|an?)(?: other)? (?:block|cube))\b(?! tower)")
+"""'put another block on the tower', 'move any block next to red': one block the goal does not name (refused; where the
+sentence denies, 'not on another block' is every other block)."""
 _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|half|most|many|two|three|four|five|six|seven|"
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\ball (?:the )?(?:blocks |cubes )?(?:but|"
                       r"except(?: for)?|save) (?:one|two|three|four|five|six|\d)\b")

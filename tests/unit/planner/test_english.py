@@ -1185,6 +1185,7 @@ def test_readings_of_equal_rank_are_chosen_the_same_in_any_order() -> None:
 
 
 @pytest.mark.parametrize("sentence", ["put one block on the other", "put red and green on top of each other",
+                                      "put all blocks on top of each other", "stack it all up", "place every block on another",
                                       "red and green should be on top of each other", "stack red and green on one another"])
 def test_one_block_on_the_other_is_a_tower_of_the_two_in_either_order(sentence: str) -> None:
     assert parse_english(sentence, "two_blocks") == [Literal("stack", ("red", "green"))]
@@ -1255,3 +1256,9 @@ def test_the_block_in_the_bin_must_be_one(binned: tuple[str, ...], reason: str) 
 def test_a_sort_said_tersely_is_a_tower_and_the_rest_binned(text: str) -> None:
     said = parse_english(text, "tabletop", ("red", "green", "blue", "yellow", "orange"))
     assert set(said) == literals("above(green,red) & above(blue,green) & in_bin(yellow) & in_bin(orange)")
+
+
+def test_them_on_top_of_each_other_is_a_tower_of_the_blocks_named_before() -> None:
+    said = parse_english("take red and green out of the bin and put them on top of each other", "tabletop",
+                         ("red", "green", "blue"))
+    assert said == [Literal("in_bin", ("red",), False), Literal("in_bin", ("green",), False), Literal("stack", ("red", "green"))]

@@ -212,6 +212,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(?P<refs>{_LISTED})( blocks| cubes)?( should| must| are| is| will| can)?( not| never)( be)? (stacked|piled|put|placed|"
      r"set)( up)? (on|onto|upon|atop|on top of) (each other|one another)", r"do not stack \g<refs>"),  # "red and green should
     # not be stacked on each other": neither on the other
+    (r"(?P<verb>put|place|set|stack|pile|move) (?P<refs>all( of)?( the)?( blocks| cubes)?|the (blocks|cubes)|everything|them|"
+     r"every (block|cube)) (on|onto|upon|atop|on top of) (each other|one another|another)", rf"stack \g<refs> {ANY_ORDER}"),
+    # "put all blocks on top of each other": one tower of them
+    (r"(?P<verb>stack|pile) (?P<what>it all|them all|everything|all( of)?( the)?( blocks| cubes)?|them) up", r"\g<verb> "
+     r"\g<what>"),  # "stack it all up"
+    (r"\bit all\b", "all"),
     (rf"(?P<verb>(put|place|set|stack|pile|move) )?(?P<refs>{_LISTED})( blocks| cubes)?(( should| must| will| can)? be)?"
      rf"( stacked| piled| placed| put| set)?( up)? (on|onto|upon|atop|on top of) (each other|one another)",
      rf"stack \g<refs> {ANY_ORDER}"),  # "put red and green on top of each other": one on the other, either way

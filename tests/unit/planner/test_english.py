@@ -561,6 +561,7 @@ PHRASES = [
     ("tabletop", "on top of green put red", "above(red,green)"),
     ("tabletop", "atop green, place red", "above(red,green)"),
     ("desk_cleanup", "into the bin drop red", "in_bin(red)"),
+    ("tabletop", "heap red on green", "above(red,green)"),
     ("desk_cleanup", "when you are done, red should be in the bin", "in_bin(red)"),
     ("tabletop", "eventually put red in the bin, and by the end of the task green must be on blue",
      "in_bin(red) & above(green,blue)"),

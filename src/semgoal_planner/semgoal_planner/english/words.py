@@ -513,7 +513,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"return|lay|add|load|put|relocate|nudge|chuck|pop|insert|plop|perch|balance|cent(er|re)|reposition", "put"),
     (rf"^rest(?= (the )?({_COLOUR})\b)|lower(?= (the )?({_COLOUR})\b)", "put"),  # "rest red on green", "lower red onto
     # green"; not "the rest", "the lower block"
-    (r"(pile|stack) up|pile|stack", "stack"),
+    (r"(pile|stack|heap) up|pile|stack|heap", "stack"),
     (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),

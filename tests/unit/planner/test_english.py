@@ -562,6 +562,8 @@ PHRASES = [
     ("tabletop", "atop green, place red", "above(red,green)"),
     ("desk_cleanup", "into the bin drop red", "in_bin(red)"),
     ("tabletop", "heap red on green", "above(red,green)"),
+    ("desk_cleanup", "move both the red and the green block to the bin", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "red then green in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "when you are done, red should be in the bin", "in_bin(red)"),
     ("tabletop", "eventually put red in the bin, and by the end of the task green must be on blue",
      "in_bin(red) & above(green,blue)"),

@@ -529,7 +529,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
 """(regular expression over whole words, canonical word): applied in order."""
 
 FILLERS = frozenset({
-    "please", "pls", "plz", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also", "too", "just", "some", "your",
+    "please", "pls", "plz", "respectively", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also",
+    "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
@@ -680,7 +681,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text) + " "
-    text = re.sub(r"\bboth\b(?= (" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both red and green"
+    text = re.sub(r"\bboth\b(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both (the) red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
@@ -799,9 +800,14 @@ def _listing_in_order(words: list[str]) -> list[str]:
     for i, word in enumerate(words):
         listed = (word == "then" and 0 < i < len(words) - 1 and words[i + 1] in BLOCK_COLOURS
                   and not (words[i + 2:i + 3] == ["and"] and words[i + 3:i + 4] and words[i + 3] in BLOCK_COLOURS)
-                  and _listing_after_verb(words[:i]))
+                  and (_listing_after_verb(words[:i]) or _bare_list(words[:i])))
         joined.append("and" if listed else word)
     return joined
+
+
+def _bare_list(words: list[str]) -> bool:
+    """Whether ``words`` are blocks only, with no verb or place ('red then green in the bin': one list)."""
+    return all(word in BLOCK_COLOURS or word == "and" for word in words)
 
 
 def _top_named_last(words: list[str]) -> list[str]:

@@ -71,6 +71,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
+    (r"(assemble|erect|raise|put together|set up|compose|put up)(?= (a|an|one|the|your) ((\d|two|three|four|five|six)[- ]"
+     r"(block|cube|storey|story|level)s?[- ])?(tall |high |big |single )?(tower|stack|pile)\b)", "build"),  # "erect a tower of ..."
     (rf"(?P<block>(the )?({_COLOUR}))( block| cube| one)?'s? (top|upper side|top face)", r"the top of \g<block>"),  # "put red on
     # green's top"
     (rf"^(?P<place>(on top of|on|onto|atop|in|into|inside|next to|near|beside|close to|away from) (the )?({_COLOUR}|bin|box|"

@@ -565,6 +565,7 @@ PHRASES = [
     ("desk_cleanup", "move both the red and the green block to the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "red then green in the bin", "in_bin(red) & in_bin(green)"),
     ("tabletop", "erect a tower of red and green", "above(green,red)"),
+    ("tabletop", "yellow under blue under green under red", "above(blue,yellow) & above(green,blue) & above(red,green)"),
     ("tabletop", "put together a tower of red, green and blue", "above(green,red) & above(blue,green)"),
     ("tabletop", "assemble a 2-block tower out of red and green", "above(green,red)"),
     ("desk_cleanup", "when you are done, red should be in the bin", "in_bin(red)"),

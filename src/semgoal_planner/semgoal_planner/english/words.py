@@ -904,10 +904,10 @@ def _chain_ends(words: list[str]) -> tuple[str, str, set[str]] | None:
 
 
 def _chained_on(words: list[str]) -> list[str]:
-    """'blue on green on red': each block on the next, 'blue on green and green on red'."""
+    """'blue on green on red': each block on the next, 'blue on green and green on red' (and so for 'under')."""
     chained = list(words[:2])
     for i in range(2, len(words)):
-        if (words[i] == "on" and words[i - 1] in BLOCK_COLOURS and words[i - 2] == "on"
+        if (words[i] in ("on", "under") and words[i - 1] in BLOCK_COLOURS and words[i - 2] == words[i]
                 and i + 1 < len(words) and words[i + 1] in BLOCK_COLOURS):
             chained += ["and", words[i - 1]]
         chained.append(words[i])

@@ -697,6 +697,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError(f"'{one['said'].strip()}' leaves open which block: name it by colour ({', '.join(blocks)})")
     if some := _SOME_OF.search(text):  # after 'three of the blocks: red, green and blue' is read
         raise LanguageError(f"'{some[0]}' leaves open which: name the blocks by colour ({', '.join(blocks)})")
+    if _A_QUESTION.match(said):
+        raise LanguageError(f"{said.strip()!r} is a question, not a goal: a goal says how the world should end, e.g. "
+                            f"{examples(scene, blocks)}; what holds now is on /semgoal/semantic_state (the console shows it)")
     if order := _AN_ORDER.match(said):
         raise LanguageError(f"'{order['order']}' is an order to the robot, not a goal (the state the world should end in): "
                             f"pause, resume or re-plan with './semgoal plan pause|resume|replan', start again with the "
@@ -1006,6 +1009,10 @@ _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a c
                       r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\ball (?:the )?(?:blocks |cubes )?(?:but|"
                       r"except(?: for)?|save) (?:one|two|three|four|five|six|\d)\b")
 """'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
+_A_QUESTION = re.compile(r"^\W*(?:(?:is|are|does|do|did|was|were|has|have)\b(?!\s+(?:you|it possible)\b).*\?\W*$|(?:where|which|"
+                         r"what|how|why|who|when)\b(?!.*\b(?:you|i|we)\b.*\b(?:want|like|need)\b).*\?\W*$|(?:where|which|how "
+                         r"many|why)\b)")
+"""'is red in the bin?', 'where is red?': asking about the world, not saying how it should end (refused)."""
 _AN_ORDER = re.compile(r"^\W*(?:please\W+)?(?P<order>stop|cancel|abort|halt|pause|resume|continue|reset|restart|undo|redo|"
                        r"never ?mind|help|quit|exit|start over)\W*(?:please|now|it|that|everything)?\W*$")
 """'stop', 'undo', 'help': an order about the run, not a state to reach (refused with where those orders go)."""

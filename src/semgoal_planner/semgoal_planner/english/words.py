@@ -145,6 +145,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"\g<neg> all"),  # "I don't want any block in the bin": none there
     (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
      r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
+    (rf"(and )?as (does|do|is|are|should|will|must)(?= (the )?({_COLOUR})\b)", "and"),  # "red goes in the bin, as does green"
+    (r"((then|and) )?(do )?(the )?same (for|with|to)", "and"),  # "put red in the bin; same for green"
+    (rf"(?P<refs>(the )?({_COLOUR})( block| cube| one)?) (bin|trash|basket)(?= and\b| then\b|$)", r"\g<refs> in the bin"),  #
+    # "Red: bin."
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
     (r"in contact(?= and\b| then\b|$)", "together"),  # "red and green in contact"
     (rf"(?<=\band )that(?= (the )?({_COLOUR})\b)", ""),  # "ensure that red sits on green and that blue ..."
@@ -531,7 +535,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
 """(regular expression over whole words, canonical word): applied in order."""
 
 FILLERS = frozenset({
-    "please", "pls", "plz", "respectively", "instead", "the", "a", "an", "of", "robot", "now", "again", "back", "also",
+    "please", "pls", "plz", "respectively", "likewise", "similarly", "instead", "the", "a", "an", "of", "robot", "now",
+    "again", "back", "also",
     "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
@@ -661,13 +666,14 @@ def _order_left_open(words: list[str]) -> list[str]:
 
 _TYPOGRAPHY = str.maketrans({"\u2018": "'", "\u2019": "'", "\u201b": "'", "\u00b4": "'", "`": "'", "\u201c": '"',
                              "\u201d": '"', "\u201e": '"', "\u2014": ", ", "\u2013": ", ", "\u2015": ", ", "\u2026": ".",
-                             "\u00a0": " ", "+": " and "})
+                             "\u00a0": " ", "+": " and ", "\u2192": " to "})
 """What word processors and phones put for plain characters ('Don\u2019t', \u201cred\u201d, a dash between clauses)."""
 
 
 def _plain(text: str) -> str:
     """``text`` in plain characters, without emoji and other symbols that say nothing of where a block goes."""
-    text = re.sub(r"\s+-+\s+", ", ", text.translate(_TYPOGRAPHY))  # "put red in the bin - green too"
+    text = re.sub(r"\s*[-=]+>\s*", " to ", text.translate(_TYPOGRAPHY))  # "red -> bin"
+    text = re.sub(r"\s+-+\s+", ", ", text)  # "put red in the bin - green too"
     return "".join(c for c in text if unicodedata.category(c) not in ("So", "Sk", "Cf", "Cs", "Co"))
 
 

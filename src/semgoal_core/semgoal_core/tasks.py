@@ -268,7 +268,13 @@ def scene_tasks(scene: str) -> tuple[str, ...]:
 def is_task_name(text: str) -> bool:
     """Whether ``text`` names a task (case-insensitive, its hyphen a space, '_' or nothing: ``tower 5``, ``DC3``;
     said as an order: ``run DC-3``, ``task MC-2 please``)."""
-    return any(_task_key(text) == _task_key(name) for name in ALL_TASKS)
+    return _named_task(text) is not None
+
+
+def _named_task(text: str) -> str | None:
+    """The name of the task ``text`` names, else None."""
+    key = _task_key(text)
+    return next((name for name in ALL_TASKS if _task_key(name) == key), None)
 
 
 _TASK_ORDERED = re.compile(r"^(?:(?:please|now)\s+)?(?:(?:run|do|start|perform|execute|solve|try)\s+(?:the\s+)?(?:task\s+)?|"
@@ -336,7 +342,6 @@ def goal_form(text: str) -> str:
 
 def get_task(name: str) -> Task:
     """Look a task up by its name (case-insensitive), or raise with the list of valid names."""
-    for task_name, task in ALL_TASKS.items():
-        if _task_key(task_name) == _task_key(name):
-            return task
+    if (task_name := _named_task(name)) is not None:
+        return ALL_TASKS[task_name]
     raise KeyError(f"unknown task {name!r}: tasks are {', '.join(ALL_TASKS)}")

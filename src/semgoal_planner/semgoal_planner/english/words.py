@@ -1028,16 +1028,16 @@ _CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch tha
 _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID})\s+(?:up\s+)?(?:above|"
                         r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
 """'hold blue above the bin': a place in the air, which no predicate says (refused)."""
-_NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>put|place|stack|move|set|drop|throw|toss|get|"
-                               rf"bring|lay|hold|carry|grab|pick up|lift)\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or "
-                               rf"(?P<second>{_BLOCK_SAID})")
+_HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")
+_PLACING_VERBS = ("put", "place", "move", "set", "stack", "drop", "throw", "toss", "get", "bring", "lay")
+"""The verbs a 'neither ... nor' or a denied 'or' may follow: those that put a block somewhere, or into the hand."""
+_NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>" + "|".join(_PLACING_VERBS + _HOLDING_VERBS)
+                               + rf")\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""
 _KEPT_FROM = re.compile(rf"\b(?:stop|prevent|keep)\s+(?P<blocks>{_BLOCK_SAID}(?:,? and {_BLOCK_SAID})*)\s+from\s+"
                         r"(?:being |going |getting |ending up )?")
 """'stop red from touching green', 'prevent red from being in the bin': red, not."""
-_HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")
-_NEITHER = re.compile(r"\b(?:(?P<verb>put|place|move|set|stack|drop|throw|toss|get|bring|lay|"
-                      + "|".join(_HOLDING_VERBS) + r") )?"
+_NEITHER = re.compile(r"\b(?:(?P<verb>" + "|".join(_PLACING_VERBS + _HOLDING_VERBS) + r") )?"
                       rf"neither (?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) nor (?P<second>{_BLOCK_SAID})"
                       r"(?: (?:should|must|will|can|may|is|are)(?: be)?| be)?\b")
 """'neither red nor green (should be) in the bin', 'put neither red nor green in the bin': both, not."""

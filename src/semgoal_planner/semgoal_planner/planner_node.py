@@ -27,6 +27,7 @@ from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal, WorldState
 from semgoal_msgs.srv import EditPlan, GetPlan
+from semgoal_planner.arm_worlds import ArmWorlds
 from semgoal_planner.doubt import Doubt
 from semgoal_planner.executive import Executive
 from semgoal_planner.goal_action import FINAL, GoalAction
@@ -44,8 +45,6 @@ from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
 from semgoal_ros.parameters import apply_changes, declare
 
 SILENCE_CHECK_S = 0.25
-WORLDS_KEPT = 8
-"""World states kept for :meth:`PlannerNode.reach`: the one each semantic state was derived from is among them."""
 
 
 class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
@@ -56,8 +55,8 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.executive = Executive(SemanticPlanner(values["scene"], values["search"]), robots=robots,
                                    reach=self.reach if len(robots) > 1 else None,
                                    **{name: values[name] for name in EXECUTIVE_PARAMS})
-        self.worlds: dict[tuple[int, int], WorldState] = {}
-        """With two arms: the latest world states by (episode, step) (where each block and hand is), for :meth:`reach`."""
+        self.worlds: ArmWorlds[WorldState, SemanticState] | None = ArmWorlds() if len(robots) > 1 else None
+        """With two arms: the latest world states (where each block and hand is), for :meth:`reach`."""
         self.state_wait_s = float(values["state_wait_s"])
         self.world_silence_s = float(values["world_silence_s"])
         self.doubt = Doubt(values["min_confidence"], values["unsure_wait_steps"])
@@ -195,17 +194,15 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.events_pub.publish(event)
 
     def world_callback(self, msg: WorldState) -> None:
-        self.worlds[(msg.episode, msg.step)] = msg
-        if len(self.worlds) > WORLDS_KEPT:
-            del self.worlds[next(iter(self.worlds))]
+        held = self.worlds.add(msg)
+        if held is not None:
+            self.semantic_callback(held)
 
     def reach(self, block: str) -> tuple[str, ...]:
         """The arms that may take a step on ``block`` in the world state of the semantic state being decided on (in
         lockstep the world runs a step or two ahead), else the latest, the nearer first
         (:func:`semgoal_core.arms.takers`); every arm before one came."""
-        state = self.last_state
-        world = self.worlds.get((state.episode, state.step)) if state is not None else None
-        world = world or (self.worlds[next(reversed(self.worlds))] if self.worlds else None)
+        world = self.worlds.world_of(self.last_state) if self.worlds is not None else None
         names = [b.name for b in world.blocks] if world is not None else []
         if block not in names:
             return self.executive.robots

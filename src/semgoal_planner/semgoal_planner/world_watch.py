@@ -1,5 +1,6 @@
 """The planner node's ear on the world: each semantic state is screened (another scene, an older episode, a
-state that does not fit the scene, a world started again), then ticks the executive and, unless the source
+state that does not fit the scene, a world started again; with two arms, held back until its world state came:
+:mod:`~semgoal_planner.arm_worlds`), then ticks the executive and, unless the source
 marks it stale or the plan relies on a literal it is unsure of, is observed; a world gone silent fails the
 goal with the reason. A mix-in of :class:`~semgoal_planner.planner_node.PlannerNode`."""
 
@@ -22,6 +23,8 @@ class WorldWatch:
     def semantic_callback(self, msg: SemanticState) -> None:
         if msg.scene != self.executive.planner.scene:
             self.get_logger().warn(f"ignored a semantic state of scene {msg.scene!r}", throttle_duration_sec=5.0)
+            return
+        if self.worlds is not None and self.worlds.hold_back(msg):  # two arms: decided once its world state came
             return
         if self.last_state is not None and sim_time(msg) < sim_time(self.last_state):  # one sim's clock never goes back
             self.world_restarted(msg)

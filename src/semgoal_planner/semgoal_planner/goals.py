@@ -181,7 +181,7 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
             said = (f"say which block, e.g. 'put {sorted(moved)[0]} on {tops[0]}'" if moved else
                     f"name the blocks instead of 'the tower' (the first is {', '.join(standing[0])}, from the bottom)")
             raise GoalError(f"{len(standing)} towers stand now (topped by {', '.join(tops)}): {said}")
-        tower = standing[0]
+        tower = _swapped_in(standing[0], literals)
         kept = [b for b in tower if b not in moved] or tower
     placed = []
     if Literal(SWAP, (TOWER_ALL,)) in literals:  # the tower reversed: each block under the one it was on, and 'the
@@ -201,6 +201,17 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
         if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
             place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
+
+
+def _swapped_in(tower: list[str], literals: Sequence[Literal]) -> list[str]:
+    """``tower`` (bottom first) as the goal's swaps of two of its blocks leave it: 'swap red and green, then put blue
+    on the tower' puts blue on the block that ends on top."""
+    tower = list(tower)
+    for literal in literals:
+        if literal.name == SWAP and set(literal.args) <= set(tower):
+            i, j = (tower.index(block) for block in literal.args)
+            tower[i], tower[j] = tower[j], tower[i]
+    return tower
 
 
 def _counted(place: str, tower: Sequence[str]) -> str:

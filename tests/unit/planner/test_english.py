@@ -943,6 +943,8 @@ def test_parse_goal_cli_contract(capsys) -> None:
     ("keep blue away from the pile, then put green on the tower", "not close(blue,tower_base) & above(green,tower_top)"),
     ("switch red and green, then put blue in the bin", "swap(red,green) & in_bin(blue)"),
     ("exchange the red and the green block", "swap(red,green)"),
+    ("swap red and green and put blue on top", "swap(red,green) & above(blue,tower_top)"),
+    ("switch red and green, then place blue on the top", "swap(red,green) & above(blue,tower_top)"),
     ("put the top block in the bin", "in_bin(tower_top)"),
     ("pick up the block on top of the tower", "holding(tower_top)"),
     ("put the bottom block of the stack in the bin", "in_bin(tower_base)"),
@@ -1043,6 +1045,15 @@ def test_the_planner_turns_the_tower_standing_now_upside_down(sentence: str, the
     ok, message = executive.set_goal(f"{sentence}, then {then}")
     assert ok and "(the goal: above(red,green) & above(green,blue) & above(orange,red))" in message, message
     assert [str(s.subgoal) for s in executive.steps][-2:] == ["pick(orange)", "put_on(orange,red)"]
+
+
+@pytest.mark.parametrize("sentence", ["swap red and green and put blue on top",
+                                      "switch green and red, then put blue on the tower"])
+def test_a_block_put_on_top_after_a_swap_goes_on_the_block_the_swap_leaves_on_top(sentence: str) -> None:
+    executive = Executive(SemanticPlanner("tabletop"))
+    executive.observe(Observation(("red", "green", "blue", "yellow"), [Literal("above", ("red", "green"))], 0))
+    ok, message = executive.set_goal(sentence)
+    assert ok and "above(green,red)" in message and "above(blue,green)" in message, message
 
 
 def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_blocks() -> None:

@@ -481,6 +481,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # red from green to blue": off one block, onto the other
     (r"in(?=( (and|then)\b)|$)", "in the bin"),  # "put everything else in"
     (r"over to", "to"),
+    (r"(?P<swap>\b(swap|switch|exchange|trade|reverse|invert|flip)\b[^;]*?\bon) (the )?top(?! of)",
+     r"\g<swap> the_tower"),  # "swap red and green and put blue on top": on the tower as the swap leaves it, not on
+    # a block the sentence does not name
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
     (r"in the middle of|midway between|next to|close to|near to|adjacent to|beside|besides|alongside|nearby|"

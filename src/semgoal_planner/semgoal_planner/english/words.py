@@ -63,10 +63,15 @@ _SHADES = {"purple": r"violet|lilac|lavender", "cyan": r"turquoise|teal|aqua(mar
            "red": r"scarlet|crimson", "green": r"lime|emerald", "blue": r"navy( blue)?|(dark|royal) blue"}
 """Other names of the blocks' colours, each for the one colour of the eight it can only mean."""
 
+_NO_PLACE_AFTER = (rf"(?!(\s+(the\s+)?({_COLOUR})(\s+(block|cube|one))?(\s+(and|or|nor))?)+\s+(in|into|inside|on|onto|to|"
+                   r"near|next|beside|by|close|away|off|out|from|under)\b)")
+"""After 'don't move': no place follows the blocks ('don't move red into the bin' is not 'keep red')."""
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
-    (r"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift)", "keep"),  # "don't move red": red's place as
+    (rf"(without|and not|but not)( ever)? (moving|move|disturbing|disturb|shifting|shift){_NO_PLACE_AFTER}", "and keep"),
+    # "put orange in the bin without moving red": red kept ('not move red' alone would read 'not put red down': held)
+    (rf"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift){_NO_PLACE_AFTER}", "keep"),  # "don't move red": red's place as
     # the world has it when planned (alone, it is refused as asking for no change)
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
@@ -172,6 +177,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"
+    (r"(?P<whole>(clear|clean|empty|tidy)( off| up)? (the )?(table|desk|tabletop|workspace|surface)) (into|in|to) (the )?"
+     r"(bin|basket|box|trash|bucket)", r"\g<whole>"),  # "empty the desk into the bin"
     (rf"if (?P<refs>(the )?({_COLOUR})( block| cube| one)?) (is not|isn't|is n't) (?P<place>(in|on|onto|next to|near|beside|"
      r"by|away from|out of) [^,]+?),? (then )?(put|move|place|get) it there", r"put \g<refs> \g<place>"),  # "if red isn't in
     # the bin, put it there": the goal says so
@@ -453,9 +460,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"fill (up )?(the )?(bin|basket|box|trash|bucket)( up)? with (?P<what>(the )?({_COLOUR})(( and|,)? (the )?"
      rf"({_COLOUR}))*)", r"put \g<what> in the bin"),  # "fill the bin with red and blue"
     (r"(is|are|be|stays?|gets?) left(?= (on|in|off|out|near|next|by|beside)\b)", ""),  # "no block is left on the desk"
-    (rf"(the )?bin (should |must |will |has to |needs to |is to )?(contains?|holds?|has|have|gets?) "
-     rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(only |just )?(the )?({_COLOUR})( block| cube| one)?"
-     rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)", r"\g<what> in the bin"),  # "the bin should contain red"
+    *((rf"(the )?bin (should |must |will |has to |needs to |is to |to )?(contains?|holds?|has|have|gets?) "
+       rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(only |just )?(the )?({_COLOUR})( block| cube| one)?"
+       rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)( in (it|the bin)| inside( it)?)?{only}",
+       rf"{said}\g<what> in the bin") for only, said in ((r" only\b", "only "), ("", ""))),  # "the bin should contain red",
+    # "I want the bin to contain red and blue only", "the bin has red in it"
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
     (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
@@ -720,6 +729,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         raise LanguageError(f"'{held[0].strip()}': where the hand is is none of scene {scene}'s predicates ("
                             f"{', '.join(LAYOUTS[scene].scene.predicates)}); holding says only which block is in the hand: "
                             f"say 'hold {held['block']}' or where the block should go, e.g. {examples(scene, blocks)}")
+    text = _KEPT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "without moving red or green": both kept
     text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
     text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
     text = _NEITHER.sub(lambda m: f" {m['first']} and {m['second']} not {'held' if m['verb'] in _HOLDING_VERBS else ''} ",
@@ -1034,6 +1044,12 @@ _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK
 _HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")
 _PLACING_VERBS = ("put", "place", "move", "set", "stack", "drop", "throw", "toss", "get", "bring", "lay")
 """The verbs a 'neither ... nor' or a denied 'or' may follow: those that put a block somewhere, or into the hand."""
+_KEPT_EITHER = re.compile(r"\b(?P<head>(?:don't|dont|do not|never)\s+(?:move|touch|disturb|shift)|(?:without|and not|but not)\s+"
+                          rf"(?:moving|move|disturbing|disturb|shifting|shift))\s+(?P<first>{_BLOCK_SAID}(?:\s+(?:and\s+)?"
+                          rf"{_BLOCK_SAID})*)\s+(?:or|nor)\s+(?P<second>{_BLOCK_SAID})(?!\s+(?:in|into|inside|on|onto|to|near|"
+                          r"next|beside|by|close|away|off|out|from|under)\b)")
+"""'without moving red or green', 'don't touch red or green': both kept where they are (the 'or' under a 'not'), as
+long as no place follows ('don't move red or green into the bin' is :data:`_NOT_ONE_OR_OTHER`'s)."""
 _NOT_ONE_OR_OTHER = re.compile(r"\b(?:don't|dont|do not|never|not)\s+(?P<verb>" + "|".join(_PLACING_VERBS + _HOLDING_VERBS)
                                + rf")\s+(?P<first>{_BLOCK_SAID}(?: and {_BLOCK_SAID})*) or (?P<second>{_BLOCK_SAID})")
 """'don't put red or green in the bin': neither (the 'or' under a 'not')."""

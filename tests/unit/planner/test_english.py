@@ -694,6 +694,8 @@ REFUSALS = [
     ("desk_cleanup", "put red in the bin and take it out", "contradictory goal"),
     ("desk_cleanup", "leave red where it is", "asks for no change"),
     ("desk_cleanup", "do not move red", "asks for no change"),
+    ("tabletop", "don't push red", "asks for no change"),
+    ("three_blocks", "red should not be on the table", "'not on the table' leaves open where red should be"),
     ("tabletop", "don't knock the tower over", "asks for no change"),
     ("tabletop", "do not unstack", "'not unstack' asks for nothing"),
     ("desk_cleanup", "put red in the", "cannot read the goal as a sentence"),
@@ -1106,6 +1108,26 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
 ])
 def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, text: str, expected: str) -> None:
     assert {str(literal) for literal in parse_english(text, scene)} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize(("scene", "text", "expected"), [
+    ("tabletop", "put blue in the bin without pushing red", "in_bin(blue) & keep(red)"),
+    ("desk_cleanup", "don't carry red", "not holding(red)"),
+    ("desk_cleanup", "put blue in the bin without getting red", "in_bin(blue) & not holding(red)"),
+    ("desk_cleanup", "don't throw red", "not in_bin(red)"),
+    ("desk_cleanup", "put blue in the bin without throwing red", "in_bin(blue) & not in_bin(red)"),
+    ("desk_cleanup", "don't carry red into the bin", "not in_bin(red)"),
+    ("desk_cleanup", "don't drop red", "holding(red)"),
+    ("tabletop", "put blue in the bin and don't stack red",
+     "in_bin(blue) & not above(red,green) & not above(red,blue) & not above(red,yellow)"),
+    # not on the table: where the scene has a bin, in it (as 'nothing on the table'), never on every block at once
+    ("desk_cleanup", "red should not be on the table", "in_bin(red)"),
+    ("tabletop", "put blue in the bin and don't leave red on the table", "in_bin(blue) & in_bin(red)"),
+])
+def test_a_denied_move_with_no_place_is_the_verbs_own_opposite(scene: str, text: str, expected: str) -> None:
+    """Never what the verb alone would do: 'don't carry red' is not 'hold red'."""
+    blocks = ("red", "green", "blue", "yellow")
+    assert {str(literal) for literal in parse_english(text, scene, blocks)} == set(expected.split(" & "))
 
 
 @pytest.mark.parametrize(("text", "expected"), [

@@ -285,6 +285,12 @@ class Resolver:
         if clause.negated and clause.kind == "unstack":  # not every 'not above' at once: that is no state at all
             raise LanguageError("'not unstack' asks for nothing: a tower left standing needs no goal; say where the "
                                 "blocks should be, e.g. 'stack red on green'")
+        if clause.kind == "table" and clause.negated:  # "red should not be on the table": as "nothing on the table"
+            if "in_bin" not in LAYOUTS[self.scene].scene.predicates:
+                raise LanguageError(f"'not on the table' leaves open where {' and '.join(subjects)} should be: say where, "
+                                    f"e.g. 'put {subjects[0]} on {next(b for b in self.blocks if b not in subjects)}' or "
+                                    f"'hold {subjects[0]}'")
+            clause = replace(clause, kind="in_bin", negated=False)  # where the scene has a bin, into it
         self.mentioned += [b for b in (*subjects, *objects) if b not in self.mentioned]
         self.tower_named |= TOWER_ALL in subjects or bool(set(objects) & {TOWER_TOP, TOWER_BASE, TOWER_ALL})
         generic = any(ref.kind in ("all", "other") for ref in clause.subjects)
@@ -369,7 +375,9 @@ class Resolver:
             return (Literal("above", p if kind == "on" else p[::-1]) for p in pairs)
         if kind == "off":
             return (Literal("above", (s, o), False) for s in subjects for o in (objects or others(s)) if s != o)
-        if kind == "tower" and negated:  # "do not stack red and green": none of them on another, either way
+        if kind == "tower" and negated:  # "do not stack red and green": none of them on another, either way; "do not
+            if len(subjects) == 1:  # stack red": on no other block
+                return (Literal("above", (subjects[0], o)) for o in others(subjects[0]))
             return (Literal("above", pair) for pair in itertools.permutations(subjects, 2))
         if kind == "tower":  # the first named at the bottom
             return (Literal("above", (top, bottom)) for bottom, top in itertools.pairwise(subjects))

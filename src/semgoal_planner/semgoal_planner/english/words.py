@@ -69,10 +69,17 @@ _NO_PLACE_AFTER = (rf"(?!(\s+(the\s+)?({_COLOUR})(\s+(block|cube|one))?(\s+(and|
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
-    (rf"(without|and not|but not)( ever)? (moving|move|disturbing|disturb|shifting|shift){_NO_PLACE_AFTER}", "and keep"),
+    (rf"(without|and not|but not)( ever)? (moving|move|disturbing|disturb|shifting|shift|pushing|push|sliding|slide|"
+     rf"nudging|nudge){_NO_PLACE_AFTER}", "and keep"),
+    (rf"without (get|carry|bring){_NO_PLACE_AFTER}", "and don't pick up"),  # "... without carrying red" (gerunds are
+    (rf"without (throw|toss)(?! away| out){_NO_PLACE_AFTER}", "and don't throw away"),  # read as verbs by now)
     # "put orange in the bin without moving red": red kept ('not move red' alone would read 'not put red down': held)
-    (rf"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift){_NO_PLACE_AFTER}", "keep"),  # "don't move red": red's place as
-    # the world has it when planned (alone, it is refused as asking for no change)
+    (rf"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift|push|slide|nudge|budge){_NO_PLACE_AFTER}", "keep"),
+    # "don't move red": red's place as the world has it when planned (alone, it is refused as asking for no change)
+    (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (get|carry|bring){_NO_PLACE_AFTER}", r"\g<neg> pick up"),  # "don't
+    # carry red": not in the hand ('carry red to the bin' puts it there)
+    (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (throw|toss|chuck|dump)(?! away| out){_NO_PLACE_AFTER}",
+     r"\g<neg> throw away"),  # "don't throw red": not into the bin
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),

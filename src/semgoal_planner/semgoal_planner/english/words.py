@@ -363,7 +363,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|as soon as (you can|possible)|(i|we)( would|'d) appreciate( it)? if|it would be (great|nice|good|ideal) if|(that |it )?"
      r"(would|will) be (great|nice|good|perfect|ideal|lovely|fine|appreciated|helpful)|for me|for us|kindly|try to|attempt to"
      r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
-    (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
+    (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that| to)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
@@ -372,9 +372,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn|(block|cube|piece|one) by (block|cube|piece|one)|one (block|cube|piece) at a time|"
      r"flat(?= (on|upon)\b)", ""),  # how soon, or in what turns, says nothing of where the blocks end
-    (r"((needs?|has|have|ought|got|is going|are going) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up|(needs?|has|"
-     r"have|ought|got|is going|are going) to (go|get|move)(?= (in|into|inside|on|onto|next|near|beside|by|away|far|out|off|"
-     r"back)\b)", ""),  # "red needs to go in the bin"
+    (r"((needs?|has|have|ought|got|is going|are going|wants?) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up|"
+     r"(needs?|has|have|ought|got|is going|are going|wants?) to (go|get|move)(?= (in|into|inside|on|onto|next|near|beside|"
+     r"by|away|far|out|off|back)\b)", ""),  # "red needs to go in the bin"
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
@@ -430,7 +430,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
-     r"doesn'?t|does not|won'?t|not", "not"),
+     r"doesn'?t|does not|won'?t|cannot|can'?t|can not|may not|might not|not", "not"),
     (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))|(the|your|its) (hand|gripper)( should| must| will| "
@@ -453,9 +453,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"
      r"grab|unstack|build|make|empty|get)\b)", "and"),  # "clean up the desk by putting all the blocks in the bin"
     (r"without", "and not"),  # "put red near green without touching blue"
-    (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into)\b)", ""),  # "green rests on red", not "the rest"
+    (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into|next|near|beside|close|by)\b)", ""),  # "green rests
+    # on red", not "the rest"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
+    (r"\b(be|been|is|are|gets?|got) (put|set|dropped|thrown|tossed|carried|brought|laid)(?= (on|upon|atop|onto|in|inside|"
+     r"into|next|near|beside|close|away|far|out|off)\b)", ""),  # "red should be put in the bin", "red gets put on green"
     (rf"(?P<said>({_COLOUR})( (must|should|will|need to|have to|are|were))?) (all|both)(?= (be|are|stay|sit|apart|"
      r"together|in|on|near|next|away|separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart"
     (r"(from|off)( of)? (the )?(desk|table)(?= (in|into|to|onto|on|next|near|beside|close|away)\b)", ""),  # "move
@@ -558,7 +561,7 @@ FILLERS = frozenset({
     "again", "back", "also",
     "too", "just", "some", "your",
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
-    "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "stay", "stays",
+    "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "will", "shall", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
     "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
     "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",

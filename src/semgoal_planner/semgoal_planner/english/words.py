@@ -76,6 +76,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # "put orange in the bin without moving red": red kept ('not move red' alone would read 'not put red down': held)
     (rf"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift|push|slide|nudge|budge){_NO_PLACE_AFTER}", "keep"),
     # "don't move red": red's place as the world has it when planned (alone, it is refused as asking for no change)
+    (rf"(?<!to )get(?= (the )?({_COLOUR})\b){_NO_PLACE_AFTER}", "pick up"),  # "get red and put it on green": get it in
+    # hand ('get red into the bin' puts it there)
     (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (get|carry|bring){_NO_PLACE_AFTER}", r"\g<neg> pick up"),  # "don't
     # carry red": not in the hand ('carry red to the bin' puts it there)
     (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (throw|toss|chuck|dump)(?! away| out){_NO_PLACE_AFTER}",

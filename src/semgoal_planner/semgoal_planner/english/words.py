@@ -415,6 +415,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"down from) "
      r"(the|that|this|your) (tower|stack|pile)", "unstack"),
     (r"(off( of)?|(down )?from)( the| that| this| your) (tower|stack|pile)(?! of)", "off"),  # "take red off the tower"
+    (rf"^(?P<order>(from )?(the )?(top (down )?to (the )?bottom|bottom (up )?to (the )?top|top down|bottom up))(?= (the )?"
+     rf"({_COLOUR})\b)", r"stack \g<order>"),  # "from bottom to top: red, green, blue": a tower, in that order
     (r"(from )?(the )?top (down )?to (the )?bottom|from the top( down)?|top down", TOP_DOWN),
     (r"(from )?(the )?bottom (up )?to (the )?top", ""),
     (r"(build|make|form|create|stack|pile)( up)?( them( all)?| everything| all( the)?( blocks| cubes)?)?( in(to)?)? (one|a "
@@ -427,7 +429,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # "pile everything up", "stack all blocks on the table": one tower (on the table, where a tower stands)
     (r"(build|make|form|create)( a| the| one)? (tower|stack|pile)( with| of| from| out of| using)?|tower", "stack"),
     (r"(at|on) the (bottom|base|foot)|first of all|first off|to begin with|for starters|at first|first|to start with|to start|"
-     r"bottom up|from the bottom( up)?", ""),
+     r"bottom up|(from )?(the )?bottom (up )?to (the )?top|from the bottom( up)?", ""),
     (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
@@ -1082,9 +1084,10 @@ _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next
 """'blue must not be near red or green', 'away from red or green': from both (a denied 'or' is an 'and' of denials)."""
 _POSITION = re.compile(rf"\b(?P<block>{_COLOUR})(?: block| cube| one)?(?: (?:is|goes|sits|stays|"
                        r"should be|must be|will be))? (?P<where>on top|at the top|on the top|in the middle|in between|"
-                       r"at the bottom|on the bottom|at the base)\b(?: of (?:it|that|them)\b)?")
+                       r"at the bottom|on the bottom|at the base|top|middle|bottom|base(?= and| then| *$))\b(?: of (?:it|that|"
+                       r"them)\b)?")
 """A block's place in a tower: 'red on top', 'green in the middle', 'blue at the bottom' ('red on top of it' after
-another block's place)."""
+another block's place), or said bare: 'red bottom, green middle, blue top'."""
 _WITH = re.compile(r"\bwith (?:the )?$")
 _A_TOWER_WITH = re.compile(r"\b(?:tower|stack|pile) +with (?:the )?$")
 """A tower named by its blocks' places alone ('a stack with blue at the bottom, ...'), no list of blocks before."""
@@ -1093,8 +1096,7 @@ _ALL_IN_A_TOWER_WITH = re.compile(r"\b(?:all|every|everything|each)\b[^,;.]*\b(?
 _BETWEEN_PLACES = re.compile(rf"(?: |and|then|with|(?:{_COLOUR})(?: block| cube| one)?)*")
 """What may stand between two blocks' places in a tower said in a run: joining words, and blocks named bare."""
 _LEVELS = {"on top": 2, "at the top": 2, "on the top": 2, "in the middle": 1, "in between": 1, "at the bottom": 0,
-           "on the bottom": 0,
-           "at the base": 0}
+           "on the bottom": 0, "at the base": 0, "top": 2, "middle": 1, "bottom": 0, "base": 0}
 
 
 def _tower_by_positions(text: str) -> str:

@@ -310,6 +310,8 @@ PHRASES = [
     ("tabletop", "stack red, green and blue from bottom to top", "above(green,red) & above(blue,green)"),
     ("tabletop", "tower: red bottom, green middle, blue top", "above(green,red) & above(blue,green)"),
     ("three_blocks", "get red and put it next to green", "close(red,green)"),
+    ("three_blocks", "get red far from green", "not close(red,green)"),
+    ("three_blocks", "get red and green together", "close(red,green)"),
     ("desk_cleanup", "get red and green into the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "the bin has red and green inside", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "empty the desk into the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),

@@ -64,7 +64,8 @@ _SHADES = {"purple": r"violet|lilac|lavender", "cyan": r"turquoise|teal|aqua(mar
 """Other names of the blocks' colours, each for the one colour of the eight it can only mean."""
 
 _NO_PLACE_AFTER = (rf"(?!(\s+(the\s+)?({_COLOUR})(\s+(block|cube|one))?(\s+(and|or|nor))?)+\s+(in|into|inside|on|onto|to|"
-                   r"near|next|beside|by|close|away|off|out|from|under)\b)")
+                   r"near|next|beside|by|close|away|far|apart|together|off|out|from|under|atop|upon|over|toward|towards|back|"
+                   r"beneath|below|underneath|between|against|alongside)\b)")
 """After 'don't move': no place follows the blocks ('don't move red into the bin' is not 'keep red')."""
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters

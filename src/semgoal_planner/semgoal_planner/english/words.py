@@ -187,6 +187,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"
+    (rf"(?P<block>\b({_COLOUR})( block| cube| one)?)( (should|must|has to|needs to|will|can))? (leave|leaves|exit|exits|"
+     r"comes? out of) (the )?(bin|box|basket|trash|bucket)\b", r"\g<block> out of the bin"),  # "red must leave the bin"
     (r"(?P<whole>(clear|clean|empty|tidy)( off| up)? (the )?(table|desk|tabletop|workspace|surface)) (into|in|to) (the )?"
      r"(bin|basket|box|trash|bucket)", r"\g<whole>"),  # "empty the desk into the bin"
     (rf"if (?P<refs>(the )?({_COLOUR})( block| cube| one)?) (is not|isn't|is n't) (?P<place>(in|on|onto|next to|near|beside|"
@@ -523,7 +525,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"off of|off", "off"),
     (r"close", "together"),
     (r"far", "apart"),
-    (r"pick up|pick|grab|grasp|lift up|lift|hold on to|hold onto|hold up|take hold of|hold|seize|raise|"
+    (r"pick up|pick|(grab|get|take|catch) hold of|grab|grasp|grip|lift up|lift|hold on to|hold onto|hold up|hold|seize|raise|"
      r"(hand|give|pass)( it| them)? (me|over|to me)", "pick"),  # "hand me red": held out in the gripper
     (r"let go of|let go|release|set down|put down|lay down|drop off", "release"),
     (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear|(throw|toss|chuck|put) away|dump|"
@@ -541,6 +543,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # tower of red and green, then reverse it"
     (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
     # green": two blocks swapped
+    (r"unload(?= (the )?(bin|box|basket|trash|bucket)\b)", "empty"),  # "unload the bin"
     (r"pull|retrieve|fetch|extract|fish|dig|unload", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|add|load|put|relocate|nudge|chuck|pop|insert|plop|perch|balance|cent(er|re)|reposition", "put"),

@@ -1141,6 +1141,10 @@ def test_a_block_left_alone_is_kept_for_the_state_it_is_planned_in(scene: str, t
     ("desk_cleanup", "put blue in the bin without throwing red", "in_bin(blue) & not in_bin(red)"),
     ("desk_cleanup", "don't carry red into the bin", "not in_bin(red)"),
     ("desk_cleanup", "don't drop red", "holding(red)"),
+    ("desk_cleanup", "you must not carry red", "not holding(red)"),
+    ("desk_cleanup", "avoid throwing red", "not in_bin(red)"),
+    ("desk_cleanup", "put blue in the bin but avoid moving red", "in_bin(blue) & keep(red)"),
+    ("desk_cleanup", "you shouldn't move red into the bin", "not in_bin(red)"),
     ("tabletop", "put blue in the bin and don't stack red",
      "in_bin(blue) & not above(red,green) & not above(red,blue) & not above(red,yellow)"),
     # not on the table: where the scene has a bin, in it (as 'nothing on the table'), never on every block at once

@@ -67,22 +67,25 @@ _NO_PLACE_AFTER = (rf"(?!(\s+(the\s+)?({_COLOUR})(\s+(block|cube|one))?(\s+(and|
                    r"near|next|beside|by|close|away|far|apart|together|off|out|from|under|atop|upon|over|toward|towards|back|"
                    r"beneath|below|underneath|between|against|alongside)\b)")
 """After 'don't move': no place follows the blocks ('don't move red into the bin' is not 'keep red')."""
+_DENIED = r"(don'?t|do not|never|please don'?t|must not|mustn'?t|should not|shouldn'?t|may not|cannot|can'?t|avoid)"
+"""The words that deny the verb after them."""
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
     (rf"(without|and not|but not)( ever)? (moving|move|disturbing|disturb|shifting|shift|pushing|push|sliding|slide|"
-     rf"nudging|nudge){_NO_PLACE_AFTER}", "and keep"),
+     rf"nudging|nudge){_NO_PLACE_AFTER}", "and keep"),  # "put orange in the bin without moving red": red kept ('not move
+    # red' alone would read 'not put red down': held)
     (rf"without (get|carry|bring){_NO_PLACE_AFTER}", "and don't pick up"),  # "... without carrying red" (gerunds are
     (rf"without (throw|toss)(?! away| out){_NO_PLACE_AFTER}", "and don't throw away"),  # read as verbs by now)
-    # "put orange in the bin without moving red": red kept ('not move red' alone would read 'not put red down': held)
-    (rf"(don'?t|do not|never|please don'?t) (move|touch|disturb|shift|push|slide|nudge|budge){_NO_PLACE_AFTER}", "keep"),
-    # "don't move red": red's place as the world has it when planned (alone, it is refused as asking for no change)
+    (rf"{_DENIED} (move|disturb|shift|push|slide|nudge|budge){_NO_PLACE_AFTER}|(don'?t|do not|never|please don'?t) touch"
+     rf"{_NO_PLACE_AFTER}", "keep"),  # "don't move red": red's place as the world has it when planned (alone, it is
+    # refused as asking for no change); 'red should not touch green' is apart
     (rf"(?<!to )get(?= (the )?({_COLOUR})\b){_NO_PLACE_AFTER}", "pick up"),  # "get red and put it on green": get it in
     # hand ('get red into the bin' puts it there)
-    (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (get|carry|bring){_NO_PLACE_AFTER}", r"\g<neg> pick up"),  # "don't
-    # carry red": not in the hand ('carry red to the bin' puts it there)
-    (rf"(?P<neg>(don'?t|do not|never|please don'?t)) (throw|toss|chuck|dump)(?! away| out){_NO_PLACE_AFTER}",
-     r"\g<neg> throw away"),  # "don't throw red": not into the bin
+    (rf"(?P<neg>{_DENIED}) (get|carry|bring){_NO_PLACE_AFTER}", r"\g<neg> pick up"),  # "don't carry red": not in the
+    # hand ('carry red to the bin' puts it there)
+    (rf"(?P<neg>{_DENIED}) (throw|toss|chuck|dump)(?! away| out){_NO_PLACE_AFTER}", r"\g<neg> throw away"),  # "don't
+    # throw red": not into the bin
     (r"(?<!but )(leave|keep)( the| your| that| this) (tower|stack|pile)(?! of)( alone| standing| intact| untouched| in place| as it "
      r"is| where it is| up)?", "keep the_whole"),  # "leave the tower as it is": its blocks kept
     (r"stop (holding|carrying|gripping|grasping)", "release"),
@@ -152,7 +155,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # swap places", "put each block where the other one is"  # "put red in the bin, wait, then ..."
     (r"(is it|would it be|will it be|could it be) possible( for you)? to|(i|we) (was|were|am|are) (hoping|wondering)( if| "
      r"whether| that)?( you)?( could| can| would| might| will)?|^you( really)? (should|must|need to|have to|will|can|could|"
-     r"ought to|are to)", ""),  # "is it possible to put red on green", "you should put red in the bin"
+     r"ought to|are to)|^you( really)?(?= (shouldn'?t|should not|must not|mustn'?t|may not|cannot|can'?t|don'?t|do not|"
+     r"never)\b)", ""),  # "is it possible to put red on green", "you should put red in the bin"
     (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
      r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
     (r"(i|we) (do not|don'?t) want( you to)?( have| put| see| leave)?", "do not put"),  # "I don't want red on green"

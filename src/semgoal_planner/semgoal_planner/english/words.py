@@ -728,6 +728,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
     text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
+    text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
     if _SEVERAL_TOWERS.search(text):  # "two towers, one of red and green and one of blue and yellow"
@@ -1037,6 +1038,20 @@ _TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|c
                          r"height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?|(?:\d+|"
                          + "|".join(NUMBERS) + r")(?: blocks| cubes)? (?:high|tall)))\b")
 """A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...'): the blocks named say it."""
+_LIST_SAID = (rf"(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?(?: +(?:and +)?(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?)+"
+              r"(?: +blocks| +cubes)?")
+_RESPECTIVELY = re.compile(rf"(?P<movers>{_LIST_SAID}) +(?P<place>on top of|onto|on|next to|near|beside|close to|by|away "
+                           rf"from) +(?P<places>{_LIST_SAID})(?: +and)? +respectively\b")
+"""'put red and blue on green and yellow respectively': each block of the first list by the one of the second."""
+
+
+def _respectively(match: re.Match) -> str:
+    movers, places = (re.findall(rf"\b(?:{_COLOUR})\b", match[group]) for group in ("movers", "places"))
+    if len(movers) != len(places):
+        raise LanguageError(f"'respectively' pairs {len(movers)} blocks with {len(places)}: name as many of each")
+    return " and ".join(f"{mover} {match['place']} {place}" for mover, place in zip(movers, places, strict=True))
+
+
 _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")

@@ -828,6 +828,14 @@ def test_the_two_blocks_are_all_of_them_where_two_are_present(sentence: str) -> 
                                                                             Literal("in_bin", ("green",))}
 
 
+@pytest.mark.parametrize("sentence", ["build a tower", "make a stack", "stack"])
+def test_a_tower_of_blocks_not_named_is_of_both_where_two_are_present_else_refused(sentence: str) -> None:
+    assert parse_english(sentence, "two_blocks") == [Literal("stack", ("red", "green"))]
+    assert parse_english(sentence, "tabletop", ("orange", "cyan")) == [Literal("stack", ("orange", "cyan"))]
+    with pytest.raises(LanguageError, match="say which blocks to stack"):
+        parse_english(sentence, "tabletop", ("red", "green", "blue"))
+
+
 def test_a_block_not_present_is_named() -> None:
     with pytest.raises(LanguageError, match="no yellow block here: the blocks are red, green, blue"):
         parse_english("put yellow in the bin", "desk_cleanup", ("red", "green", "blue"))

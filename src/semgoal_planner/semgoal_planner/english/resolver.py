@@ -260,6 +260,8 @@ class Resolver:
             subjects = (TOWER_REST,)  # "put the rest on the tower": the blocks not in it, each on the one before
         if not subjects and clause.kind == "release":  # "let go" with nothing picked before: the hand empty
             subjects = self.blocks
+        if not subjects and unordered and len(self.blocks) == 2 and not clause.negated:  # "build a tower" where two
+            subjects = self.blocks  # blocks are all there is: the two, either on the other
         if not subjects:
             raise LanguageError(UNORDERED_TOWER if clause.kind in ("tower", ANY_ORDER_TOWER) else
                                 f"say which block: {', '.join(self.blocks)}")

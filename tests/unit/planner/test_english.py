@@ -316,6 +316,7 @@ PHRASES = [
     ("three_blocks", "get red and put it next to green", "close(red,green)"),
     ("three_blocks", "get red far from green", "not close(red,green)"),
     ("three_blocks", "get red and green together", "close(red,green)"),
+    ("three_blocks", "put green in the middle, between red and blue", "close(red,green) & close(green,blue)"),
     ("desk_cleanup", "red should come out of the bin", "not in_bin(red)"),
     ("desk_cleanup", "red and green must leave the bin", "not in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "unload the bin", "not in_bin(red) & not in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),

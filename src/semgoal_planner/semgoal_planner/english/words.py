@@ -516,7 +516,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # a block the sentence does not name
     (r"on (the )?top(?! of)", "on other"),  # "put red on top": on the other block
     (r"on top of|on to|onto|upon|atop|on|above|over", "on"),
-    (r"in the middle of|midway between|next to|close to|near to|adjacent to|beside|besides|alongside|nearby|"
+    (r"in the middle (and )?(of|between)|midway between|next to|close to|near to|adjacent to|beside|besides|alongside|nearby|"
      r"by the side of|right by|near|with|towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
      rf"closer to|closer|by(?= (the )?({_COLOUR}|it|them|other|all|the_tower|the_top|the_base)\b)", "near"),  # "put red
     # by green"

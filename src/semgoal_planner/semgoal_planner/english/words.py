@@ -46,7 +46,7 @@ length where its 'and's may join blocks or clauses (a hundred words: at most 0.4
 
 _NOT_A_LIST = rf"(?!( and)?( then)? (the )?({_COLOUR})( block| cube| one)?( and\b| then\b|$))"
 """Not followed by a block ('red at the bottom, then green': a tower's list, not a block put under a tower)."""
-_LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile) )?(the )?"
+_LISTED_INTO_A_TOWER = (rf"((put|place|set|arrange|lay|move|get|stack|pile|sort) )?(the )?"
                         rf"(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"
                         r"( blocks| cubes)? (in|into|as|to) (a|one|another|a second|a separate) (single )?(tower|stack|pile)")
 """Blocks named into a tower, whatever the verb ('put red, green and blue in a tower'): stacked in the order named; where
@@ -408,6 +408,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(and )?so (does|do|is|are|should|must|will|has|have)(?= (the )?({_COLOUR})\b)", "and"),  # "... and so does green"
     (r"(knock|tear|topple|take)( over| down)?( the| your)? (tower|stack|pile)( over| down)?|"
      r"(knock|topple)( over| down)?", "unstack"),  # "knock the tower over", "knock it over"
+    (_LISTED_INTO_A_TOWER + rf" and(?= (the )?({_COLOUR})\b)", r"stack \g<listed> and put"),  # "red and green in a
+    # tower and blue in the bin": blue a clause of its own, not the tower's third block
     (_LISTED_INTO_A_TOWER + r"(?= and\b|$)", r"stack \g<listed> then"),  # "red, green and blue in a tower, the rest ..."
     (_LISTED_INTO_A_TOWER, r"stack \g<listed> and put \g<base>"),  # "... in a tower next to yellow": its bottom block
     (rf"(?P<verb>stack|build a tower of|build a stack of) (the )?(?P<listed>(?P<base>{_COLOUR})(( and| then)? ({_COLOUR}))+)"

@@ -655,6 +655,21 @@ def _refuse_a_list_split(words: list[str]) -> None:
             raise LanguageError(message.format(verb=words[start], listed=listed, place=place))
 
 
+def _place_after_a_list(words: list[str]) -> list[str]:
+    """'put red, then green, into the bin', 'first red, then green, into the bin': the place after a 'put' (or at the
+    start) and its blocks, set off by a comma, is theirs (not another place for the last of them, which has none)."""
+    words = list(words)
+    for i in range(len(words) - 2, 0, -1):
+        if words[i] != "and" or words[i + 1] not in _PLACE_WORDS:
+            continue
+        start = i
+        while start > 0 and words[start - 1] in (*BLOCK_COLOURS, "and", "then"):
+            start -= 1
+        if (start == 0 or words[start - 1] == "put") and any(w in BLOCK_COLOURS for w in words[start:i]):
+            del words[i]
+    return words
+
+
 def _stacked_into_a_tower(words: list[str]) -> list[str]:
     """'stack all blocks into one tower', 'put them all in a single stack', '... and the rest in a tower': the blocks
     named before the mark stacked, their verb (or, with none of their own, a 'stack' put before them) saying it."""
@@ -701,7 +716,7 @@ def _order_left_open(words: list[str]) -> list[str]:
 
 
 _TYPOGRAPHY = str.maketrans({"\u2018": "'", "\u2019": "'", "\u201b": "'", "\u00b4": "'", "`": "'", "\u201c": '"',
-                             "\u201d": '"', "\u201e": '"', "\u2014": ", ", "\u2013": ", ", "\u2015": ", ", "\u2026": ".",
+                             "\u201d": '"', "\u201e": '"', "\u2014": " - ", "\u2013": " - ", "\u2015": " - ", "\u2026": ".",
                              "\u00a0": " ", "+": " and ", "\u2192": " to "})
 """What word processors and phones put for plain characters ('Don\u2019t', \u201cred\u201d, a dash between clauses)."""
 
@@ -709,6 +724,8 @@ _TYPOGRAPHY = str.maketrans({"\u2018": "'", "\u2019": "'", "\u201b": "'", "\u00b
 def _plain(text: str) -> str:
     """``text`` in plain characters, without emoji and other symbols that say nothing of where a block goes."""
     text = re.sub(r"\s*[-=]+>\s*", " to ", text.translate(_TYPOGRAPHY))  # "red -> bin"
+    text = re.sub(rf"\b(?P<block>(?:{_COLOUR})(?: block| cube)?)\s+-+\s+(?=(?:in|into|on|onto|next|near|beside|by|away|out|"
+                  r"off|under)\b)", r"\g<block> ", text)  # "red - in the bin": as 'red: in the bin'
     text = re.sub(r"\s+-+\s+", ", ", text)  # "put red in the bin - green too"
     return "".join(c for c in text if unicodedata.category(c) not in ("So", "Sk", "Cf", "Cs", "Co"))
 
@@ -770,8 +787,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
     words = [w for w in text.split() if w not in FILLERS]
     words = _beside_the_bin(words)
-    for rewrite in (_joined, _kept_besides, _tower_end_named, _listing_in_order, _chained_on, _top_down,
-                    _top_named_last):  # word-level readings, in order
+    for rewrite in (_place_after_a_list, _joined, _kept_besides, _tower_end_named, _listing_in_order, _chained_on,
+                    _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
     _refuse_a_list_split(words)
     words = _stacked_into_a_tower(words)

@@ -323,6 +323,8 @@ PHRASES = [
     ("desk_cleanup", "put red, then green, into the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "first red, then green, into the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "red \u2014 in the bin", "in_bin(red)"),
+    ("desk_cleanup", "pickup red", "holding(red)"),
+    ("desk_cleanup", "put red in to the bin", "in_bin(red)"),
     ("desk_cleanup", "red - in the bin, green - out of the bin", "in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "red should come out of the bin", "not in_bin(red)"),
     ("desk_cleanup", "red and green must leave the bin", "not in_bin(red) & not in_bin(green)"),

@@ -513,6 +513,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # red from green to blue": off one block, onto the other
     (r"in(?=( (and|then)\b)|$)", "in the bin"),  # "put everything else in"
     (r"over to", "to"),
+    (r"in to(?= (the )?(bin|box|basket|trash|bucket)\b)", "into"),  # "put red in to the bin"
     (r"(?P<swap>\b(swap|switch|exchange|trade|reverse|invert|flip)\b[^;]*?\bon) (the )?top(?! of)",
      r"\g<swap> the_tower"),  # "swap red and green and put blue on top": on the tower as the swap leaves it, not on
     # a block the sentence does not name
@@ -531,8 +532,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"off of|off", "off"),
     (r"close", "together"),
     (r"far", "apart"),
-    (r"pick up|pick|(grab|get|take|catch) hold of|grab|grasp|grip|lift up|lift|hold on to|hold onto|hold up|hold|seize|raise|"
-     r"(hand|give|pass)( it| them)? (me|over|to me)", "pick"),  # "hand me red": held out in the gripper
+    (r"pick up|pickup|pick-up|pick|(grab|get|take|catch) hold of|grab|grasp|grip|lift up|lift|hold on to|hold onto|hold up|"
+     r"hold|seize|raise|(hand|give|pass)( it| them)? (me|over|to me)", "pick"),  # "hand me red": held out in the gripper
     (r"let go of|let go|release|set down|put down|lay down|drop off", "release"),
     (r"clean up|clean|tidy up|tidy|clear up|clear off|clear away|clear|(throw|toss|chuck|put) away|dump|"
      r"discard|dispose of|get rid of|fill up|fill", "clean"),

@@ -12,6 +12,10 @@ from collections.abc import Sequence
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS
 
 TOP_DOWN = "topdown"
+SENTENCE_END = "then and"
+"""What a full stop between sentences, or a semicolon, reads as until the lists are read: a clause ends there (to every
+rule that looks for 'then' before it or 'and' after it), and no list of blocks, joined by one word at a time, runs
+across it; then a 'then'."""
 """The mark 'from top to bottom' leaves: the tower's blocks are named from the top (:func:`_top_down`)."""
 DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
@@ -656,6 +660,11 @@ def _refuse_a_list_split(words: list[str]) -> None:
             raise LanguageError(message.format(verb=words[start], listed=listed, place=place))
 
 
+def _sentences_in_turn(words: list[str]) -> list[str]:
+    """Each :data:`SENTENCE_END` made a 'then', once no list of blocks can run across it."""
+    return _joined(words, sentence_ends=False)
+
+
 def _place_after_a_list(words: list[str]) -> list[str]:
     """'put red, then green, into the bin', 'first red, then green, into the bin': the place after a 'put' (or at the
     start) and its blocks, set off by a comma, is theirs (not another place for the last of them, which has none)."""
@@ -731,6 +740,16 @@ def _plain(text: str) -> str:
     return "".join(c for c in text if unicodedata.category(c) not in ("So", "Sk", "Cf", "Cs", "Co"))
 
 
+def _punctuation_read(mark: re.Match) -> str:
+    """A colon says nothing; a semicolon, or a full stop between sentences, ends a clause (:data:`SENTENCE_END`: 'pick
+    up red. Blue on yellow.' is not 'pick up red and blue'); a comma (or a mark at the end) is 'and'."""
+    if mark[0] == ":":
+        return " "
+    if mark[0] == ";" or (set(mark[0]) & set(".!") and mark.end() < len(mark.string)):
+        return f" {SENTENCE_END} "
+    return " and "
+
+
 def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     """The canonical words of ``text``; raises :class:`LanguageError` naming a word it does not know (with the
     ``blocks`` present, by colour, and goals the scene can state)."""
@@ -742,7 +761,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"[()\[\]\"]", " ", text)
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
-    text = " " + re.sub(r"[,.!?:;]+", lambda m: {":": " ", ";": " then "}.get(m.group(), " and "), text) + " "
+    text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
     text = re.sub(r"\bboth\b(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both (the) red and green"
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
@@ -792,6 +811,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
                     _top_down, _top_named_last):  # word-level readings, in order
         words = rewrite(words)
     _refuse_a_list_split(words)
+    words = _sentences_in_turn(words)
     words = _stacked_into_a_tower(words)
     if ANY_ORDER in words:
         words = _order_left_open(words)
@@ -1291,12 +1311,13 @@ def _kept_besides(words: list[str]) -> list[str]:
     return kept
 
 
-def _joined(words: list[str]) -> list[str]:
+def _joined(words: list[str], sentence_ends: bool = True) -> list[str]:
     """Runs of connectives as one ("red, and green" -> "red and green"; "and, then" -> "then"), and a group said twice
-    once ("together in a group")."""
+    once ("together in a group"); ``sentence_ends``: each :data:`SENTENCE_END` kept as it is, for now."""
     joined: list[str] = []
     for word in words:
-        if joined and word in ("and", "then") and joined[-1] in ("and", "then"):
+        if (joined and word in ("and", "then") and joined[-1] in ("and", "then")
+                and not (sentence_ends and [joined[-1], word] == SENTENCE_END.split())):
             joined[-1] = "then" if "then" in (word, joined[-1]) else "and"
         elif joined and word in ("together", "apart") and joined[-1] == word:
             continue

@@ -376,6 +376,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|as soon as (you can|possible)|(i|we)( would|'d) appreciate( it)? if|it would be (great|nice|good|ideal) if|(that |it )?"
      r"(would|will) be (great|nice|good|perfect|ideal|lovely|fine|appreciated|helpful)|for me|for us|kindly|try to|attempt to"
      r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
+    (r"^(hmm+|hm+|um+|uh+|erm?|ah|oh|yes|yeah|yep|well|(no|nope)(?= and))( and)?|(i|we) (think|guess|believe|suppose|"
+     r"reckon|feel)( that)?|maybe|perhaps|(help|assist) (me|us)( to)?", ""),  # "hmm, ...", "no, put green in the bin
+    # instead", "I think red should go in the bin", "could you help me put ..."
     (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that| to)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),

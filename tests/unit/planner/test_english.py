@@ -338,6 +338,8 @@ PHRASES = [
     ("desk_cleanup", "Could you help me put the green block in the bin?", "in_bin(green)"),
     ("desk_cleanup", "no, put green in the bin instead", "in_bin(green)"),
     ("desk_cleanup", "yes, put red in the bin", "in_bin(red)"),
+    ("three_blocks", "red should be neither near green nor near blue", "not close(red,green) & not close(red,blue)"),
+    ("tabletop", "red should be neither on green nor on blue", "not above(red,green) & not above(red,blue)"),
     ("desk_cleanup", "red - in the bin, green - out of the bin", "in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "red should come out of the bin", "not in_bin(red)"),
     ("desk_cleanup", "red and green must leave the bin", "not in_bin(red) & not in_bin(green)"),

@@ -797,6 +797,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _KEPT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "without moving red or green": both kept
     text = _NOT_ONE_OR_OTHER.sub(r"\g<verb> neither \g<first> nor \g<second>", text)  # "don't put red or green in the bin"
     text = _KEPT_FROM.sub(r" \g<blocks> not ", text)  # "stop red from touching green"
+    text = _NEITHER_PLACE.sub(r"not \g<place> \g<first> or \g<second>", text)  # "neither near green nor near blue"
     text = _NEITHER.sub(lambda m: f" {m['first']} and {m['second']} not {'held' if m['verb'] in _HOLDING_VERBS else ''} ",
                         text)  # "neither red nor green should be in the bin", "hold neither red nor green"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
@@ -1144,6 +1145,9 @@ _NOT_EITHER_OF = re.compile(r"(?P<head>(?:\bnot|n't|\bnever)(?: \w+){0,3}?) eith
                             r" cubes)?| one| of (?P<others>the others|the other (?:two|blocks|cubes|ones)))?\b")
 """'blue should not touch either of them': neither, so both; 'not on either of the others': on none of them (before
 'either of' is refused as leaving open which)."""
+_NEITHER_PLACE = re.compile(r"\bneither (?P<place>near|next to|close to|beside|by|touching|on|on top of|above) "
+                            rf"(?P<first>{_BLOCK_SAID}) nor (?:(?:be )?(?P=place) )?(?P<second>{_BLOCK_SAID})")
+"""'red should be neither near green nor near blue': near neither (then read by :data:`_NOT_EITHER`)."""
 _NOT_EITHER = re.compile(r"\b(?P<head>(?:not|n't|never|nor) (?:be )?(?:near|next to|close to|beside|by|touch|touches|"
                          r"touching|in contact with|on|on top of|above)|(?:away|far|apart) from) "
                          rf"(?P<first>{_BLOCK_SAID}) or (?P<second>{_BLOCK_SAID})\b")

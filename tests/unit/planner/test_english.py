@@ -1390,3 +1390,42 @@ def test_them_on_top_of_each_other_is_a_tower_of_the_blocks_named_before() -> No
     said = parse_english("take red and green out of the bin and put them on top of each other", "tabletop",
                          ("red", "green", "blue"))
     assert said == [Literal("in_bin", ("red",), False), Literal("in_bin", ("green",), False), Literal("stack", ("red", "green"))]
+
+
+_PLACES = [("into the bin", "in_bin(red)"), ("on top of green", "above(red,green)"), ("next to green", "close(red,green)"),
+           ("away from green", "not close(red,green)"), ("onto green", "above(red,green)"), ("beside green", "close(red,green)"),
+           ("in the box", "in_bin(red)"), ("far from green", "not close(red,green)")]
+_PLACING_VERBS = ["put", "place", "move", "set", "drop", "throw", "toss", "bring", "lay", "get", "push", "slide", "shift",
+                  "carry", "transfer", "relocate", "position", "stick", "deposit", "plop", "pop", "insert", "nudge",
+                  "please put", "could you put", "I want you to put", "go ahead and put", "now put", "can you move",
+                  "let's put", "you should put", "try to put", "you need to put", "make sure to put"]
+_BEING = ["is", "should be", "must be", "needs to be", "has to be", "ought to be", "will be", "ends up", "sits", "goes",
+          "belongs", "should end up", "is to be", "stays", "remains", "lies", "must go", "should be placed",
+          "should be put", "gets put", "needs to go", "wants to be", "should rest"]
+_DENYING = ["is not", "isn't", "should not be", "shouldn't be", "must not be", "mustn't be", "should never be",
+            "must never be", "can't be", "cannot be", "may not be", "shouldn't end up", "should not go", "doesn't go",
+            "does not belong", "must not go", "won't be"]
+
+
+@pytest.mark.parametrize(("i", "verb"), enumerate(_PLACING_VERBS))
+def test_every_placing_verb_puts_the_block_where_the_sentence_says(i: int, verb: str) -> None:
+    subject = ("red", "the red block", "the red cube", "red block", "the red one")[i % 5]
+    place, literal = _PLACES[i % len(_PLACES)]
+    assert {str(lit) for lit in parse_english(f"{verb} {subject} {place}", "tabletop", ("red", "green", "blue"))} == {literal}
+
+
+@pytest.mark.parametrize(("i", "being"), enumerate(_BEING + _DENYING))
+def test_every_way_of_saying_where_a_block_is_or_is_not_says_the_same(i: int, being: str) -> None:
+    place, literal = _PLACES[i % len(_PLACES)]
+    if being in _DENYING:
+        literal = literal.removeprefix("not ") if literal.startswith("not ") else f"not {literal}"
+    assert {str(lit) for lit in parse_english(f"red {being} {place}", "tabletop", ("red", "green", "blue"))} == {literal}
+
+
+@pytest.mark.parametrize(("i", "verb"), enumerate(["put", "place", "move", "set", "drop", "throw", "toss", "bring", "lay",
+                                                   "get", "push", "slide", "shift", "carry"]))
+def test_a_denied_placing_verb_denies_the_place(i: int, verb: str) -> None:
+    deny = ("don't", "do not", "never", "please don't", "you shouldn't", "you must not", "make sure you don't")[i % 7]
+    place, literal = _PLACES[i % 3 * 2 % len(_PLACES)]  # into the bin, next to green, onto green
+    assert {str(lit) for lit in parse_english(f"{deny} {verb} red {place}", "tabletop", ("red", "green", "blue"))} == {
+        f"not {literal}"}

@@ -379,7 +379,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"^(hmm+|hm+|um+|uh+|erm?|ah|oh|yes|yeah|yep|well|(no|nope)(?= and))( and)?|(i|we) (think|guess|believe|suppose|"
      r"reckon|feel)( that)?|maybe|perhaps|(help|assist) (me|us)( to)?", ""),  # "hmm, ...", "no, put green in the bin
     # instead", "I think red should go in the bin", "could you help me put ..."
-    (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that| to)?|i( would|'d) like( you)?( to)?|i want( you)?( to)?|"
+    (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that| to)?( you)?|i( would|'d) like( you)?( to)?|"
+     r"i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),

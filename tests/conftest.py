@@ -1,5 +1,6 @@
 """Shared fixtures: a private ROS domain per test, real node processes, an in-test rclpy node."""
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -80,7 +81,7 @@ class NodeProcesses:
     def run(self, name: str, command: list[str]) -> subprocess.Popen:
         """Start ``command`` as one of the test's processes (its log named after ``name``)."""
         log = open(self.log_dir / f"{name}-{len(self.processes)}.log", "w")  # noqa: SIM115
-        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT)
+        process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, cwd=ROOT, start_new_session=True)
         self.processes.append((name, process))
         return process
 
@@ -88,13 +89,15 @@ class NodeProcesses:
         return "\n".join(f"--- {p.name}\n{p.read_text()[-3000:]}" for p in sorted(self.log_dir.glob("*.log")))
 
     def stop(self, process: subprocess.Popen, timeout: float = 5.0) -> int:
+        """SIGINT, then after ``timeout`` SIGKILL to its whole process group: what it started (`study run`'s nodes)
+        goes with it, even where it was itself killed before it could stop them."""
         if process.poll() is None:
             process.send_signal(signal.SIGINT)
-            try:
+            with contextlib.suppress(subprocess.TimeoutExpired):
                 process.wait(timeout)
-            except subprocess.TimeoutExpired:
-                process.kill()
-                process.wait()
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
         return process.returncode
 
     def stop_all(self) -> None:

@@ -111,6 +111,16 @@ class InterruptionWatch:
         return time.monotonic() - self.since > RESULT_GRACE_S
 
 
+def interrupted(error: BaseException | None) -> bool:
+    """Whether ``error`` is Ctrl-C: one that lands inside an rclpy call (taking feedback, a message's fields built in
+    C++) comes out as the error pybind11 makes of it, a TypeError caused by the KeyboardInterrupt."""
+    while error is not None:
+        if isinstance(error, KeyboardInterrupt):
+            return True
+        error = error.__cause__ or error.__context__
+    return False
+
+
 class GraphClient:
     """An rclpy node holding the sim's reset and move services, the planner's services and ExecuteGoal, and
     (``watch``) the state streams. It initialises rclpy on the current ROS_DOMAIN_ID when the caller's
@@ -347,6 +357,11 @@ class GraphClient:
         except KeyboardInterrupt:
             self.cancel(sent)
             raise
+        except Exception as error:
+            if not interrupted(error):
+                raise
+            self.cancel(sent)
+            raise KeyboardInterrupt from error
         result = result_future.result().result
         return GoalResult(bool(result.success), result.message, int(result.replans), int(result.control_steps),
                           float(result.sim_time), time.perf_counter() - started)

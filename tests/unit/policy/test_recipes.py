@@ -117,3 +117,11 @@ def test_training_exports_into_its_run_unless_shipped(tmp_path) -> None:
     assert default_run == PROJECT_ROOT / "runs" / "two_blocks-hierarchical" / "seed5"
     shipped, _ = train_config(["--recipe", "two_blocks", "--ship"])
     assert shipped.export_dir == checkout_models_dir() / "two_blocks" == PROJECT_ROOT / "src/semgoal_policy/models/two_blocks"
+
+
+@pytest.mark.parametrize("native", [True, False])
+def test_bf16_where_the_cpu_emulates_it_is_warned_of(native, monkeypatch, capsys) -> None:
+    monkeypatch.setattr("semgoal_policy.sac.bf16_is_native", lambda: native)
+    config, _ = train_config(["--scene", "two_blocks", "--precision", "bf16"])
+    assert config.sac.precision == "bf16"
+    assert ("no bfloat16 in hardware" in capsys.readouterr().err) is not native

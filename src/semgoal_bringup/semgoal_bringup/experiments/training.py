@@ -70,6 +70,7 @@ def train_config(argv: list[str]):
     flags), and the parsed arguments; exits 2 with the reason on a bad recipe or setting."""
     from semgoal_policy.agents import AGENTS
     from semgoal_policy.recipes import RecipeError, add_config_flags, build_config, flag_overrides, load_recipe, recipe_names
+    from semgoal_policy.sac import bf16_is_native
 
     parser = argparse.ArgumentParser(prog="semgoal train", description=train_main.__doc__)
     parser.add_argument("--recipe", help=f"the settings of a shipped run: {', '.join(recipe_names())}, or a .yaml path")
@@ -92,6 +93,9 @@ def train_config(argv: list[str]):
         parser.error(str(error))
     if config.scene not in SCENES or config.agent not in AGENTS:
         parser.error(f"scenes are {', '.join(SCENES)} and agents {', '.join(AGENTS)}; got {config.scene}, {config.agent}")
+    if config.sac.precision == "bf16" and not bf16_is_native():
+        print("semgoal train: warning: this CPU has no bfloat16 in hardware; precision bf16 runs a dozen times slower "
+              "than fp32 here (semgoal bench policy)", file=sys.stderr)
     if args.ship:
         if config.export_dir is not None:
             parser.error("--ship exports to models/: leave out --export-dir")

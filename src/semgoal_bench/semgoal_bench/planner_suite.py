@@ -152,13 +152,15 @@ def run(planner: Planner, domain: Path, problem: Path, search: str, heuristic: s
 
 def suite_problems(folder: Path, per_domain: int, domains: set[str] | None = None) -> list[tuple[str, Path, Path]]:
     """(domain name, domain file, problem file) of a benchmark folder in the IPC layout: a folder per domain, each
-    problem beside ``domain.pddl``, its own ``domain_<problem>.pddl`` or ``<pNN>-domain.pddl``; the first
-    ``per_domain`` problems of each, in natural order (``probBLOCKS-4-0`` before ``probBLOCKS-10-0``)."""
+    problem beside ``domain.pddl`` or its own domain file (``domain_p01.pddl`` or ``domain-p01.pddl`` for
+    ``p01.pddl``, ``p01-domain.pddl`` for ``p01.pddl`` or ``p01-airport4.pddl``); the first ``per_domain`` problems
+    of each, in natural order (``probBLOCKS-4-0`` before ``probBLOCKS-10-0``)."""
     found = []
     for domain_dir in sorted(d for d in folder.iterdir() if d.is_dir() and (domains is None or d.name in domains)):
         problems = sorted((p for p in domain_dir.glob("*.pddl") if "domain" not in p.name), key=_natural)[:per_domain]
         for problem_path in problems:
-            for candidate in (f"domain_{problem_path.name}", f"{problem_path.name.split('-')[0]}-domain.pddl", "domain.pddl"):
+            name, prefix = problem_path.name, problem_path.stem.split("-")[0]
+            for candidate in (f"domain_{name}", f"domain-{name}", f"{prefix}-domain.pddl", "domain.pddl"):
                 if (domain_dir / candidate).exists():
                     found.append((domain_dir.name, domain_dir / candidate, problem_path))
                     break

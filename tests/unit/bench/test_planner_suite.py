@@ -25,6 +25,10 @@ def _suite(tmp_path: Path) -> Path:
     shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p01.pddl")
     shutil.copy(FIXTURES / "gripper-domain.pddl", own / "p02-domain.pddl")  # airport's
     shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p02-gripper-4.pddl")
+    shutil.copy(FIXTURES / "gripper-domain.pddl", own / "domain-p03.pddl")  # organic-synthesis's
+    shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p03.pddl")
+    shutil.copy(FIXTURES / "gripper-domain.pddl", own / "p04-domain.pddl")  # parcprinter's
+    shutil.copy(FIXTURES / "gripper-4balls.pddl", own / "p04.pddl")
     return tmp_path
 
 
@@ -33,14 +37,15 @@ def test_the_suite_layout_pairs_each_problem_with_its_domain(tmp_path) -> None:
     assert [(d, dom.name, p.name) for d, dom, p in found] == [
         ("blocksworld", "domain.pddl", "p01.pddl"), ("gripper", "domain.pddl", "p01.pddl"),
         ("logistics", "domain.pddl", "p01.pddl"), ("own-domains", "domain_p01.pddl", "p01.pddl"),
-        ("own-domains", "p02-domain.pddl", "p02-gripper-4.pddl")]
+        ("own-domains", "p02-domain.pddl", "p02-gripper-4.pddl"), ("own-domains", "domain-p03.pddl", "p03.pddl"),
+        ("own-domains", "p04-domain.pddl", "p04.pddl")]
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("search", ["gbfs", "lazy"])
 def test_every_problem_is_solved_and_every_plan_validated(tmp_path, search: str) -> None:
     result = run_suite(_suite(tmp_path), ["ours"], per_domain=6, timeout=60, search=search, heuristic="hff")
-    assert result["problems"] == 5 and result["coverage"] == {"ours": 5} and result["invalid_plans"] == {"ours": 0}
+    assert result["problems"] == 7 and result["coverage"] == {"ours": 7} and result["invalid_plans"] == {"ours": 0}
     assert result["errors"] == {"ours": 0}
     assert all(row["ours"]["median_s"] > 0 for row in result["domains"].values())
 
@@ -80,7 +85,7 @@ def test_pyperplan_and_fast_downward_run_beside_ours_and_their_plans_are_checked
     result = run_suite(_suite(tmp_path), ["ours", "pyperplan", "fast-downward"], per_domain=6, timeout=60,
                        search="astar", heuristic="lmcut")
     assert result["left_out"] == {}
-    assert result["coverage"] == {"ours": 5, "pyperplan": 5, "fast-downward": 5}
+    assert result["coverage"] == {"ours": 7, "pyperplan": 7, "fast-downward": 7}
     assert result["invalid_plans"] == {"ours": 0, "pyperplan": 0, "fast-downward": 0}
     assert set(result["median_ratio_to_ours"]) == {"pyperplan", "fast-downward"}
 

@@ -232,6 +232,17 @@ PHRASES = [
     ("desk_cleanup", "all blocks in the box besides red and yellow",
      "in_bin(green) & in_bin(blue) & not in_bin(red) & not in_bin(yellow)"),
     ("three_blocks", "keep every block apart from green", "not close(red,green) & not close(green,blue)"),
+    ("desk_cleanup", "bin everything apart from blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("desk_cleanup", "put everything apart from blue in the bin",
+     "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("desk_cleanup", "everything aside from red should be in the bin",
+     "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
+    ("desk_cleanup", "clean up all the blocks apart from green",
+     "in_bin(red) & in_bin(blue) & in_bin(yellow) & not in_bin(green)"),
+    ("desk_cleanup", "put red in the bin, but keep green out of it", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put all the blocks except red on the table",  # red left where it is, not cleared into the bin
+     "not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) & not in_bin(yellow)"),
+    ("desk_cleanup", "leave only blue on the table", "not holding(blue) & not in_bin(blue) & in_bin(red) & in_bin(green) & in_bin(yellow)"),
     ("tabletop", "throw everything away except the red block",
      "in_bin(green) & in_bin(blue) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"
      " & not in_bin(red)"),

@@ -108,6 +108,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"and\b| then\b)", r"\g<verb> \g<what> out"),  # "take out every block except blue"
     (r"(in|into|inside) it(?=( too| as well| also)?( and\b| then\b|$))", "in the bin"),  # "empty the bin but keep blue
     # in it": no block holds one
+    (r"out of it(?=( too| as well| also)?( and\b| then\b|$))", "out of the bin"),  # "... but keep green out of it"
     (r"along with|as well as", "and"),  # "red along with green in the bin"
     (r"the lower (?P<noun>block|cube|one)", r"the bottom \g<noun>"),  # "put the lower block in the bin": the tower's
     (r"the upper (?P<noun>block|cube|one)", r"the top \g<noun>"),
@@ -1075,9 +1076,12 @@ def _verb_on_all(match: re.Match, blocks: Sequence[str]) -> str:
 
 _EXCEPTION_AFTER_ALL = re.compile(
     r"\b((?:all|every|everything|each)\b.*?) (?:apart from|aside from|besides|but for)"
-    r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+ *$)")
-"""'apart from', 'besides' after 'all' and before the blocks that end the sentence: an exception, not a place,
-where the words between say where the blocks go (in 'keep every block apart from green' it is the place)."""
+    r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+"
+    r"(?P<after> *$|(?: (?:should|must|shall|will|can|need to|needs to|have to|has to))?(?: (?:be|go|goes|stay|stays|are|is"
+    r"|belong|belongs|end up|ends up))? (?:in|into|inside|on|onto|to|near|next|beside|close|off|under)\b))")
+"""'apart from', 'besides' after 'all' and before the blocks: an exception, not a place, where the words between or
+after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
+every block apart from green' it is the place."""
 _TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|cube|storey|story|level)s?[- ]"
                          r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) (?:(?P<of>of) (?:"
                          r"height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?|(?:\d+|"
@@ -1286,11 +1290,14 @@ _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
+_PLACING_VERB = re.compile(r"\b(bin|stack|clear|clean|tidy|dump|discard|throw|toss|remove)( up| away| out)?$")
+"""A verb that says where the blocks after it go ('bin everything besides red', 'clean up all apart from green')."""
 
 
 def _as_exception(match: re.Match) -> str:
-    said = match[1]
-    return f"{said} except" if _PLACE.search(said) else match[0]
+    said, before = match[1], match.string[:match.start()].strip()
+    place = match["after"].strip() or _PLACE.search(said) or _PLACING_VERB.search(before)
+    return f"{said} except" if place else match[0]
 
 
 def _beside_the_bin(words: list[str]) -> list[str]:

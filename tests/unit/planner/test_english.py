@@ -243,6 +243,12 @@ PHRASES = [
     ("desk_cleanup", "put all the blocks except red on the table",  # red left where it is, not cleared into the bin
      "not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) & not in_bin(yellow)"),
     ("desk_cleanup", "leave only blue on the table", "not holding(blue) & not in_bin(blue) & in_bin(red) & in_bin(green) & in_bin(yellow)"),
+    ("desk_cleanup", "nothing but blue should be on the table",
+     "not holding(blue) & not in_bin(blue) & in_bin(red) & in_bin(green) & in_bin(yellow)"),
+    ("desk_cleanup", "nothing other than red and green in the bin",
+     "in_bin(red) & in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
+    ("two_blocks", "make a tower that is two blocks tall with red and green", "above(green,red)"),
+    ("two_blocks", "make a tower, two blocks high, of red and green", "above(green,red)"),
     ("tabletop", "throw everything away except the red block",
      "in_bin(green) & in_bin(blue) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"
      " & not in_bin(red)"),

@@ -269,6 +269,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # not on anything": on no block
     (rf"(?P<place>next to|near|beside|close to|by) (the )?(?P<block>{_COLOUR})( block| cube| one)? (on|onto) (the )?"
      r"(table|desk)", r"\g<place> \g<block> and on the table"),  # "green next to red on the table": both
+    (rf"(nothing|none of the (blocks|cubes)|no (other )?(block|cube)s?)( else)? (but|except( for)?|other than|besides|apart "
+     rf"from|aside from|save for)(?= (the )?({_COLOUR})\b)", "only"),  # "nothing but red should be on the table"
     (r"(make sure |ensure )?(that )?(none of the (blocks|cubes)|no (other )?(block|cube)s?|nothing|no one)( else)?( should| must"
      r"| may| can| is| are| will)?( be| stay| remain| sit| sits| rest| rests)?( stacked| piled| left| put| placed)? (on|on top "
      rf"of|onto|atop|upon) (the )?(?P<block>{_COLOUR})( block| cube| one)?\b", r"take all off \g<block>"),  # "nothing
@@ -1083,10 +1085,12 @@ _EXCEPTION_AFTER_ALL = re.compile(
 after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
 every block apart from green' it is the place."""
 _TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|cube|storey|story|level)s?[- ]"
-                         r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) (?:(?P<of>of) (?:"
-                         r"height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?|(?:\d+|"
-                         + "|".join(NUMBERS) + r")(?: blocks| cubes)? (?:high|tall)))\b")
-"""A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...'): the blocks named say it."""
+                         r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) +(?:and +)?(?:(?:that|which)"
+                         r" (?:is|are) )?(?:(?P<of>of) (?:height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?"
+                         r"|(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)? (?:high|tall)(?: +and(?= +(?:of|with|from|using"
+                         r"|out of)\b))?))\b")
+"""A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...', 'a tower that is three blocks
+tall with ...'): the blocks named say it."""
 _LIST_SAID = (rf"(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?(?: +(?:and +)?(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?)+"
               r"(?: +blocks| +cubes)?")
 _RESPECTIVELY = re.compile(rf"(?P<movers>{_LIST_SAID}) +(?P<place>on top of|onto|on|next to|near|beside|close to|by|away "

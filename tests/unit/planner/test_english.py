@@ -1446,3 +1446,20 @@ def test_a_denied_placing_verb_denies_the_place(i: int, verb: str) -> None:
     place, literal = _PLACES[i % 3 * 2 % len(_PLACES)]  # into the bin, next to green, onto green
     assert {str(lit) for lit in parse_english(f"{deny} {verb} red {place}", "tabletop", ("red", "green", "blue"))} == {
         f"not {literal}"}
+
+
+_ALL = ["every block", "all the blocks", "everything", "all blocks", "each block", "all of the blocks", "all the cubes"]
+_EXCEPT = ["except", "except for", "but", "apart from", "besides", "other than", "save for", "aside from", "excluding",
+           "with the exception of"]
+
+
+@pytest.mark.parametrize(("i", "exception"), enumerate(_EXCEPT))
+def test_every_way_of_saying_all_but_one_block_leaves_that_block_out(i: int, exception: str) -> None:
+    """Before the place, after it, and as the subject of 'should be': each as 'put every block except red PLACE'."""
+    place = ("in the bin", "next to yellow", "away from yellow", "into the box")[i % 4]
+    said = _ALL[i % len(_ALL)]
+    blocks = ("red", "green", "blue", "yellow")
+    expected = set(parse_english(f"put every block except red {place}", "tabletop", blocks))
+    for sentence in (f"put {said} {exception} red {place}", f"move {said} {place} {exception} red",
+                     f"{said} {exception} red should be {place}"):
+        assert set(parse_english(sentence, "tabletop", blocks)) == expected, sentence

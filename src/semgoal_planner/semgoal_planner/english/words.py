@@ -502,7 +502,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
     (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
-    (r"(and )?(except for|except|other than|save for)", "except"),  # "clear the desk, except for red"
+    (r"(and )?(except for|except|other than|save for|excluding|with the exception of)", "except"),  # "clear the desk,
+    # except for red"
     (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
     (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|blocks|cube|cubes|one))+"
      r"( then\b|$))", BUT_LEAVE),  # "clean the table but leave red and yellow"
@@ -1080,7 +1081,7 @@ _EXCEPTION_AFTER_ALL = re.compile(
     r"\b((?:all|every|everything|each)\b.*?) (?:apart from|aside from|besides|but for)"
     r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+"
     r"(?P<after> *$|(?: (?:should|must|shall|will|can|need to|needs to|have to|has to))?(?: (?:be|go|goes|stay|stays|are|is"
-    r"|belong|belongs|end up|ends up))? (?:in|into|inside|on|onto|to|near|next|beside|close|off|under)\b))")
+    r"|belong|belongs|end up|ends up))? (?:in|into|inside|on|onto|to|near|next|beside|close|off|under|away|far)\b))")
 """'apart from', 'besides' after 'all' and before the blocks: an exception, not a place, where the words between or
 after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
 every block apart from green' it is the place."""
@@ -1293,7 +1294,7 @@ _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){
                           r"\b(?:throw|toss|chuck)\b(?P<out>(?: +[\w']+){1,12}?) +out\b(?! +(?:of|from))|"
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
-_PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding)\b")
+_PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding|away|far)\b")
 _PLACING_VERB = re.compile(r"\b(bin|stack|clear|clean|tidy|dump|discard|throw|toss|remove)( up| away| out)?$")
 """A verb that says where the blocks after it go ('bin everything besides red', 'clean up all apart from green')."""
 

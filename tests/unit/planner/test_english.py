@@ -1463,3 +1463,11 @@ def test_every_way_of_saying_all_but_one_block_leaves_that_block_out(i: int, exc
     for sentence in (f"put {said} {exception} red {place}", f"move {said} {place} {exception} red",
                      f"{said} {exception} red should be {place}"):
         assert set(parse_english(sentence, "tabletop", blocks)) == expected, sentence
+
+
+@pytest.mark.parametrize("rest", ["rest in bin", "the rest binned", "bin the leftovers", "all other blocks in the bin",
+                                  "whatever is left in the bin", "what remains in the bin", "the leftover blocks in the bin"])
+def test_the_rest_said_many_ways_goes_where_the_sentence_says(rest: str) -> None:
+    """Never 'rest' as a verb after 'and' ('red on green and rest in bin' once put red in the bin)."""
+    said = parse_english(f"red on green, {rest}", "tabletop", ("red", "green", "blue", "yellow"))
+    assert set(said) == literals("above(red,green) & in_bin(blue) & in_bin(yellow)")

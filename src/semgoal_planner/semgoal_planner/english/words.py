@@ -477,8 +477,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"
      r"grab|unstack|build|make|empty|get)\b)", "and"),  # "clean up the desk by putting all the blocks in the bin"
     (r"without", "and not"),  # "put red near green without touching blue"
-    (r"(?<!the )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into|next|near|beside|close|by)\b)", ""),  # "green rests
-    # on red", not "the rest"
+    (r"(?<!the )(?<!and )(?<!then )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into|next|near|beside|close|by)\b)",
+     ""),  # "green rests on red"; not "the rest", nor "red on green and rest in the bin"
     (r"(stacked|piled|placed|positioned|moved|located|lying|sitting|standing)(?= (on|upon|atop|onto|in|inside|into|"
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
     (r"\b(be|been|is|are|gets?|got) (put|set|dropped|thrown|tossed|carried|brought|laid)(?= (on|upon|atop|onto|in|inside|"
@@ -493,6 +493,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"\g<0> and"),  # "put red on the table next to green": both
     (rf"fill (up )?(the )?(bin|basket|box|trash|bucket)( up)? with (?P<what>(the )?({_COLOUR})(( and|,)? (the )?"
      rf"({_COLOUR}))*)", r"put \g<what> in the bin"),  # "fill the bin with red and blue"
+    (r"what(ever)? (is|remains) left|what(ever)? remains", "the rest"),  # "... and whatever is left in the bin"
     (r"(is|are|be|stays?|gets?) left(?= (on|in|off|out|near|next|by|beside)\b)", ""),  # "no block is left on the desk"
     *((rf"(the )?bin (should |must |will |has to |needs to |is to |to )?(contains?|holds?|has|have|gets?) "
        rf"(?P<what>everything|all( of)?( the)? (blocks|cubes)|(only |just )?(the )?({_COLOUR})( block| cube| one)?"
@@ -572,6 +573,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"sort( out)?", "put"),  # "sort red and green into the bin"
     (r"remove|take away", "remove"),
     (r"keep|leave|have|let", "keep"),
+    (r"binned|trashed", "in the bin"),  # "the rest binned", "red should be binned"
+    (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
+     r"(blocks|cubes|ones)", "the rest"),  # "bin the leftovers"
     (r"everything|every|each|all of them|all of|all", "all"),
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
     (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"

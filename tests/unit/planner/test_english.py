@@ -248,6 +248,8 @@ PHRASES = [
     ("desk_cleanup", "nothing other than red and green in the bin",
      "in_bin(red) & in_bin(green) & not in_bin(blue) & not in_bin(yellow)"),
     ("two_blocks", "make a tower that is two blocks tall with red and green", "above(green,red)"),
+    ("two_blocks", "red at the bottom, then green on it", "above(green,red)"),
+    ("two_blocks", "red first, green on top of it", "above(green,red)"),
     ("two_blocks", "make a tower, two blocks high, of red and green", "above(green,red)"),
     ("tabletop", "throw everything away except the red block",
      "in_bin(green) & in_bin(blue) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"

@@ -76,6 +76,9 @@ _DENIED = r"(don'?t|do not|never|please don'?t|must not|mustn'?t|should not|shou
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
+    (rf"(?P<below>{_COLOUR})(?P<noun> block| cube)? (?P<end>at the (bottom|base)|first|goes first)(?P<joint>( and| then)+) "
+     rf"(?P<above>(the )?({_COLOUR})( block| cube)?) (?P<on>on top of|on|onto|above|atop) it",
+     r"\g<above> \g<on> \g<below>"),  # "red at the bottom, green on it": green on red
     (rf"(without|and not|but not)( ever)? (moving|move|disturbing|disturb|shifting|shift|pushing|push|sliding|slide|"
      rf"nudging|nudge){_NO_PLACE_AFTER}", "and keep"),  # "put orange in the bin without moving red": red kept ('not move
     # red' alone would read 'not put red down': held)

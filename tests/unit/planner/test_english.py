@@ -250,6 +250,8 @@ PHRASES = [
     ("two_blocks", "make a tower that is two blocks tall with red and green", "above(green,red)"),
     ("two_blocks", "red at the bottom, then green on it", "above(green,red)"),
     ("two_blocks", "red first, green on top of it", "above(green,red)"),
+    ("tabletop", "stack green on red, then blue, then yellow", "above(green,red) & above(blue,green) & above(yellow,blue)"),
+    ("tabletop", "put green on red, then blue and yellow", "above(green,red) & above(blue,green) & above(yellow,blue)"),
     ("two_blocks", "make a tower, two blocks high, of red and green", "above(green,red)"),
     ("tabletop", "throw everything away except the red block",
      "in_bin(green) & in_bin(blue) & in_bin(yellow) & in_bin(orange) & in_bin(purple) & in_bin(cyan) & in_bin(pink)"

@@ -269,6 +269,9 @@ class Resolver:
             objects = (self.built_top,)  # "... and blue on top": on the tower just built, not on a block not named
         else:
             objects = self.blocks_of(clause.objects, besides=subjects)
+        if borrows_relation and clause.kind == "on" and not clause.negated and len(objects) == 1 \
+                and self.built_top not in (None, *subjects, *objects):  # "stack green on red, then blue (and yellow)":
+            objects = (self.built_top,)  # on green, as red has a block on it already
         if set(subjects) & set(objects) & set(PLACED_WHEN_PLANNED) or (TOWER_TOP in subjects and "tower" in objects):
             raise LanguageError("a block of the tower cannot be placed on or by itself: name the other block")
         if ({TOWER_ALL, TOWER_REST} & set(objects) and clause.kind not in ("near", "away")) or (

@@ -76,6 +76,13 @@ _DENIED = r"(don'?t|do not|never|please don'?t|must not|mustn'?t|should not|shou
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
+    (r"(get |have )?(the )?(desk|table|tabletop|workspace) (cleared|cleaned|tidied|emptied)( up| off)?", "clear the table"),
+    # "I need the desk cleared"
+    (r"(?P<verb>get rid of|dispose of|clear away|throw away|put away|bin|discard) (?P<all>(all|every|each|everything)"
+     r"( of)?( the)?( blocks| cubes| block| cube| ones)?) (that (is|are) )?(on|from) (the )?(desk|table|tabletop|workspace)",
+     r"\g<verb> \g<all>"),  # "get rid of all the cubes on the desk": those in the bin are there already
+    (r"remove (?P<all>(all|every|each|everything)( of)?( the)?( blocks| cubes| block| cube| ones)?) (that (is|are) )?on (the )?"
+     r"(desk|table|tabletop|workspace)", r"remove \g<all> from the table"),  # "remove all the blocks on the table"
     (rf"(?P<below>{_COLOUR})(?P<noun> block| cube)? (?P<end>at the (bottom|base)|first|goes first)(?P<joint>( and| then)+) "
      rf"(?P<above>(the )?({_COLOUR})( block| cube)?) (?P<on>on top of|on|onto|above|atop) it",
      r"\g<above> \g<on> \g<below>"),  # "red at the bottom, green on it": green on red
@@ -597,7 +604,7 @@ FILLERS = frozenset({
     "my", "our", "its", "their", "block", "blocks", "cube", "cubes", "one", "ones", "piece", "pieces", "object",
     "objects", "thing", "things", "is", "are", "be", "been", "being", "should", "must", "will", "shall", "stay", "stays",
     "remain", "remains", "end", "ends", "there", "here", "sure", "make", "go", "goes", "belong", "belongs",
-    "first", "firstly", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
+    "first", "firstly", "last", "start", "begin", "alone", "untouched", "sit", "sits", "sitting", "lie", "lies", "lying",
     "stand", "stands", "standing", "somewhere", "anywhere", "quickly", "carefully", "slowly", "gently", "softly",
     "immediately", "right", "straight", "anymore", "still", "finish", "were", "was",
 })

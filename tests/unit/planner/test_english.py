@@ -1479,3 +1479,11 @@ def test_the_rest_said_many_ways_goes_where_the_sentence_says(rest: str) -> None
     """Never 'rest' as a verb after 'and' ('red on green and rest in bin' once put red in the bin)."""
     said = parse_english(f"red on green, {rest}", "tabletop", ("red", "green", "blue", "yellow"))
     assert set(said) == literals("above(red,green) & in_bin(blue) & in_bin(yellow)")
+
+
+@pytest.mark.parametrize("text", ["make green the bottom block", "green should be the bottom block",
+                                  "put the top block the bottom block", "stack red and green in any order blue"])
+def test_a_sentence_not_read_is_shown_back_in_words_not_the_grammars_tokens(text: str) -> None:
+    with pytest.raises(LanguageError, match="read as") as refused:
+        parse_english(text, "tabletop", ("red", "green", "blue"))
+    assert "_" not in str(refused.value) and "anyorder" not in str(refused.value), str(refused.value)

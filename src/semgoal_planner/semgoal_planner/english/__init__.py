@@ -53,7 +53,19 @@ from semgoal_planner.english.resolver import (
     is_stand_in,
     stacks_in_order,
 )
-from semgoal_planner.english.words import MAX_GOAL_CHARS, LanguageError, examples, normalise
+from semgoal_planner.english.words import (
+    AFFIRMED,
+    ANY_ORDER,
+    BUT_LEAVE,
+    IN_PLACE,
+    INTO_A_TOWER,
+    MAX_GOAL_CHARS,
+    TOP_DOWN,
+    UNDER_A_TOWER,
+    LanguageError,
+    examples,
+    normalise,
+)
 
 __all__ = ["HELD", "KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
            "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
@@ -251,8 +263,19 @@ def _a_means(hold: Clause, later: list[Clause], resolver: Resolver) -> bool:
                for c in later)
 
 
+_SHOWN = {"the_base": "the bottom block", "the_top": "the top block", "the_whole": "the whole tower", "the_held": "the block held",
+          "the_binned": "the block in the bin", "the_middle": "the middle block", "the_upper": "the block above",
+          "the_lower": "the block below", ANY_ORDER: "in any order", AFFIRMED: "is", IN_PLACE: "where it is",
+          INTO_A_TOWER: "into a tower", TOP_DOWN: "from the top down", BUT_LEAVE: "but leave", UNDER_A_TOWER: "under the tower"}
+"""How the grammar's own words read in a refusal: 'the_base' is 'the bottom block' to the person who said it."""
+
+
+def _shown(word: str) -> str:
+    return _SHOWN.get(word, word.replace("_", " "))
+
+
 def _parse_error(words: list[str], error: lark.exceptions.LarkError, suggested: str) -> str:
-    said = " ".join(words)
+    said = " ".join(map(_shown, words))
     token = getattr(error, "token", None)
-    where = f" at {str(token)!r}" if token is not None and str(token) else " (it ends too soon)"
+    where = f" at {_shown(str(token))!r}" if token is not None and str(token) else " (it ends too soon)"
     return f"cannot read the goal as a sentence{where} (read as: {said!r}): e.g. {suggested}"

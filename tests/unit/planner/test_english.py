@@ -851,6 +851,7 @@ REFUSALS = [
     ("desk_cleanup", "put all blocks but one in the bin", "'all blocks but one' leaves open which"),
     ("three_blocks", "move most of them next to red", "'most of them' leaves open which"),
     ("tabletop", "hold blue above the bin", "'hold blue above the bin': where the hand is is none of scene tabletop's"),
+    ("tabletop", "pick up red and hold it over green", "'hold it over green': where the hand is is none of scene tabletop's"),
     ("two_blocks", "hold the red block over green and let go of it later", "where the hand is is none of scene two_blocks's"),
 ]
 

@@ -1143,9 +1143,10 @@ _AN_ORDER = re.compile(r"^\W*(?:please\W+)?(?P<order>stop|cancel|abort|halt|paus
 _CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch that|i mean|on second thought|or rather|correction|"
                          r"actually|make that)\b")
 """'put red in the bin, no wait, green': words that take back what came before them (refused after a word)."""
-_HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID})\s+(?:up\s+)?(?:above|"
+_HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID}|it|them)\s+(?:up\s+)?(?:above|"
                         r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
-"""'hold blue above the bin': a place in the air, which no predicate says (refused)."""
+"""'hold blue above the bin', 'pick up red and hold it over green': a place in the air, which no predicate says
+(refused)."""
 _HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")
 _PLACING_VERBS = ("put", "place", "move", "set", "stack", "drop", "throw", "toss", "get", "bring", "lay")
 """The verbs a 'neither ... nor' or a denied 'or' may follow: those that put a block somewhere, or into the hand."""

@@ -217,6 +217,8 @@ _NEGATED = re.compile(r"^\s*(?:not|!|~|¬)\s*\((?P<literal>[^()]*\([^()]*\)\s*)\
 """A negation written as a call: ``not(in_bin(red))``."""
 PREDICATE_ALIASES = {"on": "above", "near": "close", "inbin": "in_bin", "held": "holding"}
 """Other names people give the predicates in a literal (blocksworld's ``on(a,b)``): read as the predicate itself."""
+BIN_NAMES = ("bin", "box", "basket", "trash")
+"""What a literal may call the bin, as its second argument: ``in(red,bin)``."""
 
 
 def parse_literal(text: str) -> Literal:
@@ -229,6 +231,8 @@ def parse_literal(text: str) -> Literal:
         raise VocabularyError(f"cannot read literal {text!r}: expected e.g. 'close(red,green)' or 'not in_bin(red)'")
     args = tuple(arg.strip().lower() for arg in match["args"].split(",")) if match["args"].strip() else ()
     name = match["name"].lower().replace("-", "_")
+    if name in ("in", "inside") and len(args) == 2 and args[1] in BIN_NAMES:  # "in(red,bin)", as planning domains say it
+        name, args = "in_bin", args[:1]
     return Literal(PREDICATE_ALIASES.get(name, name), args, value=match["neg"] is None)
 
 

@@ -145,6 +145,9 @@ def test_fallen_blocks_lie_well_below_the_table_top() -> None:
     ("¬above(red, green)", Literal("above", ("red", "green"), False)),
     ("not(in_bin(red))", Literal("in_bin", ("red",), False)),
     (" ! ( close(Red, green) ) ", Literal("close", ("red", "green"), False)),
+    ("in(red, bin)", Literal("in_bin", ("red",))),
+    ("not inside(blue,box)", Literal("in_bin", ("blue",), False)),
+    ("on(red,green)", Literal("above", ("red", "green"))),
 ])
 def test_parse_literal(text: str, expected: Literal) -> None:
     assert parse_literal(text) == expected

@@ -1488,3 +1488,9 @@ def test_a_sentence_not_read_is_shown_back_in_words_not_the_grammars_tokens(text
     with pytest.raises(LanguageError, match="read as") as refused:
         parse_english(text, "tabletop", ("red", "green", "blue"))
     assert "_" not in str(refused.value) and "anyorder" not in str(refused.value), str(refused.value)
+
+
+@pytest.mark.parametrize("bottom, top", [("green", "red"), ("red", "green")])
+def test_stack_them_with_an_end_named_said_first_is_a_tower_of_every_block(bottom: str, top: str) -> None:
+    said = parse_goal(f"stack them with {bottom} at the bottom", "two_blocks", ("red", "green"), [])
+    assert Literal("above", (top, bottom)) in said and Literal("above", (bottom, top)) not in said

@@ -966,6 +966,8 @@ def _tower_end_named(words: list[str]) -> list[str]:
             continue
         if before[-3:] in (["put", "all", INTO_A_TOWER], ["stack", "all", INTO_A_TOWER]):  # "put all the blocks in one
             before = [*before[:-3], "stack", "all"]  # tower with purple on top"
+        if before[-2:] == ["stack", "them"] and not set(before) & set(BLOCK_COLOURS):  # "stack them with green at the
+            before = [*before[:-1], "all"]  # bottom", no block named before: every block
         if before[-2:] == ["stack", "all"]:  # "stack all the blocks with purple on top": the others under it, any order
             words = [*before, "and", *_end_pinned(words[mark], named)]
             if after[:1] == [BASE_MARK if top else TOP_MARK] and after[1:2] and after[1] in BLOCK_COLOURS:  # "... and

@@ -3,6 +3,8 @@
 Lockstep: control steps per second of wall time, end to end (sim -> predicates -> planner -> policy ->
 sim, over DDS), over N episodes of the task, beside the same episodes in one process (no ROS) as the
 peer: the ratio is what the graph costs; and the same episodes again, each recorded as MCAP.
+The CPU the graph's processes spend per control step (user and system, every thread) is measured beside the CPU of
+the same episodes in one process: unlike steps per second, it does not move with what else the machine runs.
 Realtime: the sim steps at 25 Hz on its timer; the client
 records when each world state arrives (:func:`arrival_timing`: the rate, and the steps late by more
 than half a period). With ``--pixels`` the same lockstep episodes run again with the planner and the policy on
@@ -14,9 +16,12 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import statistics
 import time
 from itertools import pairwise
+from pathlib import Path
+from typing import NamedTuple
 
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import TRUTH, Sight, running_graph
@@ -26,14 +31,43 @@ from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 REALTIME_HZ = 25.0
 
 
+class Run(NamedTuple):
+    """One episode: its control steps, wall seconds, and the CPU seconds it cost (the graph's processes, or this one)."""
+
+    steps: int
+    wall_s: float
+    cpu_s: float
+
+
+def descendants_cpu_s() -> float:
+    """CPU seconds (user + system) spent so far by this process's descendants that are still running: the graph's
+    node processes (Linux /proc)."""
+    parents: dict[int, int] = {}
+    times: dict[int, float] = {}
+    tick = os.sysconf("SC_CLK_TCK")
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):  # ended meanwhile
+            continue
+        pid = int(stat.parent.name)
+        parents[pid], times[pid] = int(fields[1]), (int(fields[11]) + int(fields[12])) / tick
+    mine, total, frontier = {os.getpid()}, 0.0, [os.getpid()]
+    while frontier:
+        children = [pid for pid, parent in parents.items() if parent in frontier and pid not in mine]
+        mine.update(children)
+        total += sum(times[pid] for pid in children)
+        frontier = children
+    return total
+
+
 def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH, record: bool = True,
-             composed: bool = False) -> tuple[list[tuple[int, float]], list[tuple[int, float]]]:
-    """(control steps, wall seconds) per episode through the graph seeing by ``sight``, unrecorded and (with
+             composed: bool = False) -> tuple[list[Run], list[Run]]:
+    """Each episode (:class:`Run`) through the graph seeing by ``sight``, unrecorded and (with
     ``record``) recorded as MCAP (into a scratch folder, as ``eval --via-ros --record`` does): each start once of
     each kind, in turns on the same running graph, so that the ratio does not depend on a graph's start or on
     what else the machine does. ``composed``: the graph's nodes in one process (:mod:`semgoal_bringup.composed`)."""
     import tempfile
-    from pathlib import Path
 
     plain, recorded = [], []
     with tempfile.TemporaryDirectory() as scratch, \
@@ -43,19 +77,31 @@ def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH, record: 
             for runs, path in kinds:
                 with client.recording(path):
                     client.must_reset(task, seed + i)
+                    cpu = descendants_cpu_s()
                     result = client.execute(task, max_steps=TASK_STEP_BUDGET)
-                runs.append((result.control_steps, result.wall_s))
+                    cpu = descendants_cpu_s() - cpu
+                runs.append(Run(result.control_steps, result.wall_s, cpu))
     return plain, recorded
 
 
-def in_process(task: str, episodes: int, seed: int) -> list[tuple[int, float]]:
+def in_process(task: str, episodes: int, seed: int) -> list[Run]:
     agent = make_agent("hierarchical", get_task(task).scene)
     runs = []
     for i in range(episodes):
-        started = time.perf_counter()
+        started, cpu = time.perf_counter(), time.process_time()
         outcome = agent.run(task, seed + i)
-        runs.append((outcome.steps, time.perf_counter() - started))
+        runs.append(Run(outcome.steps, time.perf_counter() - started, time.process_time() - cpu))
     return runs
+
+
+def rate(runs: list[Run]) -> float:
+    """The median episode's control steps per second."""
+    return statistics.median(run.steps / run.wall_s for run in runs if run.wall_s > 0)
+
+
+def cpu_ms_per_step(runs: list[Run]) -> float:
+    """CPU milliseconds per control step over all the episodes."""
+    return 1000 * sum(run.cpu_s for run in runs) / max(1, sum(run.steps for run in runs))
 
 
 def realtime(task: str, seed: int, seconds: float) -> dict[str, float]:
@@ -86,17 +132,17 @@ def arrival_timing(arrivals: list[tuple[int, float]], hz: float) -> dict[str, fl
 def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
     """The lockstep episodes again with the planner and the policy on the RGB-D camera, beside ground truth's rate."""
     runs, _ = lockstep(task, episodes, seed, Sight(perception="camera", policy_input="camera"), record=False)
-    rate = statistics.median(steps / wall for steps, wall in runs if wall > 0)
-    return {"lockstep_pixels_steps_per_s": round(rate, 1), "pixels_over_truth": round(rate / truth_rate, 3),
-            "pixels_steps": [s for s, _ in runs]}
+    return {"lockstep_pixels_steps_per_s": round(rate(runs), 1), "pixels_over_truth": round(rate(runs) / truth_rate, 3),
+            "pixels_steps": [run.steps for run in runs]}
 
 
-def composed_rates(task: str, episodes: int, seed: int, processes_rate: float, local_rate: float) -> dict:
+def composed_rates(task: str, episodes: int, seed: int, processes: list[Run], local: list[Run]) -> dict:
     """The lockstep episodes again with the graph's nodes in one process, beside four processes and in process."""
     runs, _ = lockstep(task, episodes, seed, record=False, composed=True)
-    rate = statistics.median(steps / wall for steps, wall in runs if wall > 0)
-    return {"lockstep_composed_steps_per_s": round(rate, 1), "composed_over_in_process": round(rate / local_rate, 3),
-            "composed_over_processes": round(rate / processes_rate, 3)}
+    return {"lockstep_composed_steps_per_s": round(rate(runs), 1),
+            "composed_over_in_process": round(rate(runs) / rate(local), 3),
+            "composed_over_processes": round(rate(runs) / rate(processes), 3),
+            "composed_cpu_ms_per_step": round(cpu_ms_per_step(runs), 2)}
 
 
 def main(argv: list[str]) -> int:
@@ -116,26 +162,30 @@ def main(argv: list[str]) -> int:
     task = get_task(args.task).name
     graph, recorded = lockstep(task, args.episodes, args.seed)
     local = in_process(task, args.episodes, args.seed)
-    rate = lambda runs: statistics.median(steps / wall for steps, wall in runs if wall > 0)  # noqa: E731
     result = {"task": task, "episodes": args.episodes,
               "lockstep_graph_steps_per_s": round(rate(graph), 1),
               "in_process_steps_per_s": round(rate(local), 1),
               "graph_over_in_process": round(rate(graph) / rate(local), 3),
+              "graph_cpu_ms_per_step": round(cpu_ms_per_step(graph), 2),
+              "in_process_cpu_ms_per_step": round(cpu_ms_per_step(local), 2),
               "lockstep_recorded_steps_per_s": round(rate(recorded), 1),
               "recorded_over_unrecorded": round(statistics.median(
-                  (steps / wall) / (plain_steps / plain_wall)
-                  for (steps, wall), (plain_steps, plain_wall) in zip(recorded, graph, strict=True)), 3),
-              "graph_steps": [s for s, _ in graph], "in_process_steps": [s for s, _ in local],
+                  (run.steps / run.wall_s) / (plain.steps / plain.wall_s)
+                  for run, plain in zip(recorded, graph, strict=True)), 3),
+              "graph_steps": [run.steps for run in graph], "in_process_steps": [run.steps for run in local],
               **(from_pixels(task, args.episodes, args.seed, rate(graph)) if args.pixels else {}),
-              **(composed_rates(task, args.episodes, args.seed, rate(graph), rate(local)) if args.composed else {}),
+              **(composed_rates(task, args.episodes, args.seed, graph, local) if args.composed else {}),
               "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
     print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
           f"{args.episodes}); in one process: {result['in_process_steps_per_s']} steps/s; "
           f"ratio {result['graph_over_in_process']}; recording every topic: {result['lockstep_recorded_steps_per_s']} "
           f"steps/s ({result['recorded_over_unrecorded']} of unrecorded, median over the pairs of one start)")
+    print(f"CPU per control step: the graph's processes {result['graph_cpu_ms_per_step']} ms, in one process "
+          f"{result['in_process_cpu_ms_per_step']} ms")
     if args.composed:
         print(f"lockstep with the four nodes in one process: {result['lockstep_composed_steps_per_s']} control steps/s, "
-              f"{result['composed_over_in_process']} of in process, {result['composed_over_processes']} of four processes")
+              f"{result['composed_over_in_process']} of in process, {result['composed_over_processes']} of four processes, "
+              f"{result['composed_cpu_ms_per_step']} ms CPU per step")
     if args.pixels:
         print(f"lockstep from pixels (planner and policy on the camera): {result['lockstep_pixels_steps_per_s']} "
               f"control steps/s, {result['pixels_over_truth']} of ground truth's")

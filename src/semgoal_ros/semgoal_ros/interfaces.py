@@ -9,10 +9,11 @@ memory of answers that makes such a repeat safe.
 """
 
 import contextlib
+import os
 import signal
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -208,10 +209,12 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
 
 def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
     """:func:`run_node` for several nodes in one process, spun by one single-threaded executor: each is still a node
-    of its own, with its own name and parameters."""
+    of its own, with its own name and parameters. The executor is :class:`~semgoal_ros.executor.SteadyExecutor`, or
+    rclpy's own where ``SEMGOAL_EXECUTOR=rclpy`` (to tell a fault of ours from rclpy's)."""
     import rclpy
     from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 
+    from semgoal_ros.executor import SteadyExecutor
     from semgoal_ros.parameters import ParameterValueError
 
     rclpy.init(args=args)
@@ -229,11 +232,12 @@ def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
         if rclpy.ok():
             raise
         return  # SIGINT shut the context down while the node built its servers (rcl: context invalid)
-    executor = SingleThreadedExecutor()
+    executor = SingleThreadedExecutor() if os.environ.get("SEMGOAL_EXECUTOR") == "rclpy" else SteadyExecutor()
     for node in nodes:
         executor.add_node(node)
     try:
-        executor.spin()
+        with _profiled("+".join(node.get_name() for node in nodes)):
+            executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     except Exception:
@@ -242,6 +246,30 @@ def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
         # SIGINT shut the context down while the executor built its wait set (rclpy raises RCLError there)
     finally:
         _destroy(rclpy, nodes)
+
+
+PROFILE_DIR_VARIABLE = "SEMGOAL_PROFILE_DIR"
+"""Where set, each node process profiles its spinning (cProfile) into ``DIR/NODES-PID.prof`` as it stops: where a
+control step's CPU goes, node by node (docs/measurements.md)."""
+
+
+@contextlib.contextmanager
+def _profiled(name: str) -> Iterator[None]:
+    folder = os.environ.get(PROFILE_DIR_VARIABLE)
+    if not folder:
+        yield
+        return
+    import cProfile
+    from pathlib import Path
+
+    profiler = cProfile.Profile(time.thread_time)  # CPU, not the waits: where this thread spends it
+    profiler.enable()
+    try:
+        yield
+    finally:
+        profiler.disable()
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        profiler.dump_stats(Path(folder) / f"{name}-{os.getpid()}.prof")
 
 
 EXIT_GRACE_S = 5

@@ -5,6 +5,10 @@ import subprocess
 import sys
 import time
 
+import pytest
+
+pytestmark = pytest.mark.slow  # each starts a Python process
+
 HUNG_EXIT = """
 import types
 from semgoal_ros import interfaces

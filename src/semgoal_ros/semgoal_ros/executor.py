@@ -1,0 +1,245 @@
+"""A single-threaded executor that keeps what it waits on between spins.
+
+rclpy's ``SingleThreadedExecutor`` rebuilds, on every spin, the list of every entity of every node (each passed
+through its callback group), enters each handle's context, builds a new wait set, and then looks every ready handle
+up in lists. A node of the graph has about twenty entities (its parameter services, its publishers' and
+subscriptions' QoS event handlers, its own services and subscriptions), so on the graph's hot path that work cost
+more than taking and handling the messages (docs/measurements.md). :class:`SteadyExecutor` gathers them again only
+when a node or an entity comes or goes (rclpy wakes its executor then), keeps their handles entered meanwhile (so
+none is destroyed while it is waited on), reuses one wait set, and finds ready handles in sets. What runs, in what
+order and under which callback group's rule is rclpy's: tasks in progress first, then per node its waitables,
+timers, subscriptions, guard conditions, clients and services.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Generator, Iterable
+from contextlib import ExitStack
+from typing import Any
+
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.exceptions import InvalidHandle
+from rclpy.executors import (
+    ConditionReachedException,
+    ExternalShutdownException,
+    ShutdownException,
+    SingleThreadedExecutor,
+    TimeoutException,
+    TimeoutObject,
+)
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.timer import Timer
+from rclpy.utilities import timeout_sec_to_nsec
+
+KINDS = ("timer", "subscription", "guard_condition", "client", "service")
+"""The wait set's kinds of plain entity, in the order rclpy hands a node's ready callbacks out."""
+NODE_LISTS = ("timers", "subscriptions", "guards", "clients", "services")
+"""The node's property listing each kind."""
+
+
+class _Waited:
+    """Every entity of the executor's nodes, their handles entered, and one wait set with room for them all and a
+    timeout timer."""
+
+    def __init__(self, nodes: Iterable[Any], executor_guards: tuple, context: Any) -> None:
+        self.stack = ExitStack()
+        self.nodes: list[tuple[Any, dict[str, list], list]] = []
+        room = dict.fromkeys(("subscription", "guard_condition", "timer", "client", "service", "event"), 0)
+        for node in nodes:
+            entities = {kind: self._entered(getattr(node, listed)) for kind, listed in zip(KINDS, NODE_LISTS, strict=True)}
+            waitables = []
+            for waitable in node.waitables:
+                try:
+                    self.stack.enter_context(waitable)
+                except InvalidHandle:
+                    continue
+                waitables.append(waitable)
+                number = waitable.get_num_entities()
+                for kind in room:
+                    room[kind] += getattr(number, f"num_{kind}s")
+            for kind, entered in entities.items():
+                room[kind] += len(entered)
+            self.nodes.append((node, entities, waitables))
+        self.guards = self._entered(executor_guards)
+        room["guard_condition"] += len(self.guards)
+        self.groups = {entity.callback_group for _, entities, waitables in self.nodes
+                       for entity in (*waitables, *(e for entered in entities.values() for e in entered))}
+        self.pointers = {id(entity): entity.handle.pointer for _, entities, _ in self.nodes
+                         for entered in entities.values() for entity in entered}
+        self.wait_set = _rclpy.WaitSet(room["subscription"], room["guard_condition"], room["timer"] + 1, room["client"],
+                                       room["service"], room["event"], context.handle)
+
+    def _entered(self, entities: Iterable[Any]) -> list[Any]:
+        entered = []
+        for entity in entities:
+            try:
+                self.stack.enter_context(entity.handle)
+            except InvalidHandle:  # destroyed meanwhile
+                continue
+            entered.append(entity)
+        return entered
+
+    def close(self) -> None:
+        self.wait_set.destroy_when_not_in_use()
+        self.stack.close()
+
+
+class SteadyExecutor(SingleThreadedExecutor):
+    """rclpy's single-threaded executor, what it waits on kept between spins (module docstring).
+
+    The spinning thread holds ``_waiting`` from gathering to the end of a wait. A wake (a node's entity came or
+    went, from any thread) that finds it free lets the handles go at once, so a destroyed entity goes at once too;
+    one that finds it held marks them stale, and the spinning thread gathers again before its next wait."""
+
+    def __init__(self, *, context: Any = None) -> None:
+        super().__init__(context=context)
+        self._waited: _Waited | None = None
+        self._stale = False
+        self._waiting = threading.Lock()
+
+    def wake(self) -> None:
+        self._let_go()
+        super().wake()
+
+    def add_node(self, node: Any) -> bool:
+        self._let_go()
+        return super().add_node(node)
+
+    def remove_node(self, node: Any) -> None:
+        self._let_go()
+        super().remove_node(node)
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        done = super().shutdown(timeout_sec)
+        self._let_go()
+        return done
+
+    def _let_go(self) -> None:
+        """Let the entities go now where no wait is using them; else mark them stale for the spinning thread."""
+        if self._waiting.acquire(blocking=False):
+            try:
+                self._forget()
+            finally:
+                self._waiting.release()
+        else:
+            self._stale = True
+
+    def _forget(self) -> None:
+        waited, self._waited, self._stale = self._waited, None, False
+        if waited is not None:
+            waited.close()
+
+    def _wait_for_ready_callbacks(self, timeout_sec: float | TimeoutObject | None = None, nodes: list | None = None,
+                                  condition: Callable[[], bool] = lambda: False) -> Generator[tuple, None, None]:
+        if nodes is not None:  # a spin over some of the nodes only: rclpy's own way
+            yield from super()._wait_for_ready_callbacks(timeout_sec, nodes, condition)
+            return
+        timeout_nsec = timeout_sec_to_nsec(timeout_sec.timeout if isinstance(timeout_sec, TimeoutObject) else timeout_sec)
+        timeout_timer = Timer(None, None, timeout_nsec, self._clock, context=self._context) if timeout_nsec > 0 else None
+        yielded_work = False
+        while not yielded_work and not self._is_shutdown and not condition():
+            nodes_now = self.get_nodes()
+            with self._tasks_lock:
+                tasks = list(self._tasks)
+            if tasks:  # tasks in progress (coroutines that awaited) go first, as in rclpy
+                for task, entity, node in reversed(tasks):
+                    if not task.executing() and not task.done() and (node is None or node in nodes_now):
+                        yielded_work = True
+                        yield task, entity, node
+                with self._tasks_lock:
+                    self._tasks = [t for t in self._tasks if not t[0].done() and not t[0].cancelled()]
+            with self._waiting:
+                if self._waited is None or self._stale:
+                    self._forget()
+                    self._waited = _Waited(nodes_now, (self._guard, self._sigint_gc), self._context)
+                waited = self._waited
+                ready, waitables_ready = self._wait(waited, timeout_timer, timeout_nsec)
+            for node, _, waitables in waited.nodes:
+                for waitable in waitables:
+                    if waitable in waitables_ready and waitable.callback_group.can_execute(waitable):
+                        yielded_work = True
+                        yield self._make_handler(waitable, node, self._take_waitable), waitable, node
+                        if self._waited is not waited or self._stale:  # a callback added or removed an entity
+                            return
+            for node, entities, _ in waited.nodes:
+                for kind, take in zip(KINDS, (self._take_timer, self._take_subscription, self._take_guard_condition,
+                                              self._take_client, self._take_service), strict=True):
+                    for entity in entities[kind]:
+                        if not _is_ready(entity, kind, waited, ready) or not entity.callback_group.can_execute(entity):
+                            continue
+                        yielded_work = True
+                        yield self._make_handler(entity, node, take), entity, node
+                        if self._waited is not waited or self._stale:
+                            return
+            if timeout_nsec == 0 or (timeout_timer is not None and timeout_timer.handle.pointer in ready["timer"]):
+                raise TimeoutException()
+        if self._is_shutdown:
+            raise ShutdownException()
+        if condition():
+            raise ConditionReachedException()
+
+    def _wait(self, waited: _Waited, timeout_timer: Timer | None, timeout_nsec: int) -> tuple[dict[str, set], set]:
+        """One wait on the entities that may run now (``_waiting`` held); the ready handles' pointers by kind, and the
+        ready waitables."""
+        open_groups = {group for group in waited.groups if _group_open(group)}
+        wait_set = waited.wait_set
+        wait_set.clear_entities()
+        add = dict(zip(KINDS, (wait_set.add_timer, wait_set.add_subscription, wait_set.add_guard_condition,
+                               wait_set.add_client, wait_set.add_service), strict=True))
+        added_waitables = []
+        for _, entities, waitables in waited.nodes:
+            for kind, entered in entities.items():
+                for entity in entered:
+                    if entity._executor_event or not _may_run(entity, open_groups):
+                        continue
+                    if kind == "guard_condition" and entity._executor_triggered:  # not handled yet: again
+                        entity.trigger()
+                    add[kind](entity.handle)
+            for waitable in waitables:
+                if not waitable._executor_event and _may_run(waitable, open_groups):
+                    waitable.add_to_wait_set(wait_set)
+                    added_waitables.append(waitable)
+        for guard in waited.guards:
+            wait_set.add_guard_condition(guard.handle)
+        with ExitStack() as stack:
+            if timeout_timer is not None:
+                stack.enter_context(timeout_timer.handle)
+                wait_set.add_timer(timeout_timer.handle)
+            stack.enter_context(self._context.handle)
+            wait_set.wait(timeout_nsec)
+        if self._is_shutdown or not self._context.ok():
+            self._forget()
+            raise ShutdownException() if self._is_shutdown else ExternalShutdownException()
+        ready = {kind: set(wait_set.get_ready_entities(kind)) for kind in KINDS}
+        for _, entities, _ in waited.nodes:
+            for guard in entities["guard_condition"]:
+                if waited.pointers[id(guard)] in ready["guard_condition"]:
+                    guard._executor_triggered = True
+        return ready, {waitable for waitable in added_waitables if waitable.is_ready(wait_set)}
+
+
+def _is_ready(entity: Any, kind: str, waited: _Waited, ready: dict[str, set]) -> bool:
+    if kind == "guard_condition":
+        return entity._executor_triggered
+    if waited.pointers[id(entity)] not in ready[kind]:
+        return False
+    try:
+        return kind != "timer" or entity.handle.is_timer_ready()  # as rclpy: rcl reports cancelled timers ready
+    except InvalidHandle:  # destroyed by a callback since the wait
+        return False
+
+
+def _group_open(group: Any) -> bool:
+    """Whether a callback group lets its entities start now: rclpy's two kinds answer alike for each of their
+    entities, so once per group; another kind is asked per entity (:func:`_may_run`)."""
+    if isinstance(group, ReentrantCallbackGroup):
+        return True
+    return type(group) is MutuallyExclusiveCallbackGroup and group._active_entity is None
+
+
+def _may_run(entity: Any, open_groups: set) -> bool:
+    group = entity.callback_group
+    if group in open_groups:
+        return True
+    return not isinstance(group, ReentrantCallbackGroup | MutuallyExclusiveCallbackGroup) and group.can_execute(entity)

@@ -1,0 +1,168 @@
+"""SteadyExecutor runs what rclpy's single-threaded executor runs: messages, services, timers, guard conditions,
+coroutines, entities that come and go while it spins, and a clean shutdown (real DDS, in this process)."""
+
+import threading
+import time
+
+import pytest
+import rclpy
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.executors import SingleThreadedExecutor
+from std_msgs.msg import Int64
+
+from semgoal_msgs.srv import GetPlan
+from semgoal_ros.executor import SteadyExecutor
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(params=[SteadyExecutor, SingleThreadedExecutor])
+def ros(ros_domain, request):
+    """Each test with ours and with rclpy's own, the reference."""
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=ros_domain)
+    executor, nodes = request.param(context=context), []
+
+    def node(name: str):
+        nodes.append(rclpy.create_node(name, context=context))
+        executor.add_node(nodes[-1])
+        return nodes[-1]
+
+    yield executor, node
+    executor.shutdown()
+    for made in nodes:
+        made.destroy_node()
+    rclpy.shutdown(context=context)
+
+
+def _spin_until(executor, condition, timeout: float = 10.0) -> None:
+    end = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < end, "timed out"
+        executor.spin_once(timeout_sec=0.1)
+
+
+def _matched(executor, publisher) -> None:
+    _spin_until(executor, lambda: publisher.get_subscription_count() > 0)
+
+
+def test_messages_go_back_and_forth_in_order(ros) -> None:
+    executor, node = ros
+    a, b = node("ping"), node("pong")
+    got: list[int] = []
+    to_b = a.create_publisher(Int64, "to_b", 10)
+    to_a = b.create_publisher(Int64, "to_a", 10)
+    b.create_subscription(Int64, "to_b", lambda msg: to_a.publish(Int64(data=msg.data + 1)), 10)
+    a.create_subscription(Int64, "to_a", lambda msg: (got.append(msg.data), to_b.publish(Int64(data=msg.data + 1))), 10)
+    _matched(executor, to_b)
+    _matched(executor, to_a)
+    to_b.publish(Int64(data=0))
+    _spin_until(executor, lambda: len(got) >= 200)
+    assert got[:200] == list(range(1, 400, 2))
+
+
+def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:
+    executor, node = ros
+    server, caller = node("server"), node("caller")
+
+    def answer(request, response):
+        response.message = "answered"
+        return response
+
+    server.create_service(GetPlan, "get", answer)
+    client = caller.create_client(GetPlan, "get", callback_group=ReentrantCallbackGroup())  # free while ask() waits
+    answers: list[str] = []
+
+    async def ask() -> None:
+        timer.cancel()
+        response = await client.call_async(GetPlan.Request())
+        answers.append(response.message)
+
+    _spin_until(executor, client.service_is_ready)
+    timer = caller.create_timer(0.01, ask)
+    _spin_until(executor, lambda: answers)
+    assert answers == ["answered"]
+
+
+def test_entities_made_and_destroyed_while_spinning_are_waited_on_and_let_go(ros) -> None:
+    executor, node = ros
+    talker, listener = node("talker"), node("listener")
+    publisher = talker.create_publisher(Int64, "numbers", 10)
+    heard: list[int] = []
+    made: list = []
+    timer = listener.create_timer(0.01, lambda: (timer.cancel(), made.append(
+        listener.create_subscription(Int64, "numbers", lambda msg: heard.append(msg.data), 10))))
+    _spin_until(executor, lambda: made)
+    _matched(executor, publisher)
+    publisher.publish(Int64(data=7))
+    _spin_until(executor, lambda: heard)
+    assert heard == [7]
+
+    assert listener.destroy_subscription(made[0])
+    _spin_until(executor, lambda: publisher.get_subscription_count() == 0)  # destroyed, not held by the executor
+    publisher.publish(Int64(data=8))
+    executor.spin_once(timeout_sec=0.2)
+    assert heard == [7]
+
+
+def test_a_guard_condition_triggered_from_another_thread_runs_its_callback(ros) -> None:
+    executor, node = ros
+    woken: list[str] = []
+    guard = node("guarded").create_guard_condition(lambda: woken.append(threading.current_thread().name))
+    threading.Timer(0.05, guard.trigger).start()
+    _spin_until(executor, lambda: woken)
+    assert woken == [threading.current_thread().name]
+
+
+def test_spin_until_future_complete_and_timeouts_behave_as_rclpy(ros) -> None:
+    executor, node = ros
+    ticks: list[float] = []
+    node("ticker").create_timer(0.02, lambda: ticks.append(time.monotonic()))
+    future = rclpy.task.Future()
+    threading.Timer(0.3, lambda: future.set_result("done")).start()
+    executor.spin_until_future_complete(future, timeout_sec=5.0)
+    assert future.result() == "done"
+    assert len(ticks) >= 5
+    started = time.monotonic()
+    executor.spin_once(timeout_sec=0.0)  # nothing to wait for: back at once
+    assert time.monotonic() - started < 0.1
+
+
+def test_it_is_faster_than_rclpys_own_on_the_same_ping_pong(ros_domain) -> None:
+    """The reason it exists: messages back and forth between two nodes that have the entities every rclpy node has,
+    each executor three times in turn, the best of each."""
+    rates: dict[str, list[float]] = {}
+    for kind in (SingleThreadedExecutor, SteadyExecutor) * 3:
+        rates.setdefault(kind.__name__, []).append(_ping_pong_rate(kind, ros_domain))
+    assert max(rates["SteadyExecutor"]) > 1.1 * max(rates["SingleThreadedExecutor"]), rates
+
+
+def _ping_pong_rate(kind: type, domain: int, messages: int = 1000) -> float:
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=domain)
+    executor = kind(context=context)
+    a, b = (rclpy.create_node(name, context=context) for name in ("a", "b"))
+    for made in (a, b):
+        executor.add_node(made)
+    count = [0]
+    to_b, to_a = a.create_publisher(Int64, "ab", 10), b.create_publisher(Int64, "ba", 10)
+
+    def back(msg: Int64) -> None:
+        count[0] += 1
+        to_b.publish(msg)
+
+    b.create_subscription(Int64, "ab", to_a.publish, 10)
+    a.create_subscription(Int64, "ba", back, 10)
+    try:
+        _matched(executor, to_b)
+        _matched(executor, to_a)
+        to_b.publish(Int64(data=0))
+        _spin_until(executor, lambda: count[0] >= 50)
+        started, first = time.perf_counter(), count[0]
+        _spin_until(executor, lambda: count[0] >= first + messages, timeout=60)
+        return (count[0] - first) / (time.perf_counter() - started)
+    finally:
+        executor.shutdown()
+        a.destroy_node()
+        b.destroy_node()
+        rclpy.shutdown(context=context)

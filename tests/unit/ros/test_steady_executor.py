@@ -6,7 +6,7 @@ import time
 
 import pytest
 import rclpy
-from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.executors import SingleThreadedExecutor
 from std_msgs.msg import Int64
 
@@ -166,3 +166,34 @@ def _ping_pong_rate(kind: type, domain: int, messages: int = 1000) -> float:
         a.destroy_node()
         b.destroy_node()
         rclpy.shutdown(context=context)
+
+
+def test_a_busy_exclusive_group_keeps_its_messages_waiting_without_spinning(ros) -> None:
+    """While a coroutine of a mutually exclusive group awaits, the group's other callbacks wait (not taken, and not
+    spun on at full speed), and run once it is done."""
+    executor, node = ros
+    talker, worker = node("talker"), node("worker")
+    publisher = talker.create_publisher(Int64, "work", 10)
+    group = MutuallyExclusiveCallbackGroup()
+    events: list[str] = []
+    later = rclpy.task.Future()
+
+    async def slow() -> None:
+        timer.cancel()
+        events.append("awaiting")
+        await later
+        events.append("done")
+
+    worker.create_subscription(Int64, "work", lambda msg: events.append(f"message {msg.data}"), 10, callback_group=group)
+    _matched(executor, publisher)
+    timer = worker.create_timer(0.01, slow, callback_group=group)
+    _spin_until(executor, lambda: events == ["awaiting"])
+    publisher.publish(Int64(data=1))
+    cpu, end = time.process_time(), time.monotonic() + 0.5
+    while time.monotonic() < end:
+        executor.spin_once(timeout_sec=0.05)
+    assert events == ["awaiting"]
+    assert time.process_time() - cpu < 0.25  # waiting, not spinning on the ready message
+    later.set_result(None)
+    _spin_until(executor, lambda: events[-1:] == ["message 1"])
+    assert events == ["awaiting", "done", "message 1"]

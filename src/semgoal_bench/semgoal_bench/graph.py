@@ -15,12 +15,11 @@ pixels beside ground truth. Figures are medians over episodes; the last line is 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
-import os
 import statistics
 import time
 from itertools import pairwise
-from pathlib import Path
 from typing import NamedTuple
 
 from semgoal_bringup.experiments.episodes import make_agent
@@ -41,23 +40,14 @@ class Run(NamedTuple):
 
 def descendants_cpu_s() -> float:
     """CPU seconds (user + system) spent so far by this process's descendants that are still running: the graph's
-    node processes (Linux /proc)."""
-    parents: dict[int, int] = {}
-    times: dict[int, float] = {}
-    tick = os.sysconf("SC_CLK_TCK")
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except (OSError, IndexError):  # ended meanwhile
-            continue
-        pid = int(stat.parent.name)
-        parents[pid], times[pid] = int(fields[1]), (int(fields[11]) + int(fields[12])) / tick
-    mine, total, frontier = {os.getpid()}, 0.0, [os.getpid()]
-    while frontier:
-        children = [pid for pid, parent in parents.items() if parent in frontier and pid not in mine]
-        mine.update(children)
-        total += sum(times[pid] for pid in children)
-        frontier = children
+    node processes."""
+    import psutil
+
+    total = 0.0
+    for process in psutil.Process().children(recursive=True):
+        with contextlib.suppress(psutil.NoSuchProcess):  # ended meanwhile
+            times = process.cpu_times()
+            total += times.user + times.system
     return total
 
 
@@ -68,6 +58,7 @@ def lockstep(task: str, episodes: int, seed: int, sight: Sight = TRUTH, record: 
     each kind, in turns on the same running graph, so that the ratio does not depend on a graph's start or on
     what else the machine does. ``composed``: the graph's nodes in one process (:mod:`semgoal_bringup.composed`)."""
     import tempfile
+    from pathlib import Path
 
     plain, recorded = [], []
     with tempfile.TemporaryDirectory() as scratch, \

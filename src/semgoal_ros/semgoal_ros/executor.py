@@ -69,6 +69,9 @@ class _Waited:
                          for entered in entities.values() for entity in entered}
         self.wait_set = _rclpy.WaitSet(room["subscription"], room["guard_condition"], room["timer"] + 1, room["client"],
                                        room["service"], room["event"], context.handle)
+        self.add = dict(zip(KINDS, (self.wait_set.add_timer, self.wait_set.add_subscription,
+                                    self.wait_set.add_guard_condition, self.wait_set.add_client,
+                                    self.wait_set.add_service), strict=True))
 
     def _entered(self, entities: Iterable[Any]) -> list[Any]:
         entered = []
@@ -183,10 +186,8 @@ class SteadyExecutor(SingleThreadedExecutor):
         """One wait on the entities that may run now (``_waiting`` held); the ready handles' pointers by kind, and the
         ready waitables."""
         open_groups = {group for group in waited.groups if _group_open(group)}
-        wait_set = waited.wait_set
+        wait_set, add = waited.wait_set, waited.add
         wait_set.clear_entities()
-        add = dict(zip(KINDS, (wait_set.add_timer, wait_set.add_subscription, wait_set.add_guard_condition,
-                               wait_set.add_client, wait_set.add_service), strict=True))
         added_waitables = []
         for _, entities, waitables in waited.nodes:
             for kind, entered in entities.items():

@@ -55,7 +55,7 @@ def step_message(index: int, subgoal, status: str, assignee: str, after: tuple[i
 
 
 def subgoal_message(ex: Executive, state: SemanticState | None, robot: str = Assignee.ROBOT) -> SubGoal:
-    """``robot``'s active step; else an empty goal (the policy holds still) with the reason as status:
+    """``robot``'s active step; else an empty goal (no step for the policy) with the reason as status:
     ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` (others work) or the plan's
     status."""
     active = ex.active_for(robot)

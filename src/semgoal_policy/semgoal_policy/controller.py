@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Iterable
+from enum import StrEnum
 from pathlib import Path
 
 import numpy as np
@@ -11,7 +12,7 @@ from semgoal_core import features, layout
 from semgoal_core.arms import PARK, ArmFrame
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
 from semgoal_core.settling import REST_SPEED, Settling, at_rest
-from semgoal_core.vocabulary import LAYOUTS, THRESHOLDS, Literal, VocabularyError, held_alone
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, THRESHOLDS, Literal, VocabularyError, held_alone
 from semgoal_policy import actor as actor_io
 
 HOLD = np.zeros(4, dtype=np.float32)
@@ -28,6 +29,9 @@ true again), and no wider, so fingers beside a tower's block do not push it."""
 RETREAT_HEIGHT = 0.08
 """How far (m) above the highest block's centre the idle arm's grip site goes: the fingertips clear every block
 (the expert descends onto a block from this height) and ``holding``'s 0.04 m reach."""
+ROOM_HEIGHT = RETREAT_HEIGHT + 2 * BLOCK_HALF_SIZE
+"""How far (m) above the highest block's centre an empty hand goes on another's turn: as far over one more block
+put on the highest (at 0.166 m over a tower of two, a person's block put on it was refused, or read as held)."""
 EDGE_MARGIN = 0.045
 """A held block is let go only with its centre this far (m) inside the table's edge: 2 cm past its half-size. Let
 go nearer, a block still sliding went over (held-out chains: put away at y 0.397, 3 mm inside the edge)."""
@@ -81,6 +85,18 @@ def held_slots(scene: str, observation: np.ndarray) -> np.ndarray:
                       blocks["present"][:, 0] > 0.5)
 
 
+class Idle(StrEnum):
+    """What an arm with no sub-goal of its own does."""
+
+    RETREAT = "retreat"
+    """The goal is done: let go (keeping what the goal asks to hold) and rise clear of the blocks."""
+    MAKE_ROOM = "make_room"
+    """Another agent works (a person's step, the other arm's): keep what is in the hand; an empty hand rises to
+    :data:`ROOM_HEIGHT` (on a shared table, draws back to its park spot), out of the way of a block put on a tower."""
+    HOLD = "hold"
+    """Paused, failed or between steps: hold still, keeping what is in the hand."""
+
+
 class SubgoalController:
     """Wraps an exported actor for one scene and one arm; every output is finite and within [-1, 1]. Observations
     and commands are in the world frame; the actor, and every rule here, sees the world in the arm's own frame
@@ -101,23 +117,23 @@ class SubgoalController:
         self.derived = actor_io.derived_features(self.meta)
         self.goal: np.ndarray | None = None
         self.literals: list[Literal] = []
-        self.retreat = True
-        """With no sub-goal: retreat clear of the blocks (a goal done), or hold still (paused, a person's turn)."""
+        self.idling = Idle.RETREAT
+        """What the arm does with no sub-goal."""
         self.keep: frozenset[str] = frozenset()
         """Blocks the goal asks to be held: the retreating arm keeps them in the hand."""
         self.confirmation = Settling()
         self.obs_size = layout.observation_size(scene)
 
-    def set_subgoal(self, literals: list[Literal], retreat: bool = True, keep: Iterable[str] = ()) -> None:
-        """Condition on a sub-goal's literals; an empty list means no step to act on: :meth:`idle` (``retreat``,
-        keeping the blocks in ``keep`` in the hand) or :meth:`hold`. VocabularyError if invalid."""
+    def set_subgoal(self, literals: list[Literal], idling: Idle = Idle.RETREAT, keep: Iterable[str] = ()) -> None:
+        """Condition on a sub-goal's literals; an empty list means no step to act on: ``idling`` says what the arm
+        does then (retreating, it keeps the blocks in ``keep`` in the hand). VocabularyError if invalid."""
         goal = None
         if literals:
             target, mask = self.layout.encode(literals)
             goal = np.concatenate([target, mask])
         if goal is None or self.goal is None or not np.array_equal(goal, self.goal):
             self.confirmation.reset()  # a new sub-goal: its confirmation starts over
-        self.goal, self.literals, self.retreat, self.keep = goal, list(literals), retreat, frozenset(keep)
+        self.goal, self.literals, self.idling, self.keep = goal, list(literals), Idle(idling), frozenset(keep)
 
     def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
         """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
@@ -145,7 +161,9 @@ class SubgoalController:
     def _act(self, observation: np.ndarray, noise_key: tuple[int, ...]) -> np.ndarray:
         """:meth:`act` in the arm's own frame."""
         if self.goal is None:
-            return self.idle(observation) if self.retreat else self._hold(observation)
+            if self.idling == Idle.RETREAT:
+                return self.idle(observation)
+            return self._hold(observation, make_room=self.idling == Idle.MAKE_ROOM)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
@@ -160,10 +178,12 @@ class SubgoalController:
             return HOLD.copy()
         return self.frame.action(self._hold(self.frame.observation(observation)))
 
-    def _hold(self, observation: np.ndarray) -> np.ndarray:
-        """:meth:`hold` in the arm's own frame."""
+    def _hold(self, observation: np.ndarray, make_room: bool = False) -> np.ndarray:
+        """:meth:`hold` in the arm's own frame; ``make_room``: an empty hand rises as :attr:`Idle.MAKE_ROOM` says."""
         if held_slots(self.scene, observation).any():
             return HOLD_GRIP.copy()
+        if make_room and not self.shared:
+            return self._rise(observation, ROOM_HEIGHT)
         action = HOLD.copy()
         if self.shared:
             grip = layout.arm_state(observation)["grip_position"]
@@ -181,6 +201,10 @@ class SubgoalController:
         observation = np.asarray(observation, dtype=np.float32)
         if self.keep:
             return self._kept(observation)
+        return self._rise(observation, RETREAT_HEIGHT)
+
+    def _rise(self, observation: np.ndarray, height: float) -> np.ndarray:
+        """Let go and rise straight up to ``height`` over the highest block's centre, as :meth:`idle` says."""
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
         grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
         action = HOLD.copy()
@@ -193,8 +217,8 @@ class SubgoalController:
         if (speeds >= REST_SPEED).any():  # a block let go still moves: rising fingers could drag it along
             return action
         if present.any():
-            height = float(blocks["position"][present, 2].max()) + RETREAT_HEIGHT
-            action[2] = float(np.clip((height - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block
+            top = float(blocks["position"][present, 2].max()) + height
+            action[2] = float(np.clip((top - grip[2]) * RETREAT_GAIN, 0.0, 1.0))  # up only, never onto a block
         return action
 
     def _kept(self, observation: np.ndarray) -> np.ndarray:
@@ -211,5 +235,5 @@ class SubgoalController:
                 action[2] = -SEATING_SPEED
         return action
 
-__all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "RETREAT_HEIGHT", "RETREAT_OPENING", "SubgoalController",
+__all__ = ["ACTION_MODES", "HOLD", "HOLD_GRIP", "RETREAT_HEIGHT", "RETREAT_OPENING", "ROOM_HEIGHT", "Idle", "SubgoalController",
            "VocabularyError"]

@@ -30,7 +30,7 @@ from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.actor import LayoutMismatchError
-from semgoal_policy.controller import ACTION_MODES, SubgoalController, VocabularyError
+from semgoal_policy.controller import ACTION_MODES, Idle, SubgoalController, VocabularyError
 from semgoal_policy.expert_actor import EXPERT
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
@@ -53,9 +53,10 @@ PARAMS = (
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
 )
-RETREATS = (StepStatus.SETTLING, PlanStatus.SUCCEEDED)
-"""Sub-goal statuses on which the arm retreats clear of the blocks, keeping what the goal asks it to hold
-(``SubgoalController.idle``); on any other without a step (paused, a person's turn, failed) it holds still."""
+IDLING = {StepStatus.SETTLING: Idle.RETREAT, PlanStatus.SUCCEEDED: Idle.RETREAT, StepStatus.WAITING_FOR_HUMAN: Idle.MAKE_ROOM}
+"""What the arm does on a sub-goal status without a step for it: it retreats clear of the blocks once the goal holds,
+keeping what the goal asks it to hold, and makes room while others work; on any other (paused, failed) it holds
+still."""
 DECISIONS_KEPT = 8
 """Decisions remembered: the step before the world's and its own are the ones used, a few more cover a
 reordering between the two topics."""
@@ -133,7 +134,7 @@ class PolicyNode(Node):
             if msg.status == StepStatus.ACTIVE:
                 self.controller.set_subgoal(literals)
             else:  # the plan's goal, when it holds: the blocks it asks to be held stay in the hand
-                self.controller.set_subgoal([], retreat=msg.status in RETREATS, keep=self.asked_held(literals))
+                self.controller.set_subgoal([], IDLING.get(msg.status, Idle.HOLD), keep=self.asked_held(literals))
         except VocabularyError as error:
             self.controller.set_subgoal([])
             self.get_logger().warn(f"holding still: sub-goal {msg.action!r} is not valid here: {error}")

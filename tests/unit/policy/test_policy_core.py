@@ -13,7 +13,7 @@ from semgoal_core.settling import SETTLE_STEPS
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
 from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
 from semgoal_policy.agents import semantic_reward
-from semgoal_policy.controller import HOLD, SubgoalController
+from semgoal_policy.controller import HOLD, Idle, SubgoalController
 from semgoal_policy.replay import EpisodeReplay
 
 SCENE = "two_blocks"
@@ -150,7 +150,7 @@ def test_controller_never_outputs_nan_or_out_of_range(tmp_path) -> None:
     export(actor, tmp_path, SCENE, {})
     controller = SubgoalController(SCENE, tmp_path)
     obs = np.ones(layout.observation_size(SCENE), np.float32)
-    controller.set_subgoal([], retreat=False)
+    controller.set_subgoal([], Idle.HOLD)
     assert np.array_equal(controller.act(obs), HOLD)  # no sub-goal, paused: hold still
     controller.set_subgoal([Literal("holding", ("red",))])
     action = controller.act(obs)
@@ -302,7 +302,7 @@ def test_holding_still_keeps_a_held_block(tmp_path) -> None:
     controller = SubgoalController(SCENE, tmp_path)
     world = FetchWorld(SCENE)
     world.reset(np.array([[1.25, 0.70, 0.425], [1.40, 0.80, 0.425]]))
-    controller.set_subgoal([], retreat=False)
+    controller.set_subgoal([], Idle.HOLD)
     assert np.array_equal(controller.act(world.observation()), HOLD)
     world.place_in_gripper("red")
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)

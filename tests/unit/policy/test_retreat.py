@@ -8,7 +8,7 @@ import pytest
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
-from semgoal_core.tasks import TASKS
+from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import THRESHOLDS
 from semgoal_policy.controller import (
     EDGE_MARGIN,
@@ -17,10 +17,13 @@ from semgoal_policy.controller import (
     HOLD_GRIP,
     RETREAT_HEIGHT,
     RETREAT_OPENING,
+    ROOM_HEIGHT,
+    Idle,
     SubgoalController,
     kept_on_the_table,
 )
 from semgoal_sim.rollout import held_blocks
+from semgoal_sim.sim_core import move_block
 from semgoal_sim.world import FetchWorld
 
 
@@ -72,12 +75,12 @@ def test_a_block_the_goal_holds_is_kept_an_unasked_one_let_go_and_a_paused_arm_h
     world.place_in_gripper("red")
     controller.set_subgoal([], keep={"red"})
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)
-    controller.set_subgoal([], retreat=False)
+    controller.set_subgoal([], Idle.HOLD)
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)  # paused mid-carry: kept
     controller.set_subgoal([])
     assert controller.act(world.observation())[3] > 0  # the goal asks no block held: the fingers open
     world.step(np.array([0.0, 0.0, 0.0, 1.0]))  # dropped
-    controller.set_subgoal([], retreat=False)
+    controller.set_subgoal([], Idle.HOLD)
     assert np.array_equal(controller.act(world.observation()), HOLD)
 
 
@@ -141,3 +144,48 @@ def test_a_block_kept_by_its_top_edge_is_seated_and_stays_held() -> None:
     snapshot = world.snapshot()
     assert "holding(green)" in world.layout.readable(world.semantic_vector())
     assert snapshot.grip_position[2] - snapshot.block_positions[1, 2] < 0.015
+
+
+def _hand_let_go_on_a_tower_of_two() -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop just after the robot put green on red: the open hand still around green; green's position."""
+    world = FetchWorld("tabletop", 3)
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    red = world.snapshot().block_positions[world.blocks.index("red")]
+    world.set_block_pose("green", red + np.array([0.0, 0.0, 0.052]))
+    world.open_fingers(RETREAT_OPENING)
+    green = world.snapshot().block_positions[world.blocks.index("green")].copy()
+    for target, steps in ((green + np.array([0.0, 0.0, 0.1]), 30), (green, 15)):  # over green, then down around it
+        for _ in range(steps):
+            snapshot = world.snapshot()
+            world.step(move_to(snapshot.grip_position, target, (RETREAT_OPENING - snapshot.finger_opening) / 2))
+    return world, green
+
+
+@pytest.mark.parametrize("idling", [Idle.MAKE_ROOM, Idle.HOLD])
+def test_on_a_persons_turn_the_empty_hand_makes_room_for_a_block_on_the_tower(idling: Idle) -> None:
+    """A person's step (the planner's ``waiting_for_human``): the hand that just let go of a tower's top rises high
+    enough that the person's block put on the tower is taken and not read as held; held still, it is in the way."""
+    world, green = _hand_let_go_on_a_tower_of_two()
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([], idling)
+    for _ in range(25):
+        world.step(controller.act(world.observation()))
+    ok, message = move_block(world, "blue", green + np.array([0.0, 0.0, 0.05]))
+    if idling == Idle.HOLD:
+        assert not ok and "once it has risen" in message
+        return
+    assert world.snapshot().grip_position[2] == pytest.approx(green[2] + ROOM_HEIGHT, abs=0.01)
+    assert ok, message
+    for _ in range(10):
+        world.step(controller.act(world.observation()))
+    assert not held_blocks(world, world.semantic_vector())
+    positions = world.snapshot().block_positions
+    np.testing.assert_allclose(positions[world.blocks.index("blue")][:2], green[:2], atol=0.005)
+
+
+def test_on_a_persons_turn_a_block_in_the_hand_is_kept() -> None:
+    world, controller = FetchWorld("tabletop", 3), SubgoalController("tabletop")
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    world.place_in_gripper("red")
+    controller.set_subgoal([], Idle.MAKE_ROOM)
+    assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)

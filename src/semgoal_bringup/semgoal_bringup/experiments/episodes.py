@@ -32,7 +32,7 @@ from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
 from semgoal_policy.agents import get_agent
-from semgoal_policy.controller import SubgoalController
+from semgoal_policy.controller import Idle, SubgoalController
 from semgoal_sim.rollout import settled
 from semgoal_sim.world import FetchWorld
 
@@ -109,7 +109,7 @@ class HierarchicalAgent:
         ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal.
         ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
         it, then whether the last goal still holds at rest (``linger_holds``). ``person``: claims steps of each plan
-        and does them in the world, while the arm holds still without a step of its own, as the policy node does;
+        and does them in the world, while the arm makes room without a step of its own, as the policy node does;
         ``concurrent``: the executive lets them work at once (else in turns; the robot alone takes the same steps).
         With two arms each runs its own steps, and a step is done by whichever arm is free first."""
         key = (label, len(positions))
@@ -135,8 +135,8 @@ class HierarchicalAgent:
                     break  # a human step: nobody acts in an evaluation
                 actions = []
                 for arm, (controller, literals) in enumerate(zip(self.controllers, followed, strict=True)):
-                    if literals is None:  # the arm holds still while others work
-                        controller.set_subgoal([], retreat=False)
+                    if literals is None:  # others work: the arm makes room
+                        controller.set_subgoal([], Idle.MAKE_ROOM)
                     else:
                         controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
                     actions.append(controller.act(world.observation(arm=arm), (seed, world.step_count)))

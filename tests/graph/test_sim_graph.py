@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 from sensor_msgs.msg import Image, JointState
+from visualization_msgs.msg import MarkerArray
 
 from conftest import GraphProbe, NodeProcesses, desk_with_a_fallen_block
 from semgoal_core.expert import expert_action
@@ -113,6 +114,25 @@ def test_garbage_commands_do_not_stop_the_sim(nodes: NodeProcesses, probe: Graph
     assert abs(moved.world.blocks[0].pose.position.x - 1.25) < 1e-6
     assert graph.step([0, 0, 0, 0]).step == 2  # still stepping
     assert process.poll() is None
+
+
+def test_a_markers_viewer_that_joins_gets_the_latest_world_at_once(nodes: NodeProcesses, probe: GraphProbe) -> None:
+    """The markers are built only while someone listens; a viewer joining between their periods (step 3 of every
+    5th) gets the world of the latest step at once, not an old latched one."""
+    nodes.start("semgoal_sim", "sim_node", params={"scene": "two_blocks", "task": "MC-2", "seed": 3,
+                                                    "heartbeat_hz": 0.0})
+    graph = Graph(probe)
+    probe.spin_until(lambda: graph.commands.get_subscription_count() > 0, 20, "sim_node")
+    graph.call(ResetWorld, topics.RESET_WORLD, ResetWorld.Request(task="MC-2", seed=3))
+    probe.spin_until(lambda: graph.worlds and graph.worlds[-1].step == 0, 20, "reset world state")
+    for _ in range(3):
+        world = graph.step([0.0, 0.0, 1.0, 0.0])  # the hand rises 5 cm a step
+    arrays: list[MarkerArray] = []
+    probe.node.create_subscription(MarkerArray, topics.MARKERS, arrays.append, topics.LATCHED)
+    probe.spin_until(lambda: arrays, 10, "markers")
+    hand = next(m for m in arrays[-1].markers if m.ns == "gripper").pose.position
+    np.testing.assert_allclose([hand.x, hand.y, hand.z], [world.gripper_position.x, world.gripper_position.y,
+                                                          world.gripper_position.z], atol=1e-9)
 
 
 def test_rendering_publishes_camera_frames(nodes: NodeProcesses, probe: GraphProbe) -> None:

@@ -12,6 +12,10 @@ With ``camera`` on, the RGB-D sensor (``semgoal_sim.camera``) publishes colour, 
 under /semgoal/rgbd/ every ``camera_every`` control steps, stamped with the step's sim time, right after
 the step's world state; the camera's and the base's frames go on /tf_static (again when an episode's
 look moves the camera), the grip site's on /tf each step.
+
+/clock, /joint_states and the markers are built and published only while something listens (a quarter of the
+node's work per step is theirs, and a lockstep graph seldom has a viewer); a viewer that joins gets the latest
+markers at once.
 """
 
 import functools
@@ -20,6 +24,7 @@ import time
 import numpy as np
 from rclpy.clock import Clock as TimerClock
 from rclpy.clock import ClockType
+from rclpy.event_handler import PublisherEventCallbacks
 from rclpy.node import Node
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import CameraInfo, Image, JointState
@@ -90,7 +95,10 @@ class SimNode(Node):
         self.world_pubs = [self.create_publisher(WorldState, topics.arm_topic(topics.WORLD_STATE, arm), topics.STREAM)
                            for arm in arms]
         self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
-        self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED)
+        self.state: WorldState | None = None
+        """The first arm's world state last published."""
+        self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED,
+                                                event_callbacks=PublisherEventCallbacks(matched=self.markers_matched))
         for arm in arms:
             self.create_subscription(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm),
                                      functools.partial(self.command_callback, arm=arm), topics.STREAM)
@@ -156,17 +164,25 @@ class SimNode(Node):
         clock_s = self.core.clock_s
         msg = conversions.world_state(self.core.world, snapshot, self.core.task, self.core.episode, self.core.seed,
                                       clock_s)
-        self.clock_pub.publish(Clock(clock=msg.header.stamp))
+        self.state = msg
+        if self.clock_pub.get_subscription_count():
+            self.clock_pub.publish(Clock(clock=msg.header.stamp))
         self.world_pubs[0].publish(msg)
         for arm, publisher in enumerate(self.world_pubs[1:], start=1):
             publisher.publish(conversions.world_state(self.core.world, self.core.snapshot(arm), self.core.task,
                                                       self.core.episode, self.core.seed, clock_s, arm))
-        self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot, clock_s))
-        if snapshot.step % max(1, self.markers_every) == 0:
+        if self.joint_pub.get_subscription_count():
+            self.joint_pub.publish(conversions.joint_state(self.core.world, snapshot, clock_s))
+        if snapshot.step % max(1, self.markers_every) == 0 and self.marker_pub.get_subscription_count():
             self.marker_pub.publish(conversions.markers(msg))
         if self.camera is not None:
             self.publish_camera(snapshot, clock_s)
         return msg
+
+    def markers_matched(self, status) -> None:
+        """A viewer joined the markers: it gets the latest world's at once, not at the next period's step."""
+        if status.current_count_change > 0 and self.state is not None:
+            self.marker_pub.publish(conversions.markers(self.state))
 
     def publish_camera(self, snapshot, clock_s: float) -> None:
         """The grip site on /tf every step; an RGB-D frame every ``camera_every`` steps (and the camera's

@@ -9,7 +9,7 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
-from semgoal_core.vocabulary import THRESHOLDS
+from semgoal_core.vocabulary import THRESHOLDS, Literal
 from semgoal_policy.controller import (
     EDGE_MARGIN,
     EDGE_NUDGE,
@@ -20,6 +20,7 @@ from semgoal_policy.controller import (
     ROOM_HEIGHT,
     Idle,
     SubgoalController,
+    kept_off_the_walls,
     kept_on_the_table,
 )
 from semgoal_sim.rollout import held_blocks
@@ -102,6 +103,32 @@ def test_a_held_block_past_the_table_edge_is_not_let_go_and_is_moved_back_in() -
     world.set_block_pose("green", np.array([red[0], red[1], 0.425]))  # a block under it there: a put on it
     action = kept_on_the_table("two_blocks", world.observation(), np.array([0.0, -0.5, 0.0, 1.0], dtype=np.float32))
     assert action.tolist() == pytest.approx([0.0, -0.5, 0.0, 1.0])
+
+
+def test_a_block_on_its_way_into_the_bin_is_not_let_go_over_a_wall() -> None:
+    """Over the bin's far wall, the actor's release is held back and the hand moved inward, only while the sub-goal
+    puts the block into the bin; well inside the walls the actor lets go as it likes."""
+    world = FetchWorld("tabletop", 3)
+    world.reset(TABLETOP_TASKS["Clean-6"].initial_state(3_000_000)[0][:3])
+    world.place_in_gripper("red")
+    bin_ = world.scene.bin
+    opening = np.array([0.3, -0.2, 0.0, 1.0], dtype=np.float32)
+    far_wall = bin_.center[0] + bin_.inner_half_size[0]
+    for target_x, kept in ((bin_.center[0], False), (far_wall + 0.005, True)):
+        for _ in range(40):
+            snapshot = world.snapshot()
+            world.step(move_to(snapshot.grip_position, np.array([target_x, bin_.center[1], 0.55]), -1.0))
+        assert "holding(red)" in world.layout.readable(world.semantic_vector())
+        action = kept_off_the_walls("tabletop", world.observation(), opening.copy())
+        if kept:
+            assert action[3] == 0.0 and action[0] <= -EDGE_NUDGE and action[1] == pytest.approx(-0.2), action
+        else:
+            assert action.tolist() == pytest.approx(opening.tolist())
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([Literal("in_bin", ("red",)), Literal("holding", ("red",), False)])
+    assert controller.into_bin
+    controller.set_subgoal([Literal("in_bin", ("red",), False), Literal("holding", ("red",), False)])
+    assert not controller.into_bin  # taking it out: the actor lets go where it likes
 
 
 def test_a_block_at_the_table_edge_beside_the_one_being_moved_stays_where_it_is() -> None:

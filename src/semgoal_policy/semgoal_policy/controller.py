@@ -75,11 +75,7 @@ def kept_on_the_table(scene: str, observation: np.ndarray, action: np.ndarray) -
         return action  # over another block: a put on it, which holds it up (a tower at the edge stays allowed)
     offset = block[:2] - np.asarray(TABLE_CENTER)
     out = np.abs(offset) > np.asarray(TABLE_HALF_SIZE) - EDGE_MARGIN
-    if out.any():
-        action[3] = min(action[3], 0.0)
-        inward = -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE)
-        action[:2] = np.where(out, inward, action[:2])
-    return action
+    return _held_back(action, offset, out) if out.any() else action
 
 
 def kept_off_the_walls(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
@@ -94,9 +90,14 @@ def kept_off_the_walls(scene: str, observation: np.ndarray, action: np.ndarray) 
     inner = np.asarray(bin_.inner_half_size)
     over_the_bin = np.all(np.abs(offset) < inner + bin_.wall_thickness + BLOCK_HALF_SIZE)
     on_a_wall = np.abs(offset) > inner - WALL_MARGIN
-    if over_the_bin and on_a_wall.any():
-        action[3] = 0.0
-        action[:2] = np.where(on_a_wall, -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE), action[:2])
+    return _held_back(action, offset, on_a_wall) if over_the_bin and on_a_wall.any() else action
+
+
+def _held_back(action: np.ndarray, offset: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """``action`` with the fingers kept from opening and, along ``axes``, the hand moved back against ``offset`` (the
+    held block's from the centre it must stay near) at least :data:`EDGE_NUDGE`."""
+    action[3] = min(action[3], 0.0)
+    action[:2] = np.where(axes, -np.sign(offset) * np.maximum(np.abs(action[:2]), EDGE_NUDGE), action[:2])
     return action
 
 

@@ -250,6 +250,7 @@ def test_from_pixels_the_page_shows_the_camera_and_marks_what_the_perception_is_
 
     from semgoal_core.vocabulary import THRESHOLDS
     from semgoal_ros.client import GraphClient
+    from semgoal_ros.messages import block_centres
 
     port = free_port()
     for package, executable, params in graph_nodes("MC-2", 6, "lockstep", sight=Sight("camera", "camera")):
@@ -266,11 +267,11 @@ def test_from_pixels_the_page_shows_the_camera_and_marks_what_the_perception_is_
     client = GraphClient("semgoal_test_operator")
     try:
         assert client.wait_ready(timeout=60.0) and client.spin_until(lambda: client.world is not None, 30)
-        red = next(b.pose.position for b in client.world.blocks if b.name == "red")
-        toward_middle = np.array([1.30 - red.x, 0.75 - red.y])
+        red = block_centres(client.world)["red"]
+        toward_middle = np.array([1.30, 0.75]) - red[:2]
         toward_middle /= np.linalg.norm(toward_middle)
-        x, y = np.array([red.x, red.y]) + THRESHOLDS.close_distance * toward_middle
-        moved, message = client.move_block("green", x, y, red.z)
+        x, y = red[:2] + THRESHOLDS.close_distance * toward_middle
+        moved, message = client.move_block("green", x, y, red[2])
         assert moved, message
     finally:
         client.close()

@@ -12,7 +12,7 @@ import os
 import time
 
 import pytest
-from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3
+from geometry_msgs.msg import Point, Vector3
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 from rcl_interfaces.srv import SetParameters
@@ -25,10 +25,11 @@ from semgoal_core.names import PlanStatus
 from semgoal_core.tasks import TASKS
 from semgoal_core.vocabulary import SCENES
 from semgoal_msgs.action import ExecuteGoal
-from semgoal_msgs.msg import ArmCommand, BlockState, GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal, WorldState
+from semgoal_msgs.msg import ArmCommand, GoalRequest, OperatorEvent, Plan, Predicate, SemanticState, SubGoal, WorldState
 from semgoal_msgs.srv import EditPlan, GetPlan, MoveBlock, ResetWorld
 from semgoal_planner.executive import EDIT_OPS
 from semgoal_ros import interfaces as topics
+from semgoal_ros.messages import block_centres
 
 INPUTS = int(os.environ.get("SEMGOAL_FUZZ_INPUTS", "1000"))
 TASK, SEED = "DC-2", 3_000_000
@@ -72,16 +73,23 @@ SUBGOAL = st.builds(SubGoal, index=SMALL_OR(UINT32), action=st.one_of(st.just("p
                     goal=PREDICATES, status=st.one_of(st.sampled_from(["active", "settling", "waiting_for_human", "paused"]), TEXT),
                     assignee=st.one_of(st.sampled_from(["robot", "human"]), TEXT), step=SMALL_OR(UINT64), episode=SMALL_OR(UINT32))
 VECTOR = st.builds(Vector3, x=FLOAT, y=FLOAT, z=FLOAT)
-POSE = st.builds(Pose, position=st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT),
-                 orientation=st.builds(Quaternion, x=FLOAT, y=FLOAT, z=FLOAT, w=FLOAT))
-WORLD = st.builds(WorldState, step=SMALL_OR(UINT64), scene=SCENE_NAME, task=st.one_of(st.sampled_from(list(TASKS)), TEXT),
-                  episode=SMALL_OR(UINT32), seed=SMALL_OR(INT64),
-                  blocks=st.lists(st.builds(BlockState, name=BLOCK, pose=POSE,
-                                            twist=st.builds(Twist, linear=VECTOR, angular=VECTOR)), max_size=5),
-                  gripper_position=st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT), gripper_velocity=VECTOR,
-                  finger_positions=st.lists(FLOAT, min_size=2, max_size=2), finger_velocities=st.lists(FLOAT, min_size=2, max_size=2),
-                  has_bin=st.booleans(), bin_position=st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT),
-                  observation=st.one_of(st.lists(FLOAT, max_size=80), st.lists(st.floats(-1.0, 1.0), min_size=10, max_size=60)))
+
+
+def blocks(count: int) -> st.SearchStrategy:
+    """A world state's blocks: ``count`` names with poses and velocities that fit them, or, rarely, arrays of any size."""
+    return st.fixed_dictionaries({
+        "block_names": st.lists(BLOCK, min_size=count, max_size=count),
+        "block_poses": rarely(st.lists(FLOAT, max_size=40), st.lists(FLOAT, min_size=7 * count, max_size=7 * count)),
+        "block_velocities": rarely(st.lists(FLOAT, max_size=40), st.lists(FLOAT, min_size=6 * count, max_size=6 * count))})
+
+
+WORLD = st.integers(0, 5).flatmap(blocks).flatmap(lambda fields: st.builds(
+    WorldState, step=SMALL_OR(UINT64), scene=SCENE_NAME, task=st.one_of(st.sampled_from(list(TASKS)), TEXT),
+    episode=SMALL_OR(UINT32), seed=SMALL_OR(INT64), **{name: st.just(value) for name, value in fields.items()},
+    gripper_position=st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT), gripper_velocity=VECTOR,
+    finger_positions=st.lists(FLOAT, min_size=2, max_size=2), finger_velocities=st.lists(FLOAT, min_size=2, max_size=2),
+    has_bin=st.booleans(), bin_position=st.builds(Point, x=FLOAT, y=FLOAT, z=FLOAT),
+    observation=st.one_of(st.lists(FLOAT, max_size=80), st.lists(st.floats(-1.0, 1.0), min_size=10, max_size=60))))
 COMMAND = st.builds(ArmCommand, step=SMALL_OR(UINT64), displacement=VECTOR, gripper=FLOAT)
 EDIT = st.builds(EditPlan.Request, op=st.one_of(st.sampled_from(EDIT_OPS), TEXT), index=SMALL_OR(UINT32),
                  to_index=SMALL_OR(UINT32), action=st.one_of(st.sampled_from(["robot", "human", "pick(red)",
@@ -193,9 +201,9 @@ class Fuzzer:
         assert answer.message, request
         if not answer.success:  # the world may move meanwhile (a fuzzed command, a block settling), but not there
             target = (request.position.x, request.position.y)
-            was = {b.name: positions(b)[:2] for b in before.blocks}
-            put_there = [b.name for b in answer.world.blocks if b.name == request.block
-                         and math.dist(positions(b)[:2], target) < 0.01 <= math.dist(was[b.name], target)]
+            was, now = block_centres(before), block_centres(answer.world)
+            put_there = [name for name, centre in now.items() if name == request.block
+                         and math.dist(centre[:2], target) < 0.01 <= math.dist(was[name][:2], target)]
             assert answer.world.episode == before.episode and not put_there, \
                 f"a refused move changed the world: {request!r:.300} ({answer.message})"
 
@@ -208,10 +216,6 @@ class Fuzzer:
 
     def publish(self, topic: str):
         return lambda msg: self.publishers[topic].publish(msg)
-
-
-def positions(block: BlockState) -> tuple[float, float, float]:
-    return block.pose.position.x, block.pose.position.y, block.pose.position.z
 
 
 def same_plan(a: Plan, b: Plan) -> bool:

@@ -15,6 +15,7 @@ from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_msgs.msg import SubGoal
 from semgoal_ros import interfaces as topics
 from semgoal_ros.client import GraphClient
+from semgoal_ros.messages import block_centres
 
 TASK, SEED = "MC-2", 4
 
@@ -35,9 +36,9 @@ def graph(nodes: NodeProcesses, request):
 
 def _free_spot(client: GraphClient, keep_away_from: str) -> tuple[float, float, float]:
     """Of a few table spots, the one farthest from ``keep_away_from`` (so put_near is not achieved by the move)."""
-    block = next(b for b in client.world.blocks if b.name == keep_away_from)
+    block = block_centres(client.world)[keep_away_from]
     spots = [(x, y, 0.425) for x in (1.24, 1.36) for y in (0.60, 0.75)]
-    return max(spots, key=lambda s: np.hypot(s[0] - block.pose.position.x, s[1] - block.pose.position.y))
+    return max(spots, key=lambda s: np.hypot(s[0] - block[0], s[1] - block[1]))
 
 
 def _planner_sees(client: GraphClient, name: str, args: list[str], value: bool, timeout: float = 10.0) -> bool:

@@ -6,7 +6,7 @@ import re
 from pathlib import Path
 
 import yaml
-from geometry_msgs.msg import Point, Pose, Twist, Vector3
+from geometry_msgs.msg import Point, Vector3
 from rclpy.action import ActionClient
 
 from conftest import GraphProbe, NodeProcesses
@@ -17,17 +17,15 @@ from semgoal_msgs.action import ExecuteGoal
 def sample_messages() -> list:
     """One populated instance of every message type (non-default values in every field kind)."""
     close = msg.Predicate(name="close", args=["red", "green"], value=True)
-    block = msg.BlockState(name="red", pose=Pose(), twist=Twist(linear=Vector3(x=0.1, y=-0.2, z=0.3)))
-    block.pose.position.x = 1.25
     step = msg.SubGoal(index=2, action="put_near(red,green)", goal=[close], status="active", assignee="human")
-    world = msg.WorldState(step=7, scene="two_blocks", task="MC-2", episode=3, blocks=[block],
+    world = msg.WorldState(step=7, scene="two_blocks", task="MC-2", episode=3, block_names=["red"],
+                           block_poses=[1.25, 0.7, 0.425, 1.0, 0.0, 0.0, 0.0], block_velocities=[0.1, -0.2, 0.3, 0.0, 0.0, 0.0],
                            gripper_position=Point(x=1.3, y=0.7, z=0.5), finger_positions=[0.02, 0.021],
                            has_bin=True, observation=[0.5, -1.5, 2.0])
     return [
         close,
         msg.SemanticState(scene="two_blocks", step=5, objects=["red", "green"], predicates=[close],
                           vector=[True, False, True]),
-        block,
         world,
         msg.ArmCommand(step=9, displacement=Vector3(x=1.0, y=-1.0, z=0.5), gripper=-1.0),
         step,

@@ -12,6 +12,7 @@ from semgoal_core.names import PlanStatus
 from semgoal_msgs.msg import BlockEstimate, BlockEstimates, SemanticState, WorldState
 from semgoal_ros import interfaces as topics
 from semgoal_ros.client import GraphClient
+from semgoal_ros.messages import block_centres
 
 pytestmark = pytest.mark.graph
 TASK, SEED = "DC-3", 6
@@ -52,11 +53,11 @@ class Listener:
         """Distances (m) from the truth of every estimate of a block the camera did not see that frame."""
         errors = []
         for step, estimates in self.estimates.items():
-            truth = {b.name: b.pose.position for b in self.truth[step].blocks} if step in self.truth else {}
+            truth = block_centres(self.truth[step]) if step in self.truth else {}
             for block in estimates.blocks:
                 if block.status in (BlockEstimate.OCCLUDED, BlockEstimate.HELD) and block.name in truth:
-                    p, q = block.position, truth[block.name]
-                    errors.append(float(np.linalg.norm([p.x - q.x, p.y - q.y, p.z - q.z])))
+                    p = block.position
+                    errors.append(float(np.linalg.norm([p.x, p.y, p.z] - truth[block.name])))
         return errors
 
 

@@ -14,7 +14,7 @@ from semgoal_core.vocabulary import SubGoal
 from semgoal_msgs.msg import ArmCommand, SemanticState, WorldState
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_ros import interfaces as topics
-from semgoal_ros.messages import block_positions
+from semgoal_ros.messages import block_centres, block_positions
 from semgoal_sim import conversions
 from semgoal_sim.conversions import world_view
 
@@ -111,7 +111,7 @@ def test_garbage_commands_do_not_stop_the_sim(nodes: NodeProcesses, probe: Graph
     request.position.x, request.position.y = 1.25, 0.6
     moved = graph.call(MoveBlock, topics.MOVE_BLOCK, request)
     assert moved.success, moved.message
-    assert abs(moved.world.blocks[0].pose.position.x - 1.25) < 1e-6
+    assert abs(block_centres(moved.world)["red"][0] - 1.25) < 1e-6
     assert graph.step([0, 0, 0, 0]).step == 2  # still stepping
     assert process.poll() is None
 

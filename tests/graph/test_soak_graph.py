@@ -20,6 +20,7 @@ from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest
 from semgoal_msgs.srv import MoveBlock, ResetWorld
 from semgoal_ros import interfaces as topics
+from semgoal_ros.messages import block_centres
 
 TASK, SEED = "MC-2", 4_000_000
 CYCLES = int(os.environ.get("SEMGOAL_SOAK_CYCLES", "100"))
@@ -56,16 +57,16 @@ def test_a_hundred_reset_and_goal_cycles_give_no_false_success_and_keep_memory_f
     world = None
     for cycle in range(CYCLES):
         if world is not None:  # the goal holds in the old world: red beside green, on whichever side is free
-            green, answers = world.blocks[1].pose.position, []
+            green, answers = block_centres(world)["green"], []
             for dx, dy in SIDES:
                 request = MoveBlock.Request(block="red")
-                request.position.x, request.position.y, request.position.z = green.x + dx, green.y + dy, green.z
+                request.position.x, request.position.y, request.position.z = green[0] + dx, green[1] + dy, green[2]
                 answers.append(probe.spin_future(move.call_async(request), 30, "the move"))
                 if answers[-1].success:
                     break
             assert answers[-1].success, f"cycle {cycle}: {[answer.message for answer in answers]}"
-            red, green = (block.pose.position for block in answers[-1].world.blocks[:2])
-            assert math.dist((red.x, red.y), (green.x, green.y)) < THRESHOLDS.close_distance
+            now = block_centres(answers[-1].world)
+            assert math.dist(now["red"][:2], now["green"][:2]) < THRESHOLDS.close_distance
         world = probe.spin_future(reset.call_async(ResetWorld.Request(task=TASK, seed=SEED + cycle)), 30, "the reset").world
         handle = probe.send_goal(action, ExecuteGoal.Goal(goal=GoalRequest(task=TASK), max_steps=BUDGET, episode=world.episode))
         result = probe.spin_future(handle.get_result_async(), 60, "the goal's result").result

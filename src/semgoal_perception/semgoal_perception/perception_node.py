@@ -28,13 +28,13 @@ from tf2_msgs.msg import TFMessage
 from semgoal_core import layout as observation_layout
 from semgoal_core.tasks import TASKS, get_task
 from semgoal_core.vocabulary import LAYOUTS, SCENES
-from semgoal_msgs.msg import BlockEstimate, BlockEstimates, BlockState, SemanticState, WorldState
+from semgoal_msgs.msg import BlockEstimate, BlockEstimates, SemanticState, WorldState
 from semgoal_perception.estimator import BlockEstimator
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.perceiver import ArmState, Perceiver, Perception
 from semgoal_ros import interfaces as topics
 from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics, Latencies
-from semgoal_ros.messages import semantic_message
+from semgoal_ros.messages import doubles, semantic_message, set_blocks
 from semgoal_ros.parameters import Param, ParameterValueError, declare
 
 CAMERA_FRAME = "camera_color_optical_frame"
@@ -231,17 +231,12 @@ class PerceptionNode(Node):
                          episode=world.episode, seed=world.seed, gripper_position=world.gripper_position,
                          gripper_velocity=world.gripper_velocity, finger_positions=world.finger_positions,
                          finger_velocities=world.finger_velocities, has_bin=world.has_bin, bin_position=world.bin_position)
-        objects = SCENES[world.scene].objects
-        for name in seen.blocks:
-            slot = objects.index(name)
-            block = BlockState(name=name)
-            block.pose.position.x, block.pose.position.y, block.pose.position.z = (float(v) for v in seen.positions[slot])
-            block.pose.orientation.w = 1.0
-            block.twist.linear.x, block.twist.linear.y, block.twist.linear.z = (float(v) for v in seen.velocities[slot])
-            msg.blocks.append(block)
-        msg.observation = observation_layout.observation(
+        slots = [SCENES[world.scene].objects.index(name) for name in seen.blocks]
+        unturned, unspun = np.tile([1.0, 0.0, 0.0, 0.0], (len(slots), 1)), np.zeros((len(slots), 3))
+        set_blocks(msg, seen.blocks, seen.positions[slots], unturned, np.hstack([seen.velocities[slots], unspun]))
+        msg.observation = doubles(observation_layout.observation(
             world.scene, arm.grip_position, arm.grip_velocity, arm.finger_positions, arm.finger_velocities,
-            seen.positions[seen.present], seen.velocities[seen.present]).astype(float).tolist()
+            seen.positions[seen.present], seen.velocities[seen.present]))
         return msg
 
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import time
 
-import numpy as np
 from action_msgs.msg import GoalStatusArray
 from rclpy.action import ActionServer, GoalResponse
 from rclpy.action.server import ServerGoalHandle
@@ -203,11 +202,11 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         lockstep the world runs a step or two ahead), else the latest, the nearer first
         (:func:`semgoal_core.arms.takers`); every arm before one came."""
         world = self.worlds.world_of(self.last_state) if self.worlds is not None else None
-        names = [b.name for b in world.blocks] if world is not None else []
+        names = list(world.block_names) if world is not None else []
         if block not in names:
             return self.executive.robots
-        positions = np.array([[b.pose.position.x, b.pose.position.y, b.pose.position.z] for b in world.blocks])
-        return tuple(robot_name(arm) for arm in takers(names.index(block), positions, messages.hands(world)))
+        return tuple(robot_name(arm) for arm in takers(names.index(block), messages.block_poses(world)[:, :3],
+                                                       messages.hands(world)))
 
     def plan_now(self) -> Plan:
         return plan_message(self.executive, self.get_clock().now().to_msg())

@@ -30,7 +30,7 @@ from semgoal_core.settling import held_blocks_asked
 from semgoal_core.vocabulary import SCENES, Literal
 from semgoal_msgs.msg import ArmCommand, SubGoal, WorldState
 from semgoal_policy.actor import LayoutMismatchError
-from semgoal_policy.controller import ACTION_MODES, Idle, SubgoalController, VocabularyError
+from semgoal_policy.controller import ACTION_MODES, HOLD, Idle, SubgoalController, VocabularyError
 from semgoal_policy.expert_actor import EXPERT
 from semgoal_ros import interfaces as topics
 from semgoal_ros import messages
@@ -169,8 +169,13 @@ class PolicyNode(Node):
 
     def decide_realtime(self, msg: WorldState) -> np.ndarray:
         """The command for a world state; hold still once the sub-goal is confirmed (the planner names the next)."""
-        if self.controller.goal is not None and self.controller.confirmed(
-                msg.step, messages.semantic_vector(msg), messages.moving(msg)):
+        try:
+            confirmed = self.controller.goal is not None and self.controller.confirmed(
+                msg.step, messages.semantic_vector(msg), messages.moving(msg))
+        except (KeyError, ValueError) as error:  # a world state of another scene, or malformed: hold still
+            self.get_logger().warn(f"holding still on a world state that does not fit: {error}", throttle_duration_sec=5.0)
+            return HOLD.copy()
+        if confirmed:
             return self.controller.hold(np.asarray(msg.observation, dtype=np.float32))
         return self.controller.act(msg.observation, (msg.seed, msg.step))
 

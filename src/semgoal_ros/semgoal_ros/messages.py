@@ -3,6 +3,8 @@ world state, and the plan as the operator reads it. No MuJoCo (the sim's own mes
 
 from __future__ import annotations
 
+from array import array as array_type
+
 import numpy as np
 
 from semgoal_core.geometry import TABLE_TOP
@@ -22,15 +24,59 @@ def predicate(lit: Literal) -> Predicate:
     return Predicate(name=lit.name, args=list(lit.args), value=bool(lit.value))
 
 
+POSE_SIZE = 7
+"""Values per block in ``WorldState.block_poses``: centre x y z, orientation qw qx qy qz (MuJoCo's order)."""
+VELOCITY_SIZE = 6
+"""Values per block in ``WorldState.block_velocities``: linear x y z, angular x y z."""
+
+
+def _per_block(msg: WorldState, values, size: int, field: str) -> np.ndarray:
+    """A flat per-block field as a (blocks, size) array, refused (ValueError) where it does not fit the names."""
+    array = np.asarray(values, dtype=np.float64)  # rclpy's array.array('d') without a copy; a recording's list too
+    if array.size != size * len(msg.block_names):
+        raise ValueError(f"{field} has {array.size} values for {len(msg.block_names)} blocks ({size} each)")
+    return array.reshape(len(msg.block_names), size)
+
+
+def block_poses(msg: WorldState) -> np.ndarray:
+    """(blocks, 7) poses in ``block_names``' order: centre x y z, orientation qw qx qy qz."""
+    return _per_block(msg, msg.block_poses, POSE_SIZE, "block_poses")
+
+
+def block_velocities(msg: WorldState) -> np.ndarray:
+    """(blocks, 6) velocities in ``block_names``' order: linear x y z, angular x y z."""
+    return _per_block(msg, msg.block_velocities, VELOCITY_SIZE, "block_velocities")
+
+
+def block_centres(msg: WorldState) -> dict[str, np.ndarray]:
+    """Each block's centre (m) by name."""
+    return dict(zip(msg.block_names, block_poses(msg)[:, :3], strict=True))
+
+
+def doubles(values) -> array_type:
+    """A ``float64[]`` field's value from any array of numbers: one copy, no Python float per value."""
+    return array_type("d", np.ascontiguousarray(values, dtype=np.float64).tobytes())
+
+
+def set_blocks(msg: WorldState, names, positions, quaternions, velocities) -> None:
+    """Fill a world state's blocks: ``names`` with (n, 3) centres, (n, 4) orientations (w x y z), (n, 6) velocities."""
+    msg.block_names = list(names)
+    msg.block_poses = doubles(np.hstack([np.reshape(positions, (-1, 3)), np.reshape(quaternions, (-1, 4))]))
+    msg.block_velocities = doubles(velocities)
+
+
 def block_positions(msg: WorldState) -> tuple[np.ndarray, np.ndarray]:
     """(max_blocks, 3) centres in the scene's slot order and the (max_blocks,) presence mask."""
     objects = SCENES[msg.scene].objects
     positions = np.zeros((len(objects), 3))
     present = np.zeros(len(objects), dtype=bool)
-    for block in msg.blocks:
-        i = objects.index(block.name)
-        p = block.pose.position
-        positions[i], present[i] = (p.x, p.y, p.z), True
+    try:
+        slots = [objects.index(name) for name in msg.block_names]
+    except ValueError:
+        slots = []
+    if len(set(slots)) != len(msg.block_names):
+        raise ValueError(f"block names {list(msg.block_names)} are not distinct blocks of {msg.scene} ({', '.join(objects)})")
+    positions[slots], present[slots] = block_poses(msg)[:, :3], True
     return positions, present
 
 
@@ -51,8 +97,7 @@ def semantic_vector(msg: WorldState) -> np.ndarray:
 
 def moving(msg: WorldState) -> tuple[str, ...]:
     """The blocks of a world state message that are not at rest (:func:`semgoal_core.settling.moving_blocks`)."""
-    velocities = np.array([[b.twist.linear.x, b.twist.linear.y, b.twist.linear.z] for b in msg.blocks]).reshape(-1, 3)
-    return moving_blocks([b.name for b in msg.blocks], velocities)
+    return moving_blocks(list(msg.block_names), block_velocities(msg)[:, :3])
 
 
 def semantic_state(msg: WorldState, vector: np.ndarray) -> SemanticState:

@@ -13,8 +13,8 @@ from visualization_msgs.msg import Marker, MarkerArray
 from semgoal_core.expert import WorldView
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES
-from semgoal_msgs.msg import BlockState, WorldState
-from semgoal_ros.messages import block_positions, hands
+from semgoal_msgs.msg import WorldState
+from semgoal_ros.messages import block_poses, block_positions, doubles, hands, set_blocks
 from semgoal_sim.camera import Frame
 from semgoal_sim.world import FetchWorld, Snapshot
 
@@ -33,15 +33,7 @@ def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, 
     msg = WorldState(step=snapshot.step, scene=world.scene.name, task=task, episode=episode, seed=seed)
     msg.header.frame_id = "world"
     msg.header.stamp = stamp(snapshot.time if clock_s is None else clock_s)
-    for name, pos, quat, vel in zip(world.blocks, snapshot.block_positions, snapshot.block_quaternions,
-                                    snapshot.block_velocities, strict=True):
-        block = BlockState(name=name)
-        block.pose.position = Point(x=float(pos[0]), y=float(pos[1]), z=float(pos[2]))
-        block.pose.orientation.w, block.pose.orientation.x = float(quat[0]), float(quat[1])
-        block.pose.orientation.y, block.pose.orientation.z = float(quat[2]), float(quat[3])
-        block.twist.linear = Vector3(x=float(vel[0]), y=float(vel[1]), z=float(vel[2]))
-        block.twist.angular = Vector3(x=float(vel[3]), y=float(vel[4]), z=float(vel[5]))
-        msg.blocks.append(block)
+    set_blocks(msg, world.blocks, snapshot.block_positions, snapshot.block_quaternions, snapshot.block_velocities)
     g, v = snapshot.grip_position, snapshot.grip_velocity
     msg.gripper_position = Point(x=float(g[0]), y=float(g[1]), z=float(g[2]))
     msg.gripper_velocity = Vector3(x=float(v[0]), y=float(v[1]), z=float(v[2]))
@@ -50,7 +42,7 @@ def world_state(world: FetchWorld, snapshot: Snapshot, task: str, episode: int, 
     if world.scene.bin is not None:
         msg.has_bin = True
         msg.bin_position = Point(x=world.scene.bin.center[0], y=world.scene.bin.center[1], z=TABLE_TOP)
-    msg.observation = world.observation(snapshot, arm).astype(float).tolist()
+    msg.observation = doubles(world.observation(snapshot, arm))
     msg.other_grippers = [Point(x=float(p[0]), y=float(p[1]), z=float(p[2])) for p, _ in snapshot.other_hands]
     msg.other_finger_openings = [opening for _, opening in snapshot.other_hands]
     msg.arm_contacts = world.arm_contacts
@@ -100,9 +92,8 @@ def markers(msg: WorldState) -> MarkerArray:
         back_y = b.center[1] + b.inner_half_size[1] + b.wall_thickness / 2
         items.append(_cube(1, "bin", (b.center[0], back_y, TABLE_TOP + b.back_wall_height / 2),
                            (2 * b.inner_half_size[0], b.wall_thickness, b.back_wall_height), colour))
-    for i, block in enumerate(msg.blocks):
-        p = block.pose.position
-        items.append(_cube(i, "blocks", (p.x, p.y, p.z), (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[block.name]))
+    for i, (name, pose) in enumerate(zip(msg.block_names, block_poses(msg), strict=True)):
+        items.append(_cube(i, "blocks", pose[:3], (2 * BLOCK_HALF_SIZE,) * 3, BLOCK_COLOURS[name]))
     for i, (grip, opening) in enumerate(hands(msg)):  # a second arm's hand too
         items.append(_cube(i, "gripper", tuple(grip), (0.02, 0.02 + opening, 0.02), GRIPPER_COLOUR, Marker.SPHERE))
     return MarkerArray(markers=items)

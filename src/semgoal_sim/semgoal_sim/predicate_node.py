@@ -28,10 +28,10 @@ class PredicateNode(Node):
             return
         try:
             vector = messages.semantic_vector(msg)
+            state = messages.semantic_state(msg, vector)
         except (ValueError, IndexError) as error:
             self.get_logger().warn(f"ignored a malformed world state: {error}", throttle_duration_sec=5.0)
             return
-        state = messages.semantic_state(msg, vector)
         self.publisher.publish(state)
         key = (msg.scene, msg.episode, tuple(vector))
         if key != self.last_key:

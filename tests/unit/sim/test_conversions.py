@@ -1,5 +1,7 @@
 """World -> WorldState -> SemanticState, as the sim and predicates nodes convert them (no ROS graph)."""
 
+import re
+
 import pytest
 
 from conftest import desk_with_a_fallen_block
@@ -15,6 +17,40 @@ def test_semantic_state_matches_the_world_and_names_fallen_blocks() -> None:
     assert state.objects == ["red", "green", "blue"]
     assert state.vector == world.semantic_vector(snapshot).tolist()
     assert state.fallen == ["green"] == world.fallen_blocks(snapshot)
+
+
+def test_the_blocks_travel_as_flat_arrays_and_read_back_as_the_world_has_them() -> None:
+    import numpy as np
+    from rclpy.serialization import deserialize_message, serialize_message
+
+    from semgoal_msgs.msg import WorldState
+
+    world = desk_with_a_fallen_block()
+    snapshot = world.snapshot()
+    sent = conversions.world_state(world, snapshot, "DC-3", episode=1)
+    msg = deserialize_message(serialize_message(sent), WorldState)  # as a subscriber takes it
+    assert list(msg.block_names) == list(world.blocks)
+    np.testing.assert_array_equal(messages.block_poses(msg)[:, :3], snapshot.block_positions)
+    np.testing.assert_array_equal(messages.block_poses(msg)[:, 3:], snapshot.block_quaternions)
+    np.testing.assert_array_equal(messages.block_velocities(msg), snapshot.block_velocities)
+    assert list(messages.block_centres(msg)) == list(world.blocks)
+    positions, present = messages.block_positions(msg)  # in the scene's slots
+    np.testing.assert_array_equal(positions[present], snapshot.block_positions)
+
+
+@pytest.mark.parametrize("field, values, names, refusal", [
+    ("block_poses", [0.0] * 20, ["red", "green", "blue"], "block_poses has 20 values for 3 blocks (7 each)"),
+    ("block_velocities", [], ["red", "green", "blue"], "block_velocities has 0 values for 3 blocks (6 each)"),
+    ("block_poses", [0.0] * 21, ["red", "red", "blue"], "not distinct blocks of desk_cleanup"),
+    ("block_poses", [0.0] * 21, ["red", "purple", "blue"], "not distinct blocks of desk_cleanup"),
+])
+def test_blocks_that_do_not_fit_their_names_are_refused_with_the_reason(field, values, names, refusal) -> None:
+    world = desk_with_a_fallen_block()
+    msg = conversions.world_state(world, world.snapshot(), "DC-3", episode=1)
+    msg.block_names = names
+    setattr(msg, field, values)
+    with pytest.raises(ValueError, match=re.escape(refusal)):
+        messages.semantic_state(msg, messages.semantic_vector(msg))
 
 
 def test_markers_draw_the_bin_with_its_backboard_as_the_physics_has_it() -> None:
@@ -36,7 +72,7 @@ def test_markers_start_with_a_deleteall_and_draw_every_block_and_the_gripper() -
     msg = conversions.world_state(world, world.snapshot(), "DC-3", episode=1)
     drawn = conversions.markers(msg).markers
     assert drawn[0].action == Marker.DELETEALL  # a reset to fewer blocks leaves none behind
-    assert sorted(m.id for m in drawn if m.ns == "blocks") == list(range(len(msg.blocks)))
+    assert sorted(m.id for m in drawn if m.ns == "blocks") == list(range(len(msg.block_names)))
     gripper = [m for m in drawn if m.ns == "gripper"]
     assert len(gripper) == 1 and abs(gripper[0].pose.position.z - msg.gripper_position.z) < 1e-9
 

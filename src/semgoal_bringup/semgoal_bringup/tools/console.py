@@ -37,7 +37,7 @@ from semgoal_core.names import Assignee, StepStatus, agent
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
-from semgoal_ros.messages import literal
+from semgoal_ros.messages import block_centres, block_poses, literal
 from semgoal_ros.package_data import share_path
 from semgoal_ros.parameters import Param
 
@@ -186,7 +186,7 @@ class Console:
                       "after": list(s.after), "active": s.status == "active" and plan.status in ("executing", "paused")}
                      for s in plan.steps]
         human = next((s for s in steps if s["active"] and s["assignee"] == self.person), None)
-        blocks = [b.name for b in world.blocks] if world else []
+        blocks = list(world.block_names) if world else []
         return {"type": "state", "scene": world.scene if world else "", "task": world.task if world else "",
                 "episode": world.episode if world else 0, "step": int(world.step) if world else 0,
                 "sim_time": round(self.sim_time(), 2), "blocks": blocks, "has_bin": bool(world and world.has_bin),
@@ -217,15 +217,14 @@ class Console:
 
         from semgoal_bringup.tools.episode_video import Frame, FramePainter
 
-        key = (world.scene, len(world.blocks))
+        key = (world.scene, len(world.block_names))
         if self._painter is None or self._painter[0] != key:
             if self._painter is not None:
                 self._painter[1].close()
-            self._painter = (key, FramePainter(world.scene, len(world.blocks), width=480, height=360))
+            self._painter = (key, FramePainter(world.scene, len(world.block_names), width=480, height=360))
         subgoal = self.client.subgoal
         caption = subgoal.action if subgoal and subgoal.action else (self.plan.status if self.plan else "")
-        poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
-                          b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in world.blocks}
+        poses = dict(zip(world.block_names, block_poses(world), strict=True))
         pixels = self._painter[1].image(Frame(int(world.step), self.joints, poses, caption))
         buffer = io.BytesIO()
         Image.fromarray(pixels).save(buffer, format="JPEG", quality=85)
@@ -258,7 +257,7 @@ class Console:
         if world is None:
             raise ValueError("no world yet: is the sim running?")
         state = [literal(p) for p in semantic.predicates] if semantic else []
-        return [str(literal) for literal in parse_goal(text, world.scene, tuple(b.name for b in world.blocks), state)]
+        return [str(literal) for literal in parse_goal(text, world.scene, tuple(world.block_names), state)]
 
     def _parse(self, request: dict) -> dict:
         text = str(request["text"])
@@ -295,7 +294,7 @@ class Console:
         world = self.client.world
         if world is None:
             return {"ok": False, "message": "no world yet: is the sim running?"}
-        blocks = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z) for b in world.blocks}
+        blocks = block_centres(world)
         place = str(request["place"])
         if place not in PLACES:
             return {"ok": False, "message": f"unknown place {place!r}: one of {', '.join(PLACES)}"}

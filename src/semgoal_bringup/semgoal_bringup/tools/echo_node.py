@@ -14,7 +14,7 @@ from semgoal_msgs import msg, srv
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_ros import interfaces as topics
 
-MESSAGE_TYPES = [msg.Predicate, msg.SemanticState, msg.BlockState, msg.WorldState, msg.ArmCommand,
+MESSAGE_TYPES = [msg.Predicate, msg.SemanticState, msg.WorldState, msg.ArmCommand,
                  msg.SubGoal, msg.Plan, msg.GoalRequest]
 
 

@@ -18,7 +18,7 @@ from semgoal_sim.world import FetchWorld
 class Frame:
     step: int
     joints: dict[str, float]
-    block_poses: dict[str, tuple[float, ...]]
+    block_poses: dict[str, np.ndarray]
     """name -> (x, y, z, qw, qx, qy, qz)."""
     caption: str
 
@@ -30,6 +30,7 @@ def frames_from(worlds, joints: dict[tuple[int, int], dict[str, float]], decisio
     as caption the sub-goal the policy followed there (``decisions``: SubGoal by (episode, step),
     :func:`semgoal_core.lockstep.followed_decision`), or the planner's status."""
     from semgoal_core.lockstep import followed_decision
+    from semgoal_ros.messages import block_poses
 
     worlds = list(worlds)
     episode = worlds[-1].episode if worlds else None
@@ -42,9 +43,7 @@ def frames_from(worlds, joints: dict[tuple[int, int], dict[str, float]], decisio
         followed = followed_decision(decisions, episode, msg.step)
         decision = decisions.get((episode, msg.step))
         caption = followed.action if followed else f"({decision.status})" if decision else ""
-        poses = {b.name: (b.pose.position.x, b.pose.position.y, b.pose.position.z, b.pose.orientation.w,
-                          b.pose.orientation.x, b.pose.orientation.y, b.pose.orientation.z) for b in msg.blocks}
-        frames.append(Frame(int(msg.step), arm, poses, caption))
+        frames.append(Frame(int(msg.step), arm, dict(zip(msg.block_names, block_poses(msg), strict=True)), caption))
     return frames
 
 

@@ -44,7 +44,7 @@ from semgoal_msgs.msg import Plan, SemanticState, WorldState
 from semgoal_msgs.srv import EditPlan, GetPlan
 from semgoal_ros import interfaces as topics
 from semgoal_ros.json_messages import json_schema, message_from_dict, message_to_dict
-from semgoal_ros.messages import format_plan
+from semgoal_ros.messages import block_poses, format_plan
 from semgoal_ros.parameters import Param, ParameterValueError, declare
 from semgoal_sim.scene_view import GeomView, SceneView
 
@@ -111,10 +111,8 @@ class FoxgloveNode(Node):
                 self.get_logger().warn(f"world state of an unknown scene {world.scene!r}: not drawn")
                 return
         self.view = view = self.views[world.scene]
-        view.pose(self.joints, {block.name: ((block.pose.position.x, block.pose.position.y, block.pose.position.z),
-                                             (block.pose.orientation.w, block.pose.orientation.x,
-                                              block.pose.orientation.y, block.pose.orientation.z))
-                                for block in world.blocks})
+        view.pose(self.joints, {name: (pose[:3], pose[3:]) for name, pose in zip(world.block_names, block_poses(world),
+                                                                                   strict=True)})
         self.scene_channel.log(scene_update(view.geoms(), _timestamp(world.header.stamp)))
         self.dirty = False
 

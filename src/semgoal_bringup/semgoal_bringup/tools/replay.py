@@ -110,6 +110,7 @@ def summary(episode: Episode) -> str:
 
 def verify(episode: Episode) -> tuple[bool, str]:
     """Re-run the recorded start and commands in the simulator; whether every recorded state comes back."""
+    from semgoal_ros.messages import block_poses
     from semgoal_sim.sim_core import SimCore
 
     first = episode.first
@@ -123,7 +124,7 @@ def verify(episode: Episode) -> tuple[bool, str]:
         core.step(values)
         recorded = episode.worlds[step]
         snapshot = core.snapshot()
-        expected = np.array([[b.pose.position.x, b.pose.position.y, b.pose.position.z] for b in recorded.blocks])
+        expected = block_poses(recorded)[:, :3]
         error = float(np.abs(snapshot.block_positions - expected).max())
         grip = np.array([recorded.gripper_position.x, recorded.gripper_position.y, recorded.gripper_position.z])
         error = max(error, float(np.abs(snapshot.grip_position - grip).max()))

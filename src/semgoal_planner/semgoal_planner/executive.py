@@ -184,6 +184,9 @@ class Executive:
     message: str = ""
     observation: Observation | None = None
     contradicted_since: int | None = None
+    consistency: tuple[tuple, PlanningError | None] | None = field(default=None, repr=False, compare=False)
+    """The last consistency check: what it depended on (state, steps, goal) and the contradiction it found, so a
+    control step that changed none of them does not ground and run the plan again."""
     goal_settling: Settling = field(init=False)
     """Counts the control steps over which the goal's literals held at rest."""
     last_tick: int = 0
@@ -487,14 +490,21 @@ class Executive:
         """The rest of the plan still runs from the observed state; a step whose literals already hold (still
         settling or being confirmed) is as good as done: the steps after it are checked from here."""
         obs = self.observation
-        try:
-            self._simulate(self.steps)
+        depends_on = (obs.objects, tuple(obs.literals), tuple(self.goal),
+                      tuple((step.subgoal, step.status, step.assignee) for step in self.steps))
+        if self.consistency is None or self.consistency[0] != depends_on:
+            try:
+                self._simulate(self.steps)
+                self.consistency = (depends_on, None)
+            except PlanningError as error:
+                self.consistency = (depends_on, error)
+        error = self.consistency[1]
+        if error is None:
             self.contradicted_since = None
-        except PlanningError as error:
-            if self.contradicted_since is None:
-                self.contradicted_since = obs.step
-                self._emit(f"observed state contradicts the plan ({error}); re-planning unless it clears "
-                           f"within {self.contradiction_steps} steps")
+        elif self.contradicted_since is None:
+            self.contradicted_since = obs.step
+            self._emit(f"observed state contradicts the plan ({error}); re-planning unless it clears "
+                       f"within {self.contradiction_steps} steps")
 
     # -- re-planning ---------------------------------------------------------------------------------
     def replan(self, reason: str, by_operator: bool = False) -> tuple[bool, str]:

@@ -128,6 +128,25 @@ def test_contradiction_replans_after_the_debounce() -> None:
     assert ex.replans == 1 and str(ex.active.subgoal) == "pick(green)"
 
 
+def test_the_plan_is_run_again_only_on_a_state_or_plan_that_changed() -> None:
+    """While a step is confirmed the state comes unchanged step after step: the consistency check stands. A contradiction
+    it found still counts down to its re-plan, and a changed state is checked anew."""
+    ex = executive(settle_steps=5, contradiction_steps=5)
+    ex.set_goal("in_bin(red) & in_bin(green)")
+    runs = []
+    simulate = ex.planner.simulate
+    ex.planner.simulate = lambda *args, **kwargs: runs.append(args[1]) or simulate(*args, **kwargs)
+    for step in range(1, 10):  # pick(green) holds, confirmed over five steps, then put_in_bin(green) is at work
+        ex.observe(observe(["holding(green)"], step))
+    assert str(ex.active.subgoal) == "put_in_bin(green)"
+    assert len(runs) == 2 and ex.contradicted_since is None  # at the first state and once pick(green) was done
+    for step in range(10, 13):  # green dropped: put_in_bin(green) cannot run, found once
+        ex.observe(observe([], step))
+    assert len(runs) == 3 and ex.contradicted_since == 10
+    ex.tick(15)
+    assert ex.replans == 1 and str(ex.active.subgoal) == "pick(green)"
+
+
 def test_a_confirmation_that_ends_the_plan_inside_a_tick_fails_cleanly() -> None:
     """The last step is confirmed by a tick, the goal does not hold (green left the bin) and no re-plan
     is left: the goal fails with the reason instead of the tick indexing past the plan."""

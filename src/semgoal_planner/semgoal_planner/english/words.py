@@ -788,7 +788,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
-    text = _TOWER_SIZE.sub(lambda m: f" {m['noun'] or m['noun2']} {m['of'] or ''} ", text)  # "a 3-block tower"
+    text = _TOWER_SIZE.sub(_tower_sized, text)  # "a 3-block tower", "a tower of three blocks with red at the bottom"
     text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
@@ -1108,6 +1108,15 @@ _TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|c
                          r"|out of)\b))?))\b")
 """A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...', 'a tower that is three blocks
 tall with ...'): the blocks named say it."""
+
+
+def _tower_sized(size: re.Match) -> str:
+    """A tower said with its size, as the tower: 'of' kept for the blocks that follow ('a tower of three: red, green and
+    blue'), not before its blocks' places ('a tower of three blocks with red at the bottom, ...')."""
+    places_follow = re.match(r" *with\b", size.string[size.end():])
+    return f" {size['noun'] or size['noun2']} {'' if places_follow else size['of'] or ''} "
+
+
 _LIST_SAID = (rf"(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?(?: +(?:and +)?(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?)+"
               r"(?: +blocks| +cubes)?")
 _RESPECTIVELY = re.compile(rf"(?P<movers>{_LIST_SAID}) +(?P<place>on top of|onto|on|next to|near|beside|close to|by|away "
@@ -1232,7 +1241,8 @@ def _tower_by_positions(text: str) -> str:
         before = re.sub(r"\b(?:put|place|set|arrange|position)\s*$", "", before)  # "put red on top and green at the bottom"
         before = re.sub(r"\b(tower|stack|pile) (where|in which|such that|so that) *$", r"\1 ", before)  # "a tower where red
         # is at the bottom and ..."
-        said = "" if re.search(r"\b(?:tower|stack|pile)(?: and)? *$", before) else "stack "  # "a tower: red on top, ..."
+        said = "" if re.search(r"\b(?:tower|stack|pile)(?: and| of)? *$", before) else "stack "  # "a tower (of three): red
+        # on top, ..."
         text = f"{before} {said}{tower} {text[run[-1].end():]}"
     return text
 

@@ -317,7 +317,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(the (blocks|cubes|ones)|those|what('s| is))?( (that|which) (are|is|stand|make up|form))? ?"
      r"((in|of|on|forming|making up) )?(the|that|this|your) (tower|stack|pile)"
      r"(?! of)", "except the_whole"),  # "put every block except those in the tower in the bin": the others, when planned
-    (r"the (whole|entire|complete) (tower|stack|pile)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
+    (r"the (whole|entire|complete) (tower|stack|pile|thing)|all( of)? the (blocks|cubes) (of|in) the (tower|stack|pile)|"
      r"the (tower|stack|pile)'?s (blocks|cubes)", "the_whole"),  # "put the whole tower in the bin": each of its blocks
     (r"(switch|swap|change|reverse|flip) (which|the) (block|cube|one)( that)? (is|sits|goes|lies) (on top|at the top|on the "
      r"bottom|at the bottom|underneath|below)", "swap the_whole"),  # "switch which block is on top": the tower reversed
@@ -592,7 +592,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"binned|trashed", "in the bin"),  # "the rest binned", "red should be binned"
     (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
      r"(blocks|cubes|ones)", "the rest"),  # "bin the leftovers"
-    (r"everything|every|each|all of them|all of|all", "all"),
+    (r"everything|every|each|all of them|all of|all|the (whole )?lot", "all"),
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
     (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"
     (r"those|these|they|them", "them"),

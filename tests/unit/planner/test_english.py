@@ -420,6 +420,8 @@ PHRASES = [
     ("tabletop", "put red on the green block and keep blue far from both",
      "above(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "put both side by side", "close(red,green)"),
+    ("two_blocks", "put the other block on red", "above(green,red)"),
+    ("two_blocks", "stack the other cube on top of green", "above(red,green)"),
     ("two_blocks", "put them next to each other", "close(red,green)"),
     ("two_blocks", "let go", "not holding(red) & not holding(green)"),
     ("desk_cleanup", "drop the block you are holding",

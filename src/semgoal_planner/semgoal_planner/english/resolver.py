@@ -226,8 +226,12 @@ class Resolver:
         return self.last_named or self.blocks  # them: those named before, or, said first, every block here
 
     def subjects_of(self, clause: Clause) -> tuple[str, ...]:
-        """The blocks a clause is about (those of the clause before where it names none)."""
-        return self.blocks_of(clause.subjects) if clause.subjects else self.last
+        """The blocks a clause is about (those of the clause before where it names none); 'the other' is not a block the
+        clause names after it ("put the other block on red")."""
+        if not clause.subjects:
+            return self.last
+        named_after = tuple(block for ref in clause.objects if ref.kind == "colours" for block in ref.colours)
+        return self.blocks_of(clause.subjects, besides=named_after if any(ref.kind == "other" for ref in clause.subjects) else ())
 
     def literals(self, clause: Clause, before: Clause | None) -> tuple[list[tuple[Literal, bool]], Clause]:
         """The clause's literals, each with whether it is generic (said of all blocks or the others, so a

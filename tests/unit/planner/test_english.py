@@ -421,6 +421,8 @@ PHRASES = [
      "above(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "put both side by side", "close(red,green)"),
     ("two_blocks", "put the other block on red", "above(green,red)"),
+    ("three_blocks", "put red near green and the other one away from both",
+     "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "stack the other cube on top of green", "above(red,green)"),
     ("two_blocks", "put them next to each other", "close(red,green)"),
     ("two_blocks", "let go", "not holding(red) & not holding(green)"),
@@ -774,6 +776,9 @@ REFUSALS = [
     ("desk_cleanup", "put the block in the bin", "'it' or 'the block' is ambiguous"),
     ("three_blocks", "move a cube next to green", r"'a cube' leaves open which block: name it by colour \(red, green, blue\)"),
     ("tabletop", "add another block to the tower", "'another block' leaves open which block"),
+    ("three_blocks", "put the other block near red", "'the other block' could be any of green, blue: say which"),
+    ("three_blocks", "move red away from the other one", "'the other block' could be any of green, blue"),
+    ("desk_cleanup", "put red in the bin and the other block too", "'the other block' could be any of green, blue, yellow"),
     ("tabletop", "put one more block on the tower", "'one more block' leaves open which block"),
     ("desk_cleanup", "put brown in the bin", "unknown word 'brown'"),
     ("desk_cleanup", "put violet in the bin", "there is no purple block here: the blocks are red, green, blue, yellow"),
@@ -885,6 +890,18 @@ def test_phrasings_become_their_literals(scene: str, sentence: str, expected: st
 def test_ill_posed_sentences_are_refused_with_the_reason(scene: str, sentence: str, reason: str) -> None:
     with pytest.raises(LanguageError, match=reason):
         parse_english(sentence, scene)
+
+
+@pytest.mark.parametrize(("sentence", "expected"), [
+    ("swap red with the other block", "swap(red,green)"),
+    ("put red on green and the remaining block in the bin", "above(red,green) & in_bin(blue)"),
+    ("put red near green and stack the one left on red", "close(red,green) & above(blue,red)"),
+])
+def test_the_other_block_said_in_the_singular_is_the_one_not_named(sentence: str, expected: str) -> None:
+    blocks = ["red", "green"] if sentence.startswith("swap") else ["red", "green", "blue"]
+    assert {str(lit) for lit in parse_english(sentence, "tabletop", blocks)} == set(expected.split(" & "))
+    with pytest.raises(LanguageError, match="'the other block' could be any of"):
+        parse_english(sentence, "tabletop", [*blocks, "yellow"])
 
 
 @pytest.mark.parametrize("sentence", ["put the two blocks in the bin", "put both of the two cubes in the bin",

@@ -89,6 +89,7 @@ ref: COLOUR                      -> colour
    | "all" ("except" refs)?      -> all
    | "both"                      -> both
    | "other"                     -> other
+   | "the_other"                 -> the_other
    | "it"                        -> it
    | "them"                      -> them
    | "the_tower"                 -> tower
@@ -117,7 +118,8 @@ blocks left out (the opposite of 'on the table' or 'apart' is no single place)."
 
 @dataclass(frozen=True)
 class Ref:
-    """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``, ``it``,
+    """A reference to blocks before the world is known: colours, ``all`` (minus some), ``both``, ``other``
+    (``the_other``: one block, said in the singular), ``it``,
     ``them``, ``tower`` (the tower standing when the goal is planned), ``top`` and ``base`` (its top and bottom
     blocks), ``upper`` and ``lower`` (the block on, or under, the one of ``colours`` when planned), ``held`` (the block in the hand
     when planned), ``level`` (a block counted in the tower: ``the_top2``, ``the_bottom3``, ``the_middle``)."""
@@ -353,6 +355,9 @@ class Clauses(lark.Transformer):
 
     def other(self, _: list) -> Ref:
         return Ref("other")
+
+    def the_other(self, _: list) -> Ref:
+        return Ref("the_other")
 
     def it(self, _: list) -> Ref:
         return Ref("it")

@@ -16,6 +16,8 @@ TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST = "tower_top", "tower_base", "tower
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
+OTHERS = ("other", "the_other")
+"""The blocks not named: 'the others', and 'the other block', which must be one."""
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
 TOP_PREFIX, BOTTOM_PREFIX, TOWER_MIDDLE = "tower_top_", "tower_bottom_", "tower_middle"
@@ -198,13 +200,16 @@ class Resolver:
             if len(self.blocks) == 2:
                 return self.blocks
             raise LanguageError(f"'both' is ambiguous: say which two blocks ({', '.join(self.blocks)})")
-        if ref.kind == "other":  # not the blocks named before, nor the clause's own ("red on top") where some remain
+        if ref.kind in OTHERS:  # not the blocks named before, nor the clause's own ("red on top") where some remain
             if self.tower_named:  # "orange on the tower and the rest in the bin": nor the tower's blocks, which only
                 return (TOWER_REST,)  # the world can say when planned
             unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
             others = tuple(b for b in unnamed if b not in besides) or unnamed
             if not others:
                 raise LanguageError("'the other(s)': every block is already named")
+            if ref.kind == "the_other" and len(others) > 1:
+                raise LanguageError(f"'the other block' could be any of {', '.join(others)}: say which by colour, or "
+                                    "'the others' for all of them")
             return others
         if ref.kind == "it":
             if self.last == (TOWER_ALL,) and besides:  # "reverse the tower and put yellow on it": the tower, where
@@ -227,11 +232,11 @@ class Resolver:
 
     def subjects_of(self, clause: Clause) -> tuple[str, ...]:
         """The blocks a clause is about (those of the clause before where it names none); 'the other' is not a block the
-        clause names after it ("put the other block on red")."""
+        clause names ("put the other block on red", "swap red with the other block")."""
         if not clause.subjects:
             return self.last
-        named_after = tuple(block for ref in clause.objects if ref.kind == "colours" for block in ref.colours)
-        return self.blocks_of(clause.subjects, besides=named_after if any(ref.kind == "other" for ref in clause.subjects) else ())
+        named = tuple(block for ref in (*clause.subjects, *clause.objects) if ref.kind == "colours" for block in ref.colours)
+        return self.blocks_of(clause.subjects, besides=named if any(ref.kind in OTHERS for ref in clause.subjects) else ())
 
     def literals(self, clause: Clause, before: Clause | None) -> tuple[list[tuple[Literal, bool]], Clause]:
         """The clause's literals, each with whether it is generic (said of all blocks or the others, so a

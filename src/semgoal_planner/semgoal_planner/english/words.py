@@ -593,6 +593,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
      r"(blocks|cubes|ones)", "the rest"),  # "bin the leftovers"
     (r"everything|every|each|all of them|all of|all|the (whole )?lot", "all"),
+    (r"the (other|remaining) (block|cube|one)|the one (left|remaining)|the (block|cube) (left|remaining)", "the_other"),
+    # one block, said in the singular: refused where it could be more than one
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
     (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"
     (r"those|these|they|them", "them"),
@@ -619,7 +621,7 @@ FILLERS = frozenset({
 CANONICAL = frozenset({
     "and", "then", "not", "on", "near", "away", "out", "in", "under", "off", "pick", "release", "clean",
     "empty", "separate", "group", "unstack", "put", "stack", "remove", "keep", "held", "together", "apart",
-    "all", "except", "other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
+    "all", "except", "other", "the_other", "them", "it", "bin", "table", "to", "from", "up", "down", "take", "both", "only",
     "the_tower", "the_top", "the_base", "the_whole", "the_upper", "the_lower", "the_held", "the_binned", "the_middle", "swap",
     ANY_ORDER,
     IN_PLACE, AFFIRMED,
@@ -735,7 +737,7 @@ def _stacked_into_a_tower(words: list[str]) -> list[str]:
 
 _PLACE_WORDS = frozenset({"on", "near", "in", "away", "under", "off", "to", "from", "out"})
 """Words after which a block is where another goes, not one a tower's mark may take."""
-_NAMING = frozenset({"all", "except", "only", "other", "them", "it", "both", "and", *BLOCK_COLOURS})
+_NAMING = frozenset({"all", "except", "only", "other", "the_other", "them", "it", "both", "and", *BLOCK_COLOURS})
 """The words that name blocks, which a tower's mark may follow."""
 
 

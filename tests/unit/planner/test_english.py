@@ -893,6 +893,30 @@ def test_ill_posed_sentences_are_refused_with_the_reason(scene: str, sentence: s
 
 
 @pytest.mark.parametrize(("sentence", "expected"), [
+    ("build a tower of three blocks", "stack(red,green,blue)"),
+    ("make a 3-block tower", "stack(red,green,blue)"),
+    ("build a three block tower with red on top", "stack(red,green,blue) & not above(green,red) & not above(blue,red)"),
+    ("stack red, green and blue into a tower of three", "above(green,red) & above(blue,green)"),
+    ("make a tower of three using red green and blue", "above(green,red) & above(blue,green)"),
+    ("build a red-green-blue tower", "above(green,red) & above(blue,green)"),
+])
+def test_a_tower_said_by_its_size_alone_is_of_every_block_if_that_many_else_refused(sentence: str, expected: str) -> None:
+    assert {str(lit) for lit in parse_english(sentence, "tabletop", ["red", "green", "blue"])} == set(expected.split(" & "))
+    if "red" not in sentence:
+        with pytest.raises(LanguageError, match="say which 3 blocks"):
+            parse_english(sentence, "tabletop", ["red", "green", "blue", "yellow"])
+
+
+@pytest.mark.parametrize(("sentence", "reason"), [
+    ("put red/green in the bin", "'or' leaves the goal open"),
+    ("build a foo-bar tower", "unknown word 'foo-bar'"),
+])
+def test_a_choice_or_an_unknown_word_is_named_as_said(sentence: str, reason: str) -> None:
+    with pytest.raises(LanguageError, match=reason):
+        parse_english(sentence, "tabletop")
+
+
+@pytest.mark.parametrize(("sentence", "expected"), [
     ("swap red with the other block", "swap(red,green)"),
     ("put red on green and the remaining block in the bin", "above(red,green) & in_bin(blue)"),
     ("put red near green and stack the one left on red", "close(red,green) & above(blue,red)"),

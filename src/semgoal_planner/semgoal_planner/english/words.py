@@ -789,6 +789,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NUMBERED.sub(" ; ", re.sub(r"\s*\n\s*", "\n", said))  # "1. put red in the bin 2. put green in the bin",
     # one step a line: steps in turn
     text = re.sub(r"[()\[\]\"]", " ", text)
+    text = _HYPHENED_COLOURS.sub(r"\g<colour> and ", text)  # "a red-green-blue tower"
+    text = _SLASHED_COLOURS.sub(r"\g<colour> or ", text)  # "red/green": one or the other, refused as a choice
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
@@ -796,7 +798,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
-    text = _TOWER_SIZE.sub(_tower_sized, text)  # "a 3-block tower", "a tower of three blocks with red at the bottom"
+    text = _TOWER_SIZE.sub(lambda size: _tower_sized(size, blocks), text)  # "a 3-block tower", "a tower of three
+    # blocks with red at the bottom"
     text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
     text = _RELATIVE_ON.sub(r"\g<block> and \g<block> ", text)  # "blue on green which is on red"
     text = _tower_by_positions(text)  # "red on top, green in the middle, blue at the bottom"
@@ -860,7 +863,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     if count := next((w for w in unknown if w.isdigit() or w in NUMBERS), None):
         raise LanguageError(f"'{count}' blocks, but which? a goal names its blocks by colour ({', '.join(blocks)}), "
                             f"e.g. {examples(scene, blocks)}")
-    if unknown:
+    if unknown:  # a word the reader knows nowhere before one it knows only in other phrases ('build' without a tower)
+        unknown.sort(key=lambda word: word in _known_words())
         raise LanguageError(f"unknown word {unknown[0]!r}{_did_you_mean(unknown[0])}: goals name blocks by colour "
                             f"({', '.join(blocks)}) and say where they go, e.g. {examples(scene, blocks)}")
     if len(words) > MAX_GOAL_WORDS:
@@ -1070,6 +1074,9 @@ def _listing_start(words: list[str], end: int) -> int:
     return start
 
 
+_HYPHENED_COLOURS = re.compile(rf"\b(?P<colour>{_COLOUR}) *- *(?=(?:{_COLOUR})\b)")
+"""Colours joined by hyphens ('a red-green-blue tower'): a list of blocks."""
+_SLASHED_COLOURS = re.compile(rf"\b(?P<colour>{_COLOUR}) */ *(?=(?:{_COLOUR})\b)")
 _COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
                       r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
@@ -1109,20 +1116,35 @@ _EXCEPTION_AFTER_ALL = re.compile(
 """'apart from', 'besides' after 'all' and before the blocks: an exception, not a place, where the words between or
 after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
 every block apart from green' it is the place."""
-_TOWER_SIZE = re.compile(r"\b(?:(?:\d+|" + "|".join(NUMBERS) + r")[- ](?:block|cube|storey|story|level)s?[- ]"
+_SIZE = r"(?:\d+|" + "|".join(NUMBERS) + r")"
+_TOWER_SIZE = re.compile(rf"\b(?:(?P<size>{_SIZE})[- ](?:block|cube|storey|story|level)s?[- ]"
                          r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) +(?:and +)?(?:(?:that|which)"
-                         r" (?:is|are) )?(?:(?P<of>of) (?:height |size )?(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)?"
-                         r"|(?:\d+|" + "|".join(NUMBERS) + r")(?: blocks| cubes)? (?:high|tall)(?: +and(?= +(?:of|with|from|using"
+                         rf" (?:is|are) )?(?:(?P<of>of) (?:height |size )?(?P<size2>{_SIZE})(?: blocks| cubes)?"
+                         rf"|(?P<size3>{_SIZE})(?: blocks| cubes)? (?:high|tall)(?: +and(?= +(?:of|with|from|using"
                          r"|out of)\b))?))\b")
 """A tower's size said with its blocks ('a 3-block tower', 'a tower of three: ...', 'a tower that is three blocks
-tall with ...'): the blocks named say it."""
+tall with ...'), or without them where the size is every block there is ('a tower of six blocks' of six)."""
 
 
-def _tower_sized(size: re.Match) -> str:
+def _tower_sized(size: re.Match, blocks: Sequence[str]) -> str:
     """A tower said with its size, as the tower: 'of' kept for the blocks that follow ('a tower of three: red, green and
-    blue'), not before its blocks' places ('a tower of three blocks with red at the bottom, ...')."""
-    places_follow = re.match(r" *with\b", size.string[size.end():])
-    return f" {size['noun'] or size['noun2']} {'' if places_follow else size['of'] or ''} "
+    blue'), not before its blocks' places ('a tower of three blocks with red at the bottom, ...'). Where its blocks are
+    not listed, nor all said by their places, the tower is of every block if that is as many, and is refused if not."""
+    said = size["size"] or size["size2"] or size["size3"]
+    count = NUMBERS.get(said) or int(said)
+    rest = size.string[size.end():]
+    places_follow = re.match(r" *with\b", rest)
+    colours = rf"\b(?:{_COLOUR})\b"
+    listed_after = re.search(colours, re.split(r"\b(?:with|then)\b", rest)[0])
+    listed_before = re.search(colours, re.split(r"\bthen\b", size.string[:size.start()])[-1])
+    placed = places_follow and len(set(re.findall(colours, re.split(r"\bthen\b", rest)[0]))) == count
+    if not listed_after and not listed_before and not placed:
+        if count != len(blocks):
+            raise LanguageError(f"{size[0]!r}: say which {count} blocks, e.g. 'build a tower of "
+                                f"{', '.join(blocks[:count]) or 'red, green and blue'}' (this world has {len(blocks)}: "
+                                f"{', '.join(blocks)})")
+        return f" {size['noun'] or size['noun2']} of all "
+    return f" {size['noun'] or size['noun2']} {size['of'] or '' if listed_after else ''} "
 
 
 _LIST_SAID = (rf"(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?(?: +(?:and +)?(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?)+"

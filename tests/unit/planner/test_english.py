@@ -907,6 +907,21 @@ def test_a_tower_said_by_its_size_alone_is_of_every_block_if_that_many_else_refu
             parse_english(sentence, "tabletop", ["red", "green", "blue", "yellow"])
 
 
+@pytest.mark.parametrize("sentence", ["put red at the bottom", "make red the bottom block", "red should be at the bottom",
+                                      "let red be the bottom one", "make green the top block", "green should be the top block",
+                                      "put green at the top", "swap the order of the blocks"])
+def test_an_end_of_two_blocks_puts_the_other_on_or_under_it(sentence: str) -> None:
+    expected = "swap(tower_all)" if "order" in sentence else "above(green,red)"
+    assert [str(lit) for lit in parse_english(sentence, "tabletop", ["red", "green"])] == [expected]
+
+
+def test_an_end_said_of_a_standing_tower_is_that_towers() -> None:
+    assert [str(lit) for lit in parse_english("make green the top block", "tabletop", ["red", "green", "blue"])] == [
+        "above(green,tower_top)"]
+    with pytest.raises(LanguageError, match="under a standing tower"):
+        parse_english("red should be the bottom block of the tower", "tabletop", ["red", "green", "blue"])
+
+
 @pytest.mark.parametrize(("sentence", "reason"), [
     ("put red/green in the bin", "'or' leaves the goal open"),
     ("build a foo-bar tower", "unknown word 'foo-bar'"),
@@ -1539,7 +1554,7 @@ def test_the_rest_said_many_ways_goes_where_the_sentence_says(rest: str) -> None
     assert set(said) == literals("above(red,green) & in_bin(blue) & in_bin(yellow)")
 
 
-@pytest.mark.parametrize("text", ["make green the bottom block", "green should be the bottom block",
+@pytest.mark.parametrize("text", ["put green the bottom block", "red the top block green",
                                   "put the top block the bottom block", "stack red and green in any order blue"])
 def test_a_sentence_not_read_is_shown_back_in_words_not_the_grammars_tokens(text: str) -> None:
     with pytest.raises(LanguageError, match="read as") as refused:

@@ -323,7 +323,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"bottom|at the bottom|underneath|below)", "swap the_whole"),  # "switch which block is on top": the tower reversed
     (r"(reverse|invert|flip( over)?|turn over|turn upside down|swap|switch|exchange)( the order of)?( the (blocks|cubes) "
      r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
-     r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert) the order of (all )?(the )?(blocks|cubes)",
+     r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert|swap|switch|flip|change) the order of (all )?(the )?(blocks|cubes)",
      "swap the_whole"),  # "reverse the tower": its blocks'
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
@@ -798,6 +798,12 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
+    text = _MADE_AN_END.sub(lambda m: f" put {m['made'] or m['said']} at the {_END_SAID[m['end']]} ", text)  # "make red
+    # the top block", "green should be at the bottom"
+    if len(blocks) == 2 and len(re.findall(r"\b(?:top|bottom|base|foot)\b", text)) == 1:  # "put red at the bottom": of two
+        # blocks, the other on it
+        text = _END_OF_TWO.sub(lambda m: f"{m['verb']} {m['what']} {'on top' if m['end'] == 'top' else 'under the other block'}",
+                               text)
     text = _TOWER_SIZE.sub(lambda size: _tower_sized(size, blocks), text)  # "a 3-block tower", "a tower of three
     # blocks with red at the bottom"
     text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
@@ -1117,6 +1123,17 @@ _EXCEPTION_AFTER_ALL = re.compile(
 after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
 every block apart from green' it is the place."""
 _SIZE = r"(?:\d+|" + "|".join(NUMBERS) + r")"
+_END_SAID = {"top": "top", "highest": "top", "uppermost": "top", "topmost": "top", "bottom": "bottom", "lowest": "bottom",
+             "bottommost": "bottom", "base": "bottom", "foot": "bottom"}
+_BLOCK_NAMED = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_NAMED}) (?:be )?|^ *(?P<said>{_BLOCK_NAMED}) (?:(?:should|must|"
+                          r"needs to|has to|will|shall) )?(?:be|go|goes|end up|ends up|sit|sits|is) (?:at |on )?)the (?:very )?"
+                          rf"(?P<end>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) (?:tower|stack|pile))?"
+                          r"(?= *$| and\b| then\b)")
+"""'make red the top block', 'green should be at the bottom': the block put at that end (of the tower standing)."""
+_END_OF_TWO = re.compile(rf"(?P<verb>put|place|move|set|stack|get) (?P<what>{_BLOCK_NAMED}) (?:at|to|on|onto) the (?:very )?"
+                         r"(?P<end>top|bottom|base|foot)(?: of (?:the|that|this|your) (?:tower|stack|pile))?(?= *$| and\b| then\b)")
+"""'put red at the bottom' where two blocks are all there is: the other on it ('at the top': on the other)."""
 _TOWER_SIZE = re.compile(rf"\b(?:(?P<size>{_SIZE})[- ](?:block|cube|storey|story|level)s?[- ]"
                          r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) +(?:and +)?(?:(?:that|which)"
                          rf" (?:is|are) )?(?:(?P<of>of) (?:height |size )?(?P<size2>{_SIZE})(?: blocks| cubes)?"

@@ -421,6 +421,7 @@ PHRASES = [
      "above(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "put both side by side", "close(red,green)"),
     ("two_blocks", "put the other block on red", "above(green,red)"),
+    ("desk_cleanup", "throw out everything that is not blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
     ("three_blocks", "put red near green and the other one away from both",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "stack the other cube on top of green", "above(red,green)"),

@@ -76,9 +76,9 @@ _DENIED = r"(don'?t|do not|never|please don'?t|must not|mustn'?t|should not|shou
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
-    (rf"(?P<noun>blocks?|cubes?|ones?) (that|which) (are|is) not(?= (the )?({_COLOUR})\b)|(?P<noun2>blocks?|cubes?|ones?) "
-     rf"(that|which) (aren't|isn't)(?= (the )?({_COLOUR})\b)", r"\g<noun>\g<noun2> other than"),  # "every block that is
-    # not red", "the blocks that aren't red or green": the others
+    (rf"(?P<noun>blocks?|cubes?|ones?|everything) (that|which) (are|is) not(?= (the )?({_COLOUR})\b)|(?P<noun2>blocks?|"
+     rf"cubes?|ones?|everything) (that|which) (aren't|isn't)(?= (the )?({_COLOUR})\b)", r"\g<noun>\g<noun2> other than"),
+    # "every block that is not red", "the blocks that aren't red or green", "everything that is not blue": the others
     (rf"non-?(?P<colour>{_COLOUR}) (?P<noun>blocks|cubes|ones)", r"\g<noun> other than \g<colour>"),  # "the non-red blocks"
     (rf"other than (?P<first>(the )?({_COLOUR})) (n?or|and not)(?= (the )?({_COLOUR})\b)", r"other than \g<first> and"),  # "the
     # blocks that are not red or green": neither

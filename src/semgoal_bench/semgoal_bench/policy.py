@@ -49,14 +49,17 @@ def _sb3_model(env, keep_infos: bool, warmup: int = WARMUP_STEPS):
     """SB3's SAC + HER as the reference runs it; ``keep_infos`` for envs whose reward reads the step's info."""
     import torch
     from stable_baselines3 import SAC, HerReplayBuffer
+    from stable_baselines3.common.logger import Logger
 
     from semgoal_core.settling import HER_REPLAY_KWARGS
 
     torch.set_num_threads(1)
     her = {"n_sampled_goal": 4, "goal_selection_strategy": "future", **(HER_REPLAY_KWARGS if keep_infos else {})}
-    return SAC("MultiInputPolicy", env, replay_buffer_class=HerReplayBuffer, replay_buffer_kwargs=her,
-               batch_size=256, policy_kwargs={"net_arch": [256, 256]}, train_freq=1, gradient_steps=1,
-               learning_starts=warmup, buffer_size=100_000, seed=0, verbose=0)
+    model = SAC("MultiInputPolicy", env, replay_buffer_class=HerReplayBuffer, replay_buffer_kwargs=her,
+                batch_size=256, policy_kwargs={"net_arch": [256, 256]}, train_freq=1, gradient_steps=1,
+                learning_starts=warmup, buffer_size=100_000, seed=0, verbose=0)
+    model.set_logger(Logger(None, []))  # SB3's default logger leaves an empty folder in the temp dir per run
+    return model
 
 
 def _sb3_env(name: str):

@@ -4,6 +4,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 from stable_baselines3 import SAC, HerReplayBuffer
+from stable_baselines3.common.logger import Logger
 
 import semgoal_sim  # noqa: F401  (registers the ids)
 from semgoal_core.layout import goal_reward
@@ -20,9 +21,11 @@ def test_each_scene_has_a_subgoal_env() -> None:
 
 
 def _sac(env_id: str, her_kwargs: dict) -> SAC:
-    return SAC("MultiInputPolicy", gym.make(env_id), replay_buffer_class=HerReplayBuffer,
-               replay_buffer_kwargs={"n_sampled_goal": 4, "goal_selection_strategy": "future", **her_kwargs},
-               learning_starts=100, batch_size=64, policy_kwargs={"net_arch": [32, 32]}, seed=0, verbose=0)
+    model = SAC("MultiInputPolicy", gym.make(env_id), replay_buffer_class=HerReplayBuffer,
+                replay_buffer_kwargs={"n_sampled_goal": 4, "goal_selection_strategy": "future", **her_kwargs},
+                learning_starts=100, batch_size=64, policy_kwargs={"net_arch": [32, 32]}, seed=0, verbose=0)
+    model.set_logger(Logger(None, []))  # not SB3's default, which leaves an empty folder in the temp dir
+    return model
 
 
 @pytest.mark.slow

@@ -1,5 +1,6 @@
 """`./semgoal bench sim [--json]`: env steps/s per scene, beside gymnasium-robotics' FetchPickAndPlace-v4
-(the same random actions, one process each; the median of the repeats), and per scene what the env's own work
+(the same random actions, one process each; the median of the repeats; the reference run before each scene and after
+the last, its median kept), and per scene what the env's own work
 costs: the same actions through ``FetchWorld.step`` alone, and through ``mj_step`` with the world's substeps
 alone (``env_over_world``, ``world_over_physics``: 1.0 is free). Last, the desk's worlds stepped in a batch
 (:class:`~semgoal_sim.batch.WorldBatch`) on one thread and on a thread per core: ``batch_over_one_core``."""
@@ -8,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import statistics
 import subprocess
 import sys
 import time
@@ -37,6 +39,8 @@ def main(argv: list[str]) -> int:
     rng = np.random.default_rng(0)
     actions = rng.uniform(-1, 1, size=(args.steps, 4)).astype(np.float32)
     rows, world_rows, physics_rows = {}, {}, {}
+    references = [_reference_rate(args.steps, args.repeats)]  # one before each scene and one after: the machine's
+    # speed drifts, so the reference is measured across the same minutes as ours
     for label, scene, blocks in (("two_blocks", "two_blocks", None), ("three_blocks", "three_blocks", None),
                                  ("desk_cleanup_4", "desk_cleanup", 4)):
         env = SubgoalEnv(scene, n_blocks=blocks, max_steps=10**9)
@@ -46,8 +50,10 @@ def main(argv: list[str]) -> int:
             [lambda i, env=env: env.step(actions[i]), lambda i, world=world: world.step(actions[i]),
              lambda i, world=world: mujoco.mj_step(world.model, world.data, nstep=N_SUBSTEPS)],
             reset, args.steps, args.repeats)
+        references.append(_reference_rate(args.steps, args.repeats))
     batched = _batch_rates(actions, args.repeats)
-    reference = _reference_rate(args.steps, args.repeats)
+    measured = [rate for rate in references if rate is not None]
+    reference = statistics.median(measured) if measured else None
     if reference is not None:
         rows["reference:FetchPickAndPlace-v4"] = reference
     result = {"unit": "env steps/s (over the repeats, each way of stepping taking turns every 50 steps; one process, "
@@ -58,7 +64,8 @@ def main(argv: list[str]) -> int:
               "env_over_world": {k: round(rows[k] / world_rows[k], 3) for k in world_rows},
               "world_over_physics": {k: round(world_rows[k] / physics_rows[k], 3) for k in world_rows},
               "batch_steps_per_second": {str(threads): round(rate, 1) for threads, rate in batched.items()},
-              "batch_over_one_core": round(batched[max(batched)] / batched[1], 3)}
+              "batch_over_one_core": round(batched[max(batched)] / batched[1], 3),
+              "reference_runs": [None if rate is None else round(rate, 1) for rate in references]}
     if reference is not None:
         result["ratio_to_reference"] = {k: round(v / reference, 2) for k, v in rows.items() if not k.startswith("ref")}
     out = sys.stderr if args.json else sys.stdout

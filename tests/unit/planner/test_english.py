@@ -778,6 +778,8 @@ REFUSALS = [
     ("three_blocks", "move a cube next to green", r"'a cube' leaves open which block: name it by colour \(red, green, blue\)"),
     ("tabletop", "add another block to the tower", "'another block' leaves open which block"),
     ("three_blocks", "put the other block near red", "'the other block' could be any of green, blue: say which"),
+    ("desk_cleanup", "put all of them except one in the bin", "'all of them except one' leaves open which"),
+    ("desk_cleanup", "put everything but one in the bin", "'everything but one' leaves open which"),
     ("three_blocks", "move red away from the other one", "'the other block' could be any of green, blue"),
     ("desk_cleanup", "put red in the bin and the other block too", "'the other block' could be any of green, blue, yellow"),
     ("tabletop", "put one more block on the tower", "'one more block' leaves open which block"),

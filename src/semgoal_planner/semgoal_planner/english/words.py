@@ -1188,9 +1188,10 @@ _ONE_NOT_NAMED = re.compile(r"^(?!.*(?:\b(?:not|never|no|nothing|without|nor)\b|
 """'put another block on the tower', 'move any block next to red': one block the goal does not name (refused; where the
 sentence denies, 'not on another block' is every other block)."""
 _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a couple|either|half|most|many|two|three|four|five|six|seven|"
-                      r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\ball (?:the )?(?:blocks |cubes )?(?:but|"
-                      r"except(?: for)?|save) (?:one|two|three|four|five|six|\d)\b")
-"""'one of the blocks', 'some of them': blocks the goal does not say (refused)."""
+                      r"\d) of (?:the |these |those |your )?(?:blocks|cubes|them|ones)\b|\b(?:all|everything|every (?:block|cube)) (?:of )?"
+                      r"(?:the |them )?(?:blocks |cubes )?(?:but|except(?: for)?|save|apart from) (?:one|two|three|four|five|six|\d)"
+                      r"\b(?! of\b)")
+"""'one of the blocks', 'some of them', 'all of them except one': blocks the goal does not say (refused)."""
 _A_QUESTION = re.compile(r"^\W*(?:(?:is|are|does|do|did|was|were|has|have)\b(?!\s+(?:you|it possible)\b).*\?\W*$|(?:where|which|"
                          r"what|how|why|who|when)\b(?!.*\b(?:you|i|we)\b.*\b(?:want|like|need)\b).*\?\W*$|(?:where|which|how "
                          r"many|why)\b)")

@@ -918,6 +918,13 @@ def test_an_end_of_two_blocks_puts_the_other_on_or_under_it(sentence: str) -> No
     assert [str(lit) for lit in parse_english(sentence, "tabletop", ["red", "green"])] == [expected]
 
 
+@pytest.mark.parametrize("sentence", ["build a tower with red at the bottom", "make a stack with red at the bottom",
+                                      "build a tower with green on top"])
+def test_a_tower_of_two_blocks_with_an_end_named_is_of_both(sentence: str) -> None:
+    said = parse_goal(sentence, "two_blocks", ("red", "green"), [])
+    assert Literal("above", ("green", "red")) in said and Literal("above", ("red", "green")) not in said
+
+
 def test_an_end_said_of_a_standing_tower_is_that_towers() -> None:
     assert [str(lit) for lit in parse_english("make green the top block", "tabletop", ["red", "green", "blue"])] == [
         "above(green,tower_top)"]

@@ -804,6 +804,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
         # blocks, the other on it
         text = _END_OF_TWO.sub(lambda m: f"{m['verb']} {m['what']} {'on top' if m['end'] == 'top' else 'under the other block'}",
                                text)
+    if len(blocks) == 2:  # "build a tower with red at the bottom": of the two
+        text = _BASE_OF_TWO.sub(r"\g<noun> of all with ", text)
     text = _TOWER_SIZE.sub(lambda size: _tower_sized(size, blocks), text)  # "a 3-block tower", "a tower of three
     # blocks with red at the bottom"
     text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
@@ -1134,6 +1136,8 @@ _MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_NAMED}) (?:
 _END_OF_TWO = re.compile(rf"(?P<verb>put|place|move|set|stack|get) (?P<what>{_BLOCK_NAMED}) (?:at|to|on|onto) the (?:very )?"
                          r"(?P<end>top|bottom|base|foot)(?: of (?:the|that|this|your) (?:tower|stack|pile))?(?= *$| and\b| then\b)")
 """'put red at the bottom' where two blocks are all there is: the other on it ('at the top': on the other)."""
+_BASE_OF_TWO = re.compile(rf"\b(?P<noun>tower|stack|pile) with (?={_BLOCK_NAMED} (?:at|on) the (?:bottom|base|foot)\b)")
+"""'a tower with red at the bottom' where two blocks are all there is: a tower of both."""
 _TOWER_SIZE = re.compile(rf"\b(?:(?P<size>{_SIZE})[- ](?:block|cube|storey|story|level)s?[- ]"
                          r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) +(?:and +)?(?:(?:that|which)"
                          rf" (?:is|are) )?(?:(?P<of>of) (?:height |size )?(?P<size2>{_SIZE})(?: blocks| cubes)?"

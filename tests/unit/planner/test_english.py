@@ -422,6 +422,8 @@ PHRASES = [
     ("two_blocks", "put both side by side", "close(red,green)"),
     ("two_blocks", "put the other block on red", "above(green,red)"),
     ("desk_cleanup", "throw out everything that is not blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("tabletop", "hold orange while red sits on green", "holding(orange) & above(red,green)"),
+    ("tabletop", "put red in the bin while keeping green out", "in_bin(red) & not in_bin(green)"),
     ("three_blocks", "put red near green and the other one away from both",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "stack the other cube on top of green", "above(red,green)"),
@@ -923,6 +925,15 @@ def test_an_end_of_two_blocks_puts_the_other_on_or_under_it(sentence: str) -> No
 def test_a_tower_of_two_blocks_with_an_end_named_is_of_both(sentence: str) -> None:
     said = parse_goal(sentence, "two_blocks", ("red", "green"), [])
     assert Literal("above", ("green", "red")) in said and Literal("above", ("red", "green")) not in said
+
+
+@pytest.mark.parametrize(("sentence", "expected"), [
+    ("put orange close to yellow but not touching the tower", "close(yellow,orange) & not close(orange,tower_base)"),
+    ("keep orange from touching the tower", "not close(orange,tower_base)"),
+])
+def test_touching_the_tower_is_by_its_foot(sentence: str, expected: str) -> None:
+    said = parse_english(sentence, "tabletop", ["red", "green", "blue", "yellow", "orange"])
+    assert {str(lit) for lit in said} == set(expected.split(" & "))
 
 
 def test_an_end_said_of_a_standing_tower_is_that_towers() -> None:

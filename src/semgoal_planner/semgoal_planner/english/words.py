@@ -258,7 +258,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"((build|make|form|create|construct) )?(a |the |one )?(tower|stack|pile) (with|where|in which|such that|so that)"
      rf"(?= (the )?({_COLOUR})( block| cube| one)?( is| sits| goes)? (on top of|on|atop|above) (the )?({_COLOUR})\b)",
      "stack"),  # "a tower with yellow on top of orange on top of red"
-    (r"while|whilst|meanwhile", "and"),
+    (r"while|whilst|meanwhile", SENTENCE_END),  # "hold orange while red sits on green": a clause of its own
     (rf"(?P<refs>{_LISTED})( blocks| cubes)?( should| must| are| is| will| can)?( not| never)( be)? (stacked|piled|put|placed|"
      r"set)( up)? (on|onto|upon|atop|on top of) (each other|one another)", r"do not stack \g<refs>"),  # "red and green should
     # not be stacked on each other": neither on the other
@@ -382,8 +382,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"pile)(?! of)", UNDER_A_TOWER),  # "put red at the bottom of the tower"
     (r"add (?P<what>[^,;]+?) (to|onto|on top of) (the|that|this|your) (tower|stack|pile)(?! of)",
      r"put \g<what> on the_tower"),  # "add blue to the tower": on top of it
-    (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by)( the| that| this|"
-     r" your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
+    (r"(?P<place>on top of|on to|onto|upon|atop|on|next to|near|beside|close to|away from|far from|by|touching|touch|touches)"
+     r"( the| that| this| your) (tower|stack|pile)(?! of)", r"\g<place> the_tower"),  # "put orange on the tower": the one standing then
     (rf"with (?P<what>(the )?({_COLOUR})( block| cube| one)?) (?P<place>beside|next to|near|close to|by|away from|far from) "
      r"(?P<it>it|them|the (tower|stack|pile))", r"and put \g<what> \g<place> \g<it>"),  # "a tower of red and green, with
     # blue beside it"

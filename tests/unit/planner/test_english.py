@@ -424,6 +424,7 @@ PHRASES = [
     ("desk_cleanup", "throw out everything that is not blue", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
     ("tabletop", "hold orange while red sits on green", "holding(orange) & above(red,green)"),
     ("tabletop", "put red in the bin while keeping green out", "in_bin(red) & not in_bin(green)"),
+    ("desk_cleanup", "put red in the bin while holding green", "in_bin(red) & holding(green)"),
     ("three_blocks", "put red near green and the other one away from both",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "stack the other cube on top of green", "above(red,green)"),

@@ -258,6 +258,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"((build|make|form|create|construct) )?(a |the |one )?(tower|stack|pile) (with|where|in which|such that|so that)"
      rf"(?= (the )?({_COLOUR})( block| cube| one)?( is| sits| goes)? (on top of|on|atop|above) (the )?({_COLOUR})\b)",
      "stack"),  # "a tower with yellow on top of orange on top of red"
+    (r"(while|whilst) (still )?holding", f"{SENTENCE_END} hold"),  # "put red in the bin while holding green"
     (r"while|whilst|meanwhile", SENTENCE_END),  # "hold orange while red sits on green": a clause of its own
     (rf"(?P<refs>{_LISTED})( blocks| cubes)?( should| must| are| is| will| can)?( not| never)( be)? (stacked|piled|put|placed|"
      r"set)( up)? (on|onto|upon|atop|on top of) (each other|one another)", r"do not stack \g<refs>"),  # "red and green should

@@ -425,6 +425,8 @@ PHRASES = [
     ("tabletop", "hold orange while red sits on green", "holding(orange) & above(red,green)"),
     ("tabletop", "put red in the bin while keeping green out", "in_bin(red) & not in_bin(green)"),
     ("desk_cleanup", "put red in the bin while holding green", "in_bin(red) & holding(green)"),
+    ("two_blocks", "stack red ontop of green", "above(red,green)"),
+    ("two_blocks", "put red on-top of green", "above(red,green)"),
     ("three_blocks", "put red near green and the other one away from both",
      "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "stack the other cube on top of green", "above(red,green)"),

@@ -76,6 +76,7 @@ _DENIED = r"(don'?t|do not|never|please don'?t|must not|mustn'?t|should not|shou
 PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
+    (r"on-?top", "on top"),  # "ontop of green", "on-top of green"
     (rf"(?P<noun>blocks?|cubes?|ones?|everything) (that|which) (are|is) not(?= (the )?({_COLOUR})\b)|(?P<noun2>blocks?|"
      rf"cubes?|ones?|everything) (that|which) (aren't|isn't)(?= (the )?({_COLOUR})\b)", r"\g<noun>\g<noun2> other than"),
     # "every block that is not red", "the blocks that aren't red or green", "everything that is not blue": the others

@@ -77,6 +77,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
     (r"on-?top", "on top"),  # "ontop of green", "on-top of green"
+    (r"side-by-side", "side by side"),
     (rf"(?P<noun>blocks?|cubes?|ones?|everything) (that|which) (are|is) not(?= (the )?({_COLOUR})\b)|(?P<noun2>blocks?|"
      rf"cubes?|ones?|everything) (that|which) (aren't|isn't)(?= (the )?({_COLOUR})\b)", r"\g<noun>\g<noun2> other than"),
     # "every block that is not red", "the blocks that aren't red or green", "everything that is not blue": the others
@@ -136,10 +137,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(?P<head>(swap|switch|exchange|reverse|flip|invert)\b[^,;]*?) so (that )?(the )?(bottom|lower|lowest|top|upper)( one|"
      r" block| cube)? (is|ends up|goes|sits|comes|will be)( on| at the)? (top|bottom)", r"\g<head>"),  # "swap the blocks
     # so the bottom one is on top": what swapping does
+    (r"(a (little|bit|touch)|slightly|somewhat|much|even|a lot)(?= (closer|nearer|further|farther)\b)", ""),  # "a little
+    # closer to green": closeness has no degrees here
     (r"(closer|nearer)( together| to each other| to one another)?(?= and\b| then\b|$)", "together"),  # "move 2 blocks
     # closer"
     (r"(further|farther) (apart|away)( from each other| from one another)?(?= and\b| then\b|$)", "apart"),
     (r"(further|farther|much|well|far)(?= (away|apart) from\b)", ""),  # "move red further away from green"
+    (r"(further|farther) from", "away from"),  # "move red further from green"
     (r"the (tower|stack|pile)'s (top|topmost|uppermost|highest|bottom|lowest|base)", r"the \2 block of the tower"),
     (r"hold (on to|onto)", "hold"),  # before 'on to' is read as 'on'
     (r"(every|each)( single)? one of", "all of"),

@@ -16,10 +16,10 @@ TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST = "tower_top", "tower_base", "tower
 its top block where a block goes on it, its bottom one where a block goes near it or away from it."""
 TOWER_PLACES = {"on": TOWER_TOP, "near": TOWER_BASE, "away": TOWER_BASE}
 TOWER_ENDS = {"top": TOWER_TOP, "base": TOWER_BASE, "whole": TOWER_ALL}
-OTHERS = ("other", "the_other")
-"""The blocks not named: 'the others', and 'the other block', which must be one."""
 """'the top block', 'the bottom block': the tower's ends, as subjects or objects of any relation; 'the whole tower':
 each of its blocks, as a subject."""
+OTHERS = ("other", "the_other")
+"""The blocks not named: 'the others', and 'the other block', which must be one."""
 TOP_PREFIX, BOTTOM_PREFIX, TOWER_MIDDLE = "tower_top_", "tower_bottom_", "tower_middle"
 """'the second block from the top' (``tower_top_2``), '... from the bottom' (``tower_bottom_2``), 'the middle block':
 in a goal's literals until it is planned (:func:`~semgoal_planner.goals.the_tower`)."""

@@ -795,8 +795,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NUMBERED.sub(" ; ", re.sub(r"\s*\n\s*", "\n", said))  # "1. put red in the bin 2. put green in the bin",
     # one step a line: steps in turn
     text = re.sub(r"[()\[\]\"]", " ", text)
-    text = _HYPHENED_COLOURS.sub(r"\g<colour> and ", text)  # "a red-green-blue tower"
-    text = _SLASHED_COLOURS.sub(r"\g<colour> or ", text)  # "red/green": one or the other, refused as a choice
+    text = _JOINED_COLOURS.sub(lambda m: f"{m['colour']} {'and' if m['mark'] == '-' else 'or'} ", text)  # "red-green"
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
@@ -806,11 +805,11 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
     text = _MADE_AN_END.sub(lambda m: f" put {m['made'] or m['said']} at the {_END_SAID[m['end']]} ", text)  # "make red
     # the top block", "green should be at the bottom"
-    if len(blocks) == 2 and len(re.findall(r"\b(?:top|bottom|base|foot)\b", text)) == 1:  # "put red at the bottom": of two
-        # blocks, the other on it
-        text = _END_OF_TWO.sub(lambda m: f"{m['verb']} {m['what']} {'on top' if m['end'] == 'top' else 'under the other block'}",
-                               text)
-    if len(blocks) == 2:  # "build a tower with red at the bottom": of the two
+    if len(blocks) == 2:  # of two blocks: "put red at the bottom", the other on it (where no other end is said); "build
+        # a tower with red at the bottom", of both
+        if len(re.findall(r"\b(?:top|bottom|base|foot)\b", text)) == 1:
+            text = _END_OF_TWO.sub(lambda m: f"{m['verb']} {m['what']} {'on top' if m['end'] == 'top' else 'under the other block'}",
+                                   text)
         text = _BASE_OF_TWO.sub(r"\g<noun> of all with ", text)
     text = _TOWER_SIZE.sub(lambda size: _tower_sized(size, blocks), text)  # "a 3-block tower", "a tower of three
     # blocks with red at the bottom"
@@ -1088,9 +1087,9 @@ def _listing_start(words: list[str], end: int) -> int:
     return start
 
 
-_HYPHENED_COLOURS = re.compile(rf"\b(?P<colour>{_COLOUR}) *- *(?=(?:{_COLOUR})\b)")
-"""Colours joined by hyphens ('a red-green-blue tower'): a list of blocks."""
-_SLASHED_COLOURS = re.compile(rf"\b(?P<colour>{_COLOUR}) */ *(?=(?:{_COLOUR})\b)")
+_JOINED_COLOURS = re.compile(rf"\b(?P<colour>{_COLOUR}) *(?P<mark>[-/]) *(?=(?:{_COLOUR})\b)")
+"""Colours joined by hyphens ('a red-green-blue tower': a list of blocks) or slashes ('red/green': one or the other,
+refused as a choice)."""
 _COUNTED = re.compile(r"\b(?:(?:all|both)(?: of)?(?: the)? (?P<all>" + "|".join(NUMBERS) + r"|[2-8])(?: blocks| cubes| ones)?"
                       r"|the (?P<the>" + "|".join(NUMBERS) + r"|[2-8]) (?:blocks|cubes|ones))\b")
 """A count of blocks meant as all of them: 'all three blocks', 'both of the two', 'the two blocks'."""
@@ -1133,16 +1132,16 @@ every block apart from green' it is the place."""
 _SIZE = r"(?:\d+|" + "|".join(NUMBERS) + r")"
 _END_SAID = {"top": "top", "highest": "top", "uppermost": "top", "topmost": "top", "bottom": "bottom", "lowest": "bottom",
              "bottommost": "bottom", "base": "bottom", "foot": "bottom"}
-_BLOCK_NAMED = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
-_MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_NAMED}) (?:be )?|^ *(?P<said>{_BLOCK_NAMED}) (?:(?:should|must|"
+_BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_SAID}) (?:be )?|^ *(?P<said>{_BLOCK_SAID}) (?:(?:should|must|"
                           r"needs to|has to|will|shall) )?(?:be|go|goes|end up|ends up|sit|sits|is) (?:at |on )?)the (?:very )?"
                           rf"(?P<end>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) (?:tower|stack|pile))?"
                           r"(?= *$| and\b| then\b)")
 """'make red the top block', 'green should be at the bottom': the block put at that end (of the tower standing)."""
-_END_OF_TWO = re.compile(rf"(?P<verb>put|place|move|set|stack|get) (?P<what>{_BLOCK_NAMED}) (?:at|to|on|onto) the (?:very )?"
+_END_OF_TWO = re.compile(rf"(?P<verb>put|place|move|set|stack|get) (?P<what>{_BLOCK_SAID}) (?:at|to|on|onto) the (?:very )?"
                          r"(?P<end>top|bottom|base|foot)(?: of (?:the|that|this|your) (?:tower|stack|pile))?(?= *$| and\b| then\b)")
 """'put red at the bottom' where two blocks are all there is: the other on it ('at the top': on the other)."""
-_BASE_OF_TWO = re.compile(rf"\b(?P<noun>tower|stack|pile) with (?={_BLOCK_NAMED} (?:at|on) the (?:bottom|base|foot)\b)")
+_BASE_OF_TWO = re.compile(rf"\b(?P<noun>tower|stack|pile) with (?={_BLOCK_SAID} (?:at|on) the (?:bottom|base|foot)\b)")
 """'a tower with red at the bottom' where two blocks are all there is: a tower of both."""
 _TOWER_SIZE = re.compile(rf"\b(?:(?P<size>{_SIZE})[- ](?:block|cube|storey|story|level)s?[- ]"
                          r"(?:high |tall )?(?P<noun>tower|stack|pile)|(?P<noun2>tower|stack|pile) +(?:and +)?(?:(?:that|which)"
@@ -1192,7 +1191,6 @@ _RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +bl
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""
-_BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _ONE_NOT_NAMED = re.compile(r"^(?!.*(?:\b(?:not|never|no|nothing|without|nor)\b|n't\b))(?:.*\s)?(?P<said>(?:another|any|some|one "
                             r"more|an?)(?: other)? (?:block|cube))\b(?! tower)")
 """'put another block on the tower', 'move any block next to red': one block the goal does not name (refused; where the

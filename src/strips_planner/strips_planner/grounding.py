@@ -27,6 +27,7 @@ from operator import itemgetter
 from typing import NamedTuple
 
 from strips_planner import _core, _explore, _ground, adl, axioms
+from strips_planner.collector import collector_paused
 from strips_planner.pddl import ROOT_TYPE, Action, Atom, Condition, Domain, Effect, PddlError, Problem
 
 
@@ -410,5 +411,6 @@ def _bound(atom: Atom, binding: dict[str, str]) -> Atom:
     return Atom(atom.predicate, tuple(binding.get(arg, arg) for arg in atom.args))
 
 
+@collector_paused
 def ground(domain: Domain, problem: Problem) -> Task:
     return _Grounder(domain, problem).ground()

@@ -24,6 +24,7 @@ from collections.abc import Callable
 from typing import NamedTuple, TypeVar
 
 from strips_planner import _reader
+from strips_planner.collector import collector_paused
 
 SUPPORTED_REQUIREMENTS = {":strips", ":typing", ":negative-preconditions", ":equality", ":action-costs"}
 CHECKED_PER_CONSTRUCT = {":adl", ":disjunctive-preconditions", ":existential-preconditions", ":universal-preconditions",
@@ -496,6 +497,7 @@ def _sections(root: list, kind: str) -> tuple[str, list[list]]:
     return _name(header[1], f"a {kind} name"), [_sub(s, "section") for s in root[2:]]
 
 
+@collector_paused
 def parse_domain(text: str) -> Domain:
     return _read(text, _domain)
 
@@ -672,6 +674,7 @@ def _without_increase(effect: list) -> tuple[list, list[list]]:
     return kept, increases
 
 
+@collector_paused
 def parse_problem(text: str, domain: Domain) -> Problem:
     return _read(text, lambda root: _problem(root, domain))
 

@@ -919,6 +919,61 @@ def test_a_tower_said_by_its_size_alone_is_of_every_block_if_that_many_else_refu
             parse_english(sentence, "tabletop", ["red", "green", "blue", "yellow"])
 
 
+SIX = ["red", "green", "blue", "yellow", "orange", "purple"]
+
+
+@pytest.mark.parametrize(("sentence", "expected"), [
+    ("put orange in the bin and build a tower of five", "in_bin(orange) & stack(red,green,blue,yellow,purple)"),
+    ("build a tower of five and put orange in the bin", "stack(red,green,blue,yellow,purple) & in_bin(orange)"),
+    ("bin orange and purple, and make a tower of four", "in_bin(orange) & in_bin(purple) & stack(red,green,blue,yellow)"),
+    ("put red near green and build a 4-block tower", "close(red,green) & stack(blue,yellow,orange,purple)"),
+    ("build a tower of three with red at the bottom, then green, then blue", "above(green,red) & above(blue,green)"),
+    ("build a 3-block tower with red at the bottom, then green, then blue, then put orange in the bin",
+     "above(green,red) & above(blue,green) & in_bin(orange)"),
+])
+def test_a_tower_said_by_its_size_beside_other_clauses_is_of_the_blocks_they_leave(sentence: str, expected: str) -> None:
+    assert [str(lit) for lit in parse_english(sentence, "tabletop", SIX)] == expected.split(" & ")
+
+
+@pytest.mark.parametrize(("sentence", "expected"), [
+    ("first bin red, then build a tower of the other four", "in_bin(red) & stack(green,blue,yellow,orange)"),
+    ("put red in the bin and the remaining four in a tower", "in_bin(red) & stack(green,blue,yellow,orange)"),
+    ("stack the four others and bin red", "stack(green,blue,yellow,orange) & in_bin(red)"),
+    ("stack red on green and put the three remaining blocks in the bin",
+     "above(red,green) & in_bin(blue) & in_bin(yellow) & in_bin(orange)"),
+    ("build a tower of all without red", "stack(green,blue,yellow,orange)"),
+    ("stack everything without the red one", "stack(green,blue,yellow,orange)"),
+    ("a tower of four without red", "stack(green,blue,yellow,orange)"),
+    ("build a tower, but not with red or green", "stack(blue,yellow,orange)"),
+    ("stack everything but not red or green", "stack(blue,yellow,orange)"),
+    ("put everything except red or green in the bin",
+     "in_bin(blue) & in_bin(yellow) & in_bin(orange) & not in_bin(red) & not in_bin(green)"),
+    ("put red in the bin but not green or blue", "in_bin(red) & not in_bin(green) & not in_bin(blue)"),
+    ("build a tower of four from everything but red", "stack(green,blue,yellow,orange)"),
+    ("build a tower using every block apart from yellow", "stack(red,green,blue,orange)"),
+])
+def test_blocks_said_by_what_the_rest_of_the_goal_leaves(sentence: str, expected: str) -> None:
+    assert [str(lit) for lit in parse_english(sentence, "tabletop", SIX[:5])] == expected.split(" & ")
+
+
+@pytest.mark.parametrize(("sentence", "reason"), [
+    ("put red in the bin and stack the other three", "names 1 of the 5 blocks .*which leaves 4: say which 3"),
+    ("put the other two in the bin", "names 0 of the 5 blocks"),
+    ("build a tower of three from everything but red", "would be a tower of 4: say which 3 blocks"),
+])
+def test_a_count_the_rest_of_the_goal_does_not_leave_is_refused(sentence: str, reason: str) -> None:
+    with pytest.raises(LanguageError, match=reason):
+        parse_english(sentence, "tabletop", SIX[:5])
+
+
+@pytest.mark.parametrize("sentence", ["build a tower of four and put orange in the bin",
+                                      "put orange in the bin and build a tower of three",
+                                      "build a tower of three with red at the bottom, then green"])
+def test_a_tower_size_the_other_clauses_do_not_leave_is_refused(sentence: str) -> None:
+    with pytest.raises(LanguageError, match=r"say which (3|4) blocks"):
+        parse_english(sentence, "tabletop", SIX)
+
+
 @pytest.mark.parametrize("sentence", ["put red at the bottom", "make red the bottom block", "red should be at the bottom",
                                       "let red be the bottom one", "make green the top block", "green should be the top block",
                                       "put green at the top", "swap the order of the blocks"])

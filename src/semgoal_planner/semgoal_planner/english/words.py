@@ -477,7 +477,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|cannot|can'?t|can not|may not|might not|not", "not"),
-    (r"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but", "all except"),
+    (rf"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but( not(?= (the )?({_COLOUR})\b))?", "all except"),
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))|(the|your|its) (hand|gripper)( should| must| will| "
      r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
@@ -498,6 +498,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      "and unstack them"),  # "put red near green without stacking them": neither on the other (gerunds read as verbs)
     (r"by(?= (put|pick|take|move|place|stack|throw|toss|drop|bring|carry|clean|clear|separate|group|remove|lift|"
      r"grab|unstack|build|make|empty|get)\b)", "and"),  # "clean up the desk by putting all the blocks in the bin"
+    (rf"((?:all|everything|every (?:block|cube|one)|each (?:block|cube|one)|all (?:the )?(?:blocks|cubes)) (?:of (?:them|the "
+     rf"(?:blocks|cubes)) )?)without(?= (the )?({_COLOUR})\b)", r"\1except"),  # "stack everything without red"
     (r"without", "and not"),  # "put red near green without touching blue"
     (r"(?<!the )(?<!and )(?<!then )(rests?|resting)(?= (on|upon|atop|onto|in|inside|into|next|near|beside|close|by)\b)",
      ""),  # "green rests on red"; not "the rest", nor "red on green and rest in the bin"
@@ -800,7 +802,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
     text = re.sub(r"\bboth\b(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both (the) red and green"
+    text = _LEFT_OUT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "all but not red or green": neither
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
+    text = _OTHERS_COUNTED.sub(lambda match: _others_counted(match, blocks), text)  # "the other four"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
     text = _MADE_AN_END.sub(lambda m: f" put {m['made'] or m['said']} at the {_END_SAID[m['end']]} ", text)  # "make red
@@ -811,6 +815,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
             text = _END_OF_TWO.sub(lambda m: f"{m['verb']} {m['what']} {'on top' if m['end'] == 'top' else 'under the other block'}",
                                    text)
         text = _BASE_OF_TWO.sub(r"\g<noun> of all with ", text)
+    text = _TOWER_WITHOUT.sub(_tower_of_all_but, text)  # "a tower of four without red"
     text = _TOWER_SIZE.sub(lambda size: _tower_sized(size, blocks), text)  # "a 3-block tower", "a tower of three
     # blocks with red at the bottom"
     text = _RESPECTIVELY.sub(_respectively, text)  # "red and blue on green and yellow respectively"
@@ -1130,9 +1135,29 @@ _EXCEPTION_AFTER_ALL = re.compile(
 after say where the blocks go ('put everything apart from blue in the bin', 'bin all besides red'); in 'keep
 every block apart from green' it is the place."""
 _SIZE = r"(?:\d+|" + "|".join(NUMBERS) + r")"
+_OTHERS_COUNTED = re.compile(rf"\b(?:the +)?(?:other|remaining) +(?P<count>{_SIZE})(?: +(?:blocks|cubes|ones))?\b|\bthe +"
+                             rf"(?P<count2>{_SIZE}) +(?:others|other +(?:blocks|cubes|ones)|remaining(?: +(?:blocks|cubes|ones))?|"
+                             r"(?:blocks |cubes |ones )?left(?: over)?)\b")
+"""'the other four', 'the remaining two blocks', 'the three others': the blocks the rest of the goal does not name."""
+
+
+def _others_counted(match: re.Match, blocks: Sequence[str]) -> str:
+    """'the rest', where the count is what the blocks named elsewhere in the goal leave; else refused, with that count."""
+    said = match["count"] or match["count2"]
+    count = NUMBERS.get(said) or int(said)
+    named = set(re.findall(rf"\b(?:{_COLOUR})\b", f"{match.string[:match.start()]} {match.string[match.end():]}")) & set(blocks)
+    if named and count == len(blocks) - len(named):
+        return " the rest "
+    raise LanguageError(f"{match[0].strip()!r}: the goal names {len(named)} of the {len(blocks)} blocks "
+                        f"({', '.join(blocks)}), which leaves {len(blocks) - len(named)}: say which {count} by colour")
+
+
 _END_SAID = {"top": "top", "highest": "top", "uppermost": "top", "topmost": "top", "bottom": "bottom", "lowest": "bottom",
              "bottommost": "bottom", "base": "bottom", "foot": "bottom"}
 _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
+_LEFT_OUT_EITHER = re.compile(rf"\b(?P<head>except(?: for)?|but not|without|excluding|other than|apart from|besides|save "
+                              rf"for) +(?P<first>{_BLOCK_SAID}(?: +(?:and +)?{_BLOCK_SAID})*) +(?:or|nor) +(?P<second>{_BLOCK_SAID})\b")
+"""'everything except red or green', 'a tower, but not with red or green': the 'or' under the exception leaves out both."""
 _MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_SAID}) (?:be )?|^ *(?P<said>{_BLOCK_SAID}) (?:(?:should|must|"
                           r"needs to|has to|will|shall) )?(?:be|go|goes|end up|ends up|sit|sits|is) (?:at |on )?)the (?:very )?"
                           rf"(?P<end>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) (?:tower|stack|pile))?"
@@ -1152,25 +1177,55 @@ _TOWER_SIZE = re.compile(rf"\b(?:(?P<size>{_SIZE})[- ](?:block|cube|storey|story
 tall with ...'), or without them where the size is every block there is ('a tower of six blocks' of six)."""
 
 
+_TOWER_WITHOUT = re.compile(rf"\b(?P<tower>(?:tower|stack|pile)(?: of {_SIZE}(?: blocks| cubes)?)?) +(?:and +)?(?:without|"
+                            rf"but not with|excluding|except(?: for)?|other than|apart from|leaving out|not using) +(?P<left_out>"
+                            rf"{_BLOCK_SAID}(?: +(?:and|or|nor) +{_BLOCK_SAID})*)")
+"""'a tower (of four) without red', 'a tower, but not with red or green': a tower of all the blocks but those (an 'or'
+under the 'not' leaves out both)."""
+
+
+def _tower_of_all_but(match: re.Match) -> str:
+    left_out = re.sub(r"\b(?:or|nor)\b", "and", match["left_out"])
+    return f"{match['tower']} of all except {left_out}"
+
+
+_OF_ALL_BUT = re.compile(r" *(?:from|using|out of|of|with) +(?:all|every|everything|each)\b(?P<but>.*?)(?=\bthen\b|$)")
+"""'... tower of four from everything but red', after the tower's size: the blocks left out follow."""
+
+
 def _tower_sized(size: re.Match, blocks: Sequence[str]) -> str:
     """A tower said with its size, as the tower: 'of' kept for the blocks that follow ('a tower of three: red, green and
     blue'), not before its blocks' places ('a tower of three blocks with red at the bottom, ...'). Where its blocks are
-    not listed, nor all said by their places, the tower is of every block if that is as many, and is refused if not."""
+    not listed in its clause, nor all said by their places, the tower is of every block if that is as many, of the
+    blocks the rest of the goal does not name if that is ('put orange in the bin and build a tower of five', of six),
+    and is refused if neither."""
     said = size["size"] or size["size2"] or size["size3"]
     count = NUMBERS.get(said) or int(said)
-    rest = size.string[size.end():]
+    before, rest = size.string[:size.start()], size.string[size.end():]
     places_follow = re.match(r" *with\b", rest)
     colours = rf"\b(?:{_COLOUR})\b"
-    listed_after = re.search(colours, re.split(r"\b(?:with|then)\b", rest)[0])
-    listed_before = re.search(colours, re.split(r"\bthen\b", size.string[:size.start()])[-1])
-    placed = places_follow and len(set(re.findall(colours, re.split(r"\bthen\b", rest)[0]))) == count
+    noun = size["noun"] or size["noun2"]
+    if of_all := _OF_ALL_BUT.match(rest):
+        left_out = set(re.findall(colours, re.split(rf"\band(?! +(?:the +)?{colours})\b", of_all["but"])[0])) & set(blocks)
+        if count != len(blocks) - len(left_out):
+            raise LanguageError(f"{size[0].strip()!r} of all but {', '.join(sorted(left_out)) or 'none'} would be a "
+                                f"tower of {len(blocks) - len(left_out)}: say which {count} blocks ({', '.join(blocks)})")
+        return f" {noun} "
+    listed_after = re.search(colours, re.split(rf"\b(?:with|then|and(?! +(?:the +)?{colours}))\b", rest)[0])
+    listed_before = re.search(colours, re.split(r"\b(?:then|and)\b", before)[-1])  # 'stack red, green and blue into ...'
+    first, *more = re.split(r"\bthen\b", rest)  # '... with red at the bottom, then green, then blue': its order
+    in_order = itertools.takewhile(bool, (re.match(rf" *{_BLOCK_SAID} *(?:and\b|$)", clause) for clause in more))
+    placed = places_follow and len(set(re.findall(colours, " ".join((first, *(m[0] for m in in_order)))))) == count
     if not listed_after and not listed_before and not placed:
-        if count != len(blocks):
-            raise LanguageError(f"{size[0]!r}: say which {count} blocks, e.g. 'build a tower of "
-                                f"{', '.join(blocks[:count]) or 'red, green and blue'}' (this world has {len(blocks)}: "
-                                f"{', '.join(blocks)})")
-        return f" {size['noun'] or size['noun2']} of all "
-    return f" {size['noun'] or size['noun2']} {size['of'] or '' if listed_after else ''} "
+        named_elsewhere = set(re.findall(colours, f"{before} {rest}")) & set(blocks)
+        if count == len(blocks):
+            return f" {noun} of all "
+        if named_elsewhere and count == len(blocks) - len(named_elsewhere):
+            return f" {noun} of the rest "
+        raise LanguageError(f"{size[0]!r}: say which {count} blocks, e.g. 'build a tower of "
+                            f"{', '.join(blocks[:count]) or 'red, green and blue'}' (this world has {len(blocks)}: "
+                            f"{', '.join(blocks)})")
+    return f" {noun} {size['of'] or '' if listed_after else ''} "
 
 
 _LIST_SAID = (rf"(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?(?: +(?:and +)?(?:the +)?(?:{_COLOUR})(?: +(?:block|cube))?)+"
@@ -1378,8 +1433,10 @@ _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding|away|far)\b")
-_PLACING_VERB = re.compile(r"\b(bin|stack|clear|clean|tidy|dump|discard|throw|toss|remove)( up| away| out)?$")
-"""A verb that says where the blocks after it go ('bin everything besides red', 'clean up all apart from green')."""
+_PLACING_VERB = re.compile(r"\b(?:(?:bin|stack|clear|clean|tidy|dump|discard|throw|toss|remove)(?: up| away| out)?|(?:tower|stack"
+                           r"|pile) (?:of|using|with|from|out of))$")
+"""A verb that says where the blocks after it go ('bin everything besides red', 'clean up all apart from green', 'a tower
+using every block apart from yellow')."""
 
 
 def _as_exception(match: re.Match) -> str:

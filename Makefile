@@ -22,11 +22,12 @@ test: setup
 	ruff check .
 	python -m pytest $(PYTEST_ARGS)
 
-# The edit loop: ruff and the pure unit tests (no process, no ROS context; `--pure` fails one that starts any).
+# The edit loop: ruff and the pure unit tests (no process, no ROS context; `--pure` fails one that starts any), one
+# pytest-xdist worker per core.
 check: setup
 	@source tools/env.sh
 	ruff check .
-	python -m pytest -q -m "not graph and not slow" --pure -p no:cacheprovider $(PYTEST_ARGS)
+	python -m pytest -q -n auto -m "not graph and not slow" --pure -p no:cacheprovider $(PYTEST_ARGS)
 
 test-unit: setup
 	@source tools/env.sh && python -m pytest -m "not graph" $(PYTEST_ARGS)

@@ -20,9 +20,9 @@ across it; then a 'then'."""
 DIRECTION = "direction"
 """What 'to the left of', 'behind' leave: a direction, which no predicate states (refused in :func:`normalise`)."""
 ANY_ORDER = "anyorder"
+"""What 'in any order' leaves: nothing for blocks put each in its place; after 'stack', a tower left open."""
 AFFIRMED = "affirmed"
 """What a verb ending an ellipsis leaves ('red is not in the bin and green is'): the relation holds for it."""
-"""What 'in any order' leaves: nothing for blocks put each in its place; after 'stack', a tower left open."""
 IN_PLACE = "inplace"
 """What 'stays', 'remains where it is' leave after the blocks they keep: the end of a clause that keeps them."""
 INTO_A_TOWER = "intoatower"
@@ -409,7 +409,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
      r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
-    (r"in (that|this|the same|the given|the listed|the named) order", ""),  # "stack red, green and blue in that order"
+    (r"in ((that|this|the same|the given|the listed|the named|the following) )?order(?! to\b)|(starting|beginning) with(?= (the )?"
+     rf"({_COLOUR})\b)", ""),  # "stack red, green and blue in that order", "put everything in the bin, starting with red"
     (r"(in|into) (a|one|the same) (group|cluster|bunch|huddle|heap|clump)", "together"),  # "red and green in a group"
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn|(block|cube|piece|one) by (block|cube|piece|one)|one (block|cube|piece) at a time|"
@@ -548,7 +549,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"arrange", "put"),  # "arrange red and green side by side"
     (rf"from (the )?(?P<from>{_COLOUR})( block| cube| one)? to(?= (the )?({_COLOUR})\b)", r"from \g<from> on"),  # "move
     # red from green to blue": off one block, onto the other
-    (r"in(?=( (and|then)\b)|$)", "in the bin"),  # "put everything else in"
+    (r"in(?=( (too|as well|also))?( (and|then)\b| *$))", "in the bin"),  # "put everything else in", "... and red in too"
     (r"over to", "to"),
     (r"in to(?= (the )?(bin|box|basket|trash|bucket)\b)", "into"),  # "put red in to the bin"
     (r"(?P<swap>\b(swap|switch|exchange|trade|reverse|invert|flip)\b[^;]*?\bon) (the )?top(?! of)",
@@ -1373,7 +1374,8 @@ _GERUND = re.compile(rf"\b(?:{'|'.join(_GERUNDS)})\b")
 _BLOCKS_ONLY = re.compile(rf"(?:\s|,|\b(?:and|the|block|blocks|cube|cubes|one|{_COLOUR})\b)+")
 _LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you\s+(?:have\s+)?|i\s+)?(?P<first>[^,;]+?)"
                            r"\s*,\s*(?:then\s+)?(?P<rest>.+)$")
-_TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)\s+(?P<when>after|before)\s+(?:you\s+(?:have\s+)?|i\s+)?"
+_TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)(?:\s*,?\s+(?:but\s+)?(?:only|just))?\s+(?P<when>after|before|(?:but\s+)?"
+                            r"not\s+until)\s+(?:you\s+(?:have\s+)?|i\s+)?"
                             r"(?P<other>(?!that\b|this\b|which\b).+)$")
 
 
@@ -1394,6 +1396,13 @@ _COUNTED_THEN_NAMED = re.compile(r"\b(?P<verb>put|place|move|throw|toss|drop|sta
 where the count was."""
 
 
+_BINNED_THEN_NAMED = re.compile(r"\b(?P<verb>bin|discard|dump|trash|throw (?:away|out)|toss(?: out)?|get rid of|clear away|"
+                                r"remove) (?:all )?(?:of )?(?:(?:the |these |those )?(?:(?:two|three|four|five|six|seven|eight|\d) )?"
+                                r"(?:blocks|cubes)|them|(?:these|those)(?: (?:two|three|four|five|six|seven|eight|\d))?|the following"
+                                r"(?: blocks| cubes)?)(?: in (?:\w+ )?order)?\s*:\s*(?P<named>[^.;]+)")
+"""'bin them in order: red, green, blue': a verb that says where, its blocks named after the colon."""
+
+
 _PLACE_THEN_NAMED = re.compile(r"^\s*(?P<where>(?:in|into|inside|onto|on top of|on|next to|near|away from) (?:the )?\w+)(?: please)?"
                                r"\s*:\s*(?P<named>[^.;:]+)$")
 """'into the bin: red, green': the place said first, the blocks after the colon."""
@@ -1406,6 +1415,7 @@ def _said_after(text: str) -> str:
         towered = match["tower"] or match["verb"] in ("stack", "pile", "build", "assemble")
         return " stack " if towered and match["then"] == ":" else " "
     text = _COUNTED_THEN_NAMED.sub(lambda m: f"{m['verb']} {m['named']} {m['where']}", text)
+    text = _BINNED_THEN_NAMED.sub(r"\g<verb> \g<named>", text)
     text = _PLACE_THEN_NAMED.sub(lambda m: f"put {m['named']} {m['where']}", text)
     return _SAID_AFTER.sub(said, text)
 

@@ -1435,6 +1435,8 @@ def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_p
     ("pick up yellow and put the block on red", "above(yellow,red)"),  # 'the block' is yellow, put on red
     ("pick up yellow, then place the block on top of blue", "above(yellow,blue)"),
     ("add yellow to the tower", "above(yellow,blue)"),
+    ("put what's on red in the bin", "in_bin(green)"),
+    ("put what is under green near yellow", "close(red,yellow)"),
     ("move red from green to blue", "above(red,blue)"),
     ("leave the tower as it is and put yellow in the bin",
      "above(green,red) & above(blue,green) & in_bin(yellow) & not in_bin(red) & not holding(red) & not above(red,blue) & "
@@ -1456,6 +1458,7 @@ def test_a_block_named_by_where_it_stands_must_stand_there() -> None:
         parse_goal("pick up the block under red", "tabletop", ("red", "yellow"), [])
     with pytest.raises(LanguageError, match="there is no pink block here"):
         parse_english("pick up the block on pink", "tabletop", ("red", "yellow"))
+    assert [str(lit) for lit in parse_english("put the binned block on red", "tabletop")] == ["above(block_in_bin,red)"]
 
 
 def test_a_tower_left_out_is_left_out_alone() -> None:

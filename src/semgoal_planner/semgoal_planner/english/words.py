@@ -334,14 +334,16 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
      r"(tower|stack|pile)(?! of)", r"\g<verb> the_whole"),  # "put the tower in the bin": what is moved is each block
-    (rf"(the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands| rests)|whatever( is|'s| sits| lies)?) "
+    (rf"(the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands| rests)|whatever( is|'s| sits| lies)?|what( is|'s|"
+     rf" sits| lies)) "
      rf"(on top of|on|atop|upon|above|stacked on) (the )?(?P<below>{_COLOUR})( block| cube| one)?|"
      rf"{_NOT_AFTER_A_PUT}the (block|cube|one) (on top of|on|atop|upon|above) (the )?(?P<below2>{_COLOUR})( block| cube| one)?"
      rf"|(?P<verb>put|place|move|stack|set|drop|lay) the (block|cube|one) (on top of|on|atop|upon|above) (the )?"
      rf"(?P<below3>{_COLOUR})( block| cube| one)?(?= (in|into|on|onto|next|near|beside|by|close|away|far|out|off)\b)",
      r"\g<verb> the_upper \g<below>\g<below2>\g<below3>"),  # "the block on red": the one standing on it when planned; after
     # "put" only where a place follows ("put the block on red in the bin"), as "put the block on red" puts it there
-    (rf"the (block|cube|one)( (that|which))?( is|'s| sits| lies| stands)? (under|underneath|below|beneath|supporting) "
+    (rf"(the (block|cube|one)( (that|which))?|whatever|what(?= is|'s| sits| lies| stands))( is|'s| sits| lies| stands)? (under|"
+     rf"underneath|below|beneath|supporting) "
      rf"(the )?(?P<above>{_COLOUR})( block| cube| one)?|the (block|cube|one)( that| which)? (the )?(?P<upper>{_COLOUR})"
      r"( block| cube| one)? (is|sits|stands|lies|rests) on", r"the_lower \g<above>\g<upper>"),  # "the block under green"
     (r"(whatever|what|the (block|cube|one|thing)( that| which)?) (you are|you're|you have|you've got|the robot is|the robot"
@@ -349,6 +351,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(hand|gripper))|the (block|cube|one) (in|inside) (your|the|its) (hand|gripper)|the held (block|cube|one)|what you "
      r"(hold|have|carry)|the (block|cube|one) (that|which) (is|'s) (held|being held|in (your|the|its) (hand|gripper))",
      "the_held"),  # "put whatever you are holding in the bin": the block held when planned
+    (r"the (binned|trashed) (block|cube|one)", "the block that is in the bin"),  # "put the binned block on red"
     (r"the (block|cube|one) (that|which) (is|'s) (in|inside) the (bin|box|basket|trash|container)|the (block|cube|one) (in|"
      r"inside) the (bin|box|basket|trash|container)(?= (out|on|onto|next|near|beside|by|away|back|to)\b)|the (block|cube|one)"
      r"(?= (out of|from) the (bin|box|basket|trash|container)\b)", "the_binned"),  # "take the block that is in the bin

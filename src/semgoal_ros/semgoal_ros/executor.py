@@ -29,6 +29,7 @@ from rclpy.executors import (
     TimeoutObject,
 )
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.task import Task
 from rclpy.timer import Timer
 from rclpy.utilities import timeout_sec_to_nsec
 
@@ -117,6 +118,33 @@ class SteadyExecutor(SingleThreadedExecutor):
         done = super().shutdown(timeout_sec)
         self._let_go()
         return done
+
+    def _make_handler(self, entity: Any, node: Any, take_from_wait_list: Callable) -> Task:
+        """The task that takes ``entity``'s work and runs its callback, as rclpy's, without waking this executor twice
+        per callback: rclpy's handler triggers the executor's guard condition once the work is taken and once it
+        is done, so that other threads may wait on the entity again; this executor's one thread builds its next wait
+        only after the handler returns, so each trigger was one more wait that found nothing but the trigger (two
+        waits a message on the graph's hot path). A callback that awaits resumes as a task in progress (tasks come
+        first in each wait) and a callback group it holds opens again before the next wait is built."""
+        entity._executor_event = True  # out of the wait set until the work is taken
+
+        async def handler() -> None:
+            if self._is_shutdown or not entity.callback_group.beginning_execution(entity):
+                entity._executor_event = False
+                return
+            with self._work_tracker:
+                callback = take_from_wait_list(entity)
+                entity._executor_event = False
+                try:
+                    if callback is not None:
+                        await callback()
+                finally:
+                    entity.callback_group.ending_execution(entity)
+
+        task = Task(handler, executor=self)
+        with self._tasks_lock:
+            self._tasks.append((task, entity, node))
+        return task
 
     def _let_go(self) -> None:
         """Let the entities go now where no wait is using them; else mark them stale for the spinning thread."""

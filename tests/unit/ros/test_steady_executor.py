@@ -61,6 +61,49 @@ def test_messages_go_back_and_forth_in_order(ros) -> None:
     assert got[:200] == list(range(1, 400, 2))
 
 
+def test_each_message_costs_one_wait(ros_domain) -> None:
+    """rclpy's handler triggers the executor's guard condition twice per callback, so each message that came alone
+    cost a second wait that found only the trigger; ours builds its next wait after the callback and needs no wake.
+    The messages come from another context, one every 5 ms, as from another node's process."""
+    contexts = [rclpy.Context(), rclpy.Context()]
+    for context in contexts:
+        rclpy.init(context=context, domain_id=ros_domain)
+    executor = SteadyExecutor(context=contexts[0])
+    waits = [0]
+    wait = executor._wait
+
+    def counted(*args):
+        waits[0] += 1
+        return wait(*args)
+
+    executor._wait = counted
+    listener, talker = (rclpy.create_node(name, context=context) for name, context in zip(("listener", "talker"), contexts, strict=True))
+    executor.add_node(listener)
+    got: list[int] = []
+    listener.create_subscription(Int64, "beat", lambda msg: got.append(msg.data), 100)
+    publisher = talker.create_publisher(Int64, "beat", 100)
+    try:
+        _matched(executor, publisher)
+        before = waits[0]
+
+        def beat() -> None:
+            for count in range(100):
+                publisher.publish(Int64(data=count))
+                time.sleep(0.005)
+
+        thread = threading.Thread(target=beat)
+        thread.start()
+        _spin_until(executor, lambda: len(got) >= 100)
+        thread.join()
+        assert got == list(range(100)) and waits[0] - before <= 120  # rclpy's way: about 200
+    finally:
+        executor.shutdown()
+        for made in (listener, talker):
+            made.destroy_node()
+        for context in contexts:
+            rclpy.shutdown(context=context)
+
+
 def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:
     executor, node = ros
     server, caller = node("server"), node("caller")

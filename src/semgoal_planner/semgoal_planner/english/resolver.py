@@ -204,7 +204,10 @@ class Resolver:
             if self.tower_named:  # "orange on the tower and the rest in the bin": nor the tower's blocks, which only
                 return (TOWER_REST,)  # the world can say when planned
             unnamed = tuple(b for b in self.blocks if b not in self.mentioned)
-            others = tuple(b for b in unnamed if b not in besides) or unnamed
+            others = tuple(b for b in unnamed if b not in besides)
+            if not others and set(unnamed) & set(besides):  # "red next to green, and blue away from the others": the
+                others = tuple(b for b in self.blocks if b not in besides)  # blocks other than the clause's own
+            others = others or unnamed
             if not others:
                 raise LanguageError("'the other(s)': every block is already named")
             if ref.kind == "the_other" and len(others) > 1:

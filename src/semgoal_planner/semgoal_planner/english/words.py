@@ -423,6 +423,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"by|away|far|out|off|back)\b)", ""),  # "red needs to go in the bin"
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
+    (r"somewhere else|elsewhere|some ?place else", "away"),  # "red beside green, blue somewhere else": from the others
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(in|into|as) (a|an|the shape of an?) (triangle|circle|square|ring|cross|pyramid|diamond|l[- ]shape|t[- ]shape|star|"
      r"rectangle|zig-?zag|v[- ]shape)|(form|make|build|create) an? (triangle|circle|square|ring|cross|pyramid|diamond|star)|"
@@ -478,6 +479,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"bottom up|(from )?(the )?bottom (up )?to (the )?top|from the bottom( up)?", ""),
     (r"(leave|let) (?P<what>[^,;]+?) (alone|be)\b", r"keep \g<what>"),  # "leave red alone": as 'keep red where it is'
     (r"by (itself|themselves)|on (its|their) own|(all )?alone|lonely|solitary", "apart"),  # "red with green, blue alone"
+    (r"(near|next to|close to|beside|by|touching|touch) (neither|none)( of them| of those| of the others)?(?= *(and\b|then\b|$))",
+     "away from the others"),  # "red and green together, and blue near neither"
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|cannot|can'?t|can not|may not|might not|not", "not"),

@@ -1454,6 +1454,12 @@ def test_a_block_named_by_what_it_stands_on_or_under_is_placed_when_planned(text
     assert {str(literal) for literal in said} == set(expected.split(" & "))
 
 
+def test_it_said_twice_as_a_place_names_the_same_place() -> None:
+    said = parse_goal("build a tower of red and green, then put blue next to it and yellow away from it", "tabletop",
+                      ("red", "green", "blue", "yellow"), [])
+    assert [str(literal) for literal in said] == ["above(green,red)", "close(red,blue)", "not close(red,yellow)"]
+
+
 def test_a_block_named_by_where_it_stands_must_stand_there() -> None:
     assert [str(lit) for lit in parse_english("put the block on top of red in the bin", "tabletop")] == [
         "in_bin(block_on_red)"]

@@ -151,6 +151,9 @@ class Resolver:
         """Whether a clause before named the tower as a whole, or as where a block goes (what 'the rest' leaves out)."""
         self.built_top: str | None = None
         """The top block of the last tower a clause built ("put red on green and blue on top": blue goes on red)."""
+        self.object_it: tuple[str, ...] | None = None
+        """What 'it' named as the clause before's place, which the next clause's 'it' in that place names too ("put
+        blue next to it and yellow away from it")."""
         self.carried: set[tuple[str, ...]] = set()
         """The towers built before that 'it' moves whole ("stack red, green and blue, then put it next to yellow"):
         their bottom blocks move, and what stands on them stays."""
@@ -279,8 +282,11 @@ class Resolver:
                                 f"say which block: {', '.join(self.blocks)}")
         if clause.kind == "on" and clause.objects == (Ref("other"),) and self.built_top and self.built_top not in subjects:
             objects = (self.built_top,)  # "... and blue on top": on the tower just built, not on a block not named
+        elif self.object_it and clause.objects == (Ref("it"),) and not set(self.object_it) & set(subjects):
+            objects = self.object_it  # the same place as the clause before's 'it'
         else:
             objects = self.blocks_of(clause.objects, besides=subjects)
+        self.object_it = objects if clause.objects == (Ref("it"),) else None
         if borrows_relation and clause.kind == "on" and not clause.negated and len(objects) == 1 \
                 and self.built_top not in (None, *subjects, *objects):  # "stack green on red, then blue (and yellow)":
             objects = (self.built_top,)  # on green, as red has a block on it already

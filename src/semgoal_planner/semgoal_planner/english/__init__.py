@@ -196,8 +196,9 @@ Said = list[tuple[Clause, list[tuple[Literal, bool]]]]
 def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Said]:
     """What the stages before ``stage`` said that still holds after it, and ``stage`` left to add. A block the stage
     moves loses what was said of it ("... then put green on red"), but for the blocks of a tower moved whole and a block
-    left on one the stage stacks on another (:func:`_still_on_it`); a swap of blocks said before trades what was said
-    of them ("put red on green, then swap them": green on red)."""
+    left on one the stage stacks on another (:func:`_still_on_it`); a block held before is let go where the stage places
+    a block by it or takes another in hand; a swap of blocks said before trades what was said of them ("put red on
+    green, then swap them": green on red)."""
     traded = []
     for clause, literals in stage:
         pairs = [lit.args for lit, _ in literals if lit.name == SWAP and len(lit.args) == 2]
@@ -206,7 +207,11 @@ def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Sa
             traded.append(clause)
     stage = [(clause, literals) for clause, literals in stage if clause not in traded]
     moved = {b for clause, _ in stage if not _moves_none(clause) for b in resolver.subjects_of(clause)}
-    goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()}
+    named = {b for _, literals in stage for lit, _ in literals for b in lit.args}
+    held = any(lit.name == "holding" and lit.value for _, literals in stage for lit, _ in literals)
+    goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()
+            if not (lit.name == "holding" and lit.value and (held or lit.args[0] in named))}  # the one hand lets go of
+    # a block a later stage places another by, or takes another: "pick up red, then put green on red"
     put_on = {lit.args for _, literals in stage for lit, _ in literals if lit.name == "above" and lit.value}
     return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)
             or _still_on_it(lit, moved, put_on)}, stage

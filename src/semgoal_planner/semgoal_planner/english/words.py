@@ -1380,6 +1380,9 @@ _GERUND = re.compile(rf"\b(?:{'|'.join(_GERUNDS)})\b")
 _BLOCKS_ONLY = re.compile(rf"(?:\s|,|\b(?:and|the|block|blocks|cube|cubes|one|{_COLOUR})\b)+")
 _LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you\s+(?:have\s+)?|i\s+)?(?P<first>[^,;]+?)"
                            r"\s*,\s*(?:then\s+)?(?P<rest>.+)$")
+_FIRST_SAID_LAST = re.compile(r"^(?P<main>.+?)\s*,?\s+(?:but|and)\s+(?:first(?:ly)?|before that|beforehand)\s*,?\s+(?P<first>.+)$"
+                              r"|^(?P<main2>.+?)\s*,?\s+(?:but|and)\s+(?P<first2>.+?)\s+(?:first|beforehand|before that)\s*$")
+"""'B, but first A', 'B, and A first': A said last, done first."""
 _TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)(?:\s*,?\s+(?:but\s+)?(?:only|just))?\s+(?P<when>after|before|(?:but\s+)?"
                             r"not\s+until)\s+(?:you\s+(?:have\s+)?|i\s+)?"
                             r"(?P<other>(?!that\b|this\b|which\b).+)$")
@@ -1430,6 +1433,8 @@ def _in_time_order(text: str) -> str:
     """'after A, B', 'B after A', 'A before B', 'before B, A' as 'A then B' (later clauses override earlier ones). 'B
     after green' names only a block: the verb is B's, said again after it ('B then green'); for a goal's end state
     the order of two clauses that do not clash does not matter."""
+    if match := _FIRST_SAID_LAST.match(text):  # "put green on red, but first pick up red"
+        return f"{match['first'] or match['first2']} ; {match['main'] or match['main2']}"
     if match := _LEADING_WHEN.match(text):
         first, rest = match["first"], match["rest"]
         return f"{rest} ; {first}" if match["when"] == "before" else f"{first} ; {rest}"

@@ -256,6 +256,8 @@ PHRASES = [
     ("desk_cleanup", "put green in the bin, red last", "in_bin(green) & in_bin(red)"),
     ("three_blocks", "red beside green, blue somewhere else", "close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("two_blocks", "pick up red, then put green on red", "above(green,red)"),
+    ("desk_cleanup", "everything off the table", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "get all the blocks off the desk", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("two_blocks", "put green on red, but first pick up red", "above(green,red)"),
     ("two_blocks", "put green on red but pick up red first", "above(green,red)"),
     ("two_blocks", "pick up red, then pick up green", "holding(green)"),
@@ -1457,6 +1459,11 @@ def test_a_block_named_by_what_it_stands_on_or_under_is_placed_when_planned(text
     tower = [Literal("above", ("green", "red")), Literal("above", ("blue", "green"))]
     said = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), tower)
     assert {str(literal) for literal in said} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize("sentence", ["build the tower in reverse order", "rebuild the tower in the opposite order"])
+def test_a_tower_built_again_in_reverse_order_is_the_tower_reversed(sentence: str) -> None:
+    assert [str(lit) for lit in parse_english(sentence, "tabletop")] == ["swap(tower_all)"]
 
 
 def test_it_said_twice_as_a_place_names_the_same_place() -> None:

@@ -329,7 +329,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"bottom|at the bottom|underneath|below)", "swap the_whole"),  # "switch which block is on top": the tower reversed
     (r"(reverse|invert|flip( over)?|turn over|turn upside down|swap|switch|exchange)( the order of)?( the (blocks|cubes) "
      r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
-     r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert|swap|switch|flip|change) the order of (all )?(the )?(blocks|cubes)",
+     r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert|swap|switch|flip|change) the order of (all )?(the )?(blocks|cubes)"
+     r"|(re)?(build|make|stack|arrange|put) (the|that|this|your) (tower|stack|pile|blocks|cubes)( again)? (in|into) (the )?"
+     r"(reverse|reversed|opposite|inverse) order( again)?",
      "swap the_whole"),  # "reverse the tower": its blocks'
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "
@@ -490,8 +492,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
      r"gripper)|held)|(do not|don'?t|never|not) (hold|carry|grip|grasp)( on to| onto)? anything", "and release all"),  # "the
     # hand should be empty", "don't hold anything"
-    (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|(clear|clean) (everything|all( the)?( blocks| "
-     r"cubes)?) (off|from) (of )?(the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
+    (r"(empty|clear|clean)( off| up)? (the )?(desk|table|tabletop|workspace)|((clear|clean|take|get|move|remove) )?(everything|"
+     r"all( the)?( blocks| cubes)?) (off|from) (of )?(the )?(desk|table|tabletop|workspace)|(make sure )?(that )?(no|none of the) "
      r"(block|blocks|cube|cubes)( should| must| will)?( be| is| are| remains?| stays?| left)* (on|upon) (the )?(table|desk|"
      r"tabletop)|(make sure )?(that )?nothing( should| must| will)?( be| is| remains?| stays?| left)* on (the )?(table|desk|"
      r"tabletop)", "clean the table"),  # "empty the desk", "no block should be left on the table"

@@ -1461,6 +1461,19 @@ def test_a_block_named_by_what_it_stands_on_or_under_is_placed_when_planned(text
     assert {str(literal) for literal in said} == set(expected.split(" & "))
 
 
+@pytest.mark.parametrize(("sentence", "expected"), [
+    ("make two towers of three: red green blue and yellow orange purple",
+     "above(green,red) & above(blue,green) & above(orange,yellow) & above(purple,orange)"),
+    ("build two towers of two blocks each: red, green, blue and yellow", "above(green,red) & above(yellow,blue)"),
+    ("build three stacks of two: red green, blue yellow, orange purple",
+     "above(green,red) & above(yellow,blue) & above(purple,orange)"),
+])
+def test_towers_of_a_size_take_the_blocks_listed_in_turn(sentence: str, expected: str) -> None:
+    assert [str(lit) for lit in parse_english(sentence, "tabletop", SIX)] == expected.split(" & ")
+    with pytest.raises(LanguageError, match="take 6 blocks, 4 are listed"):
+        parse_english("make two towers of three: red, green, blue and yellow", "tabletop", SIX)
+
+
 @pytest.mark.parametrize("sentence", ["build the tower in reverse order", "rebuild the tower in the opposite order"])
 def test_a_tower_built_again_in_reverse_order_is_the_tower_reversed(sentence: str) -> None:
     assert [str(lit) for lit in parse_english(sentence, "tabletop")] == ["swap(tower_all)"]

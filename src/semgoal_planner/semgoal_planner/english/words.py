@@ -807,6 +807,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     # one step a line: steps in turn
     text = re.sub(r"[()\[\]\"]", " ", text)
     text = _JOINED_COLOURS.sub(lambda m: f"{m['colour']} {'and' if m['mark'] == '-' else 'or'} ", text)  # "red-green"
+    text = _TOWERS_OF_A_SIZE.sub(_towers_of_a_size, text)  # "two towers of three: red, green, blue and yellow, ..."
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
@@ -1446,6 +1447,26 @@ def _in_time_order(text: str) -> str:
             return f"{main} ; {other}"
         return f"{other} ; {main}"
     return text
+
+
+_TOWERS_OF_A_SIZE = re.compile(rf"\b(?P<count>two|three|2|3) (?P<noun>towers|stacks|piles) of (?P<size>{_SIZE})(?: blocks| cubes)?"
+                               rf"(?: each)?\s*[:,]?\s*(?P<listed>(?:the )?(?:{_COLOUR})(?:(?: block| cube)?(?:\s*,\s*|\s+and\s+|"
+                               rf"\s+)(?:and )?(?:the )?(?:{_COLOUR}))+)")
+"""'two towers of three: red, green, blue and yellow, orange, purple': the blocks listed in turn, each tower from the
+bottom up."""
+
+
+def _towers_of_a_size(match: re.Match) -> str:
+    """Each tower said as 'one of ...' (:data:`_EACH_TOWER`), the list cut in the towers' size; refused where the list
+    does not fill them."""
+    count, size = (NUMBERS.get(match[key]) or int(match[key]) for key in ("count", "size"))
+    listed = re.findall(rf"\b(?:{_COLOUR})\b", match["listed"])
+    if len(listed) != count * size:
+        raise LanguageError(f"'{match[0].strip()}': {count} {match['noun']} of {size} take {count * size} blocks, "
+                            f"{len(listed)} are listed: name each tower's blocks, e.g. 'two towers, one of red and "
+                            "green and one of blue and yellow'")
+    towers = [" and ".join(listed[i:i + size]) for i in range(0, count * size, size)]
+    return f"{count} {match['noun']}, " + " and ".join(f"one of {tower}" for tower in towers)
 
 
 _SEVERAL_TOWERS = re.compile(r"\b(two|three|2|3|a couple of|several|some) (towers|stacks|piles)\b")

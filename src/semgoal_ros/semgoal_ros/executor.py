@@ -6,19 +6,22 @@ up in lists. A node of the graph has about twenty entities (its parameter servic
 subscriptions' QoS event handlers, its own services and subscriptions), so on the graph's hot path that work cost
 more than taking and handling the messages (docs/measurements.md). :class:`SteadyExecutor` gathers them again only
 when a node or an entity comes or goes (rclpy wakes its executor then), keeps their handles entered meanwhile (so
-none is destroyed while it is waited on), reuses one wait set, and finds ready handles in sets. What runs, in what
-order and under which callback group's rule is rclpy's: tasks in progress first, then per node its waitables,
+none is destroyed while it is waited on), reuses one wait set, finds ready handles in sets, is not woken by its own
+callbacks, and waits on the QoS event handlers once a second (:data:`EVENT_POLL_S`), not in every wait. What runs, in
+what order and under which callback group's rule is rclpy's: tasks in progress first, then per node its waitables,
 timers, subscriptions, guard conditions, clients and services.
 """
 
 from __future__ import annotations
 
 import threading
+import time
 from collections.abc import Callable, Generator, Iterable
 from contextlib import ExitStack
 from typing import Any
 
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.event_handler import EventHandler
 from rclpy.exceptions import InvalidHandle
 from rclpy.executors import (
     ConditionReachedException,
@@ -37,6 +40,10 @@ KINDS = ("timer", "subscription", "guard_condition", "client", "service")
 """The wait set's kinds of plain entity, in the order rclpy hands a node's ready callbacks out."""
 NODE_LISTS = ("timers", "subscriptions", "guards", "clients", "services")
 """The node's property listing each kind."""
+EVENT_POLL_S = 1.0
+"""How often the QoS event handlers (incompatible QoS or type, a publisher matched: two or three per publisher and
+subscription, rclpy's defaults) are waited on. Added to every wait they were about two fifths of the executor's work
+on the graph's hot path; an event's status waits in the middleware until it is taken, so one comes at most this late."""
 
 
 class _Waited:
@@ -100,6 +107,7 @@ class SteadyExecutor(SingleThreadedExecutor):
         super().__init__(context=context)
         self._waited: _Waited | None = None
         self._stale = False
+        self._events_due = 0.0
         self._waiting = threading.Lock()
 
     def wake(self) -> None:
@@ -214,6 +222,13 @@ class SteadyExecutor(SingleThreadedExecutor):
         """One wait on the entities that may run now (``_waiting`` held); the ready handles' pointers by kind, and the
         ready waitables."""
         open_groups = {group for group in waited.groups if _group_open(group)}
+        now = time.monotonic()
+        with_events = now >= self._events_due
+        if with_events:
+            self._events_due = now + EVENT_POLL_S
+        else:  # back by the time the events are due
+            until_events = int((self._events_due - now) * 1e9)
+            timeout_nsec = until_events if timeout_nsec < 0 else min(timeout_nsec, until_events)
         wait_set, add = waited.wait_set, waited.add
         wait_set.clear_entities()
         added_waitables = []
@@ -226,6 +241,8 @@ class SteadyExecutor(SingleThreadedExecutor):
                         entity.trigger()
                     add[kind](entity.handle)
             for waitable in waitables:
+                if not with_events and isinstance(waitable, EventHandler):
+                    continue
                 if not waitable._executor_event and _may_run(waitable, open_groups):
                     waitable.add_to_wait_set(wait_set)
                     added_waitables.append(waitable)

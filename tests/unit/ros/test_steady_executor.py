@@ -7,11 +7,13 @@ import time
 import pytest
 import rclpy
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.event_handler import EventHandler, SubscriptionEventCallbacks
 from rclpy.executors import SingleThreadedExecutor
+from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Int64
 
 from semgoal_msgs.srv import GetPlan
-from semgoal_ros.executor import SteadyExecutor
+from semgoal_ros.executor import EVENT_POLL_S, SteadyExecutor
 
 pytestmark = pytest.mark.slow
 
@@ -102,6 +104,46 @@ def test_each_message_costs_one_wait(ros_domain) -> None:
             made.destroy_node()
         for context in contexts:
             rclpy.shutdown(context=context)
+
+
+def test_qos_events_come_within_a_poll_and_are_not_waited_on_every_message(ros_domain, monkeypatch) -> None:
+    """The QoS event handlers go into a wait at most once per EVENT_POLL_S, yet an event (a subscriber whose QoS the
+    publisher cannot serve) still reaches its callback, while nothing else wakes the executor."""
+    added = [0]
+    add = EventHandler.add_to_wait_set
+
+    def counted(self, wait_set) -> None:
+        added[0] += 1
+        add(self, wait_set)
+
+    monkeypatch.setattr(EventHandler, "add_to_wait_set", counted)
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=ros_domain)
+    executor = SteadyExecutor(context=context)
+    node = rclpy.create_node("events", context=context)
+    executor.add_node(node)
+    incompatible: list[str] = []
+    try:
+        beat = node.create_publisher(Int64, "beat", 10)
+        got: list[int] = []
+        node.create_subscription(Int64, "beat", lambda msg: (got.append(msg.data), got[-1] < 300 and beat.publish(
+            Int64(data=msg.data + 1))), 10)
+        _matched(executor, beat)
+        before = added[0]
+        beat.publish(Int64(data=0))
+        _spin_until(executor, lambda: len(got) > 300)
+        handlers = sum(isinstance(w, EventHandler) for w in node.waitables)
+        assert added[0] - before <= handlers * 10  # 300 messages; each wait adding them: 300 times each
+        best_effort = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
+        node.create_publisher(Int64, "strict", best_effort)
+        node.create_subscription(Int64, "strict", lambda msg: None, QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE),
+                                 event_callbacks=SubscriptionEventCallbacks(
+                                     incompatible_qos=lambda event: incompatible.append(event.last_policy_kind)))
+        _spin_until(executor, lambda: incompatible, timeout=3 * EVENT_POLL_S + 2)
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.shutdown(context=context)
 
 
 def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:

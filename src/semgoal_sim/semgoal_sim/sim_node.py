@@ -180,7 +180,8 @@ class SimNode(Node):
         return msg
 
     def markers_matched(self, status) -> None:
-        """A viewer joined the markers: it gets the latest world's at once, not at the next period's step."""
+        """A viewer joined the markers: it gets the latest world's within a second (the executor's event poll), not
+        at the next period's step."""
         if status.current_count_change > 0 and self.state is not None:
             self.marker_pub.publish(conversions.markers(self.state))
 

@@ -156,6 +156,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # it"
     (r"(?P<head>(not|\w*n't|never)( \w+){0,2}? (touching|touch|touches|near|next to|close to|beside|by)) either"
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
+    (r"(?P<held>(the )?bin (should |must |will |has to |needs to |is to |to )?(contains?|holds?|has|have|gets?) [^;]*?) and "
+     r"(nothing else|no other (blocks?|cubes?|ones?))", r"\g<held> only"),  # "the bin should hold red and nothing else"
     (r"(and )?(that is (it|all)|nothing (else|more)|(and |when |once )?(we are |you are |we're |you're |are )?(done|finished))"
      r"(?= and\b| then\b|$)", ""),  #
     # "red on green and that's it": the goal ends there
@@ -533,6 +535,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
        rf"( and( the)? ({_COLOUR})( block| cube| one)?)*)( in (it|the bin)| inside( it)?)?{only}",
        rf"{said}\g<what> in the bin") for only, said in ((r" only\b", "only "), ("", ""))),  # "the bin should contain red",
     # "I want the bin to contain red and blue only", "the bin has red in it"
+    (rf"(the )?(desk|table|tabletop) (should |must |will |is to |has to )?(only (have|hold)|(have|hold) only) (?P<what>(the )?"
+     rf"({_COLOUR})( block| cube| one)?( and( the)? ({_COLOUR})( block| cube| one)?)*)( on it)?",
+     r"keep only \g<what> on the table"),  # "the desk should only have yellow on it"
     (rf"(the )?(blocks|cubes|objects)(?= (the )?({_COLOUR})\b)", ""),  # "stack the blocks red, green, blue": those named
     (rf"(?P<first>{_COLOUR})(?= ({_COLOUR})\b)", r"\g<first> and"),  # "tower red green blue": a list said bare
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
@@ -542,7 +547,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|blocks|cube|cubes|one))+"
      r"( then\b|$))", BUT_LEAVE),  # "clean the table but leave red and yellow"
     (r"but", "and"),
-    (r"in (the|your|its) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
+    (r"in (the|your|its|my|the robot's) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
     (r"together with", "near"),
     (r"together(?= (in|into|inside) )", ""),  # "put red and green together in the bin": both there
     (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
@@ -1377,7 +1382,8 @@ _GERUNDS = {"picking": "pick", "putting": "put", "placing": "place", "taking": "
             "grabbing": "grab", "dropping": "drop", "throwing": "throw", "tossing": "toss", "bringing": "bring",
             "leaving": "leave", "keeping": "keep", "releasing": "release", "clearing": "clear",
             "cleaning": "clean", "separating": "separate", "grouping": "group", "gathering": "gather",
-            "setting": "set", "getting": "get", "emptying": "empty", "making": "make"}
+            "setting": "set", "getting": "get", "emptying": "empty", "making": "make", "binning": "bin",
+            "discarding": "discard"}
 _GERUND = re.compile(rf"\b(?:{'|'.join(_GERUNDS)})\b")
 """'after picking up red': the verb as in a command ('holding' is left as it is: 'keep holding green')."""
 _BLOCKS_ONLY = re.compile(rf"(?:\s|,|\b(?:and|the|block|blocks|cube|cubes|one|{_COLOUR})\b)+")

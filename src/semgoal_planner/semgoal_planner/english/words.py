@@ -407,7 +407,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r" please)|when(ever)? you (can|get a chance|have (a moment|time|a minute|a second|a sec))|at your (earliest )?convenience"
      r"|as soon as (you can|possible)|(i|we)( would|'d) appreciate( it)? if|it would be (great|nice|good|ideal) if|(that |it )?"
      r"(would|will) be (great|nice|good|perfect|ideal|lovely|fine|appreciated|helpful)|for me|for us|kindly|try to|attempt to"
-     r"|(we|i) (need|want|would like|'d like)( you)?( to)?|we( would|'d) like( you)?( to)?", ""),  # politeness: no goal in it
+     r"|(we|i) (need|want|would like|'d like)( you)?( to)?( see)?|we( would|'d) like( you)?( to)?( see)?|^ *(how|what) about",
+     ""),  # politeness: no goal in it ("I want to see red on green", "how about red on green")
     (r"^(hmm+|hm+|um+|uh+|erm?|ah|oh|yes|yeah|yep|well|(no|nope)(?= and))( and)?|(i|we) (think|guess|believe|suppose|"
      r"reckon|feel)( that)?|maybe|perhaps|(help|assist) (me|us)( to)?", ""),  # "hmm, ...", "no, put green in the bin
     # instead", "I think red should go in the bin", "could you help me put ..."
@@ -559,7 +560,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"far apart|apart|separated|isolated", "apart"),
     (rf"line (?P<what>them|all|it|(the )?({_COLOUR})( and (the )?({_COLOUR}))*) up", r"group \g<what>"),  # "line the blocks up"
     (r"line up|line|arrange in a row", "group"),  # "line up red, green and blue"
-    (r"arrange", "put"),  # "arrange red and green side by side"
+    (r"(re-?)?arrange", "put"),  # "arrange red and green side by side", "rearrange the blocks so red is on blue"
     (rf"from (the )?(?P<from>{_COLOUR})( block| cube| one)? to(?= (the )?({_COLOUR})\b)", r"from \g<from> on"),  # "move
     # red from green to blue": off one block, onto the other
     (r"in(?=( (too|as well|also))?( (and|then)\b| *$))", "in the bin"),  # "put everything else in", "... and red in too"
@@ -622,7 +623,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),
     (r"((trash|waste|garbage|rubbish|recycling|storage|dust) ?)?(basket|box|container|tray|trash can|trash|bucket|crate|bin|"
-     r"can|receptacle)|garbage|rubbish|recycling", "bin"),
+     r"(?:(?<=\bthe )|(?<=\ba )|(?<=\bthis )|(?<=\bthat )|(?<=\byour )|(?<=\bin )|(?<=\binto ))can|receptacle)|garbage|rubbish|"
+     r"recycling", "bin"),  # "the can", not "blue can go on red"
+    (r"(can|could|may|might)(?= (go|be|sit|stand|rest|stay|end|get|fit|lie)\b)", ""),  # "so that blue can go on red"
     (r"tabletop|table top|table|desk|workspace|surface", "table"),
 )
 """(regular expression over whole words, canonical word): applied in order."""
@@ -1397,7 +1400,7 @@ _TRAILING_WHEN = re.compile(r"^(?P<main>.+?)(?<!\bone)(?:\s*,?\s+(?:but\s+)?(?:o
                             r"(?P<other>(?!that\b|this\b|which\b).+)$")
 
 
-_SAID_AFTER = re.compile(r"\b(?P<verb>stack|pile|arrange|order|place|put|position|set|build|make|assemble|organi[sz]e)"
+_SAID_AFTER = re.compile(r"\b(?P<verb>stack|pile|(?:re-?)?arrange|order|place|put|position|set|build|make|assemble|organi[sz]e)"
                          r"( up)? (all )?(of )?(the |these |those )?((two|three|four|five|six|seven|eight|\d) )?"
                          r"(blocks|cubes|them|everything)( up)?(?P<tower> (in|into) (a|one|a single) (tower|stack|pile))?"
                          r"\s*(?P<then>:|,? (so that|such that|so|in such a way that|like this|as follows|this way)\b)")

@@ -58,7 +58,8 @@ def nearest(candidates: np.ndarray, ok: np.ndarray, to: np.ndarray) -> np.ndarra
 def bin_spot(bin_geometry: BinGeometry, obstacles: list[np.ndarray], near: np.ndarray) -> np.ndarray | None:
     """Where a block goes in the bin: the free slot nearest ``near``; when untidy puts left no slot free,
     the free floor spot nearest it (a gap may still be wide enough). None when the bin is full."""
-    for candidates in (bin_geometry.slots(), bin_geometry.interior()):
+    for spots in (bin_geometry.slots, bin_geometry.interior):  # the floor's grid (~800 spots) only where no slot is free
+        candidates = spots()
         spot = nearest(candidates, clear_of(candidates, obstacles), near)
         if spot is not None:
             return spot

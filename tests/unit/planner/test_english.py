@@ -263,6 +263,8 @@ PHRASES = [
      "not holding(yellow) & not in_bin(yellow) & in_bin(red) & in_bin(green) & in_bin(blue)"),
     ("desk_cleanup", "i want red in the bin and green in my hand", "in_bin(red) & holding(green)"),
     ("tabletop", "put red on green so that blue can go on red", "above(red,green) & above(blue,red)"),
+    ("three_blocks", "push red up against blue", "close(red,blue)"),
+    ("three_blocks", "separate all blocks from each other", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("tabletop", "rearrange the blocks so red is on blue", "above(red,blue)"),
     ("tabletop", "I want to see red on green", "above(red,green)"),
     ("tabletop", "how about red on green", "above(red,green)"),
@@ -1488,6 +1490,11 @@ def test_towers_of_a_size_take_the_blocks_listed_in_turn(sentence: str, expected
 @pytest.mark.parametrize("sentence", ["build the tower in reverse order", "rebuild the tower in the opposite order"])
 def test_a_tower_built_again_in_reverse_order_is_the_tower_reversed(sentence: str) -> None:
     assert [str(lit) for lit in parse_english(sentence, "tabletop")] == ["swap(tower_all)"]
+
+
+def test_all_but_before_a_verb_is_not_an_exception() -> None:
+    said = parse_english("keep everything as it is but move red next to blue", "three_blocks")
+    assert [str(lit) for lit in said] == ["keep(green)", "keep(blue)", "close(red,blue)"]
 
 
 def test_it_said_twice_as_a_place_names_the_same_place() -> None:

@@ -489,7 +489,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"and then|after that|afterwards|after this|once done|when done|followed by|so that|so|such that|;", "then"),
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|cannot|can'?t|can not|may not|might not|not", "not"),
-    (rf"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but( not(?= (the )?({_COLOUR})\b))?", "all except"),
+    (rf"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but( not)?(?= (the )?({_COLOUR}|blocks?|cubes?|"
+     r"ones?|two|three|four|five|six|seven|\d)\b)", "all except"),  # "all but red", not "keep everything, but move red"
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))|(the|your|its) (hand|gripper)( should| must| will| "
      r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
@@ -549,7 +550,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"( then\b|$))", BUT_LEAVE),  # "clean the table but leave red and yellow"
     (r"but", "and"),
     (r"in (the|your|its|my|the robot's) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
-    (r"together with", "near"),
+    (r"together with|(right |up |flush )?against", "near"),  # "push red up against blue"
+    (r"(?P<verb>separate|split( up)?|part) (?P<what>[^,;]+?) from (each other|one another)", r"\g<verb> \g<what>"),  # "separate
+    # all blocks from each other"
     (r"together(?= (in|into|inside) )", ""),  # "put red and green together in the bin": both there
     (r"close together|near each other|close to each other|next to each other|beside each other|side by side|"
      r"together|neighbou?rs|(touch|touches|touching|adjacent)( each other| one another)?(?= (and|then)\b|$)",

@@ -264,6 +264,7 @@ PHRASES = [
     ("desk_cleanup", "i want red in the bin and green in my hand", "in_bin(red) & holding(green)"),
     ("tabletop", "put red on green so that blue can go on red", "above(red,green) & above(blue,red)"),
     ("three_blocks", "push red up against blue", "close(red,blue)"),
+    ("desk_cleanup", "unbin green and red, then bin blue", "not in_bin(green) & not in_bin(red) & in_bin(blue)"),
     ("three_blocks", "separate all blocks from each other", "not close(red,green) & not close(red,blue) & not close(green,blue)"),
     ("tabletop", "rearrange the blocks so red is on blue", "above(red,blue)"),
     ("tabletop", "I want to see red on green", "above(red,green)"),

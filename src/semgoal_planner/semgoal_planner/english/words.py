@@ -606,6 +606,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(reverse|invert|flip)( the order of)?(?= (them|both|the two|(the )?({_COLOUR}))\b)", "swap"),  # "reverse red and
     # green": two blocks swapped
     (r"unload(?= (the )?(bin|box|basket|trash|bucket)\b)", "empty"),  # "unload the bin"
+    (r"un-?bin (?P<what>[^,;]+?)(?= *(and\b|then\b|$))", r"take \g<what> out of the bin"),  # "unbin green and red"
     (r"pull|retrieve|fetch|extract|fish|dig|unload", "take"),
     (r"place|set|move|bring|get|carry|throw|toss|stick|position|transfer|shift|drop|slide|push|stow|store|deposit|"
      r"return|lay|add|load|put|relocate|nudge|chuck|pop|insert|plop|perch|balance|cent(er|re)|reposition", "put"),

@@ -53,6 +53,8 @@ class _Waited:
     def __init__(self, nodes: Iterable[Any], executor_guards: tuple, context: Any) -> None:
         self.stack = ExitStack()
         self.nodes: list[tuple[Any, dict[str, list], list]] = []
+        self.without_events: list[list] = []
+        """Per node, its waitables but the QoS event handlers: what a wait between two event polls adds."""
         room = dict.fromkeys(("subscription", "guard_condition", "timer", "client", "service", "event"), 0)
         for node in nodes:
             entities = {kind: self._entered(getattr(node, listed)) for kind, listed in zip(KINDS, NODE_LISTS, strict=True)}
@@ -69,6 +71,7 @@ class _Waited:
             for kind, entered in entities.items():
                 room[kind] += len(entered)
             self.nodes.append((node, entities, waitables))
+            self.without_events.append([waitable for waitable in waitables if not isinstance(waitable, EventHandler)])
         self.guards = self._entered(executor_guards)
         room["guard_condition"] += len(self.guards)
         self.groups = {entity.callback_group for _, entities, waitables in self.nodes
@@ -232,7 +235,7 @@ class SteadyExecutor(SingleThreadedExecutor):
         wait_set, add = waited.wait_set, waited.add
         wait_set.clear_entities()
         added_waitables = []
-        for _, entities, waitables in waited.nodes:
+        for (_, entities, waitables), without_events in zip(waited.nodes, waited.without_events, strict=True):
             for kind, entered in entities.items():
                 for entity in entered:
                     if entity._executor_event or not _may_run(entity, open_groups):
@@ -240,9 +243,7 @@ class SteadyExecutor(SingleThreadedExecutor):
                     if kind == "guard_condition" and entity._executor_triggered:  # not handled yet: again
                         entity.trigger()
                     add[kind](entity.handle)
-            for waitable in waitables:
-                if not with_events and isinstance(waitable, EventHandler):
-                    continue
+            for waitable in waitables if with_events else without_events:
                 if not waitable._executor_event and _may_run(waitable, open_groups):
                     waitable.add_to_wait_set(wait_set)
                     added_waitables.append(waitable)

@@ -1163,11 +1163,16 @@ _OTHERS_COUNTED = re.compile(rf"\b(?:the +)?(?:other|remaining) +(?P<count>{_SIZ
 """'the other four', 'the remaining two blocks', 'the three others': the blocks the rest of the goal does not name."""
 
 
+def _named_elsewhere(match: re.Match, blocks: Sequence[str]) -> set[str]:
+    """The blocks the goal names outside ``match``: what 'the other four' or 'a tower of five' leaves out."""
+    return set(re.findall(rf"\b(?:{_COLOUR})\b", f"{match.string[:match.start()]} {match.string[match.end():]}")) & set(blocks)
+
+
 def _others_counted(match: re.Match, blocks: Sequence[str]) -> str:
     """'the rest', where the count is what the blocks named elsewhere in the goal leave; else refused, with that count."""
     said = match["count"] or match["count2"]
     count = NUMBERS.get(said) or int(said)
-    named = set(re.findall(rf"\b(?:{_COLOUR})\b", f"{match.string[:match.start()]} {match.string[match.end():]}")) & set(blocks)
+    named = _named_elsewhere(match, blocks)
     if named and count == len(blocks) - len(named):
         return " the rest "
     raise LanguageError(f"{match[0].strip()!r}: the goal names {len(named)} of the {len(blocks)} blocks "
@@ -1239,7 +1244,7 @@ def _tower_sized(size: re.Match, blocks: Sequence[str]) -> str:
     in_order = itertools.takewhile(bool, (re.match(rf" *{_BLOCK_SAID} *(?:and\b|$)", clause) for clause in more))
     placed = places_follow and len(set(re.findall(colours, " ".join((first, *(m[0] for m in in_order)))))) == count
     if not listed_after and not listed_before and not placed:
-        named_elsewhere = set(re.findall(colours, f"{before} {rest}")) & set(blocks)
+        named_elsewhere = _named_elsewhere(size, blocks)
         if count == len(blocks):
             return f" {noun} of all "
         if named_elsewhere and count == len(blocks) - len(named_elsewhere):

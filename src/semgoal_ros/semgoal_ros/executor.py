@@ -7,13 +7,15 @@ subscriptions' QoS event handlers, its own services and subscriptions), so on th
 more than taking and handling the messages (docs/measurements.md). :class:`SteadyExecutor` gathers them again only
 when a node or an entity comes or goes (rclpy wakes its executor then), keeps their handles entered meanwhile (so
 none is destroyed while it is waited on), reuses one wait set, finds ready handles in sets, is not woken by its own
-callbacks, and waits on the QoS event handlers once a second (:data:`EVENT_POLL_S`), not in every wait. What runs, in
+callbacks, calls a subscription's plain callback without wrapping it in a task and two coroutines (:class:`_Call`),
+and waits on the QoS event handlers once a second (:data:`EVENT_POLL_S`), not in every wait. What runs, in
 what order and under which callback group's rule is rclpy's: tasks in progress first, then per node its waitables,
 timers, subscriptions, guard conditions, clients and services.
 """
 
 from __future__ import annotations
 
+import inspect
 import threading
 import time
 from collections.abc import Callable, Generator, Iterable
@@ -32,6 +34,7 @@ from rclpy.executors import (
     TimeoutObject,
 )
 from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy
+from rclpy.subscription import Subscription
 from rclpy.task import Task
 from rclpy.timer import Timer
 from rclpy.utilities import timeout_sec_to_nsec
@@ -76,6 +79,9 @@ class _Waited:
         room["guard_condition"] += len(self.guards)
         self.groups = {entity.callback_group for _, entities, waitables in self.nodes
                        for entity in (*waitables, *(e for entered in entities.values() for e in entered))}
+        self.plain = {subscription for _, entities, _ in self.nodes for subscription in entities["subscription"]
+                      if not inspect.iscoroutinefunction(subscription.callback)}
+        """The subscriptions whose callback is a plain function: run as a :class:`_Call`, not as a task."""
         self.pointers = {id(entity): entity.handle.pointer for _, entities, _ in self.nodes
                          for entered in entities.values() for entity in entered}
         self.wait_set = _rclpy.WaitSet(room["subscription"], room["guard_condition"], room["timer"] + 1, room["client"],
@@ -211,7 +217,8 @@ class SteadyExecutor(SingleThreadedExecutor):
                         if not _is_ready(entity, kind, waited, ready) or not entity.callback_group.can_execute(entity):
                             continue
                         yielded_work = True
-                        yield self._make_handler(entity, node, take), entity, node
+                        plain = kind == "subscription" and entity in waited.plain
+                        yield (_Call(self, entity) if plain else self._make_handler(entity, node, take)), entity, node
                         if self._waited is not waited or self._stale:
                             return
             if timeout_nsec == 0 or (timeout_timer is not None and timeout_timer.handle.pointer in ready["timer"]):
@@ -264,6 +271,52 @@ class SteadyExecutor(SingleThreadedExecutor):
                 if waited.pointers[id(guard)] in ready["guard_condition"]:
                     guard._executor_triggered = True
         return ready, {waitable for waitable in added_waitables if waitable.is_ready(wait_set)}
+
+
+class _Call:
+    """A subscription's message taken and its plain callback run, as the task rclpy makes for it does (the callback
+    group's turn, the work tracker, the exception kept for the spin to raise), without the task and the two
+    coroutines that let a callback await: most of a message's cost in rclpy after taking it."""
+
+    __slots__ = ("_exception", "_executor", "_subscription")
+
+    def __init__(self, executor: SteadyExecutor, subscription: Any) -> None:
+        self._executor, self._subscription, self._exception = executor, subscription, None
+        subscription._executor_event = True  # out of the wait set until the message is taken
+
+    def __call__(self) -> None:
+        subscription, group = self._subscription, self._subscription.callback_group
+        if self._executor._is_shutdown or not group.beginning_execution(subscription):
+            subscription._executor_event = False
+            return
+        try:
+            with self._executor._work_tracker:
+                taken = self._take()
+                subscription._executor_event = False
+                if taken is not None:
+                    subscription.callback(*taken)
+        except Exception as error:  # raised by the spin, as rclpy raises a task's
+            self._exception = error
+        finally:
+            group.ending_execution(subscription)
+
+    def _take(self) -> tuple | None:
+        subscription = self._subscription
+        try:
+            with subscription.handle:
+                info = subscription.handle.take_message(subscription.msg_type, subscription.raw)
+        except InvalidHandle:  # destroyed since the wait
+            return None
+        if info is None:
+            return None
+        return (info[0],) if subscription._callback_type is Subscription.CallbackType.MessageOnly else info
+
+    def exception(self) -> Exception | None:
+        return self._exception
+
+    def result(self) -> None:
+        if self._exception is not None:
+            raise self._exception
 
 
 def _is_ready(entity: Any, kind: str, waited: _Waited, ready: dict[str, set]) -> bool:

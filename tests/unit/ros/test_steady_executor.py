@@ -146,6 +146,54 @@ def test_qos_events_come_within_a_poll_and_are_not_waited_on_every_message(ros_d
         rclpy.shutdown(context=context)
 
 
+def test_a_plain_callback_runs_without_a_task_and_a_coroutine_with_one(ros_domain, monkeypatch) -> None:
+    """A subscription's plain callback (with or without the message's info) is called straight after its message is
+    taken; one that is a coroutine still runs as rclpy's task, so it may await."""
+    context = rclpy.Context()
+    rclpy.init(context=context, domain_id=ros_domain)
+    executor, node = SteadyExecutor(context=context), rclpy.create_node("listener", context=context)
+    executor.add_node(node)
+    tasks = []
+    make_handler = executor._make_handler
+    monkeypatch.setattr(executor, "_make_handler", lambda entity, *rest: (tasks.append(entity), make_handler(entity, *rest))[1])
+    heard: dict[str, list] = {"plain": [], "with info": [], "coroutine": []}
+
+    async def awaiting(msg: Int64) -> None:
+        heard["coroutine"].append(msg.data)
+
+    try:
+        publisher = node.create_publisher(Int64, "numbers", 10)
+        node.create_subscription(Int64, "numbers", lambda msg: heard["plain"].append(msg.data), 10)
+        node.create_subscription(Int64, "numbers", lambda msg, info: heard["with info"].append(
+            (msg.data, info["publication_sequence_number"] > 0)), 10)
+        coroutine = node.create_subscription(Int64, "numbers", awaiting, 10)
+        _spin_until(executor, lambda: publisher.get_subscription_count() == 3)
+        for number in range(5):
+            publisher.publish(Int64(data=number))
+        _spin_until(executor, lambda: all(len(got) == 5 for got in heard.values()))
+        assert heard == {"plain": list(range(5)), "with info": [(n, True) for n in range(5)], "coroutine": list(range(5))}
+        assert [entity for entity in tasks if entity in node.subscriptions] == [coroutine] * 5
+    finally:
+        executor.shutdown()
+        node.destroy_node()
+        rclpy.shutdown(context=context)
+
+
+def test_an_exception_in_a_callback_is_raised_by_the_spin(ros) -> None:
+    executor, node = ros
+    talker = node("talker")
+    publisher = talker.create_publisher(Int64, "numbers", 10)
+
+    def fails(msg: Int64) -> None:
+        raise ValueError(f"bad {msg.data}")
+
+    talker.create_subscription(Int64, "numbers", fails, 10)
+    _matched(executor, publisher)
+    publisher.publish(Int64(data=3))
+    with pytest.raises(ValueError, match="bad 3"):
+        _spin_until(executor, lambda: False, timeout=5.0)
+
+
 def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:
     executor, node = ros
     server, caller = node("server"), node("caller")

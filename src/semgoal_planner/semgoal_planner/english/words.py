@@ -415,7 +415,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(make sure|make certain|make it so|ensure|see to it|check|verify)( that| to)?( you)?|i( would|'d) like( you)?( to)?|"
      r"i want( you)?( to)?|"
      r"i need( you)?( to)?|sort( out)?( all)?( the| your)? (blocks|cubes)|"
-     r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is", ""),
+     r"(can|could|would|will) you( please)?|let'?s|go ahead and|where (it|they) (is|are)|as (it|they) (is|are)|as is|"
+     r"^ *why (don'?t|do not) (you|we)|^ *why not", ""),
     (r"in (any|whatever|no particular|either|random) order|the order (does not|doesn't) matter", ANY_ORDER),
     (r"in ((that|this|the same|the given|the listed|the named|the following) )?order(?! to\b)|(starting|beginning) with(?= (the )?"
      rf"({_COLOUR})\b)", ""),  # "stack red, green and blue in that order", "put everything in the bin, starting with red"
@@ -423,12 +424,14 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"right away|straight away|at once|as soon as (you can|possible)|asap|one (by|after) (one|another|the other)|"
      r"one at a time|(each )?in turn|(block|cube|piece|one) by (block|cube|piece|one)|one (block|cube|piece) at a time|"
      r"flat(?= (on|upon)\b)", ""),  # how soon, or in what turns, says nothing of where the blocks end
-    (r"((needs?|has|have|ought|got|is going|are going|wants?) )?to (be|end up|stay|remain|sit)|(ends?|ending|winds?) up|"
+    (r"((needs?|has|have|ought|got|is going|are going|wants?) )?to ((all|both) )?(be|end up|stay|remain|sit)|(ends?|ending|"
+     r"winds?) up|"
      r"(needs?|has|have|ought|got|is going|are going|wants?) to (go|get|move)(?= (in|into|inside|on|onto|next|near|beside|"
      r"by|away|far|out|off|back)\b)", ""),  # "red needs to go in the bin"
     (r"nothing else|no other (blocks?|cubes?|ones?)|none of the others", "other not"),  # "nothing else should be in the
     # bin": the blocks not named
-    (r"somewhere else|elsewhere|some ?place else", "away"),  # "red beside green, blue somewhere else": from the others
+    (r"somewhere else|elsewhere|some ?place else|out of (the|its|my|your|our) way", "away"),  # "red beside green, blue
+    # somewhere else", "move red out of the way": away from the others
     (r"(everything|everyone|all|anything|any block|each block|every block)( else)|else", "other"),  # "everything else"
     (r"(in|into|as) (a|an|the shape of an?) (triangle|circle|square|ring|cross|pyramid|diamond|l[- ]shape|t[- ]shape|star|"
      r"rectangle|zig-?zag|v[- ]shape)|(form|make|build|create) an? (triangle|circle|square|ring|cross|pyramid|diamond|star)|"
@@ -520,8 +523,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"next|near|beside|close|away|far|out|off)\b)", ""),  # "I'd like green stacked on red"
     (r"\b(be|been|is|are|gets?|got) (put|set|dropped|thrown|tossed|carried|brought|laid)(?= (on|upon|atop|onto|in|inside|"
      r"into|next|near|beside|close|away|far|out|off)\b)", ""),  # "red should be put in the bin", "red gets put on green"
-    (rf"(?P<said>({_COLOUR})( (must|should|will|need to|have to|are|were))?) (all|both)(?= (be|are|stay|sit|apart|"
-     r"together|in|on|near|next|away|separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart"
+    (rf"(?P<said>(({_COLOUR})|(?P<many>blocks|cubes|objects|ones|they|them|these|those))( (must|should|will|would|can|"
+     r"could|need to|have to|are|were))?) (all|(?(many)(?!)|both))(?= (be|are|stay|sit|apart|together|in|on|near|next|away|"
+     r"separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart", "the blocks should all be apart"
     (r"(from|off)( of)? (the )?(desk|table)(?= (in|into|to|onto|on|next|near|beside|close|away)\b)", ""),  # "move
     # the blocks from the desk into the bin": where they go
     (r"not (near|next to|close to|by|beside|touching) (anything|any( other)? (block|cube|one))", "away"),  # "not
@@ -872,6 +876,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
                         text)  # "neither red nor green should be in the bin", "hold neither red nor green"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
     if "in_bin" in LAYOUTS[scene].scene.predicates:
+        text = _THROWN.sub(r"\g<verb>\g<what> away", text)  # "grab red and toss it"
         text = _THROWN_AWAY.sub(lambda m: f" clean {m['what'] or m['out'] or ''} ", text)  # "throw everything away
         # except red", "throw red out": into the bin
     text = re.sub(r"&+", " and ", text)
@@ -1282,9 +1287,11 @@ _SOME_OF = re.compile(r"(?<!every )(?<!each )\b(?:one|any|some|a few|several|a c
                       r"(?:the |them )?(?:blocks |cubes )?(?:but|except(?: for)?|save|apart from) (?:one|two|three|four|five|six|\d)"
                       r"\b(?! of\b)")
 """'one of the blocks', 'some of them', 'all of them except one': blocks the goal does not say (refused)."""
+_SUGGESTED = r"\s+(?:(?:don'?t|do not) (?:you|we)|not)\b"
+"""After 'why': 'why don't you put red in the bin?', 'why not bin red': a goal suggested, not a question."""
 _A_QUESTION = re.compile(r"^\W*(?:(?:is|are|does|do|did|was|were|has|have)\b(?!\s+(?:you|it possible)\b).*\?\W*$|(?:where|which|"
-                         r"what|how|why|who|when)\b(?!.*\b(?:you|i|we)\b.*\b(?:want|like|need)\b).*\?\W*$|(?:where|which|how "
-                         r"many|why)\b)")
+                         rf"what|how|why|who|when)\b(?!.*\b(?:you|i|we)\b.*\b(?:want|like|need)\b)(?!{_SUGGESTED}).*\?\W*$|"
+                         rf"(?:where|which|how many|why)\b(?!{_SUGGESTED}))")
 """'is red in the bin?', 'where is red?': asking about the world, not saying how it should end (refused)."""
 _AN_ORDER = re.compile(r"^\W*(?:please\W+)?(?P<order>stop|cancel|abort|halt|pause|resume|continue|reset|restart|undo|redo|"
                        r"never ?mind|help|quit|exit|start over)\W*(?:please|now|it|that|everything)?\W*$")
@@ -1494,6 +1501,11 @@ _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){
                           r"\b(?:throw|toss|chuck)\b(?P<out>(?: +[\w']+){1,12}?) +out\b(?! +(?:of|from))|"
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
+_THROWN = re.compile(rf"\b(?P<verb>throw|toss|chuck)(?P<what>(?:(?: and| or|,)* (?:the )?(?:{_COLOUR})(?: block| cube| one)?)+| it|"
+                     r" them| everything| all(?: (?:of )?the (?:blocks|cubes))?)(?= *(?:$|[;.]|(?:,| and\b)(?! *(?:and )?(?:the )?"
+                     rf"(?:{_COLOUR})\b)| then\b| except\b| but\b| apart from\b| other than\b| besides\b| save for\b))")
+"""'toss red', 'grab red and throw it': thrown with no place said, where there is a bin, away into it ('don't throw red'
+keeps it out)."""
 _PLACE = re.compile(r"\b(in|into|inside|on|onto|to|near|next|beside|close|out|off|up|held|holding|away|far)\b")
 _PLACING_VERB = re.compile(r"\b(?:(?:bin|stack|clear|clean|tidy|dump|discard|throw|toss|remove)(?: up| away| out)?|(?:tower|stack"
                            r"|pile) (?:of|using|with|from|out of))$")

@@ -317,7 +317,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"(and )?with (the )?(?P<base>{_COLOUR})( block| cube| one)? ((at|on) the (bottom|base|foot)|"
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(spread|lay|put|take|break)( the| your| that| this)? (tower|stack|pile) (out|down|apart)( on the (table|desk))?|"
-     r"(unstack|dismantle|disassemble|take apart|break up|break down|tear down)( the| your| that| this)? (tower|stack|pile)s?|"
+     r"(unstack|dismantle|disassemble|take apart|break up|break down|tear down|undo)( the| your| that| this)? (tower|stack|"
+     r"pile)s?|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),
     (r"(take|pull|break) (?P<what>it|them) (apart|down)", r"unstack \g<what>"),  # "... then take it apart"  # blocks on the table
     (r"((that|which) (are|is) )?(except( for)?|but( for| leave| keep| spare| skip| not)?|other than|apart from|besides|"
@@ -833,6 +834,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _OTHERS_COUNTED.sub(lambda match: _others_counted(match, blocks), text)  # "the other four"
     text = _COUNTED.sub(lambda match: _all_counted(match, blocks), text)  # "the two blocks", "all three"
     text = _BLOCKS_AFTER_A_VERB.sub(lambda match: _verb_on_all(match, blocks), text)  # "move blocks apart"
+    text = _MADE_BOTH_ENDS.sub(lambda m: f" {m['first']} at the {_END_SAID[m['first_end']]} and {m['second']} at the "
+                               f"{_END_SAID[m['second_end']]} ", text)  # "make red the top block and green the bottom"
     text = _MADE_AN_END.sub(lambda m: f" put {m['made'] or m['said']} at the {_END_SAID[m['end']]} ", text)  # "make red
     # the top block", "green should be at the bottom"
     if len(blocks) == 2:  # of two blocks: "put red at the bottom", the other on it (where no other end is said); "build
@@ -1195,6 +1198,13 @@ _MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_SAID}) (?:b
                           rf"(?P<end>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) (?:tower|stack|pile))?"
                           r"(?= *$| and\b| then\b)")
 """'make red the top block', 'green should be at the bottom': the block put at that end (of the tower standing)."""
+_AN_END_SAID = (rf"(?P<{{block}}>{_BLOCK_SAID}) (?:be )?the (?:very )?(?P<{{end}}>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?"
+                r"(?: of (?:the|that|this|your) (?:tower|stack|pile))?")
+_MADE_BOTH_ENDS = re.compile(r"\b(?:make|let|have) " + _AN_END_SAID.format(block="first", end="first_end") + r" *,? *(?:and )?"
+                             r"(?:(?:make|let|have) )?" + _AN_END_SAID.format(block="second", end="second_end")
+                             + r"(?= *$| and\b| then\b)")
+"""'make red the top block and green the bottom': both blocks' places in the tower, read as 'red at the top and green at
+the bottom'."""
 _END_OF_TWO = re.compile(rf"(?P<verb>put|place|move|set|stack|get) (?P<what>{_BLOCK_SAID}) (?:at|to|on|onto) the (?:very )?"
                          r"(?P<end>top|bottom|base|foot)(?: of (?:the|that|this|your) (?:tower|stack|pile))?(?= *$| and\b| then\b)")
 """'put red at the bottom' where two blocks are all there is: the other on it ('at the top': on the other)."""

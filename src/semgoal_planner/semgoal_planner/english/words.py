@@ -190,6 +190,14 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(i|we) (do not|don'?t) want( you to)?( have| put| see| leave)?", "do not put"),  # "I don't want red on green"
     (r"(?P<neg>(don'?t|do not|never|not) (put|place|move|leave|have|keep|stack|set|drop)) (any|a single|a) (block|cube|one)s?",
      r"\g<neg> all"),  # "I don't want any block in the bin": none there
+    (r"(?P<verb>put|place|move|leave|have|keep|stack|set|drop) no (block|cube|one)s?", r"do not \g<verb> all"),  # "put no
+    # blocks in the bin": none there
+    (rf"replace (?P<old>{_LISTED})( block| cube| one)? with (?P<new>{_LISTED})( block| cube| one)? (?P<place>(in|into|inside|"
+     r"on|onto|on top of|next to|near|beside|by) [^,;.]+?)(?= *$|[,;.]| and\b| then\b)",
+     r"put \g<new> \g<place> instead of \g<old>"),  # "replace red with green in the bin": green there, red not
+    (r"(the )?(gripper|hand|robot|arm|fingers) (should |must |will |has to |needs to |is to )?(hold|holds|have|has|grip|grips|"
+     r"grasp|grasps|carry|carries)(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", "hold"),  # "the gripper should
+    # hold red"
     (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
      r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
     (rf"(and )?as (does|do|is|are|should|will|must)(?= (the )?({_COLOUR})\b)", "and"),  # "red goes in the bin, as does green"
@@ -887,6 +895,9 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = re.sub(r"\b(they|we|you)'re\b", r"\1 are", text)
     for pattern, canonical in PHRASES:
         text = re.sub(rf"(?<![\w'])(?:{pattern})(?![\w'])", f" {canonical} ", " ".join(text.split()))
+    if re.search(r"\breplace\b", text):  # the phrases read 'replace red with green' where a place follows
+        raise LanguageError("'replace ... with ...' needs the place the new block goes, e.g. 'replace red with green in the "
+                            "bin' (green there, red not), or say both blocks' places")
     words = [w for w in text.split() if w not in FILLERS]
     words = _beside_the_bin(words)
     for rewrite in (_place_after_a_list, _joined, _kept_besides, _tower_end_named, _listing_in_order, _chained_on,

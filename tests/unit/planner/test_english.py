@@ -1515,7 +1515,8 @@ def test_towers_of_a_size_take_the_blocks_listed_in_turn(sentence: str, expected
         parse_english("make two towers of three: red, green, blue and yellow", "tabletop", SIX)
 
 
-@pytest.mark.parametrize("sentence", ["build the tower in reverse order", "rebuild the tower in the opposite order"])
+@pytest.mark.parametrize("sentence", ["build the tower in reverse order", "rebuild the tower in the opposite order",
+                                      "stack them the other way around", "put the blocks the other way round"])
 def test_a_tower_built_again_in_reverse_order_is_the_tower_reversed(sentence: str) -> None:
     assert [str(lit) for lit in parse_english(sentence, "tabletop")] == ["swap(tower_all)"]
 

@@ -342,7 +342,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(of|in))? (the|that|this|your) (tower|stack|pile)('?s (blocks|cubes))?( upside down| over| around)?|turn (the|that|"
      r"this|your) (tower|stack|pile) (upside down|over)|(reverse|invert|swap|switch|flip|change) the order of (all )?(the )?(blocks|cubes)"
      r"|(re)?(build|make|stack|arrange|put) (the|that|this|your) (tower|stack|pile|blocks|cubes)( again)? (in|into) (the )?"
-     r"(reverse|reversed|opposite|inverse) order( again)?",
+     r"(reverse|reversed|opposite|inverse) order( again)?|(re)?(stack|put|place|arrange|build|turn|flip) (them|it|all|(the|that|"
+     r"this|your) (tower|stack|pile|blocks|cubes))( again)? (the )?other way (a)?round",
      "swap the_whole"),  # "reverse the tower": its blocks'
     # order turned over, the top one at the bottom (placed when planned)
     (r"(?P<verb>put|place|move|bring|carry|transfer|shift|drop|throw|toss|chuck|dump|discard|clean) (the|that|this|your) "

@@ -77,6 +77,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # phrases before the words they contain; the order matters
     *((shades, colour) for colour, shades in _SHADES.items()),  # "the violet block": purple
     (r"on-?top", "on top"),  # "ontop of green", "on-top of green"
+    (rf"(?P<place>(near|next to|beside|close to|by|against|adjacent to) (the )?({_COLOUR})( block| cube| one)?) (and )?"
+     r"(touching|so (that )?(they|it) (touch|touches))( (it|each other|one another|them))?(?= *$| and| then)",
+     r"\g<place>"),  # "put red near green, touching": the closeness said again
+    (r"over(?= (to|next to|near|beside|by|close to|into|onto)\b)", ""),  # "carry red over to green", "bring it over next to
+    # blue": the place after it
     (r"side-by-side", "side by side"),
     (rf"(?P<noun>blocks?|cubes?|ones?|everything) (that|which) (are|is) not(?= (the )?({_COLOUR})\b)|(?P<noun2>blocks?|"
      rf"cubes?|ones?|everything) (that|which) (aren't|isn't)(?= (the )?({_COLOUR})\b)", r"\g<noun>\g<noun2> other than"),
@@ -1322,7 +1327,8 @@ _CORRECTION = re.compile(r"\b(?:no,? wait|wait,? no|no,? sorry|sorry|scratch tha
                          r"actually|make that)\b")
 """'put red in the bin, no wait, green': words that take back what came before them (refused after a word)."""
 _HELD_OVER = re.compile(rf"\b(?:hold|carry|dangle)\s+(?:up\s+)?(?P<block>{_BLOCK_SAID}|it|them)\s+(?:up\s+)?(?:above|"
-                        r"over|high above|up over)\s+(?P<place>[\w ]+?)(?=,|\.|;|\band\b|\bthen\b|$)")
+                        r"over|high above|up over)\s+(?!(?:to|into|onto|next|near|beside|by|close)\b)(?P<place>[\w ]+?)"
+                        r"(?=,|\.|;|\band\b|\bthen\b|$)")
 """'hold blue above the bin', 'pick up red and hold it over green': a place in the air, which no predicate says
 (refused)."""
 _HOLDING_VERBS = ("hold", "carry", "grab", "pick up", "lift")

@@ -424,6 +424,7 @@ PHRASES = [
     ("two_blocks", "make red the top block and green the bottom", "above(red,green)"),
     ("tabletop", "make red the base of the tower and make blue the top one", "above(blue,red)"),
     ("two_blocks", "undo the stack", "not above(red,green) & not above(green,red)"),
+    ("two_blocks", "unstack all towers", "not above(red,green) & not above(green,red)"),
     ("desk_cleanup", "grab red and throw it", "in_bin(red)"),
     ("desk_cleanup", "chuck the red block, then put green in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "throw everything except red", "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
@@ -1466,6 +1467,7 @@ def test_a_tower_built_then_moved_or_turned_over_is_moved_whole(text: str, expec
 
 @pytest.mark.parametrize("text", ["clear the table except for the tower", "put all blocks except those in the tower into the bin",
                                   "put every block that is not part of the stack in the bin",
+                                  "put every block that isn't in the tower into the bin",
                                   "put orange on the tower and the rest in the bin", "clean up the table but keep the tower",
                                   "put the loose blocks in the bin"])
 def test_the_blocks_besides_the_tower_are_those_not_in_the_tower_standing_when_planned(text: str) -> None:

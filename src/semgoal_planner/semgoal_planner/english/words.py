@@ -331,11 +331,12 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"as the (bottom|base)|lowest)(?! of\b)", rf"{BASE_MARK} \g<base>"),
     (r"(spread|lay|put|take|break)( the| your| that| this)? (tower|stack|pile) (out|down|apart)( on the (table|desk))?|"
      r"(unstack|dismantle|disassemble|take apart|break up|break down|tear down|undo)( the| your| that| this)? (tower|stack|"
-     r"pile)s?|"
+     r"pile)s?|(unstack|dismantle|disassemble|take apart|break up|break down|tear down|knock over|knock down) (all|every|both)"
+     r"( of)?( the)? (towers|stacks|piles)|"
      r"take( the| your| that| this)? (tower|stack|pile)s? apart|dismantle|disassemble", "unstack"),
     (r"(take|pull|break) (?P<what>it|them) (apart|down)", r"unstack \g<what>"),  # "... then take it apart"  # blocks on the table
     (r"((that|which) (are|is) )?(except( for)?|but( for| leave| keep| spare| skip| not)?|other than|apart from|besides|"
-     r"save for|not( part of)?) "
+     r"save for|not( part of)?|(that|which) (aren't|isn't)( part of)?) "
      r"(the (blocks|cubes|ones)|those|what('s| is))?( (that|which) (are|is|stand|make up|form))? ?"
      r"((in|of|on|forming|making up) )?(the|that|this|your) (tower|stack|pile)"
      r"(?! of)", "except the_whole"),  # "put every block except those in the tower in the bin": the others, when planned

@@ -414,6 +414,12 @@ PHRASES = [
     ("desk_cleanup", "i want red and green to both be in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "toss red", "in_bin(red)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
+    ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",
+     "in_bin(red) & not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) "
+     "& not in_bin(yellow)"),
+    ("desk_cleanup", "put green in the bin and any remaining blocks too",
+     "in_bin(green) & in_bin(red) & in_bin(blue) & in_bin(yellow)"),
+    ("three_blocks", "put red, green and blue into a row", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "pick up red and bring it over next to blue", "close(red,blue)"),
     ("three_blocks", "put red near green, touching", "close(red,green)"),
     ("three_blocks", "put red next to green so that they touch", "close(red,green)"),
@@ -1392,6 +1398,7 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
     ("desk_cleanup", "put red in the bin but leave blue alone", "in_bin(red) & keep(blue)"),
     ("tabletop", "put red on green but don't touch blue", "above(red,green) & keep(blue)"),
     ("tabletop", "put orange in the bin without moving red", "in_bin(orange) & keep(red)"),
+    ("desk_cleanup", "move red into the bin without touching green", "in_bin(red) & keep(green)"),  # no closeness here
     ("tabletop", "put orange in the bin and not move red", "in_bin(orange) & keep(red)"),
     ("tabletop", "put orange in the bin without disturbing the tower", "in_bin(orange) & keep(tower_all)"),
     ("tabletop", "put orange in the bin and don't move red or green", "in_bin(orange) & keep(red) & keep(green)"),

@@ -229,7 +229,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|touches)) (anything( else)?|any( other)? (block|cube|one)s?|any of the others|another (block|cube|one)|every(thing|"
      r" other (block|cube|one)))(?! else\b)", r"\g<between> away"),  # "red should not be near anything": away from
     # every other block, named before or not
-    (r"in a (row|line)", "together"),  # "put the blocks in a row": each next to the next
+    (r"(in|into) a (row|line)", "together"),  # "put the blocks in a row": each next to the next
     (r"(clear|clean|empty|rid)( off| up)? (the )?(table|desk|tabletop|workspace|surface) of", "clean"),  # "clear the desk of
     # all blocks except yellow"
     (rf"(?P<block>\b({_COLOUR})( block| cube| one)?)( (should|must|has to|needs to|will|can))? (leave|leaves|exit|exits|"
@@ -638,7 +638,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"keep|leave|have|let", "keep"),
     (r"binned|trashed", "in the bin"),  # "the rest binned", "red should be binned"
     (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
-     r"(blocks|cubes|ones)", "the rest"),  # "bin the leftovers"
+     r"(blocks|cubes|ones)|the rest of (all|them|these|those|the (blocks|cubes))|any (remaining|other|left ?over)( blocks| cubes|"
+     r" ones)?", "the rest"),  # "bin the leftovers", "the rest of the blocks", "any remaining blocks"
     (r"everything|every|each|all of them|all of|all|the (whole )?lot", "all"),
     (r"the (other|remaining) (block|cube|one)|the one (left|remaining)|the (block|cube) (left|remaining)", "the_other"),
     # one block, said in the singular: refused where it could be more than one
@@ -893,6 +894,8 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NEITHER.sub(lambda m: f" {m['first']} and {m['second']} not {'held' if m['verb'] in _HOLDING_VERBS else ''} ",
                         text)  # "neither red nor green should be in the bin", "hold neither red nor green"
     text = _NOT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "not near red or green": near neither
+    if "close" not in LAYOUTS[scene].scene.predicates:  # "put red in the bin without touching green": not moving it
+        text = re.sub(r"\bwithout (touching|bumping( into)?|hitting|knocking( into)?)\b", "without moving", text)
     if "in_bin" in LAYOUTS[scene].scene.predicates:
         text = _THROWN.sub(r"\g<verb>\g<what> away", text)  # "grab red and toss it"
         text = _THROWN_AWAY.sub(lambda m: f" clean {m['what'] or m['out'] or ''} ", text)  # "throw everything away

@@ -201,7 +201,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"on|onto|on top of|next to|near|beside|by) [^,;.]+?)(?= *$|[,;.]| and\b| then\b)",
      r"put \g<new> \g<place> instead of \g<old>"),  # "replace red with green in the bin": green there, red not
     (r"(the )?(gripper|hand|robot|arm|fingers) (should |must |will |has to |needs to |is to )?(hold|holds|have|has|grip|grips|"
-     r"grasp|grasps|carry|carries)(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", "hold"),  # "the gripper should
+     r"grasp|grasps|carry|carries)(?= (the )?(" + _COLOUR + r")\b)", "hold"),  # "the gripper should
     # hold red"
     (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
      r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
@@ -257,7 +257,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"any (longer|more)", ""),
     (r"(on|onto|to) the (very )?top of", "on top of"),  # "put orange on the top of the tower"
     (r"off (of )?(the )?top of", "off"),
-    (r"from (on )?(the )?top of|from (on|atop|upon)(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", "from"),  # "move
+    (r"from (on )?(the )?top of|from (on|atop|upon)(?= (the )?(" + _COLOUR + r")\b)", "from"),  # "move
     # green from on top of red onto blue"  # "take red off the top of green"
     (r"(to|in|on|onto|into|at) (an? |some )?(empty|free|clear|open|clean)( spot| place| space| area| part)( (on|of) the (table|"
      r"desk))?", "on the table"),  # "move red to an empty spot": out of the hand and the bin, on no block
@@ -416,7 +416,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (rf"with (?P<what>(the )?({_COLOUR})( block| cube| one)?) (?P<place>beside|next to|near|close to|by|away from|far from) "
      r"(?P<it>it|them|the (tower|stack|pile))", r"and put \g<what> \g<place> \g<it>"),  # "a tower of red and green, with
     # blue beside it"
-    (r"with(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
+    (r"with(?= (the )?(" + _COLOUR + r")( block| cube| one)? (apart|away|isolated|separated|far|alone|"
      r"by itself|on its own|in|out|held)\b)", "and"),  # "red and green side by side, with blue apart"
     (r"(thanks|thank you)( (very|so) much| a lot| in advance)?|if you (don'?t|do not) mind|(would|do) you mind|if (it is|it's"
      r"|that is|that's) (ok|okay|alright|all right|possible|not too much trouble)|if (possible|you can|you could|you would|you"
@@ -565,8 +565,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"((all|both|each)( of)? )?the (blocks|cubes|objects)", "all"),
     (r"(and )?(except for|except|other than|save for|excluding|with the exception of)", "except"),  # "clear the desk,
     # except for red"
-    (r"but(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
-    (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + "|".join(BLOCK_COLOURS) + r"|block|blocks|cube|cubes|one))+"
+    (r"but(?=( (and|or|the|" + _COLOUR + r"|block|cube|one))+( then\b|$))", "except"),  # "... but blue"
+    (r"but (leave|keep|spare|skip)(?=( (and|or|the|" + _COLOUR + r"|block|blocks|cube|cubes|one))+"
      r"( then\b|$))", BUT_LEAVE),  # "clean the table but leave red and yellow"
     (r"but", "and"),
     (r"in (the|your|its|my|the robot's) (hand|gripper|grip|fingers)|in hand|in the air|held|holding|grasped", "held"),
@@ -844,7 +844,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
     text = _in_time_order(_said_after(text))  # before the punctuation they read goes
     text = " " + re.sub(r"[,.!?:;]+", _punctuation_read, text.strip()) + " "
-    text = re.sub(r"\bboth\b(?= (the )?(" + "|".join(BLOCK_COLOURS) + r")\b)", " ", text)  # "both (the) red and green"
+    text = re.sub(r"\bboth\b(?= (the )?(" + _COLOUR + r")\b)", " ", text)  # "both (the) red and green"
     text = _LEFT_OUT_EITHER.sub(r"\g<head> \g<first> and \g<second>", text)  # "all but not red or green": neither
     text = _EXCEPTION_AFTER_ALL.sub(_as_exception, text)  # "everything in the bin apart from green"
     text = _OTHERS_COUNTED.sub(lambda match: _others_counted(match, blocks), text)  # "the other four"
@@ -1179,7 +1179,7 @@ def _verb_on_all(match: re.Match, blocks: Sequence[str]) -> str:
 
 _EXCEPTION_AFTER_ALL = re.compile(
     r"\b((?:all|every|everything|each)\b.*?) (?:apart from|aside from|besides|but for)"
-    r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + "|".join(BLOCK_COLOURS) + r"))+"
+    r"(?=(?: (?:and|or|the|block|blocks|cube|cubes|one|ones|" + _COLOUR + r"))+"
     r"(?P<after> *$|(?: (?:should|must|shall|will|can|need to|needs to|have to|has to))?(?: (?:be|go|goes|stay|stays|are|is"
     r"|belong|belongs|end up|ends up))? (?:in|into|inside|on|onto|to|near|next|beside|close|off|under|away|far)\b))")
 """'apart from', 'besides' after 'all' and before the blocks: an exception, not a place, where the words between or
@@ -1214,13 +1214,14 @@ _BLOCK_SAID = rf"(?:the )?(?:{_COLOUR})(?: block| cube| one)?"
 _LEFT_OUT_EITHER = re.compile(rf"\b(?P<head>except(?: for)?|but not|without|excluding|other than|apart from|besides|save "
                               rf"for) +(?P<first>{_BLOCK_SAID}(?: +(?:and +)?{_BLOCK_SAID})*) +(?:or|nor) +(?P<second>{_BLOCK_SAID})\b")
 """'everything except red or green', 'a tower, but not with red or green': the 'or' under the exception leaves out both."""
+_AN_END = (rf"the (?:very )?(?P<{{end}}>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) "
+           r"(?:tower|stack|pile))?")
+"""A tower's end said ('the very top block of the tower'), its group named by ``end`` (``str.format``)."""
 _MADE_AN_END = re.compile(rf"(?:\b(?:make|let|have) (?P<made>{_BLOCK_SAID}) (?:be )?|^ *(?P<said>{_BLOCK_SAID}) (?:(?:should|must|"
-                          r"needs to|has to|will|shall) )?(?:be|go|goes|end up|ends up|sit|sits|is) (?:at |on )?)the (?:very )?"
-                          rf"(?P<end>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?(?: of (?:the|that|this|your) (?:tower|stack|pile))?"
-                          r"(?= *$| and\b| then\b)")
+                          r"needs to|has to|will|shall) )?(?:be|go|goes|end up|ends up|sit|sits|is) (?:at |on )?)"
+                          + _AN_END.format(end="end") + r"(?= *$| and\b| then\b)")
 """'make red the top block', 'green should be at the bottom': the block put at that end (of the tower standing)."""
-_AN_END_SAID = (rf"(?P<{{block}}>{_BLOCK_SAID}) (?:be )?the (?:very )?(?P<{{end}}>{'|'.join(_END_SAID)})(?: (?:block|cube|one))?"
-                r"(?: of (?:the|that|this|your) (?:tower|stack|pile))?")
+_AN_END_SAID = rf"(?P<{{block}}>{_BLOCK_SAID}) (?:be )?" + _AN_END
 _MADE_BOTH_ENDS = re.compile(r"\b(?:make|let|have) " + _AN_END_SAID.format(block="first", end="first_end") + r" *,? *(?:and )?"
                              r"(?:(?:make|let|have) )?" + _AN_END_SAID.format(block="second", end="second_end")
                              + r"(?= *$| and\b| then\b)")
@@ -1305,7 +1306,7 @@ def _respectively(match: re.Match) -> str:
     return " and ".join(f"{mover} {match['place']} {place}" for mover, place in zip(movers, places, strict=True))
 
 
-_RELATIVE_ON = re.compile(r"\b(?P<block>" + "|".join(BLOCK_COLOURS) + r")(?: +block| +cube| +one)?(?: +and)? +"
+_RELATIVE_ON = re.compile(r"\b(?P<block>" + _COLOUR + r")(?: +block| +cube| +one)?(?: +and)? +"
                           r"(?:which|that) +(?:(?:(?:should|must|will|shall) +)?"
                           r"(?:is|be|sits?|stands?|rests?|lies|lie|goes|go|ends? +up) +)?(?=(?:on|upon|atop|onto)\b)")
 """'green which is on red': a block that a relative clause places, read as 'green and green on red'."""

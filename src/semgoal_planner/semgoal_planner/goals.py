@@ -29,6 +29,7 @@ from semgoal_planner.english import (
     parse_english,
 )
 from semgoal_planner.english.resolver import (
+    ALL_BUT_PREFIX,
     HELD,
     IN_BIN_BLOCK,
     TOP_PREFIX,
@@ -56,13 +57,14 @@ class Goal:
         """The literals to plan for in a world of ``scene`` with ``objects`` present, now in ``state``: a task's
         goal in that state, or the literals once every block they name is present, a block named by what it stands
         on or under placed (:func:`relative`), towers whose order is left open ordered (:func:`stacked`), 'the tower'
-        placed (:func:`the_tower`), swaps made (:func:`swapped`) and blocks kept where they are (:func:`kept`). Nothing
-        is parsed."""
+        placed (:func:`the_tower`), swaps made (:func:`swapped`), 'every block but ...' listed (:func:`every_block_but`) and
+        blocks kept where they are (:func:`kept`). Nothing is parsed."""
         if self.task:
             return task_goal(self.task, scene, objects, state)
         layout = LAYOUTS[scene]
         try:
             placed = swapped(the_tower(stacked(relative(self.literals, state), state), state, objects), state)
+            placed = every_block_but(placed, objects)
             goal = [layout.validate(literal, objects) for literal in kept(placed, state, scene, objects)]
             check_consistent(goal)
         except (VocabularyError, ContradictionError) as error:
@@ -113,13 +115,16 @@ def parse_goal(text: str, scene: str, objects: tuple[str, ...], state: list[Lite
 def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Literal]:
     """``literals`` with each block named by where it stands placed in ``state``: ``block_on_red`` becomes the block
     on red, ``block_under_green`` the block green is on, ``block_held`` the block in the hand, ``block_in_bin`` the one
-    block in the bin. GoalError where none is, or several are."""
+    block in the bin (also where a group leaves it out: ``all_but_block_held``). GoalError where none is, or several
+    are."""
     on = {lit.args[1]: lit.args[0] for lit in state if lit.name == "above" and lit.value}  # block -> the one on it
     under = {upper: below for below, upper in on.items()}
     held = [lit.args[0] for lit in state if lit.name == "holding" and lit.value]
     binned = [lit.args[0] for lit in state if lit.name == "in_bin" and lit.value]
 
     def placed(arg: str) -> str:
+        if arg.startswith(ALL_BUT_PREFIX):
+            return ALL_BUT_PREFIX + placed(arg.removeprefix(ALL_BUT_PREFIX))
         if arg == HELD:
             if not held:
                 raise GoalError("the hand holds no block now: name the block instead")
@@ -165,7 +170,8 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
     goal moves to it set aside). :data:`TOWER_TOP` becomes its top block, and each further block put on the tower goes
     on the one put there before it; :data:`TOWER_BASE` its bottom block; :data:`TOWER_ALL` each of its blocks;
     :data:`TOWER_REST` each of ``objects`` not in it. GoalError where no tower stands, or several do."""
-    if not any(is_tower_place(arg) for literal in literals for arg in literal.args):
+    said = {arg.removeprefix(ALL_BUT_PREFIX) for literal in literals for arg in literal.args}  # a group's too
+    if not any(map(is_tower_place, said)):
         return list(literals)
     moved = {lit.args[0] for lit in literals if is_tower_place(lit.args[-1]) and not is_tower_place(lit.args[0])}
     built = _towers([lit for lit in literals if lit.name == "above" and lit.value and not is_tower_place(lit.args[-1])])
@@ -189,18 +195,36 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
         literals = [lit for lit in literals if not (lit.name == "above" and set(lit.args) <= set(tower))]  # as built
         tower, kept = tower[::-1], kept[::-1]
     place = {TOWER_TOP: kept[-1], TOWER_BASE: tower[0],
-             **{arg: _counted(arg, tower) for lit in literals for arg in lit.args if arg not in (TOWER_TOP, TOWER_BASE)
-                and is_tower_place(arg) and arg not in (TOWER_ALL, TOWER_REST)}}
+             **{arg: _counted(arg, tower) for arg in said
+                if is_tower_place(arg) and arg not in (TOWER_TOP, TOWER_BASE, TOWER_ALL, TOWER_REST)}}
     named = {lit.args[0] for lit in literals if TOWER_REST not in lit.args}  # "... and the rest": not these
     each_of = {TOWER_ALL: tower, TOWER_REST: [o for o in objects if o not in tower and o not in named]}
     for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, each_of)):
-        args = tuple(place.get(arg, arg) for arg in literal.args)
+        args = tuple(_placed_in(place, arg) for arg in literal.args)
         if len(set(args)) < len(args):  # "put the top block on the table", "... and the others next to it": not
             continue  # on or by itself
         placed.append(Literal(literal.name, args, literal.value))
         if literal.name == "above" and literal.value and literal.args[-1] == TOWER_TOP:  # the next block put on
             place[TOWER_TOP] = literal.args[0]  # the tower goes on this one
     return placed
+
+
+def _placed_in(place: dict[str, str], arg: str) -> str:
+    """``arg`` as ``place`` places it, also where a group leaves it out (``all_but_tower_top``)."""
+    if arg.startswith(ALL_BUT_PREFIX):
+        return ALL_BUT_PREFIX + _placed_in(place, arg.removeprefix(ALL_BUT_PREFIX))
+    return place.get(arg, arg)
+
+
+def every_block_but(literals: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:
+    """``literals`` with each group ``all_but_B`` (:data:`ALL_BUT_PREFIX`, its stand-in placed by now) made one literal
+    for each block of ``objects`` but ``B`` and the literal's other blocks."""
+    made = []
+    for literal in literals:
+        group = next((arg for arg in literal.args if arg.startswith(ALL_BUT_PREFIX)), None)
+        left_out = group and group.removeprefix(ALL_BUT_PREFIX)
+        made += _each_of(literal, {group: [b for b in objects if b != left_out]} if group else {})
+    return made
 
 
 def _swapped_in(tower: list[str], literals: Sequence[Literal]) -> list[str]:

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from semgoal_core.consistency import contradictions
 from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, Literal, parse_literal
 from semgoal_planner.cli import parse_goal_main
-from semgoal_planner.english import HELD, LanguageError, parse_english
+from semgoal_planner.english import ALL_BUT_PREFIX, HELD, LanguageError, parse_english
 from semgoal_planner.english.grammar import Clause, Clauses, Ref, reading_cost
 from semgoal_planner.english.words import BASE_MARK, CANONICAL, DIRECTION, TOP_MARK
 from semgoal_planner.executive import Executive, Observation
@@ -413,6 +413,7 @@ PHRASES = [
     ("desk_cleanup", "red and green should both be in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "i want red and green to both be in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "toss red", "in_bin(red)"),
+    ("desk_cleanup", "toss red, green", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
     ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",
      "in_bin(red) & not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) "
@@ -1619,6 +1620,35 @@ def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str
     assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
     goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
     assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+TOWER_AND_HAND = [Literal("above", ("green", "blue")), Literal("above", ("yellow", "green")), Literal("holding", ("red",))]
+"""yellow on green on blue, red in the hand."""
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("put everything except the one you're holding in the bin", "in_bin(green) & in_bin(blue) & in_bin(yellow) & "
+                                                                "not in_bin(red)"),
+    ("put all blocks but the bottom one in the bin", "in_bin(red) & in_bin(green) & in_bin(yellow) & not in_bin(blue)"),
+    ("put every block except the block on blue in the bin", "in_bin(red) & in_bin(blue) & in_bin(yellow) & "
+                                                            "not in_bin(green)"),
+    ("put all but the second block from the top in the bin", "in_bin(red) & in_bin(blue) & in_bin(yellow) & "
+                                                             "not in_bin(green)"),
+    ("put all blocks except the top one next to red", "close(red,green) & close(red,blue) & not close(red,yellow)"),
+])
+def test_every_block_but_one_named_by_where_it_is_leaves_out_the_one_there_when_planned(text: str, expected: str) -> None:
+    objects = ("red", "green", "blue", "yellow")
+    assert any(arg.startswith(ALL_BUT_PREFIX) for lit in parse_english(text, "tabletop", objects) for arg in lit.args)
+    goal = parse_goal(text, "tabletop", objects, TOWER_AND_HAND)
+    assert {str(literal) for literal in goal} == set(expected.split(" & "))
+
+
+def test_every_block_but_one_named_by_where_it_is_needs_it_there_and_alone() -> None:
+    objects = ("red", "green", "blue", "yellow")
+    with pytest.raises(GoalError, match="the hand holds no block now"):
+        parse_goal("put everything except the block you are holding in the bin", "tabletop", objects, [])
+    with pytest.raises(LanguageError, match="not both"):
+        parse_english("put every block except red and the top block in the bin", "tabletop", objects)
 
 
 @pytest.mark.parametrize("undone", ["unstack it", "knock it down", "take it apart"])

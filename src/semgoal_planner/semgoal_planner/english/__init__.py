@@ -38,6 +38,7 @@ from semgoal_core.consistency import ContradictionError, check_consistent
 from semgoal_core.vocabulary import LAYOUTS, Literal, SemanticLayout, VocabularyError
 from semgoal_planner.english.grammar import Clause, Clauses, parse
 from semgoal_planner.english.resolver import (
+    ALL_BUT_PREFIX,
     HELD,
     KEEP,
     ON_PREFIX,
@@ -67,8 +68,8 @@ from semgoal_planner.english.words import (
     normalise,
 )
 
-__all__ = ["HELD", "KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL", "TOWER_BASE", "TOWER_REST",
-           "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
+__all__ = ["ALL_BUT_PREFIX", "HELD", "KEEP", "MAX_GOAL_CHARS", "ON_PREFIX", "PLACED_WHEN_PLANNED", "STACK", "SWAP", "TOWER_ALL",
+           "TOWER_BASE", "TOWER_REST", "TOWER_TOP", "UNDER_PREFIX", "LanguageError", "examples", "normalise", "parse_english"]
 
 
 def parse_english(text: str, scene: str, blocks: Sequence[str] | None = None) -> list[Literal]:

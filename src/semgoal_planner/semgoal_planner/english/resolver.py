@@ -38,6 +38,10 @@ trade places, which only the world then can say (which is on which, which is in 
 STACK = "stack"
 """A goal's stand-in ``stack(a,b,...)`` until it is planned (:func:`~semgoal_planner.goals.stacked`): one tower of the
 blocks in an order the goal leaves open ("stack everything"), which the world then suggests."""
+ALL_BUT_PREFIX = "all_but_"
+"""'every block except the one you are holding': ``all_but_block_held`` (the prefix before any other stand-in) in a goal's
+literals until it is planned (:func:`~semgoal_planner.goals.every_block_but`): which block is left out, only the world
+can say then."""
 KEEP = "keep"
 """A goal's stand-in ``keep(a)`` until it is planned (:func:`~semgoal_planner.goals.kept`): 'don't move red', 'leave
 the rest alone' keep a block's place as the world has it then."""
@@ -58,6 +62,7 @@ PLACED_WHEN_PLANNED = {
     UNDER_PREFIX: "(block_under_COLOUR) the block that block stands on when the goal is planned",
     STACK: "one tower of these blocks, in an order left open: what already stands of it (its tallest part on the "
            "table) at the bottom, the others on it in the order named",
+    ALL_BUT_PREFIX: "(all_but_X) each block but the one stand-in X names when the goal is planned",
     KEEP: "the block's place as it is when the goal is planned: in the bin or not, in the hand or not, on which block "
           "(not closeness: another block may still be put next to it); a block the goal itself moves is not kept",
 }
@@ -122,7 +127,8 @@ def stacks_in_order(literals: Sequence[Literal], standing: Iterable[Sequence[str
 
 def is_stand_in(name: str) -> bool:
     """Whether a literal's argument stands for a block only the world can name when the goal is planned."""
-    return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX, TOP_PREFIX, BOTTOM_PREFIX))
+    return name in PLACED_WHEN_PLANNED or name.startswith((ON_PREFIX, UNDER_PREFIX, TOP_PREFIX, BOTTOM_PREFIX,
+                                                          ALL_BUT_PREFIX))
 
 
 def is_tower_place(name: str) -> bool:
@@ -195,6 +201,12 @@ class Resolver:
                     raise LanguageError("leave out either the tower or blocks named one by one, not both: e.g. "
                                         "'put every block except the tower in the bin'")
                 return (TOWER_REST,)
+            placed_later = [b for b in excluded if is_stand_in(b)]
+            if placed_later:  # "all except the block you are holding": which one, only the world can say when planned
+                if len(excluded) > 1:
+                    raise LanguageError("leave out one block named by where it is, or blocks named by colour, not "
+                                        "both: e.g. 'put every block except the one you are holding in the bin'")
+                return (ALL_BUT_PREFIX + placed_later[0],)
             return tuple(b for b in self.blocks if b not in excluded)
         if ref.kind == "both":  # "red next to green and blue away from both": the two the clause before named
             pair = tuple(b for b in self.last_named if b not in besides)

@@ -509,7 +509,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"don'?t|do not|never|no longer|isn'?t|aren'?t|is not|are not|should not|shouldn'?t|must not|mustn'?t|"
      r"doesn'?t|does not|won'?t|cannot|can'?t|can not|may not|might not|not", "not"),
     (rf"(all|every|everything|each)( the| of the)?( blocks?| cubes?| ones?)? but( not)?(?= (the )?({_COLOUR}|blocks?|cubes?|"
-     r"ones?|two|three|four|five|six|seven|\d)\b)", "all except"),  # "all but red", not "keep everything, but move red"
+     r"ones?|two|three|four|five|six|seven|\d|the_\w+)\b)", "all except"),  # "all but red", "all but the top block"
+    # (the_top: said by where it is), not "keep everything, but move red"
     (r"((keep|leave|with)( the| an| your)? )?(holding nothing|hold nothing|hand empty|gripper empty|"
      r"empty[- ]handed|(empty|open)( your| the)? (hand|gripper|fingers))|(the|your|its) (hand|gripper)( should| must| will| "
      r"is)?( be| stay| remain)? (empty|free)|(nothing|no (block|cube)s?) (should |must |will |is |are )?(be )?(in (the|your|its) (hand|"
@@ -1534,7 +1535,7 @@ _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){
                           r"\b(?:throw|toss|chuck)\b(?P<out>(?: +[\w']+){1,12}?) +out\b(?! +(?:of|from))|"
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")
 """'throw everything away', 'toss the red block away': where there is a bin, into it (as 'throw away red')."""
-_THROWN = re.compile(rf"\b(?P<verb>throw|toss|chuck)(?P<what>(?:(?: and| or|,)* (?:the )?(?:{_COLOUR})(?: block| cube| one)?)+| it|"
+_THROWN = re.compile(rf"\b(?P<verb>throw|toss|chuck)(?P<what>(?:(?: +and| +or|,)* +(?:the )?(?:{_COLOUR})(?: block| cube| one)?)+| it|"
                      r" them| everything| all(?: (?:of )?the (?:blocks|cubes))?)(?= *(?:$|[;.]|(?:,| and\b)(?! *(?:and )?(?:the )?"
                      rf"(?:{_COLOUR})\b)| then\b| except\b| but\b| apart from\b| other than\b| besides\b| save for\b))")
 """'toss red', 'grab red and throw it': thrown with no place said, where there is a bin, away into it ('don't throw red'

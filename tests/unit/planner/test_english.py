@@ -414,6 +414,8 @@ PHRASES = [
     ("desk_cleanup", "i want red and green to both be in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "toss red", "in_bin(red)"),
     ("desk_cleanup", "toss red, green", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "pick up red and green and put them both in the bin", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "pick up red and green and put both of them in the bin", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
     ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",
      "in_bin(red) & not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) "
@@ -909,7 +911,7 @@ REFUSALS = [
     ("tabletop", "stack red and green in any order and put red in the bin", "needs two blocks the goal puts nowhere else"),
     ("three_blocks", "red near green or blue", "'or' leaves the goal open"),
     ("desk_cleanup", "put both in the bin", "'both' is ambiguous: say which two blocks"),
-    ("desk_cleanup", "they should both be in the bin", "at 'both'"),
+    ("desk_cleanup", "they should both be in the bin", "'both' is ambiguous: say which two blocks"),
     ("desk_cleanup", "why is red in the bin?", "is a question"),
     ("desk_cleanup", "replace red with green", "needs the place the new block goes"),
     ("tabletop", "make red the top and green the top", "two blocks are said to be at one place"),

@@ -645,6 +645,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"the (other|remaining) (block|cube|one)|the one (left|remaining)|the (block|cube) (left|remaining)", "the_other"),
     # one block, said in the singular: refused where it could be more than one
     (r"the others|others|the other|other|the rest|rest|remaining ones|remaining|another|any other", "other"),
+    (r"(they|them|those|these)(?P<modal> (must|should|will|would|can|could|need to|have to|are|were))? both|both of (them|those|"
+     r"these)", r"both\g<modal>"),  # "put them both in the bin", "they should both be ...":
+    # the two named before, refused where that is unclear
     (r"(it|them|those|these) all|all of (it|them)", "all"),  # "put it all in the bin"
     (r"those|these|they|them", "them"),
     (r"(the|a|an|this|that) (block|cube|one)|this|that|it", "it"),

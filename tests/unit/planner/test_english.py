@@ -416,6 +416,12 @@ PHRASES = [
     ("desk_cleanup", "toss red, green", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "pick up red and green and put them both in the bin", "in_bin(red) & in_bin(green)"),
     ("desk_cleanup", "pick up red and green and put both of them in the bin", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "pick up red and green and put each of them in the bin", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "put all of them in the bin", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
+    ("desk_cleanup", "pick up red and put all of them in the bin except blue", "in_bin(red) & in_bin(green) & "
+                                                                              "in_bin(yellow) & not in_bin(blue)"),
+    ("tabletop", "firstly put red in the bin, secondly put green on blue, finally put yellow on orange",
+     "in_bin(red) & above(green,blue) & above(yellow,orange)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
     ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",
      "in_bin(red) & not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) "

@@ -599,7 +599,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"by the side of|right by|near|with|towards|toward|up to|in between|between|touch|touches|touching|neighbou?ring|neighbou?r (of|to)|"
      rf"closer to|closer|by(?= (the )?({_COLOUR}|it|them|other|all|the_tower|the_top|the_base)\b)", "near"),  # "put red
     # by green"
-    (r"finally|lastly|next|at the end|in the end", "then"),
+    (r"finally|lastly|next|at the end|in the end|secondly|thirdly|fourthly|fifthly|subsequently", "then"),
     (r"far away from|away from|far from|apart from|distant from|clear of", "away"),
     (r"far away|far off|well away", "away"),  # "move blue far away": from every other block
     (r"out of|outside of|outside|out from", "out"),
@@ -641,6 +641,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
      r"(blocks|cubes|ones)|the rest of (all|them|these|those|the (blocks|cubes))|any (remaining|other|left ?over)( blocks| cubes|"
      r" ones)?", "the rest"),  # "bin the leftovers", "the rest of the blocks", "any remaining blocks"
+    (r"(each|all|every one) of (them|those|these)(?![^,;.]*\b(except|but|apart|other than|besides|save|excluding)\b)(?= (be|"
+     r"are|stay|sit|apart|together|in|into|on|onto|near|next|away|separated|touching)\b)", "them"),  # "pick up red and green
+    # and put each of them in the bin": the blocks named before, as 'them' and 'them all' (every block, said first)
     (r"everything|every|each|all of them|all of|all|the (whole )?lot", "all"),
     (r"the (other|remaining) (block|cube|one)|the one (left|remaining)|the (block|cube) (left|remaining)", "the_other"),
     # one block, said in the singular: refused where it could be more than one

@@ -422,6 +422,8 @@ PHRASES = [
                                                                               "in_bin(yellow) & not in_bin(blue)"),
     ("tabletop", "firstly put red in the bin, secondly put green on blue, finally put yellow on orange",
      "in_bin(red) & above(green,blue) & above(yellow,orange)"),
+    ("tabletop", "stack red and green so that red is at the top", "above(red,green)"),
+    ("tabletop", "stack red, green and blue such that blue ends up at the bottom", "above(green,blue) & above(red,green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
     ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",
      "in_bin(red) & not holding(green) & not in_bin(green) & not holding(blue) & not in_bin(blue) & not holding(yellow) "
@@ -1628,6 +1630,17 @@ def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str
     assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
     goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
     assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+@pytest.mark.parametrize("said", ["stack the blocks so that red is at the bottom and blue is at the top",
+                                  "stack the blocks with red at the bottom and blue at the top",
+                                  "build a tower of all blocks, making sure that red is at the bottom and blue is on top"])
+def test_a_tower_of_every_block_stacked_so_that_its_ends_are_given_has_those_ends(said: str) -> None:
+    objects = ("red", "green", "blue", "yellow")
+    goal = parse_goal(said, "tabletop", objects, [])
+    above = {lit.args for lit in goal if lit.name == "above" and lit.value}
+    assert len(above) == 3 and {upper for upper, _ in above} == {"green", "yellow", "blue"}  # red on none
+    assert {lower for _, lower in above} == {"red", "green", "yellow"}  # none on blue
 
 
 TOWER_AND_HAND = [Literal("above", ("green", "blue")), Literal("above", ("yellow", "green")), Literal("holding", ("red",))]

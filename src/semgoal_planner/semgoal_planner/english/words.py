@@ -846,6 +846,7 @@ def normalise(text: str, scene: str, blocks: Sequence[str]) -> list[str]:
     text = _NUMBERED.sub(" ; ", re.sub(r"\s*\n\s*", "\n", said))  # "1. put red in the bin 2. put green in the bin",
     # one step a line: steps in turn
     text = re.sub(r"[()\[\]\"]", " ", text)
+    text = _STACKED_SO.sub(_stacked_with_ends, text)  # "stack the blocks so that red is at the bottom": with red there
     text = _JOINED_COLOURS.sub(lambda m: f"{m['colour']} {'and' if m['mark'] == '-' else 'or'} ", text)  # "red-green"
     text = _TOWERS_OF_A_SIZE.sub(_towers_of_a_size, text)  # "two towers of three: red, green, blue and yellow, ..."
     text = _GERUND.sub(lambda m: _GERUNDS[m[0]], text)  # "after picking up red"
@@ -1537,6 +1538,18 @@ def _towers_of_a_size(match: re.Match) -> str:
 _SEVERAL_TOWERS = re.compile(r"\b(two|three|2|3|a couple of|several|some) (towers|stacks|piles)\b")
 _EACH_TOWER = re.compile(r"\b(one|the other|another|the (first|second|third|last))( tower| stack| pile)? (of|with|from)\b")
 """Each of several towers said as 'one of red and green', 'the other of blue and yellow': a tower of those blocks."""
+_AN_END_REACHED = (rf"(?:the )?(?P<colour>{_COLOUR})(?: block| cube| one)? +(?:(?:is|ends up|sits|stands|goes|should be|will be|"
+                   r"gets|lies) +)?(?:at|on) +(?:the )?(?:very )?(?P<end>top|bottom|base)\b")
+_STACKED_SO = re.compile(rf"\b(?P<head>(?:stack|pile|tower)\b[^.;]*?) +(?:so that|so|such that|in such a way that|making sure"
+                         rf"(?: that)?) +(?P<ends>{_AN_END_REACHED}(?: *,? *and +{_AN_END_REACHED.replace('?P<', '?P<second_')})?)")
+"""'stack the blocks so that red is at the bottom (and blue is at the top)': as 'with red at the bottom', the tower's ends."""
+
+
+def _stacked_with_ends(match: re.Match) -> str:
+    ends = [(match["colour"], match["end"]), (match["second_colour"], match["second_end"])]
+    return f"{match['head']} with " + " and ".join(f"{colour} at the {end}" for colour, end in ends if colour)
+
+
 _THROWN_AWAY = re.compile(r"\b(?:throw|toss|chuck|clear)\b(?P<what>(?: +[\w']+){1,12}?) +away\b(?! +from)|"
                           r"\b(?:throw|toss|chuck)\b(?P<out>(?: +[\w']+){1,12}?) +out\b(?! +(?:of|from))|"
                           r"\b(?:throw|toss|chuck) +out\b(?! +(?:of|from))")

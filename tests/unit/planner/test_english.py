@@ -423,6 +423,10 @@ PHRASES = [
     ("tabletop", "firstly put red in the bin, secondly put green on blue, finally put yellow on orange",
      "in_bin(red) & above(green,blue) & above(yellow,orange)"),
     ("tabletop", "stack red and green so that red is at the top", "above(red,green)"),
+    ("desk_cleanup", "only put the blue block in the bin", "in_bin(blue) & not in_bin(red) & not in_bin(green) & "
+                                                           "not in_bin(yellow)"),
+    ("desk_cleanup", "fill the bin with red and green", "in_bin(red) & in_bin(green)"),
+    ("desk_cleanup", "fill up the bin with all the blocks", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("tabletop", "stack red, green and blue such that blue ends up at the bottom", "above(green,blue) & above(red,green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
     ("desk_cleanup", "put red in the bin and the rest of the blocks on the table",

@@ -179,7 +179,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"stack \g<refs>"),  # "red green blue tower, others in bin"
     (r"(and )?(which|who|that) (stays?|remains?|(is|are) (left|kept|staying|remaining))( on the (desk|table)| where (it|they) "
      r"(is|are)| put| there| behind| out)?(?= and\b| then\b|$)", ""),  # "everything in the bin, except yellow which stays"
-    (r"only (?P<verb>leave|keep)", r"\g<verb> only"),  # "only leave yellow on the desk"
+    (r"only (?P<verb>leave|keep|put|place|move|drop|throw|toss|set|bring|get)(?= (the )?(" + _COLOUR + r")\b)",
+     r"\g<verb> only"),  # "only leave yellow on the desk", "only put blue in the bin"
+    (rf"fill (up )?(the )?bin( up)? (with|using) (?P<what>{_LISTED}( blocks?| cubes?)?|everything|all( of)?( the)? (blocks|cubes))",
+     r"put \g<what> in the bin"),  # "fill the bin with red and green"
     (r"wait( a (moment|second|bit|while|sec|minute))?(?! (for|until)\b)", ""),
     (rf"((make|have|let) )?(?P<refs>{_LISTED}|them|the two( blocks| cubes)?|both( blocks| cubes)?)( should| must| will| can| "
      r"need to| have to)? (swap|trade|switch|exchange|"

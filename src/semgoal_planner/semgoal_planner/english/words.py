@@ -179,6 +179,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"stack \g<refs>"),  # "red green blue tower, others in bin"
     (r"(and )?(which|who|that) (stays?|remains?|(is|are) (left|kept|staying|remaining))( on the (desk|table)| where (it|they) "
      r"(is|are)| put| there| behind| out)?(?= and\b| then\b|$)", ""),  # "everything in the bin, except yellow which stays"
+    (r"(form|make|create|build) (a|one) (group|cluster|bunch|huddle) (with|of|from|out of|using)", "group"),  # "form a group
+    # with red and blue"
     (r"only (?P<verb>leave|keep|put|place|move|drop|throw|toss|set|bring|get)(?= (the )?(" + _COLOUR + r")\b)",
      r"\g<verb> only"),  # "only leave yellow on the desk", "only put blue in the bin"
     (rf"fill (up )?(the )?bin( up)? (with|using) (?P<what>{_LISTED}( blocks?| cubes?)?|everything|all( of)?( the)? (blocks|cubes))",
@@ -545,7 +547,7 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"into|next|near|beside|close|away|far|out|off)\b)", ""),  # "red should be put in the bin", "red gets put on green"
     (rf"(?P<said>(({_COLOUR})|(?P<many>blocks|cubes|objects|ones|they|them|these|those))( (must|should|will|would|can|"
      r"could|need to|have to|are|were))?) (all|(?(many)(?!)|both))(?= (be|are|stay|sit|apart|together|in|on|near|next|away|"
-     r"separated|touching)\b)", r"\g<said>"),  # "red, green and blue must all be apart", "the blocks should all be apart"
+     r"separated|touching|touch)\b)", r"\g<said>"),  # "red, green and blue must all be apart", "the blocks should all be apart"
     (r"(from|off)( of)? (the )?(desk|table)(?= (in|into|to|onto|on|next|near|beside|close|away)\b)", ""),  # "move
     # the blocks from the desk into the bin": where they go
     (r"not (near|next to|close to|by|beside|touching) (anything|any( other)? (block|cube|one))", "away"),  # "not

@@ -428,6 +428,7 @@ PHRASES = [
     ("desk_cleanup", "fill the bin with red and green", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "make red, green and blue all touch", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "form a group with red and blue", "close(red,blue)"),
+    ("tabletop", "swap red and green in the tower", "swap(red,green)"),
     ("desk_cleanup", "fill up the bin with all the blocks", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("tabletop", "stack red, green and blue such that blue ends up at the bottom", "above(green,blue) & above(red,green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),

@@ -139,6 +139,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     # the predicate reads
     (r"(?P<moved>(the )?(bottom|lowest)( block| cube| one)) (on top|at the top|to the top)( of (the )?(tower|stack|pile|other( "
      r"block| cube| one)?))?", r"\g<moved> on the tower"),  # "put the bottom block on top"
+    (rf"(?P<head>(swap|switch|exchange|trade)( the places of)? (the )?({_COLOUR})( block| cube)?( and| with) (the )?({_COLOUR})"
+     r"( block| cube)?) (in|within|inside|of|on) (the|this|that|your) (tower|stack|pile)", r"\g<head>"),  # "swap red and
+    # green in the tower": they trade places, wherever they are
     (r"(?P<head>(swap|switch|exchange|reverse|flip|invert)\b[^,;]*?) so (that )?(the )?(bottom|lower|lowest|top|upper)( one|"
      r" block| cube)? (is|ends up|goes|sits|comes|will be)( on| at the)? (top|bottom)", r"\g<head>"),  # "swap the blocks
     # so the bottom one is on top": what swapping does

@@ -428,6 +428,7 @@ PHRASES = [
     ("desk_cleanup", "fill the bin with red and green", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "make red, green and blue all touch", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "form a group with red and blue", "close(red,blue)"),
+    ("two_blocks", "unstack red from green", "not above(red,green)"),
     ("desk_cleanup", "fill up the bin with all the blocks", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("tabletop", "stack red, green and blue such that blue ends up at the bottom", "above(green,blue) & above(red,green)"),
     ("three_blocks", "carry red over to green", "close(red,green)"),
@@ -1637,6 +1638,13 @@ def test_the_block_held_is_the_one_in_the_hand_when_planned(text: str, held: str
     assert HELD in {arg for lit in parse_english(text, "tabletop") for arg in lit.args}
     goal = parse_goal(text, "tabletop", ("red", "green", "blue", "yellow"), [Literal("holding", (held,))])
     assert {str(lit) for lit in goal} == set(expected.split(" & "))
+
+
+def test_blocks_put_on_top_of_each_other_with_one_end_said_have_that_end() -> None:
+    objects = ("red", "green", "blue", "yellow")
+    goal = parse_goal("put the blocks on top of each other with green on top", "tabletop", objects, [])
+    above = {lit.args for lit in goal if lit.name == "above" and lit.value}
+    assert len(above) == 3 and "green" not in {lower for _, lower in above}
 
 
 @pytest.mark.parametrize("said", ["stack the blocks so that red is at the bottom and blue is at the top",

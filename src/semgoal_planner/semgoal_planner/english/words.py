@@ -292,8 +292,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"set)( up)? (on|onto|upon|atop|on top of) (each other|one another)", r"do not stack \g<refs>"),  # "red and green should
     # not be stacked on each other": neither on the other
     (r"(?P<verb>put|place|set|stack|pile|move) (?P<refs>all( of)?( the)?( blocks| cubes)?|the (blocks|cubes)|everything|them|"
+     r"every (block|cube)) (on|onto|upon|atop|on top of) (each other|one another|another) *,? *(with )?(?P<end>(the )?("
+     + _COLOUR + r")( block| cube)? (on top|at the (top|bottom|base)))", r"stack \g<refs> with \g<end>"),
+    (r"(?P<verb>put|place|set|stack|pile|move) (?P<refs>all( of)?( the)?( blocks| cubes)?|the (blocks|cubes)|everything|them|"
      r"every (block|cube)) (on|onto|upon|atop|on top of) (each other|one another|another)", rf"stack \g<refs> {ANY_ORDER}"),
-    # "put all blocks on top of each other": one tower of them
+    # "put all blocks on top of each other": one tower of them (in the order left open, where no end is said)
+    (rf"unstack (?P<upper>(the )?({_COLOUR}))( block| cube)? from( the top of)? (?P<lower>(the )?({_COLOUR}))", r"unstack "
+     r"\g<upper> off \g<lower>"),  # "unstack red from green"
     (r"(?P<verb>stack|pile) (?P<what>it all|them all|everything|all( of)?( the)?( blocks| cubes)?|them) up", r"\g<verb> "
      r"\g<what>"),  # "stack it all up"
     (r"\bit all\b", "all"),

@@ -121,6 +121,9 @@ typedef struct {
     int epoch;
     Heap heap;
     word *landmarks;    /* Zhu & Givan's, from the initial state; NULL until a search or an evaluation needs them */
+    int nlm, *lm_fact;  /* the landmarks, fact by fact */
+    word *lm_needs;     /* nlm x nwords: per landmark, the landmarks ordered greedy-necessarily before it (a precondition
+                           of every operator that adds it), then nwords words of workspace */
     int goal_reachable; /* in the relaxed task from the initial state; set with the landmarks */
 } TaskObject;
 
@@ -512,7 +515,34 @@ static int h_lmcut(TaskObject *t, const word *s) {
     return total;
 }
 
-/* The task's landmarks, found on first use; -1 when out of memory. */
+/* The greedy-necessary orderings among `landmarks` (Hoffmann, Porteous & Sebastia 2004): landmark A comes right
+   before landmark B where A is a precondition of every operator that adds B. Only these say a landmark is needed
+   again once it has been made false (LAMA's "required again", Richter & Westphal 2010). 0, or -1 when out of
+   memory. */
+static int order_landmarks(TaskObject *t, const word *landmarks) {
+    size_t nw = (size_t)t->nwords;
+    int n = 0;
+    for (size_t i = 0; i < nw; i++) n += __builtin_popcountll(landmarks[i]);
+    t->lm_fact = malloc(sizeof(int) * (size_t)(n ? n : 1));
+    t->lm_needs = calloc(((size_t)n + 1) * nw, sizeof(word));
+    if (!t->lm_fact || !t->lm_needs) return -1;
+    t->nlm = 0;
+    for (int f = 0; f < t->nfacts; f++) {
+        if (!(landmarks[f / 64] >> (f % 64) & 1)) continue;
+        word *needs = t->lm_needs + (size_t)t->nlm * nw;
+        t->lm_fact[t->nlm++] = f;
+        for (int k = t->achievers.start[f]; k < t->achievers.start[f + 1]; k++) {
+            word *shared = t->lm_needs + (size_t)n * nw; /* the workspace: this achiever's preconditions */
+            memset(shared, 0, nw * sizeof(word));
+            int o = t->achievers.items[k];
+            for (int j = t->rpre.start[o]; j < t->rpre.start[o + 1]; j++)
+                if (t->rpre.items[j] < t->nfacts) shared[t->rpre.items[j] / 64] |= (word)1 << (t->rpre.items[j] % 64);
+            for (size_t i = 0; i < nw; i++) needs[i] = k == t->achievers.start[f] ? shared[i] & landmarks[i] : needs[i] & shared[i];
+        }
+    }
+    return 0;
+}
+
 /* The task's landmarks, found on first use over the relaxed facts; the count keeps the facts' own (a negated fact
    is no fact of a state); -1 when out of memory. */
 static int find_landmarks(TaskObject *t) {
@@ -530,23 +560,37 @@ static int find_landmarks(TaskObject *t) {
         return -1;
     }
     for (int f = t->nfacts; f < t->nwords * 64; f++) found[f / 64] &= ~((word)1 << (f % 64)); /* padding and negations */
+    if (reachable && order_landmarks(t, found)) {
+        free(found);
+        return -1;
+    }
     t->landmarks = found;
     t->goal_reachable = reachable;
     return 0;
 }
 
 /* The landmark count (LAMA's, Richter & Westphal 2010): the landmarks not yet accepted on the path to state `s`,
-   plus the accepted goals false in `s` again (Zhu & Givan's orderings before a goal are natural ones, which need
-   nothing again, as in Fast Downward). `accepted` holds the landmarks true in some state of the path (the searches
+   plus those accepted but false in `s` that are needed again: the goals, and those ordered greedy-necessarily before
+   a landmark not yet accepted (order_landmarks). `accepted` holds the landmarks true in some state of the path (the searches
    keep it per state); NULL takes `s` as the path's only state. Inadmissible: one operator can add several
    landmarks. */
 static int h_lmcount(TaskObject *t, const word *s, const word *accepted) {
     if (find_landmarks(t)) return -1;
     if (!t->goal_reachable) return COST_INF;
     int count = 0;
-    for (int i = 0; i < t->nwords; i++) {
+    size_t nw = (size_t)t->nwords;
+    word *again = t->lm_needs + (size_t)t->nlm * nw;
+    memset(again, 0, nw * sizeof(word));
+    for (int k = 0; k < t->nlm; k++) {
+        int f = t->lm_fact[k];
+        word done = accepted ? accepted[f / 64] : t->landmarks[f / 64] & s[f / 64];
+        if (done >> (f % 64) & 1) continue;
+        const word *needs = t->lm_needs + (size_t)k * nw;
+        for (size_t i = 0; i < nw; i++) again[i] |= needs[i];
+    }
+    for (size_t i = 0; i < nw; i++) {
         word done = accepted ? accepted[i] : t->landmarks[i] & s[i];
-        count += __builtin_popcountll(t->landmarks[i] & ~done) + __builtin_popcountll(t->goal[i] & done & ~s[i]);
+        count += __builtin_popcountll(t->landmarks[i] & ~done) + __builtin_popcountll((t->goal[i] | again[i]) & done & ~s[i]);
     }
     return count;
 }
@@ -1129,18 +1173,25 @@ done:
 
 static PyObject *Task_heuristic(TaskObject *t, PyObject *args) {
     const char *name;
-    PyObject *state;
-    if (!PyArg_ParseTuple(args, "sO", &name, &state)) return NULL;
+    PyObject *state, *passed = NULL;
+    if (!PyArg_ParseTuple(args, "sO|O", &name, &state, &passed)) return NULL;
+    if (passed == Py_None) passed = NULL;
     int heuristic = heuristic_id(t, name);
     if (heuristic < 0) return NULL;
-    word *s = malloc(sizeof(word) * (size_t)t->nwords);
+    word *s = malloc(sizeof(word) * (size_t)t->nwords), *accepted = malloc(sizeof(word) * (size_t)t->nwords);
     PyObject *result = NULL;
-    if (!s) PyErr_NoMemory();
-    else if (!int_to_words(state, s, t->nwords, "state")) {
-        int h = evaluate(t, heuristic, s, NULL);
-        if (h >= 0) result = PyFloat_FromDouble(h == COST_INF ? Py_HUGE_VAL : (double)h);
+    if (!s || !accepted) PyErr_NoMemory();
+    else if (!int_to_words(state, s, t->nwords, "state") && !(passed && int_to_words(passed, accepted, t->nwords, "passed"))) {
+        if (passed && find_landmarks(t)) {
+            PyErr_NoMemory();
+        } else {
+            for (int i = 0; passed && i < t->nwords; i++) accepted[i] = (accepted[i] | s[i]) & t->landmarks[i];
+            int h = evaluate(t, heuristic, s, passed ? accepted : NULL);
+            if (h >= 0) result = PyFloat_FromDouble(h == COST_INF ? Py_HUGE_VAL : (double)h);
+        }
     }
     free(s);
+    free(accepted);
     return result;
 }
 
@@ -1206,6 +1257,8 @@ static void Task_dealloc(TaskObject *t) {
     free(t->cut);
     free(t->heap.a);
     free(t->landmarks);
+    free(t->lm_fact);
+    free(t->lm_needs);
     Py_TYPE(t)->tp_free((PyObject *)t);
 }
 
@@ -1556,7 +1609,9 @@ static PyMethodDef Task_methods[] = {
     {"search", (PyCFunction)Task_search, METH_VARARGS,
      "search(search, heuristic, seconds=0.0) -> (plan as operator indices or None, expanded, generated, whether "
      "its time ran out first)"},
-    {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS, "heuristic(name, state) -> h (inf for a dead end)"},
+    {"heuristic", (PyCFunction)Task_heuristic, METH_VARARGS,
+     "heuristic(name, state, passed=None) -> h (inf for a dead end); passed: the facts true in some earlier state of "
+     "the path to state, which the landmark count reads (None: state is the path's only state)"},
     {"successors", (PyCFunction)Task_successors, METH_O,
      "successors(state) -> [(child state, operator index)] in generation order"},
     {NULL, NULL, 0, NULL},

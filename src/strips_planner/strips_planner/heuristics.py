@@ -20,8 +20,10 @@ cost 0 (its body, its head), and a derived fact asked false is left out, as in F
   incremental hmax update between cuts.
 - lmcount: LAMA's landmark count (Richter & Westphal 2010): of the facts every plan makes true at some point
   (Zhu & Givan's landmarks, found once from the initial state), those not yet true anywhere on the path to a
-  state, plus the goals among the others that are false again. It depends on the path, so it guides the greedy
-  searches only; :func:`heuristic` takes the state as the path's only state.
+  state, plus those of the others false again that are needed again: the goals, and each one that is a
+  precondition of every operator adding a landmark not yet reached (a greedy-necessary ordering; Hoffmann, Porteous
+  & Sebastia 2004). It depends on the path, so it guides the greedy searches only; :func:`heuristic` takes the facts
+  passed on the way, or the state as the path's only state.
 
 The greedy searches take several heuristics joined by ``+`` (``hff+lmcount``, LAMA's pair): one open list each,
 taking turns.
@@ -35,13 +37,14 @@ from strips_planner.grounding import Task
 
 HEURISTICS = ("blind", "hmax", "hff", "lmcut", "lmcount")
 GREEDY_ONLY = ("lmcount",)
-Heuristic = Callable[[int], float]
+Heuristic = Callable[..., float]
 
 
 def heuristic(task: Task, name: str) -> Heuristic:
     """``name``'s estimate of the plan length from a state (an int bitset over ``task.facts``); inf when
-    the goal is unreachable even relaxed."""
+    the goal is unreachable even relaxed. The landmark count also takes ``passed``: the facts true in some earlier
+    state of the path to it (by default none: the state is the path's only one)."""
     if name not in HEURISTICS:
         raise ValueError(f"unknown heuristic {name!r}; valid: {', '.join(HEURISTICS)}")
     compiled = task.compiled
-    return lambda state: compiled.heuristic(name, state)
+    return lambda state, passed=None: compiled.heuristic(name, state, passed)

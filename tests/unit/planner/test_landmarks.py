@@ -36,6 +36,33 @@ def test_the_landmarks_are_the_facts_on_every_path_to_the_goal() -> None:
     assert count(state_at(task, "e")) == 2  # at a, at c: a path from e alone never passed them
 
 
+# one hand that takes a block off the table and drops it into the bin, or puts it back
+HAND = """(define (domain hand) (:requirements :strips)
+  (:predicates (empty) (on-table ?x) (holding ?x) (in-bin ?x))
+  (:action pick :parameters (?x) :precondition (and (empty) (on-table ?x))
+   :effect (and (holding ?x) (not (empty)) (not (on-table ?x))))
+  (:action put-back :parameters (?x) :precondition (holding ?x) :effect (and (on-table ?x) (empty) (not (holding ?x))))
+  (:action drop :parameters (?x) :precondition (holding ?x) :effect (and (in-bin ?x) (empty) (not (holding ?x)))))"""
+
+
+def test_a_landmark_made_false_is_needed_again_before_one_it_is_a_precondition_of() -> None:
+    """The empty hand is a landmark true at the start, and a precondition of every way to hold b, which is not yet
+    reached: once a is picked up, the hand must be empty again, and the count says so. A goal made false counts
+    again too; a landmark no longer needed (holding a, once a is in the bin) does not."""
+    domain = parse_domain(HAND)
+    task = ground(domain, parse_problem("""(define (problem p) (:domain hand) (:objects a b)
+      (:init (empty) (on-table a) (on-table b)) (:goal (and (in-bin a) (in-bin b))))""", domain))
+    fact = {str(f): 1 << i for i, f in enumerate(task.facts)}
+    count = heuristics.heuristic(task, "lmcount")
+    assert count(task.init) == 4  # holding a, holding b, in-bin a, in-bin b
+    holding_a = fact["(holding a)"] | fact["(on-table b)"]
+    assert count(holding_a, passed=task.init) == 3 + 1  # holding b, both in the bin; and the empty hand again
+    binned_a = fact["(in-bin a)"] | fact["(empty)"] | fact["(on-table b)"]
+    assert count(binned_a, passed=task.init | holding_a) == 2  # holding b, in-bin b
+    back = fact["(holding b)"] | fact["(on-table a)"]
+    assert count(back, passed=task.init | holding_a | binned_a) == 1 + 1  # in-bin b; in-bin a again (a goal)
+
+
 def test_a_goal_unreachable_even_relaxed_has_an_infinite_count() -> None:
     """Grounding already refuses such a goal; the compiled task, given one, says so rather than count nothing."""
     task = roads(last_road="(road e c)")  # one way, from e

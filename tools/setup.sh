@@ -62,3 +62,11 @@ if ! ws_current; then
 else
   step "workspace up to date"
 fi
+
+# 4. Matplotlib's font list, built once per machine (it asks fc-list, a process `make check`'s pure tests refuse).
+"$VENV/bin/python" - <<'PY'
+import glob, os, matplotlib
+if not glob.glob(os.path.join(matplotlib.get_cachedir(), "fontlist-*.json")):
+    print("\033[1m[setup]\033[0m building matplotlib's font list", flush=True)
+    import matplotlib.font_manager  # noqa: F401
+PY

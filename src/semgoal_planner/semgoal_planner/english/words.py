@@ -195,9 +195,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(where|in the place of|in place of) the other( one| block| cube)?( is| was)?", r"swap \g<refs>"),  # "make red and green
     # swap places", "put each block where the other one is"  # "put red in the bin, wait, then ..."
     (r"(is it|would it be|will it be|could it be) possible( for you)? to|(i|we) (was|were|am|are) (hoping|wondering)( if| "
-     r"whether| that)?( you)?( could| can| would| might| will)?|^you( really)? (should|must|need to|have to|will|can|could|"
+     r"whether| that)?( you)?( could| can| would| might| will)?|^(you|we)( really)? (should|must|need to|have to|will|can|could|"
      r"ought to|are to)|^you( really)?(?= (shouldn'?t|should not|must not|mustn'?t|may not|cannot|can'?t|don'?t|do not|"
      r"never)\b)", ""),  # "is it possible to put red on green", "you should put red in the bin"
+    (r"(?<=\bwhile )(you|we)( (should|must|will|can))?(?= (put|place|move|stack|pick|take|drop|set|get|bring|hold|grab|"
+     r"throw|toss|lift|remove|build|make|carry)\b)", ""),  # "... while you put red in the bin"
     (rf"^(can|could|may|should|shall) (?P<refs>{_LISTED})( block| cube| one)? (go|be put|be placed|sit|be)(?= (in|into|on|onto|"
      r"next|near|beside|by|away|far|out|off)\b)", r"\g<refs>"),  # "can red go on green?"
     (r"(i|we) (do not|don'?t) want( you to)?( have| put| see| leave)?", "do not put"),  # "I don't want red on green"
@@ -253,12 +255,13 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"|out of)", r"\g<join> stack"),  # "a tower of red and green and another of blue and yellow"
     (r"(put|place|set|stack) one( block| cube| of them)? (on|onto|on top of|atop) the other( block| cube| one)?",
      "stack both"),  # of two blocks: a tower in either order
-    (r"(?:(?<=^)|(?<=\band )|(?<=\bthen )|(?<=\bbut )|(?<=\bwhile )|(?<=\bwhereas ))"
+    (r"(?:(?<=^)|(?<=\band )|(?<=\bthen )|(?<=\bbut )|(?<=\bwhile )|(?<=\bwhereas )|(?<=\bsure )|(?<=\bsure that )|"
+     r"(?<=\bensure )|(?<=\bensure that ))"
      rf"(?P<who>(the )?({_COLOUR})( block| cube| one)?((,? and|,) (the )?({_COLOUR})( block| cube| one)?)*|the rest|the others|"
      r"all the others|all (of )?the other (blocks|cubes|ones)|everything else|every other (block|cube|one)|the other (blocks"
      r"|cubes|ones|two|three)|(all )?(the )?remaining (blocks|cubes|ones)) (should |must |will |can |may )?(stays?|remains?"
      r"|(is|are|be) left)( (where|as) (it|they) (is|are|was|were|stands?)| put| in place| there| alone| untouched| unmoved"
-     r"| as is)?(?= and\b| then\b| but\b|$)", rf"keep \g<who> {IN_PLACE}"),  # "put red in the bin, green stays": where
+     r"| as is)?(?= and\b| then\b| but\b| while\b|$)", rf"keep \g<who> {IN_PLACE}"),  # "put red in the bin, green stays": where
     # it is ("red and green stay, the rest go in the bin": the mark ends the clause, not "keep ... in the bin")
     (rf"(?:(?<=\band )|(?<=\bbut ))(?P<refs>{_LISTED})( blocks?| cubes?| ones?)? (is|are|does|do|should|must|will|can|has|have)( to)?( be)?"
      r"(?= and\b| then\b|$)", rf"\g<refs> {AFFIRMED}"),  # "red is not in the bin and green is": green is in it

@@ -429,6 +429,7 @@ PHRASES = [
     ("three_blocks", "make red, green and blue all touch", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "form a group with red and blue", "close(red,blue)"),
     ("desk_cleanup", "we should put red in the bin", "in_bin(red)"),
+    ("desk_cleanup", "put anything except red in the bin", "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
     ("two_blocks", "unstack red from green", "not above(red,green)"),
     ("desk_cleanup", "fill up the bin with all the blocks", "in_bin(red) & in_bin(green) & in_bin(blue) & in_bin(yellow)"),
     ("tabletop", "stack red, green and blue such that blue ends up at the bottom", "above(green,blue) & above(red,green)"),
@@ -1413,6 +1414,9 @@ def test_a_tower_turned_over_needs_one_tower_and_a_scene_where_blocks_stand_on_b
     ("tabletop", "don't move red and stack green on blue", "keep(red) & above(green,blue)"),
     ("desk_cleanup", "never touch red, put green in the bin", "keep(red) & in_bin(green)"),
     ("tabletop", "make sure green stays where it is while you put red in the bin", "keep(green) & in_bin(red)"),
+    ("tabletop", "don't move anything except red and put red in the bin", "keep(green) & keep(blue) & keep(yellow) & "
+                                                                           "keep(orange) & keep(purple) & keep(cyan) & "
+                                                                           "keep(pink) & in_bin(red)"),
     ("three_blocks", "leave red alone and put green near blue", "keep(red) & close(green,blue)"),
     ("tabletop", "don't knock the tower over and put orange in the bin", "keep(tower_all) & in_bin(orange)"),
     ("desk_cleanup", "pick up blue and keep it", "holding(blue)"),  # the goal says where blue is

@@ -335,8 +335,9 @@ class Resolver:
             raise LanguageError(f"{' and '.join(subjects)} cannot be {clause.kind} itself: say which block")
         # "all except red" and "only red": the blocks left out explicitly not
         excluded = [b for ref in clause.subjects if ref.kind == "all" for b in self.blocks_of(ref.excluded)]
-        if clause.kind == "table" and not clause.negated:  # "put every block but red on the table": red is left where
-            excluded = []  # it is, not cleared into the bin as the blocks 'only' leaves out are
+        if (clause.kind == "table" and not clause.negated) or clause.kind == "keep":  # "put every block but red on the
+            excluded = []  # table", "don't move anything except red": red is left free, not cleared into the bin as the
+            # blocks 'only' leaves out are
         if any(ref.kind == "only" for ref in clause.subjects):
             excluded += [b for b in self.blocks if b not in subjects and b not in objects]
         if excluded == [TOWER_ALL]:  # "clear the table except the tower": it stays as it stands

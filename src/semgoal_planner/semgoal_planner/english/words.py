@@ -657,6 +657,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"all (of )?(the )?other (blocks|cubes|ones)|all (of )?the others|(the )?left ?overs?( blocks| cubes)?|(the )?left ?over "
      r"(blocks|cubes|ones)|the rest of (all|them|these|those|the (blocks|cubes))|any (remaining|other|left ?over)( blocks| cubes|"
      r" ones)?", "the rest"),  # "bin the leftovers", "the rest of the blocks", "any remaining blocks"
+    (r"(?P<verb>move|touch|disturb|shift|bump) anything(?! else\b)", r"\g<verb> all"),  # "don't move anything (except red)"
+    (r"anything(?= (except|but|other than|apart from|besides|save)\b)", "all"),  # "put anything except red in the bin"
     (r"(each|all|every one) of (them|those|these)(?![^,;.]*\b(except|but|apart|other than|besides|save|excluding)\b)(?= (be|"
      r"are|stay|sit|apart|together|in|into|on|onto|near|next|away|separated|touching)\b)", "them"),  # "pick up red and green
     # and put each of them in the bin": the blocks named before, as 'them' and 'them all' (every block, said first)

@@ -166,6 +166,8 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(?= and\b| then\b|$)", r"\g<head> both"),  # "blue not touching either": neither of the two said before
     (r"(?P<held>(the )?bin (should |must |will |has to |needs to |is to |to )?(contains?|holds?|has|have|gets?) [^;]*?) and "
      r"(nothing else|no other (blocks?|cubes?|ones?))", r"\g<held> only"),  # "the bin should hold red and nothing else"
+    (r"(and )?(when|once|after) (that|this|it) (is|has been) (done|finished|complete|completed|over)", "then"),  # "put blue
+    # in the bin, and when that's done, put red on green"
     (r"(and )?(that is (it|all)|nothing (else|more)|(and |when |once )?(we are |you are |we're |you're |are )?(done|finished))"
      r"(?= and\b| then\b|$)", ""),  #
     # "red on green and that's it": the goal ends there
@@ -222,6 +224,9 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"
     (r"in contact(?= and\b| then\b|$)", "together"),  # "red and green in contact"
     (rf"(?<=\band )that(?= (the )?({_COLOUR})\b)", ""),  # "ensure that red sits on green and that blue ..."
+    (r"the (last|final|next) (thing|step)( (to do|you do|for you to do|i want))?( is| should be| will be)( to)?", "then"),
+    (r"the first (thing|step)( (to do|you do|for you to do|i want))?( is| should be| will be)( to)?", ""),  # "the first
+    # thing to do is put blue in the bin; the last thing is to put yellow on red"
     (r"at all times|all the time|always|forever|for good|permanently|no matter what|whatever happens|in any case|regardless|"
      r"eventually|(by|at) the end( of (it|the (task|episode|run|day)))?|(when|once) (you are|you're|you've|you have) (done|"
      r"finished)", ""),  # the goal's state is the one it ends in
@@ -1465,7 +1470,8 @@ _GERUNDS = {"picking": "pick", "putting": "put", "placing": "place", "taking": "
 _GERUND = re.compile(rf"\b(?:{'|'.join(_GERUNDS)})\b")
 """'after picking up red': the verb as in a command ('holding' is left as it is: 'keep holding green')."""
 _BLOCKS_ONLY = re.compile(rf"(?:\s|,|\b(?:and|the|block|blocks|cube|cubes|one|{_COLOUR})\b)+")
-_LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you\s+(?:have\s+)?|i\s+)?(?P<first>[^,;]+?)"
+_LEADING_WHEN = re.compile(r"^\s*(?P<when>after|before|once|when)\s+(?:you(?:'re|'ve|\s+are|\s+have)?\s+(?:(?:done|finished)"
+                           r"\s+(?:with\s+)?)?|i\s+)?(?P<first>[^,;]+?)"
                            r"\s*,\s*(?:then\s+)?(?P<rest>.+)$")
 _FIRST_SAID_LAST = re.compile(r"^(?P<main>.+?)\s*,?\s+(?:but|and)\s+(?:first(?:ly)?|before that|beforehand)\s*,?\s+(?P<first>.+)$"
                               r"|^(?P<main2>.+?)\s*,?\s+(?:but|and)\s+(?P<first2>.+?)\s+(?:first|beforehand|before that)\s*$")

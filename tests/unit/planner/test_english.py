@@ -1659,7 +1659,8 @@ def test_blocks_put_on_top_of_each_other_with_one_end_said_have_that_end() -> No
 
 @pytest.mark.parametrize("said", ["stack the blocks so that red is at the bottom and blue is at the top",
                                   "stack the blocks with red at the bottom and blue at the top",
-                                  "build a tower of all blocks, making sure that red is at the bottom and blue is on top"])
+                                  "build a tower of all blocks, making sure that red is at the bottom and blue is on top",
+                                  "stack all blocks, red at the bottom, blue on top"])
 def test_a_tower_of_every_block_stacked_so_that_its_ends_are_given_has_those_ends(said: str) -> None:
     objects = ("red", "green", "blue", "yellow")
     goal = parse_goal(said, "tabletop", objects, [])

@@ -82,6 +82,15 @@ def _lifted_ways(formula: Formula) -> list[tuple[Formula, ...]] | None:
     return ways
 
 
+def free_variables(formula: Formula) -> frozenset[str]:
+    """The variables ``formula`` reads that no quantifier of its own binds."""
+    if isinstance(formula, Condition):
+        return frozenset(arg for arg in formula.atom.args if arg.startswith("?"))
+    if formula[0] in ("and", "or"):
+        return frozenset().union(*map(free_variables, formula[1]))
+    return free_variables(formula[2]) - {variable for variable, _ in formula[1]}
+
+
 def holds(formula: Formula, binding: dict[str, str], truth: Callable[[Atom], bool],
           objects_of: Callable[[str], Iterable[str]]) -> bool:
     """Whether ``formula`` holds with ``binding`` where ``truth`` says which atoms do (the plan validator's check);

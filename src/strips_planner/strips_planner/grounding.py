@@ -158,8 +158,17 @@ class _Grounder:
         self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
         self.index = {name: i for i, name in enumerate(self.objects)}
         self._types: dict[str, tuple[int, ...] | None] = {}
-        self.actions = [self._universal_expanded(copy) for action in domain.actions
-                        for copy in adl.lifted_split(action)]
+        split = [copy for action in domain.actions for copy in adl.lifted_split(action)]
+        fluent = sorted({a.predicate for action in split
+                         for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))}
+                        | domain.derived)
+        mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in split
+                                                           for c in action.precondition}
+        static = sorted((set(domain.predicates) | mentioned) - set(fluent) - {"="})
+        self.predicates = tuple(fluent)
+        self.number = {name: i for i, name in enumerate((*fluent, *static))}
+        self.init = [self._key(a) for a in problem.init]
+        self.actions = [self._universal_expanded(action) for action in split]
         """The domain's actions, one per way an ADL condition's ``or``s go (:func:`adl.lifted_split`), their effects'
         ``forall``s expanded."""
         copies = Counter(action.name for action in self.actions)
@@ -167,16 +176,6 @@ class _Grounder:
                             if a.condition is not None or a.effects or copies[a.name] > 1}
         """The actions whose operators :meth:`_with_conditions` finishes, under a name of their own while grounded
         ('#' is no PDDL name's)."""
-        actions = self.actions
-        fluent = sorted({a.predicate for action in actions
-                         for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))}
-                        | domain.derived)
-        mentioned = {a.predicate for a in problem.init} | {c.atom.predicate for action in actions
-                                                           for c in action.precondition}
-        static = sorted((set(domain.predicates) | mentioned) - set(fluent) - {"="})
-        self.predicates = tuple(fluent)
-        self.number = {name: i for i, name in enumerate((*fluent, *static))}
-        self.init = [self._key(a) for a in problem.init]
         self.derived_atoms = [Atom(p, args) for p in sorted(domain.derived)
                               for args in product(*(self._objects_of_type(k) for k in domain.predicates[p]))]
         """Every derived atom the types allow: reached, for grounding, as any of them may come to hold."""
@@ -316,9 +315,22 @@ class _Grounder:
                 literal = adl.substituted(effect.literal, mapping)
                 if effect.condition is None:
                     (add if literal.positive else delete).append(literal.atom)
-                else:
-                    effects.append(Effect((), adl.substituted(effect.condition, mapping), literal))
+                elif not self._never(condition := adl.substituted(effect.condition, mapping)):
+                    effects.append(Effect((), condition, literal))
         return action._replace(add=tuple(add), delete=tuple(delete), effects=tuple(effects))
+
+    def _never(self, condition: adl.Formula) -> bool:
+        """Whether an effect's condition, its ``forall`` bound, is false whatever the action's parameters: one of its
+        conjuncts a static or equality literal over objects only that does not hold (settlers: most pairs of levels a
+        ``forall`` takes are no step the ``DIFF-STONE`` facts allow)."""
+        parts = condition[1] if isinstance(condition, tuple) and condition[0] == "and" else (condition,)
+        for part in parts:
+            if isinstance(part, Condition) and not any(arg.startswith("?") for arg in part.atom.args):
+                atom = part.atom
+                truth = atom.args[0] == atom.args[1] if atom.predicate == "=" else self._static_truth(atom)
+                if truth is not None and truth != part.positive:
+                    return True
+        return False
 
     def _with_effects(self, operator: Operator, action: Action, binding: dict[str, str], index: dict[Atom, int]
                       ) -> Operator:
@@ -338,8 +350,7 @@ class _Grounder:
             bit = index.get(_bound(effect.literal.atom, binding))
             if bit is None:  # the delete of an atom that is never true
                 continue
-            for way in adl.disjuncts(effect.condition, binding, self._static_truth, self._objects_of_type):
-                masks = _masks(way, index)
+            for masks in self._condition_masks(effect, binding, index):
                 if masks is None or masks[0] & operator.pre_neg or masks[1] & operator.pre:
                     continue
                 condition = (masks[0] & ~operator.pre, masks[1] & ~operator.pre_neg)
@@ -351,11 +362,31 @@ class _Grounder:
         return operator._replace(add=add, delete=delete & ~add,
                                  effects=tuple((*condition, *masks) for condition, masks in merged.items()))
 
+    def _condition_masks(self, effect: Effect, binding: dict[str, str], index: dict[Atom, int]
+                         ) -> list[tuple[int, int] | None]:
+        """The masks of each way ``effect``'s condition can hold with ``binding`` (None for a way through a fact never
+        reached); a compound one worked out once per effect and values of the variables it reads, which the operators of
+        an action share."""
+        if isinstance(effect.condition, Condition):  # one literal: cheaper to ground than to look up
+            return [_masks(way, index) for way in adl.disjuncts(effect.condition, binding, self._static_truth,
+                                                                self._objects_of_type)]
+        read = self._read_by.get(id(effect))
+        if read is None:
+            read = self._read_by[id(effect)] = tuple(sorted(adl.free_variables(effect.condition)))
+        key = (id(effect), *(binding.get(variable, variable) for variable in read))
+        masks = self._masks_by.get(key)
+        if masks is None:
+            ways = adl.disjuncts(effect.condition, binding, self._static_truth, self._objects_of_type)
+            masks = self._masks_by[key] = [_masks(way, index) for way in ways]
+        return masks
+
     def _with_conditions(self, operators: list[Operator], facts: list[Atom]) -> list[Operator]:
         """Each operator of an action with an ADL condition as one operator per way its condition can hold (its
         disjuncts over fluent literals), none where it never can, under its action's name, with its conditional
         effects (:meth:`_with_effects`); the others as they are."""
         index = {fact: i for i, fact in enumerate(facts)}
+        self._read_by: dict[int, tuple[str, ...]] = {}
+        self._masks_by: dict[tuple, list[tuple[int, int] | None]] = {}  # (effect, values read) -> its ways' masks
         result = []
         for operator in operators:
             action = self.conditional.get(operator.name)

@@ -158,3 +158,22 @@ def test_a_plan_with_conditional_effects_keeps_its_order_when_deordered() -> Non
     _, _, task = _task(BRIEFCASE, BRIEFCASE_3)
     plan = solve_task(task, "bfs").plan
     assert deorder(task, plan) == [()] + [(step,) for step in range(len(plan) - 1)]
+
+
+LEVELS = """(define (domain levels) (:requirements :adl)
+  (:types thing level)
+  (:predicates (at-level ?x - thing ?l - level) (next ?a ?b - level))
+  (:action raise :parameters (?x - thing)
+   :effect (forall (?a ?b - level) (when (and (at-level ?x ?a) (next ?a ?b))
+                                      (and (at-level ?x ?b) (not (at-level ?x ?a)))))))"""
+
+
+def test_an_effect_whose_static_condition_never_holds_reaches_nothing() -> None:
+    """Of the forall's 16 pairs of levels only two are a step the static next facts allow: the others can never fire,
+    so the levels they alone would add are no facts of the task (l3: nothing leads there), and the plan climbs."""
+    *_, task = _task(LEVELS, """(define (problem p) (:domain levels) (:objects box - thing l0 l1 l2 l3 - level)
+      (:init (at-level box l0) (next l0 l1) (next l1 l2)) (:goal (at-level box l2)))""")
+    assert {str(fact) for fact in task.facts} == {"(at-level box l0)", "(at-level box l1)", "(at-level box l2)"}
+    (operator,) = task.operators
+    assert len(operator.effects) == 2  # l0 -> l1, l1 -> l2
+    assert [op.name for op in solve_task(task, "bfs", "blind").plan] == ["raise", "raise"]

@@ -428,6 +428,8 @@ PHRASES = [
     ("desk_cleanup", "fill the bin with red and green", "in_bin(red) & in_bin(green)"),
     ("three_blocks", "make red, green and blue all touch", "close(red,green) & close(red,blue) & close(green,blue)"),
     ("three_blocks", "form a group with red and blue", "close(red,blue)"),
+    ("three_blocks", "red close to green and blue, green far from blue",
+     "close(red,green) & close(red,blue) & not close(green,blue)"),
     ("desk_cleanup", "we should put red in the bin", "in_bin(red)"),
     ("desk_cleanup", "put anything except red in the bin", "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
     ("tabletop", "when you're done stacking red on green, put yellow in the bin", "above(red,green) & in_bin(yellow)"),

@@ -196,10 +196,12 @@ class Clauses(lark.Transformer):
 
     def _ambig(self, alternatives: list) -> object:
         # the reading with the fewest clauses ("put red and green in the bin" is one clause, not two), then the
-        # longest exception ("all except red and blue" leaves out both), then the earlier clauses' lists the longest
+        # longest exception ("all except red and blue" leaves out both), then the fewest clauses that relate a block to
+        # itself ("red near green and blue and green away from blue": blue is near red), then the earlier clauses' lists the longest
         # ("a tower of red, green and blue and orange not near it": blue in the tower); between equals, the same one on
         # every run (the parser lists them in an order that follows string hashing)
-        return min(alternatives, key=lambda reading: (reading_cost(reading), _lists_first(reading), repr(reading)))
+        return min(alternatives, key=lambda reading: (reading_cost(reading), _self_related(reading), _lists_first(reading),
+                                                      repr(reading)))
 
     # -- clauses ------------------------------------------------------------------------------------
     def act(self, items: list) -> Clause:
@@ -405,6 +407,17 @@ def excepting(clause: Clause, excluded: tuple[Ref, ...]) -> Clause:
 def refs_in(items: list) -> list:
     """The reference tuples (and clauses) among a rule's children, tokens left out."""
     return [i for i in items if not isinstance(i, lark.Token)]
+
+
+def _self_related(node: object) -> int:
+    """How many clauses name one block among both their subjects and their objects."""
+    if isinstance(node, Clause):
+        named = [{colour for ref in refs if ref.kind == "colours" for colour in ref.colours}
+                 for refs in (node.subjects, node.objects)]
+        return int(bool(named[0] & named[1]))
+    if isinstance(node, (list, tuple)):
+        return sum(map(_self_related, node))
+    return 0
 
 
 def _lists_first(node: object) -> tuple[int, ...]:

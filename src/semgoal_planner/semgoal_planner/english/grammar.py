@@ -409,6 +409,10 @@ def refs_in(items: list) -> list:
     return [i for i in items if not isinstance(i, lark.Token)]
 
 
+LISTED_OBJECTS = ("near", "away")
+"""The relations whose objects may be a list of blocks ('next to red and green')."""
+
+
 def _self_related(node: object) -> int:
     """How many clauses name one block among both their subjects and their objects."""
     if isinstance(node, Clause):
@@ -421,9 +425,11 @@ def _self_related(node: object) -> int:
 
 
 def _lists_first(node: object) -> tuple[int, ...]:
-    """Minus each clause's number of subjects, in the order said: a block between two clauses joins the first."""
+    """Minus each clause's number of blocks listed, in the order said: a block between two clauses joins the first
+    ("orange far from purple and pink, and green away from red"). Its subjects, and its objects where a list of them
+    can stand (near or away from several blocks; a block goes on one)."""
     if isinstance(node, Clause):
-        return (-len(node.subjects),)
+        return (-len(node.subjects) - (len(node.objects) if node.kind in LISTED_OBJECTS else 0),)
     if isinstance(node, (list, tuple)):
         return tuple(count for n in node for count in _lists_first(n))
     return ()

@@ -1563,7 +1563,7 @@ _SEVERAL_TOWERS = re.compile(r"\b(two|three|2|3|a couple of|several|some) (tower
 _EACH_TOWER = re.compile(r"\b(one|the other|another|the (first|second|third|last))( tower| stack| pile)? (of|with|from)\b")
 """Each of several towers said as 'one of red and green', 'the other of blue and yellow': a tower of those blocks."""
 _AN_END_REACHED = (rf"(?:the )?(?P<colour>{_COLOUR})(?: block| cube| one)? +(?:(?:is|ends up|sits|stands|goes|should be|will be|"
-                   r"gets|lies) +)?(?:at|on) +(?:the )?(?:very )?(?P<end>top|bottom|base)\b")
+                   r"gets|lies) +)?(?:at|on) +(?:the )?(?:very )?(?P<end>top|bottom|base)\b(?! +of\b)")
 _STACKED_SO = re.compile(rf"\b(?P<head>(?:stack|pile|tower)\b[^.;]*?) *(?: so that| so| such that| in such a way that| making sure"
                          rf"(?: that)?|,) +(?P<ends>{_AN_END_REACHED}(?: *,? *and +{_AN_END_REACHED.replace('?P<', '?P<second_')})?)")
 """'stack the blocks so that red is at the bottom (and blue is at the top)', 'a tower of every block, red on top': as 'with

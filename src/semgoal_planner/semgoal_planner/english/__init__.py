@@ -208,14 +208,20 @@ def _carried_over(goal: dict, stage: Said, resolver: Resolver) -> tuple[dict, Sa
             traded.append(clause)
     stage = [(clause, literals) for clause, literals in stage if clause not in traded]
     moved = {b for clause, _ in stage if not _moves_none(clause) for b in resolver.subjects_of(clause)}
-    named = {b for _, literals in stage for lit, _ in literals for b in lit.args}
+    named = {b for _, literals in stage for lit, _ in literals if lit.value for b in lit.args}  # placed by, or taken
     held = any(lit.name == "holding" and lit.value for _, literals in stage for lit, _ in literals)
     goal = {key: _without(lit, moved) if lit.name == STACK else lit for key, lit in goal.items()
             if not (lit.name == "holding" and lit.value and (held or lit.args[0] in named))}  # the one hand lets go of
     # a block a later stage places another by, or takes another: "pick up red, then put green on red"
     put_on = {lit.args for _, literals in stage for lit, _ in literals if lit.name == "above" and lit.value}
     return {key: lit for key, lit in goal.items() if not moved & set(lit.args) or _within(lit, resolver.carried)
-            or _still_on_it(lit, moved, put_on)}, stage
+            or _still_on_it(lit, moved, put_on) or _kept_off(lit, moved)}, stage
+
+
+def _kept_off(literal: Literal, moved: set[str]) -> bool:
+    """Whether ``literal`` keeps two blocks apart, or a block not moved off one a later stage moves, which still holds
+    ("put purple on the table, then pick up orange": purple is on no block, orange included)."""
+    return not literal.value and (literal.name == "close" or (literal.name == "above" and literal.args[0] not in moved))
 
 
 def _moves_none(clause: Clause) -> bool:

@@ -294,8 +294,9 @@ class Resolver:
                                 f"say which block: {', '.join(self.blocks)}")
         if clause.kind == "on" and clause.objects == (Ref("other"),) and self.built_top and self.built_top not in subjects:
             objects = (self.built_top,)  # "... and blue on top": on the tower just built, not on a block not named
-        elif self.object_it and clause.objects == (Ref("it"),) and not set(self.object_it) & set(subjects):
-            objects = self.object_it  # the same place as the clause before's 'it'
+        elif (self.object_it and clause.objects == (Ref("it"),) and not set(self.object_it) & set(subjects)
+              and clause.kind != "on"):  # the same place as the clause before's 'it' (no block goes on one that has one)
+            objects = self.object_it
         else:
             objects = self.blocks_of(clause.objects, besides=subjects)
         self.object_it = objects if clause.objects == (Ref("it"),) else None

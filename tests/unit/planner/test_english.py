@@ -440,6 +440,8 @@ PHRASES = [
     ("three_blocks", "keep red away from green, then move green next to blue", "not close(red,green) & close(green,blue)"),
     ("tabletop", "put red on green, then put blue on it, then put yellow on it",
      "above(red,green) & above(blue,red) & above(yellow,blue)"),
+    ("three_blocks", "put red next to green, not blue", "close(red,green) & not close(red,blue)"),
+    ("tabletop", "put red on green and not blue", "above(red,green) & not above(red,blue)"),
     ("desk_cleanup", "we should put red in the bin", "in_bin(red)"),
     ("desk_cleanup", "put anything except red in the bin", "in_bin(green) & in_bin(blue) & in_bin(yellow) & not in_bin(red)"),
     ("tabletop", "when you're done stacking red on green, put yellow in the bin", "above(red,green) & in_bin(yellow)"),

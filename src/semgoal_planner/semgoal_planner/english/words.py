@@ -233,6 +233,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"^(ok(ay)?|alright|all right|u+m+|u+h+|e+r+m*|so|well|hey|hi|hello|right|now then|good|great|cool|actually|sorry)( and| then)?"
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
+    (rf"(?P<place>next to|near|beside|close to|away from|far from|on top of|onto|on) (?P<said>(the )?({_COLOUR})( block| cube| "
+     rf"one)?)(( and| but)+| *,)* not (?P<other>(the )?({_COLOUR}))( block| cube| one)?(?= *($|[;.,]|then\b|but\b|"
+     r"and\b(?! +not\b)))", r"\g<place> \g<said> and not \g<place> \g<other>"),  # "put red next to green, not blue":
+    # not next to blue, the block said in the place's stead (the subject stays; 'instead of' contrasts the subject)
     (r"avoid|refrain from|^(instead of|rather than)", "do not"),  # "avoid stacking red on green", "instead of putting red
     # in the bin, put it on green"
     (r"(,? )?(instead of|rather than)", "and not"),  # "put red in the bin rather than green": as ', not green'

@@ -218,7 +218,11 @@ PHRASES: tuple[tuple[str, str], ...] = (
     (r"(i|we)( would|'d) (rather|prefer to|like to) have|(i|we)( would|'d)? prefer( to have)?|(it )?(would|will) be (nice|"
      r"good|great) to have|(what|all) (i|we) (want|need|would like|'d like) is", ""),  # "I'd rather have red in the bin"
     (rf"(and )?as (does|do|is|are|should|will|must)(?= (the )?({_COLOUR})\b)", "and"),  # "red goes in the bin, as does green"
-    (r"((then|and) )?(do )?(the )?same (for|with|to)", "and"),  # "put red in the bin; same for green"
+    (rf"((then|and) )?(do |does )?(the )?same (for|with|to) (?P<refs>(the )?({_COLOUR}))( block| cube| one)?(?= *($|[;.,]|"
+     rf"then\b|but\b|and\b(?! (the )?({_COLOUR})\b)))|(and )?so (does|do|should|must|will) (?P<so>(the )?({_COLOUR}))",
+     rf"and \g<refs>\g<so> {AFFIRMED}"),  # "put red next to green; same for blue", "... and so does blue": blue in red's
+    # stead, next to green (not next to red); a list after 'the same for' stays a list of the clause before
+    (r"((then|and) )?(do )?(the )?same (for|with|to)", "and"),  # "put red in the bin; same for the others"
     (rf"(?P<refs>(the )?({_COLOUR})( block| cube| one)?) (bin|trash|basket)(?= and\b| then\b|$)", r"\g<refs> in the bin"),  #
     # "Red: bin."
     (r"out of contact with", "away from"), (r"in contact with", "next to"),  # "keep red out of contact with green"

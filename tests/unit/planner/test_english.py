@@ -441,6 +441,8 @@ PHRASES = [
     ("tabletop", "put red on green, then put blue on it, then put yellow on it",
      "above(red,green) & above(blue,red) & above(yellow,blue)"),
     ("three_blocks", "put red next to green, not blue", "close(red,green) & not close(red,blue)"),
+    ("tabletop", "put red next to green, not blue and not yellow",
+     "close(red,green) & not close(red,blue) & not close(red,yellow)"),
     ("three_blocks", "move red next to green and do the same with blue", "close(red,green) & close(green,blue)"),
     ("three_blocks", "put red next to green and so does blue", "close(red,green) & close(green,blue)"),
     ("desk_cleanup", "put red in the bin; same for green", "in_bin(red) & in_bin(green)"),

@@ -238,6 +238,10 @@ PHRASES: tuple[tuple[str, str], ...] = (
      r"(?= )", ""),  # "ok robot, now put green in the bin": a word to start with
     (r"(?:(?<=bin)|(?<=table)|(?<=desk)) next(?= and\b| then\b|$)", ""),  # "the yellow block goes in the bin next"
     (rf"(?P<place>next to|near|beside|close to|away from|far from|on top of|onto|on) (?P<said>(the )?({_COLOUR})( block| cube| "
+     rf"one)?)(( and| but)+| *,)* not (?P<other>(the )?({_COLOUR}))( block| cube| one)?( *,)?( and| or| nor)( not)? "
+     rf"(?P<third>(the )?({_COLOUR}))( block| cube| one)?(?= *($|[;.,]|then\b|but\b|and\b(?! +not\b)))",
+     r"\g<place> \g<said> and not \g<place> \g<other> and not \g<place> \g<third>"),  # "... next to green, not blue or yellow"
+    (rf"(?P<place>next to|near|beside|close to|away from|far from|on top of|onto|on) (?P<said>(the )?({_COLOUR})( block| cube| "
      rf"one)?)(( and| but)+| *,)* not (?P<other>(the )?({_COLOUR}))( block| cube| one)?(?= *($|[;.,]|then\b|but\b|"
      r"and\b(?! +not\b)))", r"\g<place> \g<said> and not \g<place> \g<other>"),  # "put red next to green, not blue":
     # not next to blue, the block said in the place's stead (the subject stays; 'instead of' contrasts the subject)

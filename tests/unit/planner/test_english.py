@@ -443,6 +443,8 @@ PHRASES = [
     ("three_blocks", "put red next to green, not blue", "close(red,green) & not close(red,blue)"),
     ("tabletop", "put red next to green, not blue and not yellow",
      "close(red,green) & not close(red,blue) & not close(red,yellow)"),
+    ("tabletop", "put red and green next to blue and put yellow away from them",
+     "close(red,blue) & close(green,blue) & not close(red,yellow) & not close(green,yellow)"),
     ("three_blocks", "move red next to green and do the same with blue", "close(red,green) & close(green,blue)"),
     ("three_blocks", "put red next to green and so does blue", "close(red,green) & close(green,blue)"),
     ("desk_cleanup", "put red in the bin; same for green", "in_bin(red) & in_bin(green)"),

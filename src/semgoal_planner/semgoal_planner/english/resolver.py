@@ -246,6 +246,8 @@ class Resolver:
             if len(self.blocks) == 1:
                 return self.blocks
             raise LanguageError(f"'it' or 'the block' is ambiguous: say which block ({', '.join(self.blocks)})")
+        if len(self.last) >= 2 and not set(self.last) & set(besides):  # "put red and green next to blue and yellow away
+            return self.last  # from them": the blocks the clause before moved
         return self.last_named or self.blocks  # them: those named before, or, said first, every block here
 
     def subjects_of(self, clause: Clause) -> tuple[str, ...]:

@@ -8,7 +8,7 @@ contradictions, so a planner only ever sees goals it can state.
 from __future__ import annotations
 
 import itertools
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from semgoal_core.consistency import ContradictionError, check_consistent
@@ -123,8 +123,6 @@ def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lite
     binned = [lit.args[0] for lit in state if lit.name == "in_bin" and lit.value]
 
     def placed(arg: str) -> str:
-        if arg.startswith(ALL_BUT_PREFIX):
-            return ALL_BUT_PREFIX + placed(arg.removeprefix(ALL_BUT_PREFIX))
         if arg == HELD:
             if not held:
                 raise GoalError("the hand holds no block now: name the block instead")
@@ -146,7 +144,7 @@ def relative(literals: Sequence[Literal], state: Sequence[Literal]) -> list[Lite
             return under[block]
         return arg
 
-    made = [Literal(lit.name, tuple(map(placed, lit.args)), lit.value) for lit in literals]
+    made = [Literal(lit.name, tuple(_through_group(arg, placed) for arg in lit.args), lit.value) for lit in literals]
     itself = next((lit for lit in made if lit.value and len(set(lit.args)) < len(lit.args)), None)
     if itself:
         raise GoalError(f"{itself.args[0]} would be {itself.name} itself: the block named by where it is now is "
@@ -200,7 +198,7 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
     named = {lit.args[0] for lit in literals if TOWER_REST not in lit.args}  # "... and the rest": not these
     each_of = {TOWER_ALL: tower, TOWER_REST: [o for o in objects if o not in tower and o not in named]}
     for literal in (each for lit in literals if lit != Literal(SWAP, (TOWER_ALL,)) for each in _each_of(lit, each_of)):
-        args = tuple(_placed_in(place, arg) for arg in literal.args)
+        args = tuple(_through_group(arg, lambda said: place.get(said, said)) for arg in literal.args)
         if len(set(args)) < len(args):  # "put the top block on the table", "... and the others next to it": not
             continue  # on or by itself
         placed.append(Literal(literal.name, args, literal.value))
@@ -209,11 +207,11 @@ def the_tower(literals: Sequence[Literal], state: Sequence[Literal], objects: Se
     return placed
 
 
-def _placed_in(place: dict[str, str], arg: str) -> str:
-    """``arg`` as ``place`` places it, also where a group leaves it out (``all_but_tower_top``)."""
+def _through_group(arg: str, place: Callable[[str], str]) -> str:
+    """``arg`` as ``place`` places it, also where a group leaves it out (``all_but_tower_top``: all but the top)."""
     if arg.startswith(ALL_BUT_PREFIX):
-        return ALL_BUT_PREFIX + _placed_in(place, arg.removeprefix(ALL_BUT_PREFIX))
-    return place.get(arg, arg)
+        return ALL_BUT_PREFIX + place(arg.removeprefix(ALL_BUT_PREFIX))
+    return place(arg)
 
 
 def every_block_but(literals: Sequence[Literal], objects: Sequence[str]) -> list[Literal]:

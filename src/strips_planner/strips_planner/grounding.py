@@ -158,6 +158,8 @@ class _Grounder:
         self.objects = tuple(sorted(problem.objects))  # the domain's constants among them
         self.index = {name: i for i, name in enumerate(self.objects)}
         self._types: dict[str, tuple[int, ...] | None] = {}
+        self._read_by: dict[int, tuple[str, ...]] = {}  # an effect -> the variables its condition reads
+        self._masks_by: dict[tuple, list[tuple[int, int] | None]] = {}  # (effect, values read) -> its ways' masks
         split = [copy for action in domain.actions for copy in adl.lifted_split(action)]
         fluent = sorted({a.predicate for action in split
                          for a in (*action.add, *action.delete, *(e.literal.atom for e in action.effects))}
@@ -367,17 +369,18 @@ class _Grounder:
         """The masks of each way ``effect``'s condition can hold with ``binding`` (None for a way through a fact never
         reached); a compound one worked out once per effect and values of the variables it reads, which the operators of
         an action share."""
-        if isinstance(effect.condition, Condition):  # one literal: cheaper to ground than to look up
-            return [_masks(way, index) for way in adl.disjuncts(effect.condition, binding, self._static_truth,
-                                                                self._objects_of_type)]
-        read = self._read_by.get(id(effect))
-        if read is None:
-            read = self._read_by[id(effect)] = tuple(sorted(adl.free_variables(effect.condition)))
-        key = (id(effect), *(binding.get(variable, variable) for variable in read))
+        key = None
+        if not isinstance(effect.condition, Condition):  # one literal is cheaper to ground than to look up
+            read = self._read_by.get(id(effect))
+            if read is None:
+                read = self._read_by[id(effect)] = tuple(sorted(adl.free_variables(effect.condition)))
+            key = (id(effect), *(binding.get(variable, variable) for variable in read))
         masks = self._masks_by.get(key)
         if masks is None:
             ways = adl.disjuncts(effect.condition, binding, self._static_truth, self._objects_of_type)
-            masks = self._masks_by[key] = [_masks(way, index) for way in ways]
+            masks = [_masks(way, index) for way in ways]
+            if key is not None:
+                self._masks_by[key] = masks
         return masks
 
     def _with_conditions(self, operators: list[Operator], facts: list[Atom]) -> list[Operator]:
@@ -385,8 +388,6 @@ class _Grounder:
         disjuncts over fluent literals), none where it never can, under its action's name, with its conditional
         effects (:meth:`_with_effects`); the others as they are."""
         index = {fact: i for i, fact in enumerate(facts)}
-        self._read_by: dict[int, tuple[str, ...]] = {}
-        self._masks_by: dict[tuple, list[tuple[int, int] | None]] = {}  # (effect, values read) -> its ways' masks
         result = []
         for operator in operators:
             action = self.conditional.get(operator.name)

@@ -18,6 +18,7 @@
 #include "_atoms.h" /* Python.h; Atoms, sort_by_key, read_ints */
 
 #define MAX_ARGS 32 /* parameters of an action, and arguments of a predicate */
+#define SIGNAL_CHECK_MASK 0xFFFF /* check for Ctrl-C or a time limit's alarm every 65,536 join steps */
 
 typedef struct {
     int *items;
@@ -88,6 +89,7 @@ typedef struct {
     Atoms bucket_keys;                 /* (index, *key) -> bucket */
     Vec *buckets;                      /* per bucket, its atoms in arrival order */
     int buckets_room;
+    unsigned long steps; /* join steps taken, for the signal checks */
 } Ctx;
 
 static inline int value_of(int arg, const int *values) { return arg >= 0 ? values[arg] : ~arg; }
@@ -181,6 +183,7 @@ static int found(Ctx *c, int s, const int *values) {
 }
 
 static int join(Ctx *c, int s, int *values, const Step *steps, int nsteps, int k, int seed_arrival) {
+    if (!(++c->steps & SIGNAL_CHECK_MASK) && PyErr_CheckSignals()) return -1; /* a join can take minutes */
     if (k == nsteps) return found(c, s, values);
     const Step *step = &steps[k];
     const Schema *schema = &c->schemas[s];

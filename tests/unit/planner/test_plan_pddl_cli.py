@@ -177,6 +177,23 @@ def test_a_time_limit_stops_a_long_search_with_exit_4(tmp_path: Path, capsys) ->
     assert signal.getsignal(signal.SIGALRM) is handler  # a test runner's own alarm keeps working
 
 
+def test_a_time_limit_stops_a_long_grounding_too(tmp_path: Path, capsys) -> None:
+    """Five parameters over 80 objects, a static condition on the last one bound failing every join: grounding's
+    exploration alone runs for tens of seconds, and checks for the alarm as the search does."""
+    objects = [f"o{i}" for i in range(80)]
+    (tmp_path / "d.pddl").write_text(
+        "(define (domain slow-join) (:requirements :strips :negative-preconditions) (:predicates (p ?x) (s ?x) (done))"
+        " (:action a :parameters (?a ?b ?c ?d ?e) :precondition (and (p ?a) (p ?b) (p ?c) (p ?d) (p ?e) (not (s ?e)))"
+        " :effect (done)))")
+    (tmp_path / "p.pddl").write_text(
+        f"(define (problem slow) (:domain slow-join) (:objects {' '.join(objects)})"
+        f" (:init {' '.join(f'(p {o}) (s {o})' for o in objects)}) (:goal (done)))")
+    started = time.perf_counter()
+    assert plan_pddl_main([str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"), "--time-limit", "0.3"]) == 4
+    assert time.perf_counter() - started < 3.0
+    assert "no plan within the time limit of 0.3 s" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("value", ["0", "-1", "nan", "soon"])
 def test_a_time_limit_must_be_a_positive_number(value: str, capsys) -> None:
     assert plan_pddl_main([KEYS, str(FIXTURES / "keys-vault.pddl"), "--time-limit", value]) == 2

@@ -924,12 +924,14 @@ static int guide_evaluate(Guide *gd, TaskObject *t, const word *s, const word *a
     return dead;
 }
 
-/* Item `item` into each heuristic's list under its value in h, and into the helpful lists too where `helpful`. */
-static int guide_push(Guide *gd, const int *h, int64_t tie, int item, int helpful) {
-    for (int i = 0; i < gd->n; i++)
-        if (heap_push(&gd->lists[i], h[i], tie, item) ||
-            (helpful && heap_push(&gd->lists[gd->n + i], h[i], tie, item)))
+/* Item `item` into each heuristic's list under its value in h (the landmark count's lists first taking those
+   `lm_ahead` landmarks nearer, among equal values), and into the helpful lists too where `helpful`. */
+static int guide_push(Guide *gd, const int *h, int64_t tie, int lm_ahead, int item, int helpful) {
+    for (int i = 0; i < gd->n; i++) {
+        int64_t own = gd->heuristics[i] == H_LMCOUNT ? tie - ((int64_t)lm_ahead << 40) : tie;
+        if (heap_push(&gd->lists[i], h[i], own, item) || (helpful && heap_push(&gd->lists[gd->n + i], h[i], own, item)))
             return -1;
+    }
     return 0;
 }
 
@@ -950,7 +952,7 @@ static int run_greedy(TaskObject *t, Store *st, Guide *gd, word *child, int *ops
         status = 0;
         goto done;
     }
-    if (guide_push(gd, h, 0, 0, 0)) goto oom;
+    if (guide_push(gd, h, 0, 0, 0, 0)) goto oom;
     for (int q; (q = guide_turn(gd)) >= 0;) {
         long s = heap_pop(&gd->lists[q]).item;
         if ((size_t)s >= nclosed) {
@@ -981,7 +983,7 @@ static int run_greedy(TaskObject *t, Store *st, Guide *gd, word *child, int *ops
             if (dead < 0) goto done;
             st->h[c] = h[0];
             out->generated++;
-            if (!dead && guide_push(gd, h, ++counter, (int)c, helpful[k])) goto oom;
+            if (!dead && guide_push(gd, h, ++counter, 0, (int)c, helpful[k])) goto oom;
         }
     }
     status = 0;
@@ -992,6 +994,20 @@ done:
     free(helpful);
     free(closed);
     return status;
+}
+
+/* The landmarks operator `o` makes true that the path to state `s` has not yet accepted (0 where the landmark
+   count does not guide the search): how much nearer the goal the count will find its successor, as far as the
+   operator's own effects tell. A lazy search's successors all wait under their parent's value, so in the count's
+   lists those reaching more new landmarks go first, where first generated would go first otherwise: on maintenance
+   (IPC 2014), where any order of the days' choices is a plan's and a wrong one a dead end, the first-listed
+   choices ran into dead ends for seconds. */
+static int landmarks_reached(const TaskObject *t, const Store *st, long s, int o) {
+    if (!st->landmarks) return 0;
+    const word *add = W(t, t->add, o), *accepted = ACCEPTED(st, s);
+    int count = 0;
+    for (int i = 0; i < t->nwords; i++) count += __builtin_popcountll(add[i] & st->landmarks[i] & ~accepted[i]);
+    return count;
 }
 
 /* Lazy greedy best-first (deferred evaluation; Richter & Helmert 2009, Fast Downward's lazy_greedy): a state's
@@ -1026,7 +1042,8 @@ static int run_lazy(TaskObject *t, Store *st, Guide *gd, word *child, int *ops, 
             for (int k = 0; k < nops; k++, nedges++) {
                 edge_parent[nedges] = (int)s;
                 edge_op[nedges] = ops[k];
-                if (guide_push(gd, h, ++counter, (int)nedges, gd->helpful && t->op_mark[ops[k]] == t->epoch))
+                if (guide_push(gd, h, ++counter, landmarks_reached(t, st, s, ops[k]), (int)nedges,
+                               gd->helpful && t->op_mark[ops[k]] == t->epoch))
                     goto oom;
             }
         }

@@ -36,8 +36,8 @@ options:
                   lmcut does not take), hff (gbfs), hff+lmcount (lazy); the greedy searches
                   take several joined by '+', one open list each, in turn; lmcount (the landmark
                   count) guides only them
-  --time-limit T  give up after T seconds (exit 4), looked at in Python's steps and every 256
-                  expansions of the search, not inside grounding's C passes; default: none
+  --time-limit T  give up after T seconds (exit 4), looked at in Python's steps, every 65,536 join
+                  steps of grounding's exploration and every 256 expansions of the search; default: none
   --stats         print expanded and generated states and the search time to stderr
 
 exit: 0 plan, 1 unsolvable, 2 bad PDDL / unreadable file / bad arguments, 3 unsupported PDDL, 4 no plan

@@ -68,11 +68,17 @@ def main(argv: list[str]) -> int:
               "reference_runs": [None if rate is None else round(rate, 1) for rate in references]}
     if reference is not None:
         result["ratio_to_reference"] = {k: round(v / reference, 2) for k, v in rows.items() if not k.startswith("ref")}
+        # what an env with no work of its own beside the physics would reach: the scene's physics is the bound
+        result["physics_ratio_to_reference"] = {k: round(v / reference, 2) for k, v in physics_rows.items()}
     out = sys.stderr if args.json else sys.stdout
     for name, rate in result["steps_per_second"].items():
         detail = (f"   (FetchWorld.step {world_rows[name]:7.1f}, mj_step x {N_SUBSTEPS} {physics_rows[name]:7.1f})"
                   if name in world_rows else "")
         print(f"{name:34s} {rate:8.1f} steps/s{detail}", file=out)
+    if reference is not None:
+        print("ratio to the reference, the env's / its physics alone's: " + ", ".join(
+            f"{k} {result['ratio_to_reference'][k]} / {result['physics_ratio_to_reference'][k]}" for k in physics_rows),
+            file=out)
     print(f"desk_cleanup_4 x {BATCH_WORLDS} worlds in a batch: " + ", ".join(
         f"{threads} thread(s) {rate:7.1f} world steps/s" for threads, rate in batched.items())
         + f"  ({result['batch_over_one_core']}x one core)", file=out)

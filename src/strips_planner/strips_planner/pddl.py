@@ -328,6 +328,9 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
     if isinstance(predicate, list):
         _name(predicate, "a function name" if functions else "a predicate name")  # raises
     args = tuple(expr[1:])
+    if predicate in _COMPARISONS or (predicate == "=" and any(isinstance(arg, list) for arg in args)):
+        raise _unsupported(expr, f"numeric conditions ({predicate} ...) are not supported: only action costs "
+                                 "are numeric here")
     if predicate == "=" and not functions:
         if not domain.requirements & {":equality", ":adl"} and variables is not None:
             _warn(domain, "(= ...) is used without :equality in the domain's :requirements")
@@ -352,6 +355,8 @@ def _atom(expr: list, domain: Domain, variables: dict[str, str] | None, objects:
     return Atom(predicate, args)
 
 
+_COMPARISONS = frozenset((">", "<", ">=", "<="))
+"""Numeric fluents' comparisons, which a predicate's name never is."""
 _NOT_STRIPS = frozenset(("or", "imply", "exists", "forall", "when", "increase", "decrease", "assign"))
 _ADL_CONDITIONS = frozenset(("or", "imply", "exists", "forall"))
 """What a precondition or a goal may say beyond a conjunction of literals (:mod:`strips_planner.adl`)."""

@@ -115,6 +115,13 @@ def test_a_cost_per_operator_is_required_and_non_negative() -> None:
     (ROADS, DETOUR.replace("minimize", "maximize"), PddlUnsupportedError, "the only metric supported"),
     (ROADS, DETOUR.replace("(= (length c d) 1)", "(= (width c d) 1)"), PddlUnsupportedError, "in :functions"),
     (ROADS, DETOUR.replace("(= (length c d) 1)", ""), PddlError, r"costs \(length c d\), which :init gives no value"),
+    # numeric fluents' conditions: valid PDDL outside the fragment (exit 3), not an unknown predicate (exit 2)
+    (ROADS.replace("(road ?from ?to) (engine-on))", "(road ?from ?to) (engine-on) (< (length ?from ?to) 5))"), DETOUR,
+     PddlUnsupportedError, r"numeric conditions \(< \.\.\.\)"),
+    (ROADS, DETOUR.replace("(:goal (at d))", "(:goal (and (at d) (>= (total-cost) 3)))"), PddlUnsupportedError,
+     r"numeric conditions \(>= \.\.\.\)"),
+    (ROADS, DETOUR.replace("(:goal (at d))", "(:goal (and (at d) (= (total-cost) 6)))"), PddlUnsupportedError,
+     r"numeric conditions \(= \.\.\.\)"),
 ])
 def test_cost_constructs_outside_the_fragment_are_named(domain_text, problem_text, error, words) -> None:
     with pytest.raises(error, match=words):

@@ -22,6 +22,7 @@ from rclpy.task import Future
 from visualization_msgs.msg import MarkerArray
 
 from semgoal_core.arms import robot_name, robot_names, takers
+from semgoal_core.tasks import get_task
 from semgoal_core.vocabulary import LAYOUTS
 from semgoal_msgs.action import ExecuteGoal
 from semgoal_msgs.msg import GoalRequest, OperatorEvent, Plan, SemanticState, SubGoal, WorldState
@@ -44,6 +45,9 @@ from semgoal_ros.diagnostics import OK, Counters, Diagnostics, Latencies
 from semgoal_ros.parameters import apply_changes, declare
 
 SILENCE_CHECK_S = 0.25
+NEXT_WORLD_WAIT_S = 1.0
+"""How long a topic goal that fits the scene but not the world seen waits for the next world: a goal sent on a
+reset's answer can come before the sim's event that announces the reset (another writer, another topic)."""
 
 
 class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
@@ -132,17 +136,34 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
     def goal_callback(self, msg: GoalRequest) -> None:
         """A goal on the topic (``ros2 topic pub``), perhaps sent as the nodes start or right after a reset: like
         an action goal, it waits up to ``state_wait_s`` for a state of the current world (the first one, or the
-        reset's) rather than being refused for want of one or judged on the world before. The wait is a task of
-        its own: awaited here, it would hold the callback group the states come in on."""
+        reset's) rather than being refused for want of one or judged on the world before; one that fits the scene
+        but not the world seen waits a little for the next world. The wait is a task of its own: awaited here, it
+        would hold the callback group the states come in on."""
         goal = self.read(msg, self.reset_episode)
         if isinstance(goal, Goal) and not self.has_state(self.reset_episode):
-            self.executor.create_task(self.start_goal_on_state(msg, goal, self.reset_episode))
+            self.executor.create_task(self.start_goal_on_state(msg, goal, self.reset_episode, self.state_wait_s))
+        elif self.for_another_world(msg, goal):
+            wait_s = min(self.state_wait_s, NEXT_WORLD_WAIT_S)
+            self.executor.create_task(self.start_goal_on_state(msg, goal, self.last_state.episode + 1, wait_s))
         else:
             self.min_episode = 0
             self.start_goal(msg, goal)
 
-    async def start_goal_on_state(self, msg: GoalRequest, goal: Goal, episode: int) -> None:
-        await self.state_of(episode, self.state_wait_s)
+    def for_another_world(self, msg: GoalRequest, goal: Goal | GoalError) -> bool:
+        """Whether ``goal`` fits the scene but not the world seen: a task of other blocks, or literals naming a
+        block this world lacks."""
+        if self.last_state is None:
+            return False
+        if isinstance(goal, Goal):
+            return bool(goal.task) and get_task(goal.task).blocks != tuple(self.last_state.objects)
+        return isinstance(self.read(msg, self.last_state.episode + 1), Goal)  # read against every block of the scene
+
+    async def start_goal_on_state(self, msg: GoalRequest, goal: Goal | GoalError, episode: int, wait_s: float) -> None:
+        """``goal`` once a state of world ``episode`` has come, or ``wait_s`` has passed; one that did not fit the
+        world before is read again against the new one (else refused as it was)."""
+        await self.state_of(episode, wait_s)
+        if isinstance(goal, GoalError) and self.has_state(episode):
+            goal = self.read(msg, episode)
         self.min_episode = 0
         self.start_goal(msg, goal)
 

@@ -110,7 +110,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
                  missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-                 render_mode: str | None = None) -> None:
+                 render_mode: str | None = None, sleep: bool = False) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
@@ -123,6 +123,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             bring them. Scenes with towers only; evaluation sets it to None.
         :param max_blocks: the most blocks an episode has (None: every count the scene allows), so that tasks with
             more (the tabletop's Tower-7 and Clean-8) test an actor on counts it never met.
+        :param sleep: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`; off as the actors were trained).
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")
@@ -138,7 +139,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.block_counts = tuple(count for count in counts if max_blocks is None or count <= max_blocks)
         if not self.block_counts:
             raise ValueError(f"max_blocks {max_blocks} leaves no episode: scene {scene!r} has {', '.join(map(str, counts))}")
-        self.worlds = {count: FetchWorld(scene, count) for count in self.block_counts}
+        self.worlds = {count: FetchWorld(scene, count, sleep=sleep) for count in self.block_counts}
         self.world = self.worlds[self.block_counts[-1]]
         self.layout = self.world.layout
         self.motion_reward = MotionReward(self.layout)

@@ -104,11 +104,12 @@ class FetchWorld:
     arm, :meth:`snapshot` and :meth:`observation` read any arm's hand, ``holding`` is in either hand, and contacts
     between the two arms are counted (:attr:`arm_contacts`)."""
 
-    def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1) -> None:
+    def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1, sleep: bool = False) -> None:
+        """``sleep``: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`)."""
         self.scene = SCENES[scene]
         self._workspace_high = WORKSPACE_HIGH + np.array([0.0, 0.0, self.scene.reach_height])
         self.layout = LAYOUTS[scene]
-        self.model = build_model(scene, n_blocks, arms)
+        self.model = build_model(scene, n_blocks, arms, sleep)
         self.data = mujoco.MjData(self.model)
         self.blocks = self.scene.objects[: n_blocks or self.scene.max_blocks]
         self.present = np.array([obj in self.blocks for obj in self.scene.objects])

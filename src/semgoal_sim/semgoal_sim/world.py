@@ -214,6 +214,7 @@ class FetchWorld:
         Settling (arm held still) lets stacked starts come to rest before the first observation.
         """
         m, d = self.model, self.data
+        mujoco.mj_resetData(m, d)  # every body awake: sleeping is no part of the state set below
         mujoco.mj_setState(m, d, self._home_state, mujoco.mjtState.mjSTATE_INTEGRATION)
         for addr, dof, pos in zip(self._block_qpos, self._block_qvel, np.asarray(block_positions), strict=True):
             d.qpos[addr: addr + 7] = [*pos, 1.0, 0.0, 0.0, 0.0]

@@ -116,6 +116,13 @@ def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> Non
     assert "no exported hierarchical actor" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("args", [["--agents", "flat-semantic"], ["--via-ros"]])
+def test_eval_runs_sleeping_blocks_only_for_the_hierarchy_in_process(args: list[str], capsys) -> None:
+    with pytest.raises(SystemExit):
+        evaluation.main(["--tasks", "MC-2", "--sleep", *args])
+    assert "--sleep runs the hierarchical agent in process" in capsys.readouterr().err
+
+
 def test_wilson_interval_stays_wide_at_the_extremes() -> None:
     low, high = evaluation.wilson_interval(10, 10)
     assert high == 1.0 and 0.69 < low < 0.73  # 10 of 10 still admits ~72 %

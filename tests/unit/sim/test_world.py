@@ -252,8 +252,8 @@ def test_a_block_is_not_put_into_a_hand_near_the_table_but_may_be_set_down_from_
 
 def test_blocks_at_rest_sleep_where_asked_and_wake_when_moved_touched_or_reset() -> None:
     """``sleep=True``: resting blocks leave the physics (the arm's tree never sleeps); a block teleported into the
-    air wakes and falls, the expert still picks a sleeping block, and an episode does not depend on what slept in
-    the one before (a reset moves every block, which wakes it)."""
+    air wakes and falls, the expert still picks a sleeping block, and a reset after a history of sleeping gives the
+    episode a new world gives (over whole episodes: ``test_tabletop_hierarchy.py``)."""
     world = FetchWorld("desk_cleanup", 4, sleep=True)
     positions, _ = TASKS["DC-4"].initial_state(5)
     first = world.reset(positions)

@@ -84,8 +84,10 @@ class Person(Protocol):
 class HierarchicalAgent:
     """Planner executive + one scene's sub-goal actor, on the benchmark's tasks or on any goal."""
 
-    def __init__(self, scene: str, actor_dir: Path, arms: int = 1) -> None:
+    def __init__(self, scene: str, actor_dir: Path, arms: int = 1, sleep: bool = False) -> None:
         self.scene = scene
+        self.sleep = sleep
+        """Blocks at rest sleep in its worlds (:func:`semgoal_sim.scene.build_model`)."""
         self.controllers = [SubgoalController(scene, actor_dir, arm=arm, shared=arms > 1) for arm in range(arms)]
         """One per arm, each driving the same actor in its arm's frame (:class:`semgoal_core.arms.ArmFrame`)."""
         self.controller = self.controllers[0]
@@ -114,7 +116,7 @@ class HierarchicalAgent:
         With two arms each runs its own steps, and a step is done by whichever arm is free first."""
         key = (label, len(positions))
         if key not in self._worlds:
-            self._worlds[key] = FetchWorld(self.scene, len(positions), len(self.robots))
+            self._worlds[key] = FetchWorld(self.scene, len(positions), len(self.robots), self.sleep)
         world = self._worlds[key]
         world.reset(positions)
         success, replans, first_held, executive, overlap = True, 0, None, None, 0
@@ -200,9 +202,12 @@ def _scene_task(task_name: str, scene: str) -> Task:
     return task
 
 
-def make_agent(agent: str, scene: str, actor_dir: Path | None = None, arms: int = 1) -> HierarchicalAgent | FlatAgent:
-    """The runner for ``agent`` on ``scene`` (the hierarchical one with ``arms`` arms); ``actor_dir`` defaults to the
-    shipped actor."""
+def make_agent(agent: str, scene: str, actor_dir: Path | None = None, arms: int = 1,
+               sleep: bool = False) -> HierarchicalAgent | FlatAgent:
+    """The runner for ``agent`` on ``scene`` (the hierarchical one with ``arms`` arms, its blocks at rest sleeping
+    with ``sleep``); ``actor_dir`` defaults to the shipped actor."""
     spec = get_agent(agent)  # KeyError with the valid names
     actor_dir = actor_dir or actor_io.models_dir() / spec.model_name(scene)
-    return HierarchicalAgent(scene, actor_dir, arms) if agent == "hierarchical" else FlatAgent(agent, scene, actor_dir)
+    if agent != "hierarchical":
+        return FlatAgent(agent, scene, actor_dir)
+    return HierarchicalAgent(scene, actor_dir, arms, sleep)

@@ -230,10 +230,10 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
 
 
 def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds: int, models_dir: Path,
-                  linger: int = 0) -> Row:
+                  linger: int = 0, sleep: bool = False) -> Row:
     """In-process episodes (their indices: episode i starts from task seed ``seed + i``) of one agent on one task,
     for every available training seed (one job); ``linger``: control steps after a success before the goal is
-    checked again (the hierarchical agent)."""
+    checked again (the hierarchical agent); ``sleep``: its worlds' blocks at rest sleep."""
     import torch
 
     from semgoal_bringup.experiments.episodes import make_agent
@@ -250,7 +250,7 @@ def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds:
         label = "shipped" if directory.parent == models_dir else directory.name
         expert = directory == models_dir
         row.seed_steps[label] = {0 if expert else json.loads((directory / "actor.json").read_text())["env_steps"]}
-        runner = make_agent(agent, scene, directory)
+        runner = make_agent(agent, scene, directory, sleep=sleep)
         for i in episodes:
             row.add(label, runner.run(task_name, seed + i, linger=linger) if agent == "hierarchical"
                     else runner.run(task_name, seed + i))
@@ -272,11 +272,12 @@ def merge(rows: list[Row]) -> list[Row]:
 
 
 def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
-                        jobs: int, executor: str = "local", chunk: int = 0, linger: int = 0) -> list[Row]:
+                        jobs: int, executor: str = "local", chunk: int = 0, linger: int = 0,
+                        sleep: bool = False) -> list[Row]:
     """Every (agent, task, chunk of ``chunk`` episodes; 0: all) as a job on ``executor`` with ``jobs`` workers.
     Each job is seeded by its episodes' indices: the rows do not depend on the executor, the workers or the chunks."""
     size = chunk or episodes
-    work = [(agent, task, range(first, min(first + size, episodes)), seed, seeds, models_dir, linger)
+    work = [(agent, task, range(first, min(first + size, episodes)), seed, seeds, models_dir, linger, sleep)
             for agent in agents for task in tasks for first in range(0, episodes, size)]
     return merge(run_jobs(evaluate_task, work, executor, jobs, what="eval job"))
 
@@ -471,6 +472,8 @@ def main(argv: list[str]) -> int:
                         help="local (a process pool), dask (a Dask LocalCluster on 127.0.0.1) or dask:ADDRESS (a running "
                              "Dask scheduler)")
     parser.add_argument("--chunk", type=natural, default=10, help="episodes per job (per agent and task; 0: all in one)")
+    parser.add_argument("--sleep", action="store_true", help="the hierarchical agent's blocks at rest sleep (MuJoCo's "
+                        "sleeping islands; off as the actors were trained): in process only")
     parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
     args = parser.parse_args(argv)
@@ -478,6 +481,8 @@ def main(argv: list[str]) -> int:
         tasks = parse_tasks(args.tasks)
     except KeyError as error:
         parser.error(str(error.args[0]))
+    if args.sleep and (args.via_ros or args.agents.strip() != "hierarchical"):
+        parser.error("--sleep runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
     if args.linger < 0:
         parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
@@ -494,7 +499,7 @@ def main(argv: list[str]) -> int:
     models_dir = args.models or actor_io.models_dir()
     try:
         rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs,
-                                   args.executor, args.chunk, args.linger)
+                                   args.executor, args.chunk, args.linger, args.sleep)
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2

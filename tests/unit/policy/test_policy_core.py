@@ -265,6 +265,17 @@ def test_flat_agents_refuse_derived_features() -> None:
         make_env("flat-semantic", "desk_cleanup", ("bin_target",))
 
 
+def test_sleeping_blocks_are_the_hierarchys_option() -> None:
+    """`eval subgoals --sleep`: the sub-goal episodes' worlds let blocks at rest sleep; the flat baselines' task
+    envs refuse it rather than ignore it."""
+    import mujoco
+
+    env = make_env("hierarchical", "three_blocks", sleep=True)
+    assert env.world.model.opt.enableflags & int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    with pytest.raises(ValueError, match="sleeping blocks are for the hierarchical agent only"):
+        make_env("flat-semantic", "three_blocks", sleep=True)
+
+
 def test_lockstep_follows_the_decision_on_the_step_before_when_it_names_a_subgoal() -> None:
     assert lockstep_subgoal("pick(red)", "put_near(red,green)") == "pick(red)"
     assert lockstep_subgoal(None, "pick(red)") == "pick(red)"  # first step, or the step before named none

@@ -16,9 +16,10 @@ from semgoal_core.vocabulary import SCENES
 
 
 def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
-             missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None):
-    """The env ``agent`` learns in: sub-goal episodes for the hierarchy, whole tasks for the flat baselines
-    (semantic goals, or block positions for flat-continuous)."""
+             missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
+             sleep: bool = False):
+    """The env ``agent`` learns in: sub-goal episodes for the hierarchy (their blocks at rest sleeping with
+    ``sleep``), whole tasks for the flat baselines (semantic goals, or block positions for flat-continuous)."""
     from semgoal_policy.agents import get_agent
     from semgoal_sim.env import SubgoalEnv
     from semgoal_sim.task_env import TaskEnv
@@ -26,12 +27,12 @@ def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin
     spec = get_agent(agent)
     if spec.subgoals:
         return SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin, missed_put_share=missed_put_share,
-                          tower_share=tower_share, max_blocks=max_blocks)
+                          tower_share=tower_share, max_blocks=max_blocks, sleep=sleep)
     if derived:
         raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
-    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None:
-        raise ValueError("a spawn margin, missed puts, a tower share and a block limit are for the hierarchical agent "
-                         "only (task starts are the paper's)")
+    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None or sleep:
+        raise ValueError("a spawn margin, missed puts, a tower share, a block limit and sleeping blocks are for the "
+                         "hierarchical agent only (task starts are the paper's)")
     return TaskEnv(scene, spec.goal)
 
 
@@ -131,6 +132,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "the table's edge); default: the actor alone")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
+    parser.add_argument("--sleep", action="store_true",
+                        help="blocks at rest sleep (MuJoCo's sleeping islands; off as the actors were trained)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     import numpy as np
@@ -142,7 +145,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     except (FileNotFoundError, ValueError) as error:  # no actor there, or one of another scene
         parser.error(str(error))
     spec = get_agent("hierarchical")
-    envs = [make_env("hierarchical", args.scene, derived_features(meta)) for _ in range(args.envs)]
+    envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=args.sleep) for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
     noise = np.random.default_rng(args.seed)
@@ -166,7 +169,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
         misses.append({"kind": kind, "seed": seed, "subgoal": str(env.subgoal), "why": why})
 
     rates = success_by_kind(envs, act, kinds, args.episodes, args.seed, on_miss=record if args.misses else None)
-    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon,
+    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon, "sleep": args.sleep,
               "action_mode": args.action_mode, "shields": args.shields, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)} | ({"misses": misses} if args.misses else {})
     if not args.json:

@@ -481,8 +481,6 @@ def main(argv: list[str]) -> int:
         tasks = parse_tasks(args.tasks)
     except KeyError as error:
         parser.error(str(error.args[0]))
-    if args.sleep and (args.via_ros or args.agents.strip() != "hierarchical"):
-        parser.error("--sleep runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
     if args.linger < 0:
         parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
@@ -494,6 +492,8 @@ def main(argv: list[str]) -> int:
     unknown = [a for a in agents if a not in AGENT_NAMES]
     if unknown or not agents or not tasks:
         parser.error(f"need tasks and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
+    if args.sleep and (args.via_ros or agents != ["hierarchical"]):
+        parser.error("--sleep runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
     from semgoal_policy import actor as actor_io
 
     models_dir = args.models or actor_io.models_dir()

@@ -11,6 +11,8 @@ from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import NODES, composed_command, node_params
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_msgs.msg import SemanticState, SubGoal
+from semgoal_ros import interfaces as topics
 from semgoal_ros.client import GraphClient
 
 TASK, SEED = "MC-3", 3_000_002
@@ -33,6 +35,13 @@ def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, pro
         client.close()
     assert (result.success, result.control_steps, result.replans) == (expected.success, expected.steps,
                                                                       expected.replans), result.message
+    # the nodes handed their messages to each other over in the process; a late joiner outside, the graph now idle,
+    # still gets the last semantic state and sub-goal (transient local), as from four processes
+    states, subgoals = [], []
+    probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, states.append, topics.LATCHED)
+    probe.node.create_subscription(SubGoal, topics.SUBGOAL, subgoals.append, topics.LATCHED)
+    probe.spin_until(lambda: bool(states) and bool(subgoals), 10, "the last semantic state and sub-goal")
+    assert states[-1].step > 0 and subgoals[-1].status == "empty"  # the plan done
 
 
 @pytest.mark.timeout(600)

@@ -17,8 +17,10 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import os
 import statistics
 import time
+from collections.abc import Iterator
 from itertools import pairwise
 from typing import NamedTuple
 
@@ -26,6 +28,7 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import TRUTH, Sight, running_graph
 from semgoal_core.arguments import count, natural, seconds
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_ros.interfaces import IN_PROCESS_VARIABLE
 
 REALTIME_HZ = 25.0
 
@@ -128,12 +131,33 @@ def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
 
 
 def composed_rates(task: str, episodes: int, seed: int, processes: list[Run], local: list[Run]) -> dict:
-    """The lockstep episodes again with the graph's nodes in one process, beside four processes and in process."""
+    """The lockstep episodes again with the graph's nodes in one process, beside four processes and in process; and
+    with every message between them through the middleware (``SEMGOAL_IN_PROCESS=0``), what handing them over as
+    objects saves."""
     runs, _ = lockstep(task, episodes, seed, record=False, composed=True)
+    with _environment(IN_PROCESS_VARIABLE, "0"):
+        through, _ = lockstep(task, episodes, seed, record=False, composed=True)
     return {"lockstep_composed_steps_per_s": round(rate(runs), 1),
             "composed_over_in_process": round(rate(runs) / rate(local), 3),
             "composed_over_processes": round(rate(runs) / rate(processes), 3),
-            "composed_cpu_ms_per_step": round(cpu_ms_per_step(runs), 2)}
+            "composed_cpu_ms_per_step": round(cpu_ms_per_step(runs), 2),
+            "composed_through_middleware_steps_per_s": round(rate(through), 1),
+            "composed_over_through_middleware": round(rate(runs) / rate(through), 3),
+            "composed_through_middleware_cpu_ms_per_step": round(cpu_ms_per_step(through), 2)}
+
+
+@contextlib.contextmanager
+def _environment(name: str, value: str) -> Iterator[None]:
+    """``name=value`` in this process's environment (so in the processes it starts) meanwhile."""
+    before = os.environ.get(name)
+    os.environ[name] = value
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ[name]
+        else:
+            os.environ[name] = before
 
 
 def main(argv: list[str]) -> int:
@@ -176,7 +200,10 @@ def main(argv: list[str]) -> int:
     if args.composed:
         print(f"lockstep with the four nodes in one process: {result['lockstep_composed_steps_per_s']} control steps/s, "
               f"{result['composed_over_in_process']} of in process, {result['composed_over_processes']} of four processes, "
-              f"{result['composed_cpu_ms_per_step']} ms CPU per step")
+              f"{result['composed_cpu_ms_per_step']} ms CPU per step; every message through the middleware: "
+              f"{result['composed_through_middleware_steps_per_s']} steps/s, "
+              f"{result['composed_through_middleware_cpu_ms_per_step']} ms CPU per step (handed over in the process: "
+              f"{result['composed_over_through_middleware']}x)")
     if args.pixels:
         print(f"lockstep from pixels (planner and policy on the camera): {result['lockstep_pixels_steps_per_s']} "
               f"control steps/s, {result['pixels_over_truth']} of ground truth's")

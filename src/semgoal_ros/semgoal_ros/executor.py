@@ -10,7 +10,9 @@ none is destroyed while it is waited on), reuses one wait set, finds ready handl
 callbacks, calls a subscription's plain callback without wrapping it in a task and two coroutines (:class:`_Call`),
 and waits on the QoS event handlers once a second (:data:`EVENT_POLL_S`), not in every wait. What runs, in
 what order and under which callback group's rule is rclpy's: tasks in progress first, then per node its waitables,
-timers, subscriptions, guard conditions, clients and services.
+timers, subscriptions, guard conditions, clients and services. With :meth:`SteadyExecutor.route_in_process`, the
+messages its nodes send each other without the middleware (:mod:`semgoal_ros.in_process`) run after the tasks in
+progress, before the wait.
 """
 
 from __future__ import annotations
@@ -39,6 +41,8 @@ from rclpy.task import Task
 from rclpy.timer import Timer
 from rclpy.utilities import timeout_sec_to_nsec
 
+from semgoal_ros.in_process import InProcessRoutes
+
 KINDS = ("timer", "subscription", "guard_condition", "client", "service")
 """The wait set's kinds of plain entity, in the order rclpy hands a node's ready callbacks out."""
 NODE_LISTS = ("timers", "subscriptions", "guards", "clients", "services")
@@ -47,6 +51,9 @@ EVENT_POLL_S = 1.0
 """How often the QoS event handlers (incompatible QoS or type, a publisher matched: two or three per publisher and
 subscription, rclpy's defaults) are waited on. Added to every wait they were about two fifths of the executor's work
 on the graph's hot path; an event's status waits in the middleware until it is taken, so one comes at most this late."""
+ROUNDS_BEFORE_POLL = 8
+"""How many spins in a row may run only messages sent in the process before the middleware is polled (a wait without
+a timeout): so a chain of in-process messages cannot keep the others waiting."""
 
 
 class _Waited:
@@ -118,6 +125,14 @@ class SteadyExecutor(SingleThreadedExecutor):
         self._stale = False
         self._events_due = 0.0
         self._waiting = threading.Lock()
+        self._routes: InProcessRoutes | None = None
+        self._in_process_rounds = 0
+
+    def route_in_process(self) -> None:
+        """Hand messages between this executor's nodes over as objects where no one else listens
+        (:mod:`semgoal_ros.in_process`), from the next spin on."""
+        self._routes = InProcessRoutes(self._guard.trigger)
+        self._let_go()
 
     def wake(self) -> None:
         self._let_go()
@@ -197,12 +212,24 @@ class SteadyExecutor(SingleThreadedExecutor):
                         yield task, entity, node
                 with self._tasks_lock:
                     self._tasks = [t for t in self._tasks if not t[0].done() and not t[0].cancelled()]
+            handed_over = False
+            if self._routes is not None and self._routes.pending:
+                for subscription, node, message in self._routes.take():
+                    handed_over = yielded_work = True
+                    yield _Call(self, subscription, message), subscription, node
+            if handed_over:
+                self._in_process_rounds += 1
+                if self._in_process_rounds < ROUNDS_BEFORE_POLL:
+                    continue
+            self._in_process_rounds = 0
             with self._waiting:
                 if self._waited is None or self._stale:
                     self._forget()
                     self._waited = _Waited(nodes_now, (self._guard, self._sigint_gc), self._context)
+                    if self._routes is not None:
+                        self._routes.refresh(nodes_now)
                 waited = self._waited
-                ready, waitables_ready = self._wait(waited, timeout_timer, timeout_nsec)
+                ready, waitables_ready = self._wait(waited, timeout_timer, 0 if handed_over else timeout_nsec)
             for node, _, waitables in waited.nodes:
                 for waitable in waitables:
                     if waitable in waitables_ready and waitable.callback_group.can_execute(waitable):
@@ -236,6 +263,8 @@ class SteadyExecutor(SingleThreadedExecutor):
         with_events = now >= self._events_due
         if with_events:
             self._events_due = now + EVENT_POLL_S
+            if self._routes is not None:  # late joiners outside, on the same rhythm as the QoS events
+                self._routes.catch_up()
         else:  # back by the time the events are due
             until_events = int((self._events_due - now) * 1e9)
             timeout_nsec = until_events if timeout_nsec < 0 else min(timeout_nsec, until_events)
@@ -273,26 +302,31 @@ class SteadyExecutor(SingleThreadedExecutor):
         return ready, {waitable for waitable in added_waitables if waitable.is_ready(wait_set)}
 
 
+_TAKE = object()
+"""A :class:`_Call`'s message still to be taken from the middleware."""
+
+
 class _Call:
-    """A subscription's message taken and its plain callback run, as the task rclpy makes for it does (the callback
-    group's turn, the work tracker, the exception kept for the spin to raise), without the task and the two
-    coroutines that let a callback await: most of a message's cost in rclpy after taking it."""
+    """A subscription's message taken (or handed over in the process) and its plain callback run, as the task rclpy
+    makes for it does (the callback group's turn, the work tracker, the exception kept for the spin to raise), without
+    the task and the two coroutines that let a callback await: most of a message's cost in rclpy after taking it."""
 
-    __slots__ = ("_exception", "_executor", "_subscription")
+    __slots__ = ("_exception", "_executor", "_message", "_subscription")
 
-    def __init__(self, executor: SteadyExecutor, subscription: Any) -> None:
-        self._executor, self._subscription, self._exception = executor, subscription, None
-        subscription._executor_event = True  # out of the wait set until the message is taken
+    def __init__(self, executor: SteadyExecutor, subscription: Any, message: Any = _TAKE) -> None:
+        self._executor, self._subscription, self._exception, self._message = executor, subscription, None, message
+        if message is _TAKE:
+            subscription._executor_event = True  # out of the wait set until the message is taken
 
     def __call__(self) -> None:
         subscription, group = self._subscription, self._subscription.callback_group
         if self._executor._is_shutdown or not group.beginning_execution(subscription):
-            subscription._executor_event = False
+            if self._message is _TAKE:
+                subscription._executor_event = False
             return
         try:
             with self._executor._work_tracker:
-                taken = self._take()
-                subscription._executor_event = False
+                taken = self._take() if self._message is _TAKE else self._handed_over()
                 if taken is not None:
                     subscription.callback(*taken)
         except Exception as error:  # raised by the spin, as rclpy raises a task's
@@ -301,15 +335,28 @@ class _Call:
             group.ending_execution(subscription)
 
     def _take(self) -> tuple | None:
-        subscription = self._subscription
+        subscription, routes = self._subscription, self._executor._routes
+        skip = routes is not None and routes.skipping(subscription)
         try:
-            with subscription.handle:
-                info = subscription.handle.take_message(subscription.msg_type, subscription.raw)
+            with subscription.handle:  # one this process handed over is only taken out of the way, not deserialised
+                info = subscription.handle.take_message(subscription.msg_type, subscription.raw or skip)
         except InvalidHandle:  # destroyed since the wait
             return None
+        finally:
+            subscription._executor_event = False
         if info is None:
             return None
+        if skip:
+            routes.skipped(subscription)
+            return None
         return (info[0],) if subscription._callback_type is Subscription.CallbackType.MessageOnly else info
+
+    def _handed_over(self) -> tuple | None:
+        try:
+            with self._subscription.handle:
+                return (self._message,)
+        except InvalidHandle:  # destroyed since the message was queued
+            return None
 
     def exception(self) -> Exception | None:
         return self._exception

@@ -210,7 +210,9 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
 def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
     """:func:`run_node` for several nodes in one process, spun by one single-threaded executor: each is still a node
     of its own, with its own name and parameters. The executor is :class:`~semgoal_ros.executor.SteadyExecutor`, or
-    rclpy's own where ``SEMGOAL_EXECUTOR=rclpy`` (to tell a fault of ours from rclpy's)."""
+    rclpy's own where ``SEMGOAL_EXECUTOR=rclpy`` (to tell a fault of ours from rclpy's). SteadyExecutor hands the
+    nodes' messages to each other over as objects where no one else listens (:mod:`semgoal_ros.in_process`), unless
+    ``SEMGOAL_IN_PROCESS=0`` (every message through the middleware, to measure what that saves)."""
     import rclpy
     from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 
@@ -235,6 +237,8 @@ def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
     executor = SingleThreadedExecutor() if os.environ.get("SEMGOAL_EXECUTOR") == "rclpy" else SteadyExecutor()
     for node in nodes:
         executor.add_node(node)
+    if len(nodes) > 1 and isinstance(executor, SteadyExecutor) and os.environ.get(IN_PROCESS_VARIABLE) != "0":
+        executor.route_in_process()
     try:
         with _profiled("+".join(node.get_name() for node in nodes)):
             executor.spin()
@@ -248,6 +252,8 @@ def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
         _destroy(rclpy, nodes)
 
 
+IN_PROCESS_VARIABLE = "SEMGOAL_IN_PROCESS"
+"""``0``: the nodes of one process send each other every message through the middleware (:func:`run_nodes`)."""
 PROFILE_DIR_VARIABLE = "SEMGOAL_PROFILE_DIR"
 """Where set, each node process profiles its spinning (cProfile) into ``DIR/NODES-PID.prof`` as it stops: where a
 control step's CPU goes, node by node (docs/measurements.md)."""

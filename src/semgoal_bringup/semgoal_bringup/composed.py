@@ -1,10 +1,10 @@
 """`ros2 run semgoal_bringup graph_node [--nodes sim_node,...] --ros-args ...`: the graph's nodes in one process,
 spun by one executor (:func:`semgoal_ros.interfaces.run_nodes`; the ROS 2 composition idea, for rclpy). Each is
 still a node of its own, with its own name, parameters (the params file's section of its name) and topics, and the
-graph behaves as the separate processes do; it only spends less CPU on the way between them. The separate processes
-stay the default (``ros2 run`` each, ``./semgoal up``): on this 2-core machine they are as fast (``bench graph
---composed``). rclpy's EventsExecutor (experimental in Jazzy) left ``reset_world`` unanswered here, so it is not
-offered."""
+graph behaves as the separate processes do; it only spends less CPU on the way between them, its nodes' messages to
+each other handed over as objects where no one else listens (:mod:`semgoal_ros.in_process`). The separate processes
+stay the default (``ros2 run`` each, ``./semgoal up``); ``bench graph --composed`` measures both. rclpy's
+EventsExecutor (experimental in Jazzy) left ``reset_world`` unanswered here, so it is not offered."""
 
 from __future__ import annotations
 

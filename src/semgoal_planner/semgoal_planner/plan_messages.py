@@ -59,11 +59,10 @@ def subgoal_message(ex: Executive, state: SemanticState | None, robot: str = Ass
     ``settling`` (the goal holds, the world comes to rest), ``waiting_for_human`` (others work) or the plan's
     status."""
     active = ex.active_for(robot)
-    goal = [predicate(lit) for lit in ex.goal]
     if ex.settling:  # the goal's literals: the policy keeps what they ask to hold while the arm retreats
-        msg = SubGoal(index=ex.current, status=StepStatus.SETTLING, goal=goal)
+        msg = SubGoal(index=ex.current, status=StepStatus.SETTLING, goal=[predicate(lit) for lit in ex.goal])
     elif ex.status == PlanStatus.SUCCEEDED:
-        msg = SubGoal(index=ex.current, status=ex.status, goal=goal)
+        msg = SubGoal(index=ex.current, status=ex.status, goal=[predicate(lit) for lit in ex.goal])
     elif active is None:
         waiting = ex.status == PlanStatus.EXECUTING  # executing without a step for this arm: it waits for others
         msg = SubGoal(index=ex.current, status=StepStatus.WAITING_FOR_HUMAN if waiting else ex.status,

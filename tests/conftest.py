@@ -123,6 +123,35 @@ def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo):
     return report
 
 
+@contextlib.contextmanager
+def executor_nodes(executor, context) -> Iterator[Callable[[str], object]]:
+    """A maker of rclpy nodes in ``context``, each spun by ``executor``; at the end the executor shuts down and the nodes
+    go (the executor tests' fixtures)."""
+    import rclpy
+
+    made = []
+
+    def node(name: str):
+        made.append(rclpy.create_node(name, context=context))
+        executor.add_node(made[-1])
+        return made[-1]
+
+    try:
+        yield node
+    finally:
+        executor.shutdown()
+        for each in made:
+            each.destroy_node()
+
+
+def spin_executor_until(executor, condition: Callable[[], bool], timeout: float = 10.0) -> None:
+    """Spin ``executor`` until ``condition()`` holds; fail after ``timeout`` seconds."""
+    end = time.monotonic() + timeout
+    while not condition():
+        assert time.monotonic() < end, "timed out"
+        executor.spin_once(timeout_sec=0.1)
+
+
 class GraphProbe:
     """An rclpy node inside the test process, in the test's domain, with helpers to wait on the graph."""
 

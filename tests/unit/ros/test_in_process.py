@@ -11,6 +11,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Int64, String
 
+from conftest import executor_nodes, spin_executor_until
 from semgoal_ros.executor import EVENT_POLL_S, SteadyExecutor
 
 pytestmark = pytest.mark.slow
@@ -32,25 +33,10 @@ def context(ros_domain):
 @pytest.fixture
 def routed(context):
     """A SteadyExecutor routing in the process, and a maker of its nodes."""
-    executor, nodes = SteadyExecutor(context=context), []
+    executor = SteadyExecutor(context=context)
     executor.route_in_process()
-
-    def node(name: str):
-        nodes.append(rclpy.create_node(name, context=context))
-        executor.add_node(nodes[-1])
-        return nodes[-1]
-
-    yield executor, node
-    executor.shutdown()
-    for made in nodes:
-        made.destroy_node()
-
-
-def _spin_until(executor, condition, timeout: float = 10.0) -> None:
-    end = time.monotonic() + timeout
-    while not condition():
-        assert time.monotonic() < end, "timed out"
-        executor.spin_once(timeout_sec=0.1)
+    with executor_nodes(executor, context) as node:
+        yield executor, node
 
 
 def _started(executor) -> None:
@@ -68,7 +54,7 @@ def test_a_message_between_nodes_of_the_executor_is_handed_over_itself(routed, q
     sent = [Int64(data=i) for i in range(5)]
     for i, message in enumerate(sent):  # each taken before the next (LATCHED keeps one)
         publisher.publish(message)
-        _spin_until(executor, lambda i=i: len(got) == i + 1)
+        spin_executor_until(executor, lambda i=i: len(got) == i + 1)
     assert all(received is message for received, message in zip(got, sent, strict=True))
 
 
@@ -79,25 +65,25 @@ def test_with_a_listener_outside_every_message_goes_through_to_both_in_order_onc
     node("listener").create_subscription(Int64, "numbers", lambda m: inside.append(m.data), VOLATILE)
     _started(executor)
     publisher.publish(Int64(data=0))  # handed over
-    _spin_until(executor, lambda: inside == [0])
+    spin_executor_until(executor, lambda: inside == [0])
     stranger = rclpy.create_node("stranger", context=context)  # not the executor's: as another process's node
     watcher = SingleThreadedExecutor(context=context)
     watcher.add_node(stranger)
     try:
         stranger.create_subscription(Int64, "numbers", lambda m: outside.append(m.data), VOLATILE)
-        _spin_until(executor, lambda: publisher.get_subscription_count() == 2)
+        spin_executor_until(executor, lambda: publisher.get_subscription_count() == 2)
         for i in range(1, 4):
             publisher.publish(Int64(data=i))
-        _spin_until(executor, lambda: len(inside) == 4)
-        _spin_until(watcher, lambda: len(outside) == 3)
+        spin_executor_until(executor, lambda: len(inside) == 4)
+        spin_executor_until(watcher, lambda: len(outside) == 3)
         assert inside == [0, 1, 2, 3] and outside == [1, 2, 3]
     finally:
         watcher.shutdown()
         stranger.destroy_node()
-    _spin_until(executor, lambda: publisher.get_subscription_count() == 1)
+    spin_executor_until(executor, lambda: publisher.get_subscription_count() == 1)
     message = Int64(data=4)
     publisher.publish(message)  # handed over again
-    _spin_until(executor, lambda: len(inside) == 5)
+    spin_executor_until(executor, lambda: len(inside) == 5)
     executor.spin_once(timeout_sec=0.2)
     assert inside == [0, 1, 2, 3, 4]
 
@@ -110,7 +96,7 @@ def test_a_late_joiner_outside_gets_the_last_message_handed_over_and_the_nodes_i
     _started(executor)
     for i in range(3):
         publisher.publish(Int64(data=i))
-        _spin_until(executor, lambda i=i: len(inside) == i + 1)
+        spin_executor_until(executor, lambda i=i: len(inside) == i + 1)
     stranger = rclpy.create_node("late", context=context)
     watcher = SingleThreadedExecutor(context=context)
     watcher.add_node(stranger)
@@ -122,8 +108,8 @@ def test_a_late_joiner_outside_gets_the_last_message_handed_over_and_the_nodes_i
             executor.spin_once(timeout_sec=0.05)
             watcher.spin_once(timeout_sec=0.05)
         publisher.publish(Int64(data=3))
-        _spin_until(watcher, lambda: len(outside) == 2)
-        _spin_until(executor, lambda: len(inside) == 4)
+        spin_executor_until(watcher, lambda: len(outside) == 2)
+        spin_executor_until(executor, lambda: len(inside) == 4)
         executor.spin_once(timeout_sec=0.2)
         assert outside == [2, 3]  # the last one before it joined, as a transient-local writer keeps it
         assert inside == [0, 1, 2, 3]
@@ -169,9 +155,9 @@ def test_a_chain_of_handed_over_messages_does_not_keep_the_middleware_waiting(ro
     outsider = rclpy.create_node("outsider", context=context)
     try:
         news = outsider.create_publisher(String, "news", VOLATILE)
-        _spin_until(executor, lambda: news.get_subscription_count() == 1)
+        spin_executor_until(executor, lambda: news.get_subscription_count() == 1)
         to_b.publish(Int64(data=0))
         news.publish(String(data="from outside"))
-        _spin_until(executor, lambda: bool(heard), timeout=5.0)
+        spin_executor_until(executor, lambda: bool(heard), timeout=5.0)
     finally:
         outsider.destroy_node()

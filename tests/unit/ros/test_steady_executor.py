@@ -12,6 +12,7 @@ from rclpy.executors import SingleThreadedExecutor
 from rclpy.qos import QoSProfile, ReliabilityPolicy
 from std_msgs.msg import Int64
 
+from conftest import executor_nodes, spin_executor_until
 from semgoal_msgs.srv import GetPlan
 from semgoal_ros.executor import EVENT_POLL_S, SteadyExecutor
 
@@ -23,29 +24,14 @@ def ros(ros_domain, request):
     """Each test with ours and with rclpy's own, the reference."""
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=ros_domain)
-    executor, nodes = request.param(context=context), []
-
-    def node(name: str):
-        nodes.append(rclpy.create_node(name, context=context))
-        executor.add_node(nodes[-1])
-        return nodes[-1]
-
-    yield executor, node
-    executor.shutdown()
-    for made in nodes:
-        made.destroy_node()
+    executor = request.param(context=context)
+    with executor_nodes(executor, context) as node:
+        yield executor, node
     rclpy.shutdown(context=context)
 
 
-def _spin_until(executor, condition, timeout: float = 10.0) -> None:
-    end = time.monotonic() + timeout
-    while not condition():
-        assert time.monotonic() < end, "timed out"
-        executor.spin_once(timeout_sec=0.1)
-
-
 def _matched(executor, publisher) -> None:
-    _spin_until(executor, lambda: publisher.get_subscription_count() > 0)
+    spin_executor_until(executor, lambda: publisher.get_subscription_count() > 0)
 
 
 def test_messages_go_back_and_forth_in_order(ros) -> None:
@@ -59,7 +45,7 @@ def test_messages_go_back_and_forth_in_order(ros) -> None:
     _matched(executor, to_b)
     _matched(executor, to_a)
     to_b.publish(Int64(data=0))
-    _spin_until(executor, lambda: len(got) >= 200)
+    spin_executor_until(executor, lambda: len(got) >= 200)
     assert got[:200] == list(range(1, 400, 2))
 
 
@@ -95,7 +81,7 @@ def test_each_message_costs_one_wait(ros_domain) -> None:
 
         thread = threading.Thread(target=beat)
         thread.start()
-        _spin_until(executor, lambda: len(got) >= 100)
+        spin_executor_until(executor, lambda: len(got) >= 100)
         thread.join()
         assert got == list(range(100)) and waits[0] - before <= 120  # rclpy's way: about 200
     finally:
@@ -131,7 +117,7 @@ def test_qos_events_come_within_a_poll_and_are_not_waited_on_every_message(ros_d
         _matched(executor, beat)
         before = added[0]
         beat.publish(Int64(data=0))
-        _spin_until(executor, lambda: len(got) > 300)
+        spin_executor_until(executor, lambda: len(got) > 300)
         handlers = sum(isinstance(w, EventHandler) for w in node.waitables)
         assert added[0] - before <= handlers * 10  # 300 messages; each wait adding them: 300 times each
         best_effort = QoSProfile(depth=10, reliability=ReliabilityPolicy.BEST_EFFORT)
@@ -139,7 +125,7 @@ def test_qos_events_come_within_a_poll_and_are_not_waited_on_every_message(ros_d
         node.create_subscription(Int64, "strict", lambda msg: None, QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE),
                                  event_callbacks=SubscriptionEventCallbacks(
                                      incompatible_qos=lambda event: incompatible.append(event.last_policy_kind)))
-        _spin_until(executor, lambda: incompatible, timeout=3 * EVENT_POLL_S + 2)
+        spin_executor_until(executor, lambda: incompatible, timeout=3 * EVENT_POLL_S + 2)
     finally:
         executor.shutdown()
         node.destroy_node()
@@ -167,10 +153,10 @@ def test_a_plain_callback_runs_without_a_task_and_a_coroutine_with_one(ros_domai
         node.create_subscription(Int64, "numbers", lambda msg, info: heard["with info"].append(
             (msg.data, info["publication_sequence_number"] > 0)), 10)
         coroutine = node.create_subscription(Int64, "numbers", awaiting, 10)
-        _spin_until(executor, lambda: publisher.get_subscription_count() == 3)
+        spin_executor_until(executor, lambda: publisher.get_subscription_count() == 3)
         for number in range(5):
             publisher.publish(Int64(data=number))
-        _spin_until(executor, lambda: all(len(got) == 5 for got in heard.values()))
+        spin_executor_until(executor, lambda: all(len(got) == 5 for got in heard.values()))
         assert heard == {"plain": list(range(5)), "with info": [(n, True) for n in range(5)], "coroutine": list(range(5))}
         assert [entity for entity in tasks if entity in node.subscriptions] == [coroutine] * 5
     finally:
@@ -191,7 +177,7 @@ def test_an_exception_in_a_callback_is_raised_by_the_spin(ros) -> None:
     _matched(executor, publisher)
     publisher.publish(Int64(data=3))
     with pytest.raises(ValueError, match="bad 3"):
-        _spin_until(executor, lambda: False, timeout=5.0)
+        spin_executor_until(executor, lambda: False, timeout=5.0)
 
 
 def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:
@@ -211,9 +197,9 @@ def test_a_coroutine_awaits_a_service_of_another_node(ros) -> None:
         response = await client.call_async(GetPlan.Request())
         answers.append(response.message)
 
-    _spin_until(executor, client.service_is_ready)
+    spin_executor_until(executor, client.service_is_ready)
     timer = caller.create_timer(0.01, ask)
-    _spin_until(executor, lambda: answers)
+    spin_executor_until(executor, lambda: answers)
     assert answers == ["answered"]
 
 
@@ -225,14 +211,14 @@ def test_entities_made_and_destroyed_while_spinning_are_waited_on_and_let_go(ros
     made: list = []
     timer = listener.create_timer(0.01, lambda: (timer.cancel(), made.append(
         listener.create_subscription(Int64, "numbers", lambda msg: heard.append(msg.data), 10))))
-    _spin_until(executor, lambda: made)
+    spin_executor_until(executor, lambda: made)
     _matched(executor, publisher)
     publisher.publish(Int64(data=7))
-    _spin_until(executor, lambda: heard)
+    spin_executor_until(executor, lambda: heard)
     assert heard == [7]
 
     assert listener.destroy_subscription(made[0])
-    _spin_until(executor, lambda: publisher.get_subscription_count() == 0)  # destroyed, not held by the executor
+    spin_executor_until(executor, lambda: publisher.get_subscription_count() == 0)  # destroyed, not held by the executor
     publisher.publish(Int64(data=8))
     executor.spin_once(timeout_sec=0.2)
     assert heard == [7]
@@ -243,7 +229,7 @@ def test_a_guard_condition_triggered_from_another_thread_runs_its_callback(ros) 
     woken: list[str] = []
     guard = node("guarded").create_guard_condition(lambda: woken.append(threading.current_thread().name))
     threading.Timer(0.05, guard.trigger).start()
-    _spin_until(executor, lambda: woken)
+    spin_executor_until(executor, lambda: woken)
     assert woken == [threading.current_thread().name]
 
 
@@ -290,9 +276,9 @@ def _ping_pong_rate(kind: type, domain: int, messages: int = 1000) -> float:
         _matched(executor, to_b)
         _matched(executor, to_a)
         to_b.publish(Int64(data=0))
-        _spin_until(executor, lambda: count[0] >= 50)
+        spin_executor_until(executor, lambda: count[0] >= 50)
         started, first = time.perf_counter(), count[0]
-        _spin_until(executor, lambda: count[0] >= first + messages, timeout=60)
+        spin_executor_until(executor, lambda: count[0] >= first + messages, timeout=60)
         return (count[0] - first) / (time.perf_counter() - started)
     finally:
         executor.shutdown()
@@ -320,7 +306,7 @@ def test_a_busy_exclusive_group_keeps_its_messages_waiting_without_spinning(ros)
     worker.create_subscription(Int64, "work", lambda msg: events.append(f"message {msg.data}"), 10, callback_group=group)
     _matched(executor, publisher)
     timer = worker.create_timer(0.01, slow, callback_group=group)
-    _spin_until(executor, lambda: events == ["awaiting"])
+    spin_executor_until(executor, lambda: events == ["awaiting"])
     publisher.publish(Int64(data=1))
     cpu, end = time.process_time(), time.monotonic() + 0.5
     while time.monotonic() < end:
@@ -328,5 +314,5 @@ def test_a_busy_exclusive_group_keeps_its_messages_waiting_without_spinning(ros)
     assert events == ["awaiting"]
     assert time.process_time() - cpu < 0.25  # waiting, not spinning on the ready message
     later.set_result(None)
-    _spin_until(executor, lambda: events[-1:] == ["message 1"])
+    spin_executor_until(executor, lambda: events[-1:] == ["message 1"])
     assert events == ["awaiting", "done", "message 1"]

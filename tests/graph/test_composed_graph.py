@@ -9,7 +9,7 @@ import pytest
 
 from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.experiments.episodes import make_agent
-from semgoal_bringup.graph import NODES, composed_command, node_params
+from semgoal_bringup.graph import NODES, Sight, composed_command, graph_commands, graph_nodes, node_params
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 from semgoal_msgs.msg import SemanticState, SubGoal
 from semgoal_ros import interfaces as topics
@@ -17,6 +17,7 @@ from semgoal_ros.client import GraphClient
 
 TASK, SEED = "MC-3", 3_000_002
 """A start that re-plans in process (the lockstep graph test's)."""
+PIXELS = Sight(perception="camera", policy_input="camera")
 
 
 def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, probe: GraphProbe) -> None:
@@ -44,10 +45,28 @@ def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, pro
     assert states[-1].step > 0 and subgoals[-1].status == "empty"  # the plan done
 
 
+def test_from_pixels_the_composed_graph_solves_dc3_with_perception_in_the_process(nodes: NodeProcesses) -> None:
+    """The sim's RGB-D frames go to perception_node in the same process (handed over, not serialised), and the plan
+    and the policy run on what it sees."""
+    for name, command in graph_commands(graph_nodes("DC-3", 6, "lockstep", sight=PIXELS), composed=True).items():
+        nodes.run(name.replace("/", "-"), command)
+    client = GraphClient("semgoal_test_operator", watch=False)
+    try:
+        assert client.wait_ready(timeout=60.0), nodes.logs()
+        ok, message = client.reset("DC-3", 6)
+        assert ok, message
+        result = client.execute("DC-3", max_steps=600)
+    finally:
+        client.close()
+    assert result.success, result.message
+
+
 @pytest.mark.timeout(600)
 def test_bench_graph_runs_the_composed_graph_at_a_tiny_size() -> None:
     out = subprocess.run([str(ROOT / "semgoal"), "bench", "graph", "--task", "MC-2", "--episodes", "1", "--realtime-s", "2",
-                          "--composed", "--json"], capture_output=True, text=True, timeout=560, check=True, cwd=ROOT)
+                          "--composed", "--pixels", "--json"], capture_output=True, text=True, timeout=560, check=True,
+                         cwd=ROOT)
     result = json.loads(out.stdout.strip().splitlines()[-1])
     assert result["lockstep_composed_steps_per_s"] > 0 and result["composed_over_processes"] > 0  # one warm-up episode
+    assert result["composed_through_middleware_steps_per_s"] > 0 and result["pixels_composed_over_processes"] > 0
     assert result["graph_over_in_process"] > 0 and result["realtime"]["steps"] > 0

@@ -9,7 +9,8 @@ Realtime: the sim steps at 25 Hz on its timer; the client
 records when each world state arrives (:func:`arrival_timing`: the rate, and the steps late by more
 than half a period). With ``--pixels`` the same lockstep episodes run again with the planner and the policy on
 the RGB-D camera (the sim rendering every step, perception_node in place of predicate_node): steps/s from
-pixels beside ground truth. Figures are medians over episodes; the last line is JSON with ``--json``.
+pixels beside ground truth (and, with ``--composed`` too, with those nodes in one process). Figures are medians over
+episodes; the last line is JSON with ``--json``.
 """
 
 from __future__ import annotations
@@ -123,11 +124,20 @@ def arrival_timing(arrivals: list[tuple[int, float]], hz: float) -> dict[str, fl
             "max_gap_ms": 1000 * max(gaps, default=0.0)}
 
 
-def from_pixels(task: str, episodes: int, seed: int, truth_rate: float) -> dict:
-    """The lockstep episodes again with the planner and the policy on the RGB-D camera, beside ground truth's rate."""
-    runs, _ = lockstep(task, episodes, seed, Sight(perception="camera", policy_input="camera"), record=False)
-    return {"lockstep_pixels_steps_per_s": round(rate(runs), 1), "pixels_over_truth": round(rate(runs) / truth_rate, 3),
-            "pixels_steps": [run.steps for run in runs]}
+PIXELS = Sight(perception="camera", policy_input="camera")
+
+
+def from_pixels(task: str, episodes: int, seed: int, truth_rate: float, composed: bool) -> dict:
+    """The lockstep episodes again with the planner and the policy on the RGB-D camera, beside ground truth's rate; with
+    ``composed``, also with the graph's nodes (perception's among them) in one process."""
+    runs, _ = lockstep(task, episodes, seed, PIXELS, record=False)
+    result = {"lockstep_pixels_steps_per_s": round(rate(runs), 1), "pixels_over_truth": round(rate(runs) / truth_rate, 3),
+              "pixels_steps": [run.steps for run in runs]}
+    if composed:
+        together, _ = lockstep(task, episodes, seed, PIXELS, record=False, composed=True)
+        result.update(lockstep_pixels_composed_steps_per_s=round(rate(together), 1),
+                      pixels_composed_over_processes=round(rate(together) / rate(runs), 3))
+    return result
 
 
 def composed_rates(task: str, episodes: int, seed: int, processes: list[Run], local: list[Run]) -> dict:
@@ -188,7 +198,7 @@ def main(argv: list[str]) -> int:
                   (run.steps / run.wall_s) / (plain.steps / plain.wall_s)
                   for run, plain in zip(recorded, graph, strict=True)), 3),
               "graph_steps": [run.steps for run in graph], "in_process_steps": [run.steps for run in local],
-              **(from_pixels(task, args.episodes, args.seed, rate(graph)) if args.pixels else {}),
+              **(from_pixels(task, args.episodes, args.seed, rate(graph), args.composed) if args.pixels else {}),
               **(composed_rates(task, args.episodes, args.seed, graph, local) if args.composed else {}),
               "realtime": {k: round(v, 4) for k, v in realtime(task, args.seed, args.realtime_s).items()}}
     print(f"lockstep through the graph: {result['lockstep_graph_steps_per_s']} control steps/s (median of "
@@ -207,6 +217,9 @@ def main(argv: list[str]) -> int:
     if args.pixels:
         print(f"lockstep from pixels (planner and policy on the camera): {result['lockstep_pixels_steps_per_s']} "
               f"control steps/s, {result['pixels_over_truth']} of ground truth's")
+        if args.composed:
+            print(f"lockstep from pixels, the nodes in one process: {result['lockstep_pixels_composed_steps_per_s']} "
+                  f"control steps/s, {result['pixels_composed_over_processes']} of the separate processes'")
     rt = result["realtime"]
     print(f"realtime at {REALTIME_HZ:.0f} Hz: {rt['steps']} steps at {rt['rate_hz']:.2f} Hz, "
           f"{100 * rt['late_fraction']:.2f} % late (> 1.5 periods after the step before), "

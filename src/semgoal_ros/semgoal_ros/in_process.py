@@ -104,6 +104,8 @@ class InProcessRoutes:
                 if route is not None:  # a publisher whose subscriptions went publishes through: nothing in its queues
                     route.subscriptions, route.queues = local, [self._queues[subscription] for subscription in local]
                     routes[publisher] = route
+        for publisher in self._routes.keys() - routes.keys():  # its node left the executor: rclpy's publish again
+            del publisher.publish
         self._routes = routes
 
     def catch_up(self) -> None:

@@ -161,3 +161,18 @@ def test_a_chain_of_handed_over_messages_does_not_keep_the_middleware_waiting(ro
         spin_executor_until(executor, lambda: bool(heard), timeout=5.0)
     finally:
         outsider.destroy_node()
+
+
+def test_a_node_that_leaves_the_executor_publishes_through_the_middleware_again(routed) -> None:
+    executor, node = routed
+    talker = node("talker")
+    publisher = talker.create_publisher(Int64, "numbers", VOLATILE)
+    got = []
+    node("listener").create_subscription(Int64, "numbers", lambda m: got.append(m.data), VOLATILE)
+    _started(executor)
+    publisher.publish(Int64(data=0))
+    spin_executor_until(executor, lambda: got == [0])
+    executor.remove_node(talker)
+    _started(executor)  # the routes wired again without it
+    publisher.publish(Int64(data=1))
+    spin_executor_until(executor, lambda: got == [0, 1])

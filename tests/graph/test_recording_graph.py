@@ -6,6 +6,7 @@ import subprocess
 from pathlib import Path
 
 import av
+import pytest
 from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
@@ -20,9 +21,11 @@ def semgoal(*args: str, timeout: float = 600) -> subprocess.CompletedProcess:
     return subprocess.run([str(ROOT / "semgoal"), *args], capture_output=True, text=True, timeout=timeout)
 
 
-def test_a_recorded_episode_reads_back_whole_and_replays_step_for_step(ros_domain, tmp_path) -> None:
+@pytest.mark.parametrize("layout", [(), ("--composed",)], ids=["four processes", "one process"])
+def test_a_recorded_episode_reads_back_whole_and_replays_step_for_step(ros_domain, tmp_path, layout) -> None:
+    """In one process too: the recorder, a listener outside, gets every message the nodes hand each other."""
     evaluated = semgoal("eval", "--tasks", TASK, "--episodes", "1", "--seed", str(SEED), "--seeds", "1", "--jobs", "1",
-                        "--via-ros", "--record", str(tmp_path), "--json")
+                        "--via-ros", "--record", str(tmp_path), "--json", *layout)
     assert evaluated.returncode == 0, evaluated.stderr[-3000:]
     record = tmp_path / f"{TASK}-{SEED}.mcap"
     with record.open("rb") as stream:

@@ -123,6 +123,12 @@ def test_eval_runs_sleeping_blocks_only_for_the_hierarchy_in_process(args: list[
     assert "--sleep runs the hierarchical agent in process" in capsys.readouterr().err
 
 
+def test_eval_runs_the_graph_in_one_process_only_through_the_graph(capsys) -> None:
+    with pytest.raises(SystemExit):
+        evaluation.main(["--tasks", "MC-2", "--composed"])
+    assert "--composed runs the graph's nodes in one process: add --via-ros" in capsys.readouterr().err
+
+
 def test_wilson_interval_stays_wide_at_the_extremes() -> None:
     low, high = evaluation.wilson_interval(10, 10)
     assert high == 1.0 and 0.69 < low < 0.73  # 10 of 10 still admits ~72 %

@@ -283,7 +283,7 @@ def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed
 
 
 def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Path | None = None,
-                     sight: Sight = TRUTH, models: str = "") -> Row:
+                     sight: Sight = TRUTH, models: str = "", composed: bool = False) -> Row:
     from tqdm import tqdm
 
     from semgoal_bringup.experiments.graph_eval import run_via_ros
@@ -291,7 +291,7 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Pa
 
     row = Row(VIA_ROS)
     started = time.perf_counter()
-    outcomes = run_via_ros(task_names, episodes, seed, models, record=record, sight=sight)
+    outcomes = run_via_ros(task_names, episodes, seed, models, record=record, sight=sight, composed=composed)
     label = EXPERT if models == EXPERT else "shipped"
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
         row.add(label, outcome, first_step_observed=False)  # the graph runs the shipped actors (or the expert)
@@ -462,6 +462,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
     parser.add_argument("--ros-episodes", type=count, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
+    parser.add_argument("--composed", action="store_true", help="with --via-ros: the graph's nodes in one process "
+                        "(graph_node), their messages to each other handed over as objects")
     parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones); 'expert': "
                         "the scripted expert, the actors' teacher, drives the hierarchy")
     add_sight_arguments(parser)
@@ -485,6 +487,8 @@ def main(argv: list[str]) -> int:
         parser.error(f"--linger takes control steps (0 or more), got {args.linger}")
     if args.record and not args.via_ros:
         parser.error("--record writes the episodes run through the graph: add --via-ros")
+    if args.composed and not args.via_ros:
+        parser.error("--composed runs the graph's nodes in one process: add --via-ros")
     sight = sight_of(args, parser)
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
@@ -508,7 +512,7 @@ def main(argv: list[str]) -> int:
         graph_models = str(args.models) if str(args.models) == EXPERT else ""
         try:
             rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight,
-                                         graph_models))
+                                         graph_models, args.composed))
         except RuntimeError as error:  # the in-process rows are still written
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True

@@ -163,3 +163,24 @@ def test_the_live_view_shows_the_scene_and_edits_the_plan(nodes: NodeProcesses, 
         await client.ws.close()
 
     asyncio.run(session())
+
+
+def test_with_a_second_arm_the_scene_shows_both_robots(nodes: NodeProcesses) -> None:
+    port = free_port()
+    nodes.start("semgoal_sim", "sim_node", params={"scene": "desk_cleanup", "task": "DC-4", "seed": 6, "arms": 2,
+                                                   "mode": "realtime"})
+    nodes.start("semgoal_bringup", "foxglove_node", params={"port": port})
+
+    async def session() -> None:
+        client = await connect(port)
+        await client.read_advertisements({"/semgoal/scene"}, set())
+        await client.subscribe("/semgoal/scene")
+        scene = await client.next_message("/semgoal/scene")
+        while b"robot2/" not in scene:  # a first update may come before the sim's joint states of both arms
+            scene = await client.next_message("/semgoal/scene")
+        for entity in (b"robot0:gripper_link", b"robot2/robot0:gripper_link", b"robot2/robot0:r_gripper_finger_link",
+                       b"block_yellow"):
+            assert entity in scene, f"{entity!r} is not in the scene"
+        await client.ws.close()
+
+    asyncio.run(session())

@@ -37,9 +37,10 @@ class GeomView:
 class SceneView:
     """A scene's model, posed from published state (:meth:`pose`), read out as :class:`GeomView` s."""
 
-    def __init__(self, scene: str) -> None:
+    def __init__(self, scene: str, arms: int = 1) -> None:
+        """``arms``: 2 for the second arm across the table, its joints named ``robot2/...``."""
         self.scene = scene
-        self.model = model = build_model(scene)
+        self.model = model = build_model(scene, arms=arms)
         self.data = mujoco.MjData(model)
         mujoco.mj_forward(model, self.data)
         self._joint_qpos = {model.joint(j).name: model.jnt_qposadr[j] for j in range(model.njnt)

@@ -120,9 +120,10 @@ class FetchWorld:
         """Every block's six velocity entries in ``qvel``, in block order: one gather per snapshot."""
         self._block_body = np.array([m.body(block_body_name(b)).id for b in self.blocks])
         self.arms = [self._arm(arm) for arm in range(arms)]
-        robot = [i for i in range(m.njnt) if m.joint(i).name.startswith("robot0:")]
+        prefixes = tuple(f"{arm_prefix(arm)}robot0:" for arm in range(arms))
+        robot = [i for i in range(m.njnt) if m.joint(i).name.startswith(prefixes)]
         self.robot_joint_names = [m.joint(i).name for i in robot]
-        """The first robot's joints, in model order (what /joint_states names)."""
+        """Every arm's joints, in model order (what /joint_states names): the second arm's under ``robot2/``."""
         self._robot_qpos, self._robot_qvel = m.jnt_qposadr[robot], m.jnt_dofadr[robot]
         entries, args = self.layout.groundings["holding"]
         self._holding_entries = entries[np.argsort(args[:, 0])][: len(self.blocks)]

@@ -19,20 +19,20 @@ def published_state(world: FetchWorld) -> tuple[dict[str, float], dict]:
     return dict(zip(world.robot_joint_names, positions.tolist(), strict=True)), blocks
 
 
-@pytest.mark.parametrize("scene", ["two_blocks", "desk_cleanup"])
-def test_geoms_are_where_the_simulation_puts_them(scene: str) -> None:
-    world = FetchWorld(scene)
+@pytest.mark.parametrize(("scene", "arms"), [("two_blocks", 1), ("desk_cleanup", 1), ("desk_cleanup", 2)])
+def test_geoms_are_where_the_simulation_puts_them(scene: str, arms: int) -> None:
+    world = FetchWorld(scene, arms=arms)
     rng = np.random.default_rng(5)
     world.reset(np.array([[1.2 + 0.1 * i, 0.6 + 0.05 * i, 0.445] for i in range(len(world.blocks))]))
     for _ in range(30):  # the arm somewhere else than home, the fingers moved, the blocks possibly pushed
-        world.step(rng.uniform(-1, 1, 4))
+        world.step(rng.uniform(-1, 1, (arms, 4)))
     mujoco.mj_kinematics(world.model, world.data)  # after mj_step, geom poses are a substep behind qpos
-    view = SceneView(scene)
+    view = SceneView(scene, arms)
     before = {g.name: g.position for g in view.geoms()}
     view.pose(*published_state(world))
     geoms = {g.name: g for g in view.geoms()}
-    for name in ("robot0:gripper_link", "robot0:l_gripper_finger_link", "robot0:shoulder_pan_link",
-                 *(f"block_{b}" for b in world.blocks)):
+    links = ("robot0:gripper_link", "robot0:l_gripper_finger_link", "robot0:shoulder_pan_link")
+    for name in (*links, *(f"robot2/{link}" for link in links if arms == 2), *(f"block_{b}" for b in world.blocks)):
         geom_id = world.model.geom(name).id
         np.testing.assert_allclose(geoms[name].position, world.data.geom_xpos[geom_id], atol=1e-9, err_msg=name)
         rotation = np.empty(9)

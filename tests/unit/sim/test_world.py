@@ -107,6 +107,19 @@ def test_robot_joint_state_names_every_robot_joint_and_reads_them_now() -> None:
         np.testing.assert_array_equal(velocities[fingers], snapshot.finger_velocities)
 
 
+def test_with_two_arms_the_joint_state_names_both_arms_joints() -> None:
+    world = FetchWorld("desk_cleanup", arms=2)
+    names = world.robot_joint_names
+    first = [name for name in names if name.startswith("robot0:")]
+    second = [name for name in names if name.startswith("robot2/robot0:")]
+    assert len(first) == len(second) > 2 and len(names) == len(set(names)) == 2 * len(first)
+    assert [name.removeprefix("robot2/") for name in second] == first
+    world.step(np.array([[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, -1.0]]))
+    positions, _ = world.robot_joint_state()
+    finger = names.index("robot0:r_gripper_finger_joint"), names.index("robot2/robot0:r_gripper_finger_joint")
+    assert positions[finger[0]] > positions[finger[1]]  # each arm's own fingers: one opening, one closing
+
+
 def test_a_grasp_low_on_a_stack_lifts_both_blocks_and_the_expert_picks_the_top_one_alone() -> None:
     world = FetchWorld("two_blocks")
     world.reset(np.array([[1.3, 0.7, TABLE_TOP + 0.025], [1.3, 0.7, TABLE_TOP + 0.075]]))

@@ -1,8 +1,8 @@
 """foxglove_node: the running graph, live in Foxglove (``./semgoal up --foxglove [PORT]``, the ``foxglove`` launch
 argument). A Foxglove WebSocket server (foxglove-sdk) on 127.0.0.1 serves:
 
-- ``/semgoal/scene`` (foxglove.SceneUpdate): floor, table, bin, blocks and the Fetch's meshes where MuJoCo
-  puts them for the latest joint and world states (:class:`semgoal_sim.scene_view.SceneView`); meshes are
+- ``/semgoal/scene`` (foxglove.SceneUpdate): floor, table, bin, blocks and the Fetch's meshes (both arms' with a
+  second arm) where MuJoCo puts them for the latest joint and world states (:class:`semgoal_sim.scene_view.SceneView`); meshes are
   fetched as ``package://semgoal_sim/meshes/NAME.stl`` assets;
 - ``/semgoal/plan`` and ``/semgoal/semantic_state`` as JSON (every field, plus the plan as the operator reads
   it and the literals that hold), ``/semgoal/camera/image_raw`` (foxglove.RawImage) while the sim renders;
@@ -68,7 +68,8 @@ class FoxgloveNode(Node):
         if not _is_loopback(host):
             raise ParameterValueError(f"foxglove: parameter host={host!r} must be a loopback address "
                                       "(127.0.0.1, ::1): the live view has no authentication")
-        self.views: dict[str, SceneView] = {}
+        self.views: dict[tuple[str, int], SceneView] = {}
+        """By scene and number of arms."""
         self.view: SceneView | None = None
         self.joints: dict[str, float] = {}
         self.world: WorldState | None = None
@@ -104,13 +105,14 @@ class FoxgloveNode(Node):
         if not self.dirty or self.world is None:
             return
         world = self.world
-        if world.scene not in self.views:
+        key = (world.scene, 1 + min(1, len(world.other_grippers)))  # the first arm's world state names the other's hand
+        if key not in self.views:
             try:
-                self.views[world.scene] = SceneView(world.scene)
+                self.views[key] = SceneView(*key)
             except KeyError:
                 self.get_logger().warn(f"world state of an unknown scene {world.scene!r}: not drawn")
                 return
-        self.view = view = self.views[world.scene]
+        self.view = view = self.views[key]
         view.pose(self.joints, {name: (pose[:3], pose[3:]) for name, pose in zip(world.block_names, block_poses(world),
                                                                                    strict=True)})
         self.scene_channel.log(scene_update(view.geoms(), _timestamp(world.header.stamp)))

@@ -1,9 +1,11 @@
 """Two robot arms through the graph: the nodes the launch file starts with ``robots:=2`` (a second policy node in
 /robot2) bin DC-4 working at once, succeed at rest, never touch, and take the in-process episode's steps."""
 
+import subprocess
+
 import pytest
 
-from conftest import GraphProbe, NodeProcesses
+from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import graph_nodes, node_command, process_name
 from semgoal_bringup.study.fluency import recorded_plans
@@ -45,6 +47,13 @@ def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, pro
     from mcap_ros2.decoder import DecoderFactory
 
     with record.open("rb") as stream:
-        contacts = [msg.arm_contacts for _, channel, _, msg in make_reader(
-            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages() if channel.topic == "/semgoal/world_state"]
+        decoded = [(channel.topic, msg) for _, channel, _, msg in make_reader(
+            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    contacts = [msg.arm_contacts for topic, msg in decoded if topic == topics.WORLD_STATE]
     assert contacts and max(contacts) == 0
+    joints = next(msg.name for topic, msg in decoded if topic == topics.JOINT_STATES)
+    assert "robot0:shoulder_pan_joint" in joints and "robot2/robot0:shoulder_pan_joint" in joints
+    video = tmp_path / "two_arms.mp4"  # both arms drawn from the recording alone
+    rendered = subprocess.run([str(ROOT / "semgoal"), "replay", str(record), "--mp4", str(video)], capture_output=True,
+                              text=True, timeout=300, cwd=ROOT)
+    assert rendered.returncode == 0 and video.stat().st_size > 0, rendered.stdout + rendered.stderr

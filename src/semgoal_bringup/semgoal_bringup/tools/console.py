@@ -215,13 +215,13 @@ class Console:
             self._camera = (time.monotonic(), buffer.getvalue())
             return self._camera[1]
 
-        from semgoal_bringup.tools.episode_video import Frame, FramePainter
+        from semgoal_bringup.tools.episode_video import Frame, FramePainter, arms_named
 
-        key = (world.scene, len(world.block_names))
+        key = (world.scene, len(world.block_names), arms_named(self.joints))
         if self._painter is None or self._painter[0] != key:
             if self._painter is not None:
                 self._painter[1].close()
-            self._painter = (key, FramePainter(world.scene, len(world.block_names), width=480, height=360))
+            self._painter = (key, FramePainter(*key, width=480, height=360))
         subgoal = self.client.subgoal
         caption = subgoal.action if subgoal and subgoal.action else (self.plan.status if self.plan else "")
         poses = dict(zip(world.block_names, block_poses(world), strict=True))

@@ -11,6 +11,7 @@ import mujoco
 import numpy as np
 
 from semgoal_sim.render import FrameRenderer
+from semgoal_sim.scene import arm_prefix
 from semgoal_sim.world import FetchWorld
 
 
@@ -61,20 +62,26 @@ def write_video(scene: str, n_blocks: int, frames: list[Frame], path: Path, fps:
 
 
 def render(scene: str, n_blocks: int, frames: list[Frame]) -> list[np.ndarray]:
-    """An RGB image per frame, captioned with its step and sub-goal."""
-    painter = FramePainter(scene, n_blocks)
+    """An RGB image per frame, captioned with its step and sub-goal (both arms where the joints name a second)."""
+    painter = FramePainter(scene, n_blocks, arms_named(joint for frame in frames for joint in frame.joints))
     try:
         return [painter.image(frame) for frame in frames]
     finally:
         painter.close()
 
 
+def arms_named(joints) -> int:
+    """How many arms joint names from /joint_states belong to: 2 where one is the second arm's (``robot2/...``)."""
+    return 2 if any(name.startswith(arm_prefix(1)) for name in joints) else 1
+
+
 class FramePainter:
     """One scene's world and offscreen renderer, for many frames (an episode's, the console's live view)."""
 
-    def __init__(self, scene: str, n_blocks: int, width: int = 400, height: int = 300) -> None:
-        self.world = FetchWorld(scene, n_blocks)
+    def __init__(self, scene: str, n_blocks: int, arms: int = 1, width: int = 400, height: int = 300) -> None:
+        self.world = FetchWorld(scene, n_blocks, arms)
         self.renderer = FrameRenderer(self.world, width=width, height=height)
+        self._joint_qpos = {name: self.world.model.joint(name).qposadr[0] for name in self.world.robot_joint_names}
 
     def image(self, frame: Frame) -> np.ndarray:
         """``frame`` rendered, its step and caption on a black band at the top."""
@@ -83,7 +90,8 @@ class FramePainter:
         world = self.world
         model, data = world.model, world.data
         for name, value in frame.joints.items():
-            data.qpos[model.joint(name).qposadr[0]] = value
+            if name in self._joint_qpos:  # another arm's joints than this model has are not drawn
+                data.qpos[self._joint_qpos[name]] = value
         for name, pose in frame.block_poses.items():
             if name in world.blocks:
                 world.set_block_pose(name, pose[:3], pose[3:])

@@ -260,6 +260,119 @@ static PyObject *conjunction(PyObject *self, PyObject *args) {
     return plain == 0 ? Py_NewRef(Py_None) : NULL;
 }
 
+/* -- a plain action ------------------------------------------------------------------------------------------ */
+
+static int is_text(PyObject *item, const char *text) {
+    return PyUnicode_CheckExact(item) && PyUnicode_CompareWithASCIIString(item, text) == 0;
+}
+
+/* `?a ?b - t ?c` into `params` (a list of (variable, type) tuples) and `variables` (variable -> type, the later of two
+   alike winning, as Python's dict does): 1 when every name is a variable and every type a plain one the domain
+   declares (in `types`), 0 when Python should look, -1 on error. */
+static int add_parameters(PyObject *items, PyObject *types, PyObject *params, PyObject *variables) {
+    Py_ssize_t n = PyList_GET_SIZE(items), pending = 0;
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *item = PyList_GET_ITEM(items, i);
+        if (!PyUnicode_CheckExact(item) || PyUnicode_GET_LENGTH(item) == 0) return 0;
+        if (is_text(item, "-")) {
+            if (i + 1 >= n || !pending) return 0;
+            PyObject *kind = PyList_GET_ITEM(items, ++i);
+            if (!PyUnicode_CheckExact(kind)) return 0; /* (either ...): Python's */
+            int known = PyDict_Contains(types, kind);
+            if (known <= 0) return known;
+            for (Py_ssize_t k = PyList_GET_SIZE(params) - pending; k < PyList_GET_SIZE(params); k++) {
+                PyObject *var = PyList_GET_ITEM(params, k);
+                PyObject *pair = PyTuple_Pack(2, var, kind);
+                if (!pair || PyDict_SetItem(variables, var, kind) < 0) {
+                    Py_XDECREF(pair);
+                    return -1;
+                }
+                PyList_SET_ITEM(params, k, pair); /* the variable's reference moves into the pair's */
+                Py_DECREF(var);
+            }
+            pending = 0;
+        } else {
+            if (PyUnicode_READ_CHAR(item, 0) != '?' || PyList_Append(params, item) < 0) return PyErr_Occurred() ? -1 : 0;
+            pending++;
+        }
+    }
+    for (Py_ssize_t k = PyList_GET_SIZE(params) - pending; k < PyList_GET_SIZE(params); k++) { /* untyped: object */
+        PyObject *var = PyList_GET_ITEM(params, k);
+        PyObject *pair = PyTuple_Pack(2, var, root_type);
+        if (!pair || PyDict_SetItem(variables, var, root_type) < 0) {
+            Py_XDECREF(pair);
+            return -1;
+        }
+        PyList_SET_ITEM(params, k, pair);
+        Py_DECREF(var);
+    }
+    return 1;
+}
+
+/* Whether an effect has an (increase ...) at its top, alone or in its (and ...): Python reads the action's cost. */
+static int has_increase(PyObject *effect) {
+    if (PyList_GET_SIZE(effect) == 0) return 0;
+    if (is_text(PyList_GET_ITEM(effect, 0), "increase")) return 1;
+    if (!is_text(PyList_GET_ITEM(effect, 0), "and")) return 0;
+    for (Py_ssize_t i = 1; i < PyList_GET_SIZE(effect); i++) {
+        PyObject *part = PyList_GET_ITEM(effect, i);
+        if (PyList_CheckExact(part) && PyList_GET_SIZE(part) > 0 && is_text(PyList_GET_ITEM(part, 0), "increase"))
+            return 1;
+    }
+    return 0;
+}
+
+/* action(section, predicates, constants, ancestors, types, negation): a STRIPS action's (name, parameters,
+   precondition, add, delete) when plainly valid, else None (Python reads it: costs, ADL, errors). */
+static PyObject *action(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *section, *types;
+    Scope in;
+    if (!PyArg_ParseTuple(args, "O!O!O!O!O!p", &PyList_Type, &section, &PyDict_Type, &in.predicates, &PyDict_Type,
+                          &in.objects, &PyDict_Type, &in.ancestors, &PyDict_Type, &types, &in.negation))
+        return NULL;
+    Py_ssize_t n = PyList_GET_SIZE(section);
+    if (n < 2 || (n - 2) % 2 || !PyUnicode_CheckExact(PyList_GET_ITEM(section, 1))) Py_RETURN_NONE;
+    static const char *const keys[3] = {":parameters", ":precondition", ":effect"};
+    PyObject *fields[3] = {NULL, NULL, NULL};
+    for (Py_ssize_t i = 2; i < n; i += 2) {
+        PyObject *key = PyList_GET_ITEM(section, i), *value = PyList_GET_ITEM(section, i + 1);
+        int which = -1;
+        for (int k = 0; k < 3; k++)
+            if (is_text(key, keys[k])) which = k;
+        if (which < 0 || fields[which] || !PyList_CheckExact(value)) Py_RETURN_NONE;
+        fields[which] = value;
+    }
+    if (fields[2] && has_increase(fields[2])) Py_RETURN_NONE;
+    PyObject *params = PyList_New(0), *variables = PyDict_New(), *pre = PyList_New(0), *effects = PyList_New(0);
+    PyObject *add = PyList_New(0), *delete = PyList_New(0), *result = NULL;
+    int plain = params && variables && pre && effects && add && delete ? 1 : -1;
+    if (plain == 1 && fields[0]) plain = add_parameters(fields[0], types, params, variables);
+    in.variables = variables;
+    if (plain == 1 && fields[1] && PyList_GET_SIZE(fields[1])) plain = add_conjunction(pre, fields[1], &in);
+    in.negation = 1; /* an effect's (not ...) deletes */
+    if (plain == 1 && fields[2] && PyList_GET_SIZE(fields[2])) plain = add_conjunction(effects, fields[2], &in);
+    for (Py_ssize_t i = 0; plain == 1 && i < PyList_GET_SIZE(effects); i++) {
+        PyObject *literal = PyList_GET_ITEM(effects, i);
+        int positive = PyObject_IsTrue(PyTuple_GET_ITEM(literal, 1));
+        if (positive < 0 || PyList_Append(positive ? add : delete, PyTuple_GET_ITEM(literal, 0)) < 0) plain = -1;
+    }
+    if (plain == 1) {
+        PyObject *items[5] = {Py_NewRef(PyList_GET_ITEM(section, 1)), PyList_AsTuple(params), PyList_AsTuple(pre),
+                              PyList_AsTuple(add), PyList_AsTuple(delete)};
+        result = tuple_of(&PyTuple_Type, 5, items);
+    } else if (plain == 0) {
+        result = Py_NewRef(Py_None);
+    }
+    Py_XDECREF(params);
+    Py_XDECREF(variables);
+    Py_XDECREF(pre);
+    Py_XDECREF(effects);
+    Py_XDECREF(add);
+    Py_XDECREF(delete);
+    return result;
+}
+
 static PyMethodDef reader_methods[] = {
     {"sexpr", parse, METH_O,
      "sexpr(text) -> the single top-level s-expression as nested lists of lower-case str, or None where the text "
@@ -273,6 +386,10 @@ static PyMethodDef reader_methods[] = {
     {"literal", literal, METH_VARARGS,
      "literal(expr, predicates, variables, objects, ancestors, negation) -> a Condition, or None where Python's "
      "checks should look; a (not ...) only with `negation`."},
+    {"action", action, METH_VARARGS,
+     "action(section, predicates, constants, ancestors, types, negation) -> (name, parameters, precondition, add, "
+     "delete) of a plainly valid STRIPS action (typed variables, conjunctions of literals, no cost), or None where "
+     "Python's reader should look; a (not ...) in the precondition only with `negation`."},
     {"conjunction", conjunction, METH_VARARGS,
      "conjunction(expr, predicates, variables, objects, ancestors, negation) -> the list of Conditions of a literal "
      "or an (and ...) of them (nested, () parts skipped), or None where any part needs Python's checks."},

@@ -11,9 +11,10 @@ Action costs follow the IPC's ``:action-costs``: ``(increase (total-cost) N)`` o
 ``(:metric minimize (total-cost))``, and an action without an increase then costs 0.
 
 Valid input is read fast: the C module ``_reader`` turns the text into plain lists of plain strings (Python's
-own pass does where the text is not ASCII), and checks and builds each plainly valid atom and literal (the rest
-Python checks). Only when that first pass finds an error is the text read again with every token and list
-knowing its line and column, and the same check, now located, raises the :class:`PddlError`.
+own pass does where the text is not ASCII), and checks and builds each plainly valid atom and literal, and each
+plainly valid STRIPS action whole (the rest Python checks). Only when that first pass finds an error is the text
+read again with every token and list knowing its line and column, and the same check, now located, raises the
+:class:`PddlError`.
 """
 
 from __future__ import annotations
@@ -598,6 +599,10 @@ def _functions(body: list, domain: Domain) -> None:
 
 
 def _action(section: list, domain: Domain) -> Action:
+    plain = _reader.action(section, domain.predicates, domain.constants, domain.ancestors, domain.types,
+                           _negation_allowed(domain, "precondition"))
+    if plain is not None:  # a STRIPS action, read in one C call
+        return Action(*plain)
     if len(section) < 2:
         raise _error(section, "(:action NAME ...) needs a name")
     name = _name(section[1], "an action name")

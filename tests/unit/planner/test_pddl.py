@@ -140,12 +140,29 @@ def _random_pddl(rng: random.Random) -> tuple[str, str]:
         atom = f"({name} {' '.join(pick(terms, rng.choice(['?nosuch', 'nosuch'])) for _ in range(max(arity, 0)))})"
         return f"(not {atom})" if negation and rng.random() < 0.3 else atom
 
+    def parameter(variable: str, kind: str) -> str:  # typed, untyped (object), through an either, or ill-typed
+        form = rng.random()
+        return variable if form < 0.15 else f"{variable} - (either t1 t3)" if form < 0.2 else \
+            f"{variable} - {pick([kind], rng.choice(['nosuch', '-']))}"
+
+    def fields() -> str:  # now and then a field left out, empty, twice, unknown, or a keyword without a value
+        parameters = " ".join(parameter(v, k) for v, k in params) + (rng.choice([" -", " x", " - t1"])
+                                                                       if rng.random() < 0.03 else "")
+        parts = [f":parameters ({parameters})", f":precondition (and {' '.join(literal() for _ in range(3))})",
+                 f":effect (and {' '.join(literal(equality=False) for _ in range(2))})"]
+        odd = rng.random()
+        if odd < 0.03:
+            parts.pop(rng.randrange(3))
+        elif odd < 0.06:
+            parts[1] = ":precondition ()"
+        elif odd < 0.08:
+            parts.append(rng.choice([":effect (and)", ":duration 3", ":precondition"]))
+        return " ".join(parts)
+
     decls = " ".join(f"({name} {' '.join(f'?a{j} - {k}' for j, k in enumerate(ks))})" for name, ks in predicates.items())
     domain = (f"(define (domain d) (:requirements {requirements}) (:types t1 t2 - t3 t3) "
               f"(:constants c1 - {rng.choice(types)} c2 - t1) (:predicates {decls}) "
-              f"(:action a :parameters ({' '.join(f'{v} - {k}' for v, k in params)}) "
-              f":precondition (and {' '.join(literal() for _ in range(3))}) "
-              f":effect (and {' '.join(literal(equality=False) for _ in range(2))})))")
+              f"(:action a {fields()}) (:action b {fields()}))")
     terms[:] = ["o1", "o2", "c1"]
     init = " ".join(literal(negation=False, equality=False) for _ in range(3))
     problem = (f"(define (problem p) (:domain d) (:objects o1 - {rng.choice(types)} o2 - {kind()}) "
@@ -154,7 +171,7 @@ def _random_pddl(rng: random.Random) -> tuple[str, str]:
 
 
 def test_the_c_checks_read_every_domain_and_problem_as_python_alone_does(monkeypatch) -> None:
-    """The C reader builds an atom or literal only where Python's checks would build the same one, without a
+    """The C reader builds an atom, literal or action only where Python's checks would build the same one, without a
     warning: on random domains and problems (a third of them malformed somewhere) both read the same fields or
     raise the same error."""
     rng, outcomes = random.Random(1), []
@@ -162,7 +179,7 @@ def test_the_c_checks_read_every_domain_and_problem_as_python_alone_does(monkeyp
         domain, problem = _random_pddl(rng)
         with_c = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
         with monkeypatch.context() as python_alone:
-            for name in ("literal", "atom", "conjunction"):
+            for name in ("literal", "atom", "conjunction", "action"):
                 python_alone.setattr(_reader, name, lambda *_: None)
             alone = (_outcome(parse_domain, domain), _outcome(_domain_and_problem, domain, problem))
         assert with_c == alone, (domain, problem)
@@ -173,8 +190,8 @@ def test_the_c_checks_read_every_domain_and_problem_as_python_alone_does(monkeyp
 def test_the_c_checks_read_the_shipped_domains_as_python_alone_does(monkeypatch) -> None:
     for path in sorted(FIXTURES.glob("*domain*.pddl")) + sorted(DOMAINS.glob("*.pddl")):
         with_c = _outcome(parse_domain, path.read_text())
-        monkeypatch.setattr(_reader, "literal", lambda *_: None)
-        monkeypatch.setattr(_reader, "conjunction", lambda *_: None)
+        for name in ("literal", "conjunction", "action"):
+            monkeypatch.setattr(_reader, name, lambda *_: None)
         assert _outcome(parse_domain, path.read_text()) == with_c, path.name
         monkeypatch.undo()
 

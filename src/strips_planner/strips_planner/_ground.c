@@ -392,7 +392,134 @@ done:
     return result;
 }
 
+/* -- an action's templates ------------------------------------------------------------------------------ */
+
+/* `atom` (an Atom: predicate, args) as a template (number[predicate], *arguments), or with `head` given, (*head,
+   *arguments) (an equality's filter): each argument its parameter's `position`, else ~its object's `index`. A new
+   reference; NULL with the lookup's KeyError, as Python's dict raises it. */
+static PyObject *template_of(PyObject *atom, PyObject *position, PyObject *index, PyObject *number, PyObject *head) {
+    if (!PyTuple_Check(atom) || PyTuple_GET_SIZE(atom) != 2 || !PyTuple_Check(PyTuple_GET_ITEM(atom, 1)))
+        return PyErr_Format(PyExc_TypeError, "templates() takes atoms as (predicate, args tuple)");
+    PyObject *args = PyTuple_GET_ITEM(atom, 1);
+    Py_ssize_t nhead = head ? PyTuple_GET_SIZE(head) : 1, nargs = PyTuple_GET_SIZE(args);
+    PyObject *out = PyTuple_New(nhead + nargs);
+    if (!out) return NULL;
+    if (head) {
+        for (Py_ssize_t i = 0; i < nhead; i++) PyTuple_SET_ITEM(out, i, Py_NewRef(PyTuple_GET_ITEM(head, i)));
+    } else {
+        PyObject *predicate = PyDict_GetItemWithError(number, PyTuple_GET_ITEM(atom, 0));
+        if (!predicate) {
+            if (!PyErr_Occurred()) PyErr_SetObject(PyExc_KeyError, PyTuple_GET_ITEM(atom, 0));
+            Py_DECREF(out);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(out, 0, Py_NewRef(predicate));
+    }
+    for (Py_ssize_t i = 0; i < nargs; i++) {
+        PyObject *arg = PyTuple_GET_ITEM(args, i), *code = PyDict_GetItemWithError(position, arg);
+        if (code) {
+            Py_INCREF(code);
+        } else if (!PyErr_Occurred()) {
+            PyObject *object = PyDict_GetItemWithError(index, arg);
+            if (!object && !PyErr_Occurred()) PyErr_SetObject(PyExc_KeyError, arg);
+            code = object ? PyNumber_Invert(object) : NULL;
+        }
+        if (!code) {
+            Py_DECREF(out);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(out, nhead + i, code);
+    }
+    return out;
+}
+
+/* Appends each atom of `atoms` as a template to `out`; -1 on error. */
+static int add_templates(PyObject *out, PyObject *atoms, PyObject *position, PyObject *index, PyObject *number) {
+    for (Py_ssize_t i = 0; i < PyTuple_GET_SIZE(atoms); i++) {
+        PyObject *made = template_of(PyTuple_GET_ITEM(atoms, i), position, index, number, NULL);
+        if (!made || PyList_Append(out, made) < 0) {
+            Py_XDECREF(made);
+            return -1;
+        }
+        Py_DECREF(made);
+    }
+    return 0;
+}
+
+static PyObject *templates(PyObject *self, PyObject *args) {
+    (void)self;
+    PyObject *precondition, *add, *delete, *position, *index, *number;
+    long nfluent;
+    if (!PyArg_ParseTuple(args, "O!O!O!O!O!O!l", &PyTuple_Type, &precondition, &PyTuple_Type, &add, &PyTuple_Type,
+                          &delete, &PyDict_Type, &position, &PyDict_Type, &index, &PyDict_Type, &number, &nfluent))
+        return NULL;
+    PyObject *joined = PyList_New(0), *filters = PyList_New(0), *pre = PyList_New(0), *pre_neg = PyList_New(0);
+    PyObject *adds = PyList_New(0), *deletes = PyList_New(0);
+    int failed = !joined || !filters || !pre || !pre_neg || !adds || !deletes;
+    for (Py_ssize_t i = 0; !failed && i < PyTuple_GET_SIZE(precondition); i++) {
+        PyObject *condition = PyTuple_GET_ITEM(precondition, i);
+        if (!PyTuple_Check(condition) || PyTuple_GET_SIZE(condition) != 2) {
+            PyErr_SetString(PyExc_TypeError, "templates() takes conditions as (atom, positive)");
+            failed = 1;
+            break;
+        }
+        PyObject *atom = PyTuple_GET_ITEM(condition, 0);
+        if (!PyTuple_Check(atom) || PyTuple_GET_SIZE(atom) != 2) {
+            PyErr_SetString(PyExc_TypeError, "templates() takes atoms as (predicate, args tuple)");
+            failed = 1;
+            break;
+        }
+        int positive = PyObject_IsTrue(PyTuple_GET_ITEM(condition, 1));
+        if (positive < 0) {
+            failed = 1;
+            break;
+        }
+        PyObject *made;
+        if (PyUnicode_CheckExact(PyTuple_GET_ITEM(atom, 0)) &&
+            PyUnicode_CompareWithASCIIString(PyTuple_GET_ITEM(atom, 0), "=") == 0) { /* (positive, -1, *arguments) */
+            PyObject *head = Py_BuildValue("(Oi)", positive ? Py_True : Py_False, -1);
+            made = head ? template_of(atom, position, index, number, head) : NULL;
+            Py_XDECREF(head);
+            failed = !made || PyList_Append(filters, made) < 0;
+            Py_XDECREF(made);
+            continue;
+        }
+        if (!(made = template_of(atom, position, index, number, NULL))) {
+            failed = 1;
+            break;
+        }
+        int fluent = PyLong_AsLong(PyTuple_GET_ITEM(made, 0)) < nfluent;
+        if (fluent && PyList_Append(positive ? pre : pre_neg, made) < 0) failed = 1;
+        if (!failed && positive && PyList_Append(joined, made) < 0) failed = 1;
+        if (!failed && !positive && !fluent) { /* a negative static precondition: (False, *template) */
+            PyObject *head = PyTuple_Pack(1, Py_False), *filter = head ? PySequence_Concat(head, made) : NULL;
+            failed = !filter || PyList_Append(filters, filter) < 0;
+            Py_XDECREF(head);
+            Py_XDECREF(filter);
+        }
+        Py_DECREF(made);
+    }
+    if (!failed) failed = add_templates(adds, add, position, index, number) < 0 ||
+                          add_templates(deletes, delete, position, index, number) < 0;
+    if (failed) {
+        Py_XDECREF(joined);
+        Py_XDECREF(filters);
+        Py_XDECREF(pre);
+        Py_XDECREF(pre_neg);
+        Py_XDECREF(adds);
+        Py_XDECREF(deletes);
+        return NULL;
+    }
+    return Py_BuildValue("(NNNNNN)", joined, filters, pre, pre_neg, adds, deletes);
+}
+
 static PyMethodDef ground_methods[] = {
+    {"templates", templates, METH_VARARGS,
+     "templates(precondition, add, delete, position, index, number, nfluent) -> (joined, filters, pre, pre_neg, "
+     "add, delete): an action's atoms as templates (number[predicate], *arguments), an argument its parameter's "
+     "position or ~index[object]: the positive preconditions (joined), the checks (equalities (positive, -1, "
+     "*arguments) and negative static preconditions (False, *template)), the fluent positive and negative "
+     "preconditions (predicate number below nfluent), and the add and delete effects."},
     {"ground", (PyCFunction)(void (*)(void))ground, METH_VARARGS | METH_KEYWORDS,
      "ground(predicates, objects, width, init, goal, goal_neg, actions, atom_type=tuple, operator_type=tuple) -> "
      "(facts, init, goal, goal_neg, unreached_goals, operators).\n\n"

@@ -205,30 +205,12 @@ class _Grounder:
         :func:`_ground.ground` takes it (its fluent preconditions and effects), each atom a template:
         (predicate number, *arguments), an argument being a parameter's position or ~object for a constant."""
         position = {v: i for i, (v, _) in enumerate(action.parameters)}
-        index, number, nfluent = self.index, self.number, len(self.predicates)
-
-        def arguments(atom: Atom) -> list[int]:
-            return [position[a] if a in position else ~index[a] for a in atom.args]
-
-        def template(atom: Atom) -> tuple[int, ...]:
-            return (number[atom.predicate], *arguments(atom))
-
-        joined, filters, pre, pre_neg = [], [], [], []
-        for cond in action.precondition:
-            if cond.atom.predicate == "=":
-                filters.append((cond.positive, -1, *arguments(cond.atom)))
-                continue
-            atom = template(cond.atom)
-            fluent = atom[0] < nfluent
-            if fluent:
-                (pre if cond.positive else pre_neg).append(atom)
-            if cond.positive:
-                joined.append(atom)
-            elif not fluent:
-                filters.append((False, *atom))
-        add = [template(a) for a in (*action.add, *(e.literal.atom for e in action.effects if e.literal.positive))]
+        adds = (*action.add, *(e.literal.atom for e in action.effects if e.literal.positive))
+        joined, filters, pre, pre_neg, add, delete = _ground.templates(
+            tuple(action.precondition), adds, tuple(action.delete), position, self.index, self.number,
+            len(self.predicates))
         schema = (tuple(self._objects_of(kind) for _, kind in action.parameters), joined, filters, add)
-        return schema, (action.name, len(position), pre, pre_neg, add, [template(a) for a in action.delete])
+        return schema, (action.name, len(position), pre, pre_neg, add, delete)
 
     def ground(self) -> Task:
         own = {id(action): name for name, action in self.conditional.items()}

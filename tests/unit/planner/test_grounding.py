@@ -268,3 +268,21 @@ def test_lmcut_stays_admissible_on_random_domains(texts: tuple[str, str]) -> Non
     if shortest is not None:
         assert len(astar) == len(shortest)
         assert heuristic(task, "lmcut")(task.init) <= len(shortest)
+
+
+def test_an_actions_templates_name_parameters_by_position_and_constants_by_complement() -> None:
+    """``(move ?x ?y)`` with a constant ``home``: a fluent, a static and an equality precondition, positive and not."""
+    from strips_planner.pddl import Condition
+
+    number, index = {"at": 0, "road": 1}, {"home": 0, "a": 1}
+    precondition = (Condition(Atom("at", ("?x",))), Condition(Atom("road", ("?x", "home"))),
+                    Condition(Atom("road", ("?y", "?x")), positive=False), Condition(Atom("=", ("?x", "?y")), False))
+    joined, filters, pre, pre_neg, add, delete = _ground.templates(
+        precondition, (Atom("at", ("?y",)),), (Atom("at", ("?x",)),), {"?x": 0, "?y": 1}, index, number, 1)
+    assert joined == [(0, 0), (1, 0, ~0)] and pre == [(0, 0)] and pre_neg == []
+    assert filters == [(False, 1, 1, 0), (False, -1, 0, 1)]
+    assert add == [(0, 1)] and delete == [(0, 0)]
+    with pytest.raises(KeyError):  # an object the problem lacks
+        _ground.templates((), (Atom("at", ("nowhere",)),), (), {}, index, number, 1)
+    with pytest.raises(TypeError):
+        _ground.templates((), (("at", ["?x"]),), (), {"?x": 0}, index, number, 1)

@@ -1,4 +1,6 @@
-"""Times our planner on one PDDL task in this process; semgoal_bench/planner.py runs it once per (problem, search).
+"""Times our planner on one PDDL task in this process; semgoal_bench/planner.py runs it once per (problem, search),
+and once with SEARCH ``none``: parse + ground alone, as no search's memory, freed behind it, is paid for by the next
+run's parse + ground.
 
     python src/semgoal_bench/semgoal_bench/runners/time_ours.py DOMAIN PROBLEM SEARCH HEURISTIC REPEATS   -> one JSON line
 
@@ -15,6 +17,8 @@ from strips_planner.grounding import ground
 from strips_planner.pddl import parse_domain, parse_problem
 from strips_planner.planner import solve_task
 
+NO_SEARCH = "none"
+
 
 def main(domain_path: str, problem_path: str, search: str, heuristic: str, repeats: str) -> None:
     times, front, result = [], [], None
@@ -25,9 +29,10 @@ def main(domain_path: str, problem_path: str, search: str, heuristic: str, repea
         task = ground(domain, parse_problem(_read(problem_path), domain))
         front.append(time.perf_counter() - start)
         print(f"front {front[-1]}", flush=True)
-        result = solve_task(task, search, heuristic)
+        if search != NO_SEARCH:
+            result = solve_task(task, search, heuristic)
         times.append(time.perf_counter() - start)
-    plan = None if result.plan is None else [f"({' '.join((op.name, *op.args))})" for op in result.plan]
+    plan = None if result is None or result.plan is None else [f"({' '.join((op.name, *op.args))})" for op in result.plan]
     print(json.dumps({"length": None if plan is None else len(plan), "plan": plan, "seconds": times,
                       "front_seconds": front}))
 

@@ -1,5 +1,7 @@
 """Two robot arms through the graph: the nodes the launch file starts with ``robots:=2`` (a second policy node in
-/robot2) bin DC-4 working at once, succeed at rest, never touch, and take the in-process episode's steps."""
+/robot2) bin DC-4 working at once, succeed at rest, never touch, and take the in-process episode's steps; so do they
+with the first arm's nodes in one process (``composed``; the second arm's policy node apart), where the first arm's
+messages are handed over and the second's go through DDS."""
 
 import subprocess
 
@@ -7,7 +9,7 @@ import pytest
 
 from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.experiments.episodes import make_agent
-from semgoal_bringup.graph import graph_nodes, node_command, process_name
+from semgoal_bringup.graph import graph_commands, graph_nodes
 from semgoal_bringup.study.fluency import recorded_plans
 from semgoal_core.names import StepStatus, is_person
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
@@ -18,11 +20,13 @@ TASK, SEED = "DC-4", 3_000_000
 
 
 @pytest.mark.timeout(600)
-def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, probe: GraphProbe, tmp_path) -> None:
+@pytest.mark.parametrize("composed", [False, True], ids=["a process per node", "the first arm's nodes in one"])
+def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, probe: GraphProbe, tmp_path,
+                                                       composed: bool) -> None:
     expected = make_agent("hierarchical", get_task(TASK).scene, arms=2).run(TASK, SEED)
     assert expected.success and expected.arm_contacts == 0
-    for package, executable, params in graph_nodes(TASK, SEED, "lockstep", robots=2):
-        nodes.run(process_name(executable, params).replace("/", "-"), node_command(package, executable, params))
+    for name, command in graph_commands(graph_nodes(TASK, SEED, "lockstep", robots=2), composed).items():
+        nodes.run(name.replace("/", "-"), command)
     client = GraphClient("semgoal_test_operator", watch=False)
     record = tmp_path / "two_arms.mcap"
     try:

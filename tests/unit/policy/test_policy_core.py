@@ -5,13 +5,14 @@ import json
 import numpy as np
 import pytest
 import torch
+from torch.nn import functional
 
 from semgoal_bringup.experiments.training import make_env
 from semgoal_core import features, layout
 from semgoal_core.lockstep import followed_decision, lockstep_subgoal
 from semgoal_core.settling import SETTLE_STEPS
 from semgoal_core.vocabulary import LAYOUTS, Literal, VocabularyError
-from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load
+from semgoal_policy.actor import Actor, LayoutMismatchError, Normaliser, derived_features, export, load, mlp
 from semgoal_policy.agents import semantic_reward
 from semgoal_policy.controller import HOLD, Idle, SubgoalController
 from semgoal_policy.replay import EpisodeReplay
@@ -383,3 +384,25 @@ def test_an_unknown_precision_is_refused() -> None:
 
     with pytest.raises(ValueError, match="unknown precision 'fp8'; valid: fp32, bf16"):
         SacAgent(6, 4, SacConfig(precision="fp8"))
+
+
+def test_the_networks_relus_in_place_give_the_values_and_gradients_of_plain_ones() -> None:
+    """mlp's ReLUs overwrite their layer's output: the same forward values and gradients as out-of-place ReLUs, in fp32
+    and under bf16 autocast (the update's)."""
+    torch.manual_seed(0)
+    net = mlp(6, 3, (16, 16))
+    linears = [layer for layer in net if isinstance(layer, torch.nn.Linear)]
+
+    def plain(x: torch.Tensor) -> torch.Tensor:
+        for layer in linears[:-1]:
+            x = functional.relu(layer(x))
+        return linears[-1](x)
+
+    for autocast in (False, True):
+        x = torch.randn(32, 6)
+        with torch.autocast("cpu", dtype=torch.bfloat16, enabled=autocast):
+            ours, reference = net(x).float(), plain(x).float()
+        torch.testing.assert_close(ours, reference, rtol=0, atol=0)
+        grads = [torch.autograd.grad(out.square().sum(), list(net.parameters())) for out in (ours, reference)]
+        for ours_grad, reference_grad in zip(*grads, strict=True):
+            torch.testing.assert_close(ours_grad, reference_grad, rtol=0, atol=0)

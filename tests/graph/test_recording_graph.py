@@ -83,11 +83,20 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
         assert ran.returncode == 0 and "recorded" in ran.stdout, ran.stdout + ran.stderr
         refused = semgoal("plan", "remove", "99")  # an edit the planner refuses: on record with its reason
         assert refused.returncode != 0, refused.stdout
+        from semgoal_msgs.msg import OperatorEvent
         from semgoal_ros.client import GraphClient
 
         hand = GraphClient("semgoal_test_hand", watch=False)  # a person's move (MoveBlock), as the console makes
+        moves: list = []
+        hand.node.create_subscription(OperatorEvent, topics.OPERATOR_EVENTS,
+                                      lambda e: moves.append(e) if e.kind == OperatorEvent.KIND_MOVE else None,
+                                      topics.EVENTS)
         try:
             assert hand.move_block("red", 1.2, 0.6, 0.425)[0]
+            # the move's event is out before the graph stops (a SIGINT right after the answer could stop the session
+            # recorder before the event reached it); a second more for the recorder, a reader like this one
+            assert hand.spin_until(lambda: bool(moves), 10.0), "the move's operator event never came"
+            hand.spin_until(lambda: False, 1.0)
         finally:
             hand.close()
     finally:

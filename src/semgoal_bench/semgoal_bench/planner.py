@@ -45,13 +45,16 @@ def run_one(python: str, runner: Path, domain: Path, prob: Path, search: str, he
     return result
 
 
-def parse_ground_alone(python: str, runner: Path, domain: Path, prob: Path, repeats: int, timeout: float) -> list[float]:
-    """Each of ``repeats`` parse + ground runs (seconds) in a fresh process without searches between them: a search
+@functools.cache
+def parse_ground_alone(python: str, runner: Path, domain: Path, prob: Path, repeats: int, timeout: float
+                       ) -> tuple[float, ...]:
+    """Each of ``repeats`` parse + ground runs (seconds) in a fresh process without searches between them, once per
+    planner and problem whatever the searches run on it: a search
     leaves its memory freed behind it, and the next run's parse + ground paid for that (our 0.45 ms to parse and ground
     blocksworld 10 before a breadth-first search, 0.69 and 0.62 ms after it: the median is a run's own cost)."""
     out = subprocess.run([python, str(runner), str(domain), str(prob), "none", "none", str(repeats)],
                          capture_output=True, text=True, timeout=timeout, check=True).stdout
-    return json.loads(out.strip().splitlines()[-1])["front_seconds"]
+    return tuple(json.loads(out.strip().splitlines()[-1])["front_seconds"])
 
 
 def _whole_runs(python: str, runner: Path, domain: Path, prob: Path, search: str, heuristic: str, repeats: int,

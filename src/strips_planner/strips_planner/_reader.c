@@ -266,6 +266,22 @@ static int is_text(PyObject *item, const char *text) {
     return PyUnicode_CheckExact(item) && PyUnicode_CompareWithASCIIString(item, text) == 0;
 }
 
+/* The last `pending` entries of `params`, variables so far, become (variable, kind) and go into `variables`; -1 on
+   error. */
+static int type_pending(PyObject *params, Py_ssize_t pending, PyObject *kind, PyObject *variables) {
+    for (Py_ssize_t k = PyList_GET_SIZE(params) - pending; k < PyList_GET_SIZE(params); k++) {
+        PyObject *var = PyList_GET_ITEM(params, k);
+        PyObject *pair = PyTuple_Pack(2, var, kind);
+        if (!pair || PyDict_SetItem(variables, var, kind) < 0) {
+            Py_XDECREF(pair);
+            return -1;
+        }
+        PyList_SET_ITEM(params, k, pair); /* the variable's reference moves into the pair's */
+        Py_DECREF(var);
+    }
+    return 0;
+}
+
 /* `?a ?b - t ?c` into `params` (a list of (variable, type) tuples) and `variables` (variable -> type, the later of two
    alike winning, as Python's dict does): 1 when every name is a variable and every type a plain one the domain
    declares (in `types`), 0 when Python should look, -1 on error. */
@@ -280,33 +296,14 @@ static int add_parameters(PyObject *items, PyObject *types, PyObject *params, Py
             if (!PyUnicode_CheckExact(kind)) return 0; /* (either ...): Python's */
             int known = PyDict_Contains(types, kind);
             if (known <= 0) return known;
-            for (Py_ssize_t k = PyList_GET_SIZE(params) - pending; k < PyList_GET_SIZE(params); k++) {
-                PyObject *var = PyList_GET_ITEM(params, k);
-                PyObject *pair = PyTuple_Pack(2, var, kind);
-                if (!pair || PyDict_SetItem(variables, var, kind) < 0) {
-                    Py_XDECREF(pair);
-                    return -1;
-                }
-                PyList_SET_ITEM(params, k, pair); /* the variable's reference moves into the pair's */
-                Py_DECREF(var);
-            }
+            if (type_pending(params, pending, kind, variables) < 0) return -1;
             pending = 0;
         } else {
             if (PyUnicode_READ_CHAR(item, 0) != '?' || PyList_Append(params, item) < 0) return PyErr_Occurred() ? -1 : 0;
             pending++;
         }
     }
-    for (Py_ssize_t k = PyList_GET_SIZE(params) - pending; k < PyList_GET_SIZE(params); k++) { /* untyped: object */
-        PyObject *var = PyList_GET_ITEM(params, k);
-        PyObject *pair = PyTuple_Pack(2, var, root_type);
-        if (!pair || PyDict_SetItem(variables, var, root_type) < 0) {
-            Py_XDECREF(pair);
-            return -1;
-        }
-        PyList_SET_ITEM(params, k, pair);
-        Py_DECREF(var);
-    }
-    return 1;
+    return type_pending(params, pending, root_type, variables) < 0 ? -1 : 1; /* untyped: object */
 }
 
 /* Whether an effect has an (increase ...) at its top, alone or in its (and ...): Python reads the action's cost. */

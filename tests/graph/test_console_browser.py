@@ -46,9 +46,9 @@ def start_page(nodes: NodeProcesses, name: str, command: list[str], port: int, l
     deadline = time.monotonic() + wait_s
     while time.monotonic() < deadline:
         try:
-            urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=1)
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/?token={TOKEN}", timeout=5)
             return
-        except (urllib.error.URLError, ConnectionError):
+        except OSError:  # refused, reset, or accepted but not yet answered (a busy start): ask again
             time.sleep(0.2)
     pytest.fail(f"{name} did not serve the page:\n" + log_path.read_text()[-3000:])
 

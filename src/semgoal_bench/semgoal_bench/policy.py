@@ -5,7 +5,9 @@ episodes, on one torch thread:
 - ours (`Trainer.cycle`) on `two_blocks` sub-goals, with one gradient step per env step (the reference's
   setting), the same with the update's matrix products in bfloat16 (``SacConfig.precision``; only where the CPU
   multiplies bfloat16 in hardware: elsewhere it is a dozen times slower than fp32, so it is listed under
-  ``not_measured`` with the reason), and with the shipped setting (``TrainConfig.updates_per_step``);
+  ``not_measured`` with the reason), the same without the expert's cloning loss (``no-cloning``: the reference's
+  work per update, one batch through SAC's losses, where ours also clones the expert on a second batch through
+  the critic's Q-filter), and with the shipped setting (``TrainConfig.updates_per_step``);
 - SB3 SAC + HerReplayBuffer (batch 256, nets [256, 256], one gradient step per env step) on the same env,
   and on gymnasium-robotics' FetchPickAndPlace-v4: the reference the policy issue measured (~47 steps/s).
 Each configuration runs in its own child process (``python -O``: gymnasium-robotics' asserts fail on
@@ -26,12 +28,18 @@ import statistics
 import subprocess
 import sys
 import time
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from semgoal_core.arguments import count, natural
 
-TRAIN_CONFIGS = ("ours:1", "ours:1:bf16", "ours:shipped", "sb3:two_blocks", "sb3:FetchPickAndPlace-v4")
+if TYPE_CHECKING:
+    from semgoal_policy.trainer import TrainConfig
+
+TRAIN_CONFIGS = ("ours:1", "ours:1:bf16", "ours:1:bf16:no-cloning", "ours:shipped", "sb3:two_blocks",
+                 "sb3:FetchPickAndPlace-v4")
+"""``ours:UPDATES[:PRECISION[:no-cloning]]`` (UPDATES ``1`` or ``shipped``) or ``sb3:ENV``."""
 REFERENCE = "sb3:FetchPickAndPlace-v4"
 WARMUP_STEPS = 1_000
 NOT_NATIVE = "this CPU has no bfloat16 in hardware (AVX512-BF16 or AMX), where bf16 updates are emulated"
@@ -41,7 +49,7 @@ def train_configs(bf16_native: bool) -> tuple[tuple[str, ...], dict[str, str]]:
     """The configurations worth timing on this CPU, and those left out with the reason."""
     if bf16_native:
         return TRAIN_CONFIGS, {}
-    left_out = {config: NOT_NATIVE for config in TRAIN_CONFIGS if config.endswith(":bf16")}
+    left_out = {config: NOT_NATIVE for config in TRAIN_CONFIGS if ":bf16" in config}
     return tuple(config for config in TRAIN_CONFIGS if config not in left_out), left_out
 
 
@@ -74,19 +82,28 @@ def _sb3_env(name: str):
     return gym.make(name)
 
 
+def our_config(arg: str, warmup: int) -> TrainConfig:
+    """The :class:`TrainConfig` that ``ours:ARG`` names (see :data:`TRAIN_CONFIGS`), on two_blocks from seed 0."""
+    from semgoal_policy.sac import SacConfig
+    from semgoal_policy.trainer import TrainConfig
+
+    updates, precision, losses, *rest = [*arg.split(":"), "", ""]
+    if updates not in ("1", "shipped") or losses not in ("", "no-cloning") or any(rest):
+        raise ValueError(f"not a configuration of ours: {arg!r}; valid: UPDATES[:PRECISION[:no-cloning]], UPDATES 1 or "
+                         "shipped")
+    defaults = TrainConfig(scene="two_blocks")
+    sac = SacConfig(precision=precision or "fp32", bc_weight=0.0 if losses else defaults.sac.bc_weight)
+    return TrainConfig(scene="two_blocks", seed=0, learning_starts=warmup, run_dir=None, sac=sac,
+                       updates_per_step=1.0 if updates == "1" else defaults.updates_per_step)
+
+
 def train_rate(config: str, steps: int, warmup: int = WARMUP_STEPS) -> float:
     """Env steps/s of one training configuration over ``steps`` env steps after ``warmup`` steps without updates."""
     kind, _, arg = config.partition(":")
     if kind == "ours":
         from semgoal_bringup.experiments.training import trainer_for
-        from semgoal_policy.sac import SacConfig
-        from semgoal_policy.trainer import TrainConfig
 
-        defaults = TrainConfig(scene="two_blocks")
-        updates, _, precision = arg.partition(":")
-        trainer = trainer_for(TrainConfig(scene="two_blocks", seed=0, learning_starts=warmup, run_dir=None,
-                                          updates_per_step=1.0 if updates == "1" else defaults.updates_per_step,
-                                          sac=SacConfig(precision=precision or "fp32")))
+        trainer = trainer_for(our_config(arg, warmup))
         while trainer.replay.transitions < warmup:
             trainer.cycle()
         start, done = time.perf_counter(), 0

@@ -8,15 +8,26 @@ import sys
 import pytest
 
 from conftest import ROOT
-from semgoal_bench.policy import REFERENCE, TRAIN_CONFIGS, inference, train_configs
+from semgoal_bench.policy import REFERENCE, TRAIN_CONFIGS, inference, our_config, train_configs
 from semgoal_core.vocabulary import PAPER_SCENES
 
 
 def test_bf16_is_timed_only_where_the_cpu_multiplies_it_in_hardware():
     assert train_configs(True) == (TRAIN_CONFIGS, {})
     configs, left_out = train_configs(False)
-    assert set(left_out) == {"ours:1:bf16"} and "hardware" in left_out["ours:1:bf16"]
+    assert set(left_out) == {"ours:1:bf16", "ours:1:bf16:no-cloning"}
+    assert all("hardware" in reason for reason in left_out.values())
     assert set(configs) | set(left_out) == set(TRAIN_CONFIGS) and REFERENCE in configs
+
+
+def test_our_configurations_are_read_from_their_names():
+    shipped, one = our_config("shipped", warmup=100), our_config("1:bf16:no-cloning", warmup=100)
+    assert shipped.updates_per_step < 1.0 and shipped.sac.bc_weight > 0 and shipped.sac.precision == "fp32"
+    assert one.updates_per_step == 1.0 and one.sac.bc_weight == 0.0 and one.sac.precision == "bf16"
+    assert one.learning_starts == 100 and one.run_dir is None
+    for wrong in ("2", "1:bf16:cloning", "1:bf16:no-cloning:more"):
+        with pytest.raises(ValueError, match="not a configuration of ours"):
+            our_config(wrong, warmup=100)
 
 
 def test_inference_times_each_scenes_controller_and_the_peers():

@@ -238,8 +238,8 @@ def graph_commands(nodes: list[tuple[str, str, dict]], composed: bool = False, l
 
 
 def composed_nodes(nodes: list[tuple[str, str, dict]], composed: bool) -> list[tuple[str, str, dict]]:
-    """The nodes ``graph_node`` runs when ``composed``: the graph's own (a second arm's policy node runs apart)."""
-    return [node for node in nodes if composed and node[1] in NODE_NAMES and NAMESPACE_KEY not in node[2]]
+    """The nodes ``graph_node`` runs when ``composed``: the graph's own (the second arm's policy node too, in /robot2)."""
+    return [node for node in nodes if composed and node[1] in NODE_NAMES]
 
 
 def process_name(executable: str, params: dict) -> str:
@@ -257,13 +257,17 @@ def composed_command(nodes: list[tuple[str, str, dict]], log_level: str | None =
 
 
 def composed_arguments(nodes: list[tuple[str, str, dict]]) -> list[str]:
-    """``graph_node``'s own arguments: which nodes it runs."""
-    return ["--nodes", ",".join(executable for _, executable, _ in nodes)]
+    """``graph_node``'s own arguments: which nodes it runs (``robot2/policy_node`` under its namespace), and the
+    values of those under a namespace (``--param robot2/policy_node:arm:=2``: ROS's ``-p`` cannot tell them apart)."""
+    entries = [(process_name(executable, params), params) for _, executable, params in nodes]
+    return ["--nodes", ",".join(entry for entry, _ in entries),
+            *(arg for entry, params in entries if NAMESPACE_KEY in params for key, value in params.items()
+              if key != NAMESPACE_KEY for arg in ("--param", f"{entry}:{key}:={value}"))]
 
 
 def composed_parameters(nodes: list[tuple[str, str, dict]]) -> list[str]:
-    """Each node's own values as ROS arguments scoped to its name, ``-p sim:task:=DC-3``."""
-    return [arg for _, executable, params in nodes for key, value in params.items()
+    """The values of each node in the root namespace as ROS arguments scoped to its name, ``-p sim:task:=DC-3``."""
+    return [arg for _, executable, params in nodes if NAMESPACE_KEY not in params for key, value in params.items()
             for arg in ("-p", f"{NODE_NAMES[executable]}:{key}:={value}")]
 
 

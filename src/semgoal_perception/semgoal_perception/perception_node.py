@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from rclpy.node import Node
@@ -81,8 +82,9 @@ def stamp_key(header) -> int:
 
 
 class PerceptionNode(Node):
-    def __init__(self) -> None:
-        super().__init__("perception")
+    def __init__(self, **options: Any) -> None:
+        """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
+        super().__init__("perception", **options)
         values = declare(self, PARAMS)
         import torch
 

@@ -11,6 +11,7 @@ policy in lockstep follows the decision on each step at the next (one step of de
 from __future__ import annotations
 
 import time
+from typing import Any
 
 from action_msgs.msg import GoalStatusArray
 from rclpy.action import ActionServer, GoalResponse
@@ -51,8 +52,9 @@ reset's answer can come before the sim's event that announces the reset (another
 
 
 class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
-    def __init__(self) -> None:
-        super().__init__("planner")
+    def __init__(self, **options: Any) -> None:
+        """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
+        super().__init__("planner", **options)
         values = declare(self, PARAMS)
         robots = robot_names(values["arms"])
         self.executive = Executive(SemanticPlanner(values["scene"], values["search"]), robots=robots,

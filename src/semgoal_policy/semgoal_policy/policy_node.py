@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import time
+from typing import Any
 
 import numpy as np
 from rclpy.node import Node
@@ -63,8 +64,9 @@ reordering between the two topics."""
 
 
 class PolicyNode(Node):
-    def __init__(self) -> None:
-        super().__init__("policy")
+    def __init__(self, **options: Any) -> None:
+        """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
+        super().__init__("policy", **options)
         values = declare(self, PARAMS)
         self.mode, scene = values["mode"], values["scene"]
         arm, self.arms = values["arm"] - 1, values["arms"]

@@ -14,6 +14,7 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Iterator
+from typing import Any
 
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -207,8 +208,9 @@ def run_node(node_class: type, args: list[str] | None = None) -> None:
     run_nodes([node_class], args)
 
 
-def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
-    """:func:`run_node` for several nodes in one process, spun by one single-threaded executor: each is still a node
+def run_nodes(node_factories: list[Callable[[], Any]], args: list[str] | None = None) -> None:
+    """:func:`run_node` for several nodes (each made by a factory of ``node_factories``: a node class, or one with its
+    namespace and values bound) in one process, spun by one single-threaded executor: each is still a node
     of its own, with its own name and parameters. The executor is :class:`~semgoal_ros.executor.SteadyExecutor`, or
     rclpy's own where ``SEMGOAL_EXECUTOR=rclpy`` (to tell a fault of ours from rclpy's). SteadyExecutor hands the
     nodes' messages to each other over as objects where no one else listens (:mod:`semgoal_ros.in_process`), unless
@@ -222,7 +224,7 @@ def run_nodes(node_classes: list[type], args: list[str] | None = None) -> None:
     rclpy.init(args=args)
     nodes = []
     try:
-        nodes = [node_class() for node_class in node_classes]
+        nodes = [make_node() for make_node in node_factories]
     except (KeyboardInterrupt, ExternalShutdownException):
         _destroy(rclpy, nodes)
         return

@@ -5,6 +5,8 @@ from this stream, and in lockstep the policy follows its decision on each step, 
 is logged in the scene's readable form, and a block that falls off the table as a warning.
 """
 
+from typing import Any
+
 from rclpy.node import Node
 
 from semgoal_core.vocabulary import LAYOUTS
@@ -14,8 +16,9 @@ from semgoal_ros import messages
 
 
 class PredicateNode(Node):
-    def __init__(self) -> None:
-        super().__init__("predicates")
+    def __init__(self, **options: Any) -> None:
+        """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
+        super().__init__("predicates", **options)
         self.publisher = self.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.PER_STEP)
         self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
         self.last_key: tuple | None = None

@@ -20,6 +20,7 @@ markers at once.
 
 import functools
 import time
+from typing import Any
 
 import numpy as np
 from rclpy.clock import Clock as TimerClock
@@ -77,8 +78,9 @@ PARAMS = (
 
 
 class SimNode(Node):
-    def __init__(self) -> None:
-        super().__init__("sim")
+    def __init__(self, **options: Any) -> None:
+        """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
+        super().__init__("sim", **options)
         values = declare(self, PARAMS)
         self.mode, self.rate_hz, self.markers_every = values["mode"], values["rate_hz"], values["markers_every"]
         self.render_size = (values["render_width"], values["render_height"])

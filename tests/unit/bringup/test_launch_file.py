@@ -159,6 +159,16 @@ def test_composed_puts_the_graphs_nodes_in_one_process_with_their_own_values(lau
     assert [n.kwargs["executable"] for n in others] == ["console_node"]
 
 
+def test_composed_with_robots_2_runs_the_second_arms_policy_node_in_the_process_under_its_namespace(launch_file):
+    (composed,) = _launched(launch_file, task="DC-4", mode="lockstep", composed="true", robots="2")
+    arguments = composed.kwargs["arguments"]
+    assert arguments[:2] == ["--nodes", "sim_node,predicate_node,planner_node,policy_node,robot2/policy_node"]
+    assert {"robot2/policy_node:arm:=2", "robot2/policy_node:arms:=2"} <= set(arguments[3::2])
+    assert set(arguments[2::2]) == {"--param"}
+    scoped = composed.kwargs["ros_arguments"]  # -p scopes by node name alone: /policy's values, never /robot2's
+    assert "policy:arms:=2" in scoped and not any(":arm:=" in arg for arg in scoped)
+
+
 def test_robots_2_adds_the_second_arms_policy_node_in_its_namespace(launch_file) -> None:
     launched = _launched(launch_file, task="DC-4", mode="lockstep", robots="2")
     by_name = {(n.kwargs["executable"], n.kwargs["namespace"]): n.kwargs["parameters"][1] for n in launched}

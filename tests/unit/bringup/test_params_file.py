@@ -8,7 +8,8 @@ import pytest
 import yaml
 
 ROOT = Path(__file__).resolve().parents[3]
-PARAMS = yaml.safe_load((ROOT / "src/semgoal_bringup/config/semgoal.yaml").read_text())
+SECTIONS = yaml.safe_load((ROOT / "src/semgoal_bringup/config/semgoal.yaml").read_text())
+PARAMS = {key.removeprefix("/**/"): section for key, section in SECTIONS.items()}
 NODE_MODULES = {
     "sim": "semgoal_sim.sim_node",
     "predicates": "semgoal_sim.predicate_node",
@@ -28,6 +29,7 @@ def declared(node: str) -> dict:
 def test_yaml_matches_declared_parameters(node: str) -> None:
     specs = declared(node)
     assert set(PARAMS) <= set(NODE_MODULES)
+    assert all(key.startswith("/**/") for key in SECTIONS)  # a node under a namespace reads its section too
     values = PARAMS.get(node, {}).get("ros__parameters", {})  # a node without parameters has no section
     assert set(values) == set(specs), f"{node}: YAML {sorted(values)} vs declared {sorted(specs)}"
     for name, value in values.items():

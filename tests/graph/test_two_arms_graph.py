@@ -9,14 +9,55 @@ import pytest
 
 from conftest import ROOT, GraphProbe, NodeProcesses
 from semgoal_bringup.experiments.episodes import make_agent
-from semgoal_bringup.graph import graph_commands, graph_nodes
+from semgoal_bringup.graph import TRUTH, Sight, graph_commands, graph_nodes
 from semgoal_bringup.study.fluency import recorded_plans
 from semgoal_core.names import StepStatus, is_person
 from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
+from semgoal_core.vocabulary import LAYOUTS, Literal
+from semgoal_perception.tracker import in_hand
 from semgoal_ros import interfaces as topics
+from semgoal_ros import messages
 from semgoal_ros.client import GraphClient
 
 TASK, SEED = "DC-4", 3_000_000
+
+
+def run_two_arms(nodes: NodeProcesses, probe: GraphProbe, record, composed: bool = False, sight: Sight = TRUTH):
+    """DC-4 from its start through the graph with ``robots`` 2, recorded: the goal's result."""
+    commands = graph_commands(graph_nodes(TASK, SEED, "lockstep", robots=2, sight=sight), composed)
+    assert len(commands) == (1 if composed else 5)
+    for name, command in commands.items():
+        nodes.run(name.replace("/", "-"), command)
+    client = GraphClient("semgoal_test_operator", watch=False)
+    try:
+        assert client.wait_ready(), nodes.logs()
+        both = {("policy", "/"), ("policy", "/robot2")}
+        probe.spin_until(lambda: both <= set(probe.node.get_node_names_and_namespaces()), 60, "both policy nodes")
+        # the planner gives each arm its blocks by where the world state says they are: it must hear it
+        world = topics.PERCEIVED_WORLD if sight.perception == "camera" else topics.WORLD_STATE
+        probe.spin_until(lambda: probe.node.count_subscribers(world) >= (1 if sight.perception == "camera" else 3),
+                         60, "the world state's readers")
+        ok, message = client.reset(TASK, SEED)
+        assert ok, message
+        with client.recording(record):
+            return client.execute(TASK, max_steps=TASK_STEP_BUDGET)
+    finally:
+        client.close()
+
+
+def both_arms_at_work(record) -> bool:
+    """Whether the recorded plans had a step under way for each arm at the same time, and none for a person."""
+    at_once = [{step.assignee for step in plan.steps if step.status == StepStatus.ACTIVE} for plan in recorded_plans(record)]
+    return {"robot", "robot:2"} in at_once and not any(is_person(who) for working in at_once for who in working)
+
+
+def recorded(record) -> list[tuple[str, object]]:
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    with record.open("rb") as stream:
+        return [(channel.topic, msg) for _, channel, _, msg in make_reader(
+            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
 
 
 @pytest.mark.timeout(600)
@@ -25,36 +66,12 @@ def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, pro
                                                        composed: bool) -> None:
     expected = make_agent("hierarchical", get_task(TASK).scene, arms=2).run(TASK, SEED)
     assert expected.success and expected.arm_contacts == 0
-    commands = graph_commands(graph_nodes(TASK, SEED, "lockstep", robots=2), composed)
-    assert len(commands) == (1 if composed else 5)
-    for name, command in commands.items():
-        nodes.run(name.replace("/", "-"), command)
-    client = GraphClient("semgoal_test_operator", watch=False)
     record = tmp_path / "two_arms.mcap"
-    try:
-        assert client.wait_ready(), nodes.logs()
-        both = {("policy", "/"), ("policy", "/robot2")}
-        probe.spin_until(lambda: both <= set(probe.node.get_node_names_and_namespaces()), 60, "both policy nodes")
-        # the planner gives each arm its blocks by where the world state says they are: it must hear it
-        probe.spin_until(lambda: probe.node.count_subscribers(topics.WORLD_STATE) >= 3, 60, "the world state's readers")
-        ok, message = client.reset(TASK, SEED)
-        assert ok, message
-        with client.recording(record):
-            result = client.execute(TASK, max_steps=TASK_STEP_BUDGET)
-    finally:
-        client.close()
+    result = run_two_arms(nodes, probe, record, composed)
     assert result.success, result.message
     assert (result.control_steps, result.replans) == (expected.steps, expected.replans), result.message
-    plans = recorded_plans(record)
-    at_once = [{step.assignee for step in plan.steps if step.status == StepStatus.ACTIVE} for plan in plans]
-    assert {"robot", "robot:2"} in at_once  # both arms had a step under way at the same time
-    assert not any(is_person(who) for working in at_once for who in working)
-    from mcap.reader import make_reader
-    from mcap_ros2.decoder import DecoderFactory
-
-    with record.open("rb") as stream:
-        decoded = [(channel.topic, msg) for _, channel, _, msg in make_reader(
-            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    assert both_arms_at_work(record)
+    decoded = recorded(record)
     contacts = [msg.arm_contacts for topic, msg in decoded if topic == topics.WORLD_STATE]
     assert contacts and max(contacts) == 0
     joints = next(msg.name for topic, msg in decoded if topic == topics.JOINT_STATES)
@@ -63,3 +80,29 @@ def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, pro
     rendered = subprocess.run([str(ROOT / "semgoal"), "replay", str(record), "--mp4", str(video)], capture_output=True,
                               text=True, timeout=300, cwd=ROOT)
     assert rendered.returncode == 0 and video.stat().st_size > 0, rendered.stdout + rendered.stderr
+
+
+@pytest.mark.timeout(600)
+def test_two_arms_bin_a_desk_with_the_planner_on_the_camera(nodes: NodeProcesses, probe: GraphProbe, tmp_path) -> None:
+    """The planner sees by the camera (the second Fetch in view), holding in either hand, and gives each arm its
+    blocks by where the camera sees them; the policies drive the arms."""
+    record = tmp_path / "two_arms_camera.mcap"
+    result = run_two_arms(nodes, probe, record, sight=Sight("camera", "truth"))
+    assert result.success, result.message
+    assert both_arms_at_work(record)
+    decoded = recorded(record)
+    assert max(msg.arm_contacts for topic, msg in decoded if topic == topics.WORLD_STATE) == 0
+    # holding in the second arm's hand, as the camera saw it, against the hand and the blocks the sim had
+    states = {msg.step: msg for topic, msg in decoded if topic == topics.SEMANTIC_STATE}
+    in_second_hand, seen_held = 0, 0
+    for topic, world in decoded:
+        if topic != topics.WORLD_STATE or world.step not in states:
+            continue
+        state = states[world.step]
+        assert state.confidence, "the semantic state is the camera's (with a confidence per literal)"
+        (grip, opening), (other, other_opening) = messages.hands(world)
+        for name, pose in zip(world.block_names, messages.block_poses(world), strict=True):
+            if in_hand(pose[:3], other, other_opening) and not in_hand(pose[:3], grip, opening):
+                in_second_hand += 1
+                seen_held += state.vector[LAYOUTS["desk_cleanup"].index(Literal("holding", (name,)))]
+    assert in_second_hand > 10 and seen_held >= 0.9 * in_second_hand, (seen_held, in_second_hand)

@@ -14,12 +14,13 @@ from torch import nn
 from torch.nn import functional
 
 from semgoal_core.geometry import TABLE_TOP
-from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, evaluate
+from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, PAPER_SCENES, evaluate
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.network import INPUT_CHANNELS, network_input
 
-ATOMS: tuple[tuple[str, tuple[str, ...]], ...] = tuple(sorted({atom for layout in LAYOUTS.values() for atom in layout.atoms}))
-"""Every grounded literal of every scene: the network's outputs."""
+ATOMS: tuple[tuple[str, tuple[str, ...]], ...] = tuple(sorted({atom for scene in PAPER_SCENES
+                                                               for atom in LAYOUTS[scene].atoms}))
+"""Every grounded literal of the paper's scenes, whose frames it is trained and measured on: the network's outputs."""
 INDEX = {atom: i for i, atom in enumerate(ATOMS)}
 
 

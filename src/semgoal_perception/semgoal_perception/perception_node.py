@@ -35,7 +35,7 @@ from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.perceiver import ArmState, Perceiver, Perception
 from semgoal_ros import interfaces as topics
 from semgoal_ros.diagnostics import OK, WARN, Counters, Diagnostics, Latencies
-from semgoal_ros.messages import doubles, semantic_message, set_blocks
+from semgoal_ros.messages import doubles, hands, semantic_message, set_blocks
 from semgoal_ros.parameters import Param, ParameterValueError, declare
 
 CAMERA_FRAME = "camera_color_optical_frame"
@@ -169,7 +169,8 @@ class PerceptionNode(Node):
         self.last_frame_at, self.worlds_unseen = time.monotonic(), 0
         arm = self.arm_state(world)
         blocks = task.blocks
-        seen = self.perceiver.perceive(rgb, depth, camera, arm, world.scene, blocks, (world.episode, world.seed), world.step)
+        seen = self.perceiver.perceive(rgb, depth, camera, arm, world.scene, blocks, (world.episode, world.seed), world.step,
+                                       hands(world)[1:])
         latency_ms = 1e3 * (time.perf_counter() - started)
         self.latency.seconds.append(latency_ms / 1e3)
         self.semantic_pub.publish(self.semantic_state(world, seen))
@@ -185,7 +186,7 @@ class PerceptionNode(Node):
         if self.perceiver.episode != (world.scene, blocks, (world.episode, world.seed)):
             return  # a new episode the camera has not seen at all: nothing to hold on to
         arm = self.arm_state(world)
-        seen = self.perceiver.read_out(world.scene, blocks, arm)
+        seen = self.perceiver.read_out(world.scene, blocks, arm, hands(world)[1:])
         state = self.semantic_state(world, seen)
         state.stale = reason
         self.semantic_pub.publish(state)
@@ -227,12 +228,14 @@ class PerceptionNode(Node):
 
     @staticmethod
     def perceived_world(world: WorldState, seen: Perception, arm: ArmState) -> WorldState:
-        """The world state as the camera sees it: the arm's own fields, the estimated blocks and the
+        """The world state as the camera sees it: the arms' own fields, the estimated blocks and the
         observation rebuilt from them."""
         msg = WorldState(header=world.header, step=world.step, scene=world.scene, task=world.task,
                          episode=world.episode, seed=world.seed, gripper_position=world.gripper_position,
                          gripper_velocity=world.gripper_velocity, finger_positions=world.finger_positions,
-                         finger_velocities=world.finger_velocities, has_bin=world.has_bin, bin_position=world.bin_position)
+                         finger_velocities=world.finger_velocities, has_bin=world.has_bin, bin_position=world.bin_position,
+                         other_grippers=world.other_grippers, other_finger_openings=world.other_finger_openings,
+                         arm_contacts=world.arm_contacts)
         slots = [SCENES[world.scene].objects.index(name) for name in seen.blocks]
         unturned, unspun = np.tile([1.0, 0.0, 0.0, 0.0], (len(slots), 1)), np.zeros((len(slots), 3))
         set_blocks(msg, seen.blocks, seen.positions[slots], unturned, np.hstack([seen.velocities[slots], unspun]))

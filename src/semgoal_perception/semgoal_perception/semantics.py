@@ -5,6 +5,8 @@ agree with that value. A block never seen gives its literals confidence 0."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from semgoal_core.geometry import TABLE_TOP
@@ -24,18 +26,21 @@ class SemanticEstimator:
         self.atom_blocks = [[index[arg] for arg in args] for _, args in layout.atoms]
 
     def estimate(self, positions: np.ndarray, sigmas: np.ndarray, grip: np.ndarray, opening: float,
-                 present: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                 present: np.ndarray, other_hands: Sequence[tuple[np.ndarray, float]] = ()
+                 ) -> tuple[np.ndarray, np.ndarray]:
         """(vector, confidence): bool and float in [0, 1] per grounded predicate, in the layout's order.
 
         :param positions: (N, 3) estimated centres in the scene's object order (NaN: never seen).
         :param sigmas: (N, 3) their standard deviations (m).
+        :param other_hands: the other arms' grip sites and openings: ``holding`` is in any hand.
         """
         known = np.isfinite(positions).all(axis=1)
         centres = np.where(known[:, None], positions, 0.0)
-        vector = evaluate(self.layout, centres, grip, opening, TABLE_TOP, present)
+        vector = evaluate(self.layout, centres, grip, opening, TABLE_TOP, present, other_hands=other_hands)
         agree = np.zeros(self.layout.size)
         for noise in self.noise:
-            sample = evaluate(self.layout, centres + noise * sigmas, grip, opening, TABLE_TOP, present)
+            sample = evaluate(self.layout, centres + noise * sigmas, grip, opening, TABLE_TOP, present,
+                              other_hands=other_hands)
             agree += sample == vector
         confidence = agree / len(self.noise)
         unknown = ~known

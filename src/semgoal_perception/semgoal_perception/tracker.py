@@ -2,15 +2,17 @@
 and velocities, and carries a block the camera does not see this frame.
 
 Occlusion is normal: a block under the arm, in the hand or below another block keeps its track. Unseen,
-a block in the hand follows the grip site (the arm's kinematics, from ``/tf``); any other stays where it
-was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames it is
+a block in a hand follows that hand's grip site (the arms' kinematics; with two arms, either); any other stays
+where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames it is
 reported lost, with its last estimate, never dropped.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from enum import IntEnum
+from typing import NamedTuple
 
 import numpy as np
 
@@ -41,6 +43,14 @@ class TrackStatus(IntEnum):
     NEVER_SEEN = 4
 
 
+class Hand(NamedTuple):
+    """One arm's hand as its kinematics give it: grip site (m), its velocity (m/s), finger opening (m)."""
+
+    position: np.ndarray
+    velocity: np.ndarray
+    opening: float
+
+
 @dataclass
 class Track:
     position: np.ndarray = field(default_factory=lambda: np.full(3, np.nan))
@@ -50,7 +60,9 @@ class Track:
     unseen: int = 0
     pixels: int = 0
     grip_offset: np.ndarray | None = None
-    """Block centre minus grip site while it is in the closed hand; None when it is not."""
+    """Block centre minus grip site while it is in a closed hand; None when it is not."""
+    hand: int | None = None
+    """Which hand of the frame's ``hands`` holds it (0: the own arm's); None when none does."""
 
 
 def in_hand(position: np.ndarray, grip: np.ndarray, opening: float) -> bool:
@@ -69,9 +81,9 @@ class BlockTracker:
         self.dt = dt
         self.tracks = {colour: Track() for colour in self.colours}
 
-    def update(self, found: list[Detection], grip: np.ndarray, grip_velocity: np.ndarray,
-               opening: float, frames: int = 1) -> dict[int, Track]:
-        """Fold one frame's detections in; ``frames`` control steps since the last update."""
+    def update(self, found: list[Detection], hands: Sequence[Hand], frames: int = 1) -> dict[int, Track]:
+        """Fold one frame's detections in; ``hands``: every arm's hand, the own arm's first; ``frames`` control
+        steps since the last update."""
         dt = self.dt * frames
         seen = {d.colour: d for d in found if d.colour in self.tracks}
         for colour, track in self.tracks.items():
@@ -79,12 +91,13 @@ class BlockTracker:
             if detection is not None:
                 self._measure(track, detection, dt)
             else:
-                self._predict(track, grip, grip_velocity, frames)
-            holding = track.status != TrackStatus.NEVER_SEEN and in_hand(track.position, grip, opening)
-            if holding and track.grip_offset is None:
-                track.grip_offset = track.position - grip
-            elif not holding:
-                track.grip_offset = None
+                self._predict(track, hands, frames)
+            holder = None if track.status == TrackStatus.NEVER_SEEN else next(
+                (i for i, hand in enumerate(hands) if in_hand(track.position, hand.position, hand.opening)), None)
+            if holder is None:
+                track.grip_offset, track.hand = None, None
+            elif track.grip_offset is None or track.hand != holder:
+                track.grip_offset, track.hand = track.position - hands[holder].position, holder
         return self.tracks
 
     def _measure(self, track: Track, detection: Detection, dt: float) -> None:
@@ -98,13 +111,15 @@ class BlockTracker:
         track.sigma = detection.sigma.copy()
         track.status, track.unseen, track.pixels = TrackStatus.VISIBLE, 0, detection.pixels
 
-    def _predict(self, track: Track, grip: np.ndarray, grip_velocity: np.ndarray, frames: int) -> None:
+    def _predict(self, track: Track, hands: Sequence[Hand], frames: int) -> None:
         if track.status == TrackStatus.NEVER_SEEN:
             return
         track.unseen += frames
         track.pixels = 0
-        if track.grip_offset is not None:
-            track.position, track.velocity = grip + track.grip_offset, np.asarray(grip_velocity, dtype=float).copy()
+        if track.hand is not None and track.hand < len(hands):
+            hand = hands[track.hand]
+            track.position = hand.position + track.grip_offset
+            track.velocity = np.asarray(hand.velocity, dtype=float).copy()
             track.sigma = np.maximum(track.sigma, SIGMA_HELD)
             track.status = TrackStatus.HELD
             return

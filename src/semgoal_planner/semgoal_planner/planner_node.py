@@ -78,7 +78,7 @@ class PlannerNode(WorldWatch, PlanServices, GoalAction, JournalKeeping, Node):
         self.subgoal_publishers = {robot: self.create_publisher(SubGoal, topics.arm_topic(topics.SUBGOAL, arm),
                                                                 topics.PER_STEP) for arm, robot in enumerate(robots)}
         if len(robots) > 1:
-            self.create_subscription(WorldState, topics.WORLD_STATE, self.world_callback, topics.STREAM)
+            self.create_subscription(WorldState, values["world_topic"], self.world_callback, topics.STREAM)
         self.events_pub = self.create_publisher(OperatorEvent, topics.OPERATOR_EVENTS, topics.EVENTS)
         self.action_status_pub = self.create_publisher(GoalStatusArray, topics.action_status(topics.EXECUTE_GOAL),
                                                        qos_profile_action_status_default)

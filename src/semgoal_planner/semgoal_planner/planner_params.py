@@ -5,6 +5,7 @@ from __future__ import annotations
 from semgoal_core.arms import MAX_ARMS
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.semantic import AUTO_SEARCH
+from semgoal_ros import interfaces as topics
 from semgoal_ros.parameters import Param
 from strips_planner.search import SEARCHES
 
@@ -24,6 +25,9 @@ PARAMS = (
           "one step at a time, in plan order (in turns)", runtime=True),
     Param("arms", 1, "robot arms at the table: 2 gives a robot's turn to the free arm on its block's side and "
           "publishes the second arm's sub-goal on /semgoal/robot2/subgoal", low=1, high=MAX_ARMS),
+    Param("world_topic", topics.WORLD_STATE, "with two arms, the world state that says where the blocks and hands are "
+          f"(whose turn a step is): the sim's, or the camera's perception ({topics.PERCEIVED_WORLD})",
+          choices=(topics.WORLD_STATE, topics.PERCEIVED_WORLD)),
     Param("state_wait_s", 5.0, "ExecuteGoal before any semantic state: wait this long for one",
           low=0.0, high=3600.0, runtime=True),
     Param("world_silence_s", 3.0, "a goal under way fails once no semantic state has come for this long (the sim "

@@ -8,16 +8,16 @@ measurements S = 9,000,000, ranges no policy training or evaluation draws from (
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from semgoal_core.tasks import TASKS, get_task
 from semgoal_core.vocabulary import BLOCK_COLOURS
-from semgoal_sim.camera import CONDITIONS, Appearance, RgbdCamera
+from semgoal_sim.camera import CONDITIONS, Appearance, Frame, RgbdCamera
 from semgoal_sim.rollout import expert_controller, expert_next_steps, run_subgoal
-from semgoal_sim.world import FetchWorld
+from semgoal_sim.world import FetchWorld, Snapshot
 
 TRAINING_SEED = 8_000_000
 MEASUREMENT_SEED = 9_000_000
@@ -81,16 +81,26 @@ def _episode_frames(task_name: str, seed: int, appearance: Appearance, camera_si
         record()
         world.step(np.zeros(4))
     camera.close()
-    colours = list(BLOCK_COLOURS)
     for frame, snapshot in frames:
-        centres, speeds = np.full((len(colours), 3), np.nan), np.full(len(colours), np.nan)
-        for block, position, velocity in zip(world.blocks, snapshot.block_positions, snapshot.block_velocities,
-                                             strict=True):
-            centres[colours.index(block)] = position
-            speeds[colours.index(block)] = np.linalg.norm(velocity[:3])
-        k = frame.intrinsics
-        yield (frame.rgb, frame.depth, frame.labels, np.array([k.fx, k.fy, k.cx, k.cy]),
-               frame.world_from_camera, centres, speeds, np.append(snapshot.grip_position, snapshot.finger_opening))
+        yield frame_row(frame, snapshot, world.blocks)
+
+
+def frame_row(frame: Frame, snapshot: Snapshot, blocks: Sequence[str]) -> tuple:
+    """A labelled frame as one row of :class:`LabelledFrames` (all but its task): the picture, its labels, and the
+    blocks' centres and speeds and the first arm's grip and opening from the world's ``snapshot`` at that step."""
+    colours = list(BLOCK_COLOURS)
+    centres, speeds = np.full((len(colours), 3), np.nan), np.full(len(colours), np.nan)
+    for block, position, velocity in zip(blocks, snapshot.block_positions, snapshot.block_velocities, strict=True):
+        centres[colours.index(block)] = position
+        speeds[colours.index(block)] = np.linalg.norm(velocity[:3])
+    k = frame.intrinsics
+    return (frame.rgb, frame.depth, frame.labels, np.array([k.fx, k.fy, k.cx, k.cy]), frame.world_from_camera,
+            centres, speeds, np.append(snapshot.grip_position, snapshot.finger_opening))
+
+
+def stack_rows(rows: list[tuple]) -> LabelledFrames:
+    """Rows of :func:`frame_row`, each with its task index last, as stacked arrays."""
+    return LabelledFrames(*(np.stack([row[i] for row in rows]) for i in range(9)))
 
 
 def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[int, int] = (160, 120),
@@ -113,5 +123,4 @@ def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[in
             bar.update(1)
         episode += 1
     bar.close()
-    rows = rows[:count]
-    return LabelledFrames(*(np.stack([row[i] for row in rows]) for i in range(9)))
+    return stack_rows(rows[:count])

@@ -177,3 +177,16 @@ def test_robots_2_adds_the_second_arms_policy_node_in_its_namespace(launch_file)
     assert by_name[("policy_node", "/robot2")] == {**by_name[("policy_node", None)], "arm": 2}
     with pytest.raises(ValueError, match="robots must be 1 to 2"):
         _launched(launch_file, robots="3")
+
+
+def test_with_two_arms_from_the_camera_the_planner_hears_where_blocks_and_hands_are_from_the_camera() -> None:
+    from semgoal_bringup.graph import Sight
+    from semgoal_ros import interfaces as topics
+
+    planner = {executable: params for _, executable, params in graph_nodes(
+        "DC-4", 0, "lockstep", robots=2, sight=Sight("camera", "truth"))}["planner_node"]
+    assert planner["world_topic"] == topics.PERCEIVED_WORLD
+    for robots, sight in ((1, Sight("camera", "truth")), (2, Sight("truth", "truth"))):
+        nodes = {executable: params for _, executable, params in graph_nodes("DC-4", 0, "lockstep", robots=robots,
+                                                                              sight=sight)}
+        assert "world_topic" not in nodes["planner_node"]

@@ -8,7 +8,7 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
-from semgoal_perception.tracker import LOST_FRAMES, SIGMA_HELD, BlockTracker, TrackStatus
+from semgoal_perception.tracker import LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""
@@ -42,13 +42,15 @@ def seen(colour: int, centre) -> Detection:
 
 
 GRIP_AWAY, STILL = np.array([1.3, 0.6, 0.7]), np.zeros(3)
+AWAY = [Hand(GRIP_AWAY, STILL, 0.1)]
+"""The one arm's hand, open and far above the blocks."""
 
 
 def test_a_resting_block_seen_with_millimetre_noise_reads_as_at_rest() -> None:
     tracker, rng = BlockTracker([0]), np.random.default_rng(1)
     speeds = []
     for _ in range(100):
-        track = tracker.update([seen(0, np.array([1.3, 0.7, 0.425]) + rng.normal(0, 0.001, 3))], GRIP_AWAY, STILL, 0.1)[0]
+        track = tracker.update([seen(0, np.array([1.3, 0.7, 0.425]) + rng.normal(0, 0.001, 3))], AWAY)[0]
         speeds.append(np.linalg.norm(track.velocity))
     assert max(speeds[10:]) < REST_SPEED
     assert np.linalg.norm(track.position - [1.3, 0.7, 0.425]) < 0.002
@@ -57,37 +59,50 @@ def test_a_resting_block_seen_with_millimetre_noise_reads_as_at_rest() -> None:
 def test_a_moving_block_reads_as_moving() -> None:
     tracker = BlockTracker([0])
     for step in range(30):
-        track = tracker.update([seen(0, [1.2 + 0.004 * step, 0.7, 0.425])], GRIP_AWAY, STILL, 0.1)[0]
+        track = tracker.update([seen(0, [1.2 + 0.004 * step, 0.7, 0.425])], AWAY)[0]
     assert np.allclose(track.velocity, [0.1, 0.0, 0.0], atol=0.01)  # 4 mm per 0.04 s step
 
 
 def test_a_hidden_block_keeps_its_estimate_with_growing_uncertainty_then_is_lost_not_dropped() -> None:
     tracker = BlockTracker([0, 1])
-    tracker.update([seen(0, [1.3, 0.7, 0.425]), seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)
+    tracker.update([seen(0, [1.3, 0.7, 0.425]), seen(1, [1.2, 0.8, 0.425])], AWAY)
     sigmas = []
     for _ in range(LOST_FRAMES - 1):
-        track = tracker.update([seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)[0]
+        track = tracker.update([seen(1, [1.2, 0.8, 0.425])], AWAY)[0]
         assert track.status == TrackStatus.OCCLUDED
         sigmas.append(track.sigma[0])
     assert np.allclose(track.position, [1.3, 0.7, 0.425]) and np.all(np.diff(sigmas) >= 0) and sigmas[-1] > sigmas[0]
-    assert tracker.update([], GRIP_AWAY, STILL, 0.1)[0].status == TrackStatus.LOST
+    assert tracker.update([], AWAY)[0].status == TrackStatus.LOST
     assert np.allclose(tracker.tracks[0].position, [1.3, 0.7, 0.425])
-    assert tracker.update([seen(0, [1.31, 0.7, 0.425])], GRIP_AWAY, STILL, 0.1)[0].status == TrackStatus.VISIBLE
+    assert tracker.update([seen(0, [1.31, 0.7, 0.425])], AWAY)[0].status == TrackStatus.VISIBLE
 
 
 def test_a_block_in_the_closed_hand_follows_the_grip_when_unseen() -> None:
     tracker, grip = BlockTracker([0]), np.array([1.3, 0.7, 0.43])
-    tracker.update([seen(0, [1.3, 0.7, 0.425])], grip, STILL, 0.05)  # fingers closed on it
+    tracker.update([seen(0, [1.3, 0.7, 0.425])], [Hand(grip, STILL, 0.05)])  # fingers closed on it
     for _ in range(10):
         grip = grip + np.array([0.0, 0.0, 0.01])
-        track = tracker.update([], grip, np.array([0.0, 0.0, 0.25]), 0.05)[0]
+        track = tracker.update([], [Hand(grip, np.array([0.0, 0.0, 0.25]), 0.05)])[0]
     assert track.status == TrackStatus.HELD and np.allclose(track.position, grip - [0, 0, 0.005])
     assert np.allclose(track.velocity, [0, 0, 0.25]) and track.sigma.min() >= SIGMA_HELD
 
 
+def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_table_when_let_go() -> None:
+    tracker, grip = BlockTracker([0, 1]), np.array([1.3, 0.9, 0.43])
+    tracker.update([seen(0, [1.3, 0.9, 0.425]), seen(1, [1.2, 0.7, 0.425])], [*AWAY, Hand(grip, STILL, 0.05)])
+    assert tracker.tracks[0].hand == 1 and tracker.tracks[1].hand is None
+    for _ in range(10):  # the second arm lifts it out of sight; the first arm's hand stays away
+        grip = grip + np.array([0.0, 0.01, 0.01])
+        track = tracker.update([seen(1, [1.2, 0.7, 0.425])], [*AWAY, Hand(grip, np.array([0.0, 0.25, 0.25]), 0.05)])[0]
+    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip - [0, 0, 0.005])
+    assert np.allclose(track.velocity, [0, 0.25, 0.25])
+    track = tracker.update([seen(0, [1.3, 1.0, 0.425])], [*AWAY, Hand(grip + np.array([0, 0, 0.1]), STILL, 0.1)])[0]
+    assert track.status == TrackStatus.VISIBLE and track.hand is None and track.grip_offset is None
+
+
 def test_a_never_seen_block_stays_unknown() -> None:
     tracker = BlockTracker([0, 1])
-    tracker.update([seen(1, [1.2, 0.8, 0.425])], GRIP_AWAY, STILL, 0.1)
+    tracker.update([seen(1, [1.2, 0.8, 0.425])], AWAY)
     assert tracker.tracks[0].status == TrackStatus.NEVER_SEEN and np.isnan(tracker.tracks[0].position).all()
 
 
@@ -101,6 +116,16 @@ def confidence_of(estimator: SemanticEstimator, literal: Literal, positions, sig
                                             GRIP_AWAY, 0.1, np.ones(2, dtype=bool))
     entry = estimator.layout.index(literal)
     return bool(vector[entry]), float(confidence[entry])
+
+
+def test_holding_is_in_either_hand(two_blocks) -> None:
+    positions, sigmas, present = np.array([[1.3, 0.9, 0.6], [1.3, 0.7, 0.425]]), np.full((2, 3), 0.002), np.ones(2, bool)
+    held = two_blocks.layout.index(Literal("holding", ("red",)))
+    vector, _ = two_blocks.estimate(positions, sigmas, GRIP_AWAY, 0.1, present)
+    assert not vector[held]
+    vector, confidence = two_blocks.estimate(positions, sigmas, GRIP_AWAY, 0.1, present,
+                                             other_hands=[(np.array([1.3, 0.9, 0.605]), 0.05)])
+    assert vector[held] and confidence[held] == 1.0
 
 
 def test_a_literal_far_from_its_threshold_is_certain_and_one_on_it_is_not(two_blocks) -> None:

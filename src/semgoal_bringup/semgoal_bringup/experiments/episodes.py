@@ -15,7 +15,7 @@ all, the first-step rule, so the two can be compared on the same episodes.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Protocol
@@ -106,14 +106,16 @@ class HierarchicalAgent:
         return self.run_goals(positions, (goal,), seed, budget, label, linger)
 
     def run_goals(self, positions: np.ndarray, goals: Sequence[str], seed: int, budget: int = TASK_STEP_BUDGET,
-                  label: str = "", linger: int = 0, person: Person | None = None, concurrent: bool = True) -> Outcome:
+                  label: str = "", linger: int = 0, person: Person | None = None, concurrent: bool = True,
+                  on_step: Callable[[FetchWorld], None] | None = None) -> Outcome:
         """:meth:`run_goal` for goals one after the other, each from where the one before left the world and with
         ``budget`` steps of its own; the episode succeeds when every goal did. ``first_held``: of the last goal.
         ``linger``: after a success, this many control steps more of the arm with no goal, as the policy node runs
         it, then whether the last goal still holds at rest (``linger_holds``). ``person``: claims steps of each plan
         and does them in the world, while the arm makes room without a step of its own, as the policy node does;
         ``concurrent``: the executive lets them work at once (else in turns; the robot alone takes the same steps).
-        With two arms each runs its own steps, and a step is done by whichever arm is free first."""
+        With two arms each runs its own steps, and a step is done by whichever arm is free first. ``on_step``: called
+        with the world after each control step (a camera recording it)."""
         key = (label, len(positions))
         if key not in self._worlds:
             self._worlds[key] = FetchWorld(self.scene, len(positions), len(self.robots), self.sleep)
@@ -143,6 +145,8 @@ class HierarchicalAgent:
                         controller.set_subgoal(literals, keep=held_blocks_asked(executive.goal))  # settling: retreat
                     actions.append(controller.act(world.observation(arm=arm), (seed, world.step_count)))
                 world.step(np.array(actions))
+                if on_step is not None:
+                    on_step(world)
                 if person is not None:
                     person.act(executive, world)
                 overlap += len(executive.working) > 1

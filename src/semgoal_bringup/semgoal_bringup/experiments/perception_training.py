@@ -1,5 +1,6 @@
-"""`./semgoal train perception [--images N] [--seed S]`: render labelled frames (the expert at work under a
-randomised look), train the block voter on them and export it beside its model card.
+"""`./semgoal train perception [--images N] [--seed S] [--two-arm-images N]`: render labelled frames (the expert at work
+under a randomised look; some with a second Fetch across the table), train the block voter on them and export it
+beside its model card.
 
 The recipe is data (``semgoal_perception/recipes/block_voter.json``); flags override it and the exported
 ``voter.json`` records what ran. Rendered frames are cached under ``runs/perception/`` by seed, count and size.
@@ -19,20 +20,82 @@ from semgoal_core.provenance import provenance
 
 CHECKOUT_PACKAGE = Path(os.environ.get("SEMGOAL_ROOT") or Path.cwd()) / "src" / "semgoal_perception"
 """Where a new voter is shipped: the checkout's package (``make setup`` installs it)."""
+TWO_ARM_TASKS = ("DC-2", "DC-3", "DC-4")
+"""The desk's tasks, worked by two arms for the frames with a second Fetch in view."""
+TWO_ARM_STEPS = 60
+"""A two-arm episode's frames are drawn from its first this many control steps (the shortest, DC-2, takes about 55)."""
 
 
 def cached_frames(count: int, seed: int, size: tuple[int, int], strength: float, cache: Path,
-                  condition: str = "nominal"):
-    """Labelled frames from the cache, rendered first when missing."""
+                  condition: str = "nominal", arms: int = 1):
+    """Labelled frames from the cache, rendered first when missing (``arms`` 2: :func:`two_arm_frames`)."""
     from semgoal_sim.perception_data import LabelledFrames, labelled_frames
 
-    path = cache / f"frames-seed{seed}-n{count}-{size[0]}x{size[1]}-s{strength:g}-{condition}.npz"
+    kind = "frames" if arms == 1 else "two-arm-frames"
+    path = cache / f"{kind}-seed{seed}-n{count}-{size[0]}x{size[1]}-s{strength:g}-{condition}.npz"
     if path.exists():
         return LabelledFrames.load(path)
-    frames = labelled_frames(count, seed, size, strength, condition, progress=True)
+    frames = (labelled_frames(count, seed, size, strength, condition, progress=True) if arms == 1
+              else two_arm_frames(count, seed, size, strength))
     cache.mkdir(parents=True, exist_ok=True)
     frames.save(path)
     return frames
+
+
+def two_arm_frames(count: int, seed: int, size: tuple[int, int], strength: float):
+    """``count`` labelled frames of the desk with a second Fetch across the table, both arms working the desk's tasks
+    in turn under the scripted expert as ``eval arms`` runs them (the planner's shares, the guard), from starts
+    ``seed + episode``, a randomised look per episode: the voter must not take the other robot for a block."""
+    import numpy as np
+    from tqdm import tqdm
+
+    from semgoal_bringup.experiments.episodes import make_agent
+    from semgoal_core.tasks import TASKS, get_task
+    from semgoal_policy.expert_actor import EXPERT
+    from semgoal_sim.camera import CONDITIONS, Appearance, RgbdCamera
+    from semgoal_sim.perception_data import FRAMES_PER_EPISODE, frame_row, stack_rows
+
+    agent = make_agent("hierarchical", "desk_cleanup", Path(EXPERT), arms=2)
+    cameras: dict[int, RgbdCamera] = {}
+    rows: list[tuple] = []
+    bar = tqdm(total=count, desc="rendering two-arm frames", unit="frame")
+    episode = 0
+    while len(rows) < count:
+        task, start = get_task(TWO_ARM_TASKS[episode % len(TWO_ARM_TASKS)]), seed + episode
+        rng = np.random.default_rng([seed, episode])
+        look = Appearance.randomised(rng, strength, CONDITIONS["nominal"].placement)
+        chosen = set(rng.choice(np.arange(1, TWO_ARM_STEPS + 1), size=FRAMES_PER_EPISODE, replace=False).tolist())
+
+        def record(world, task=task, start=start, look=look, chosen=chosen) -> None:
+            if world.step_count not in chosen:
+                return
+            if id(world) not in cameras:
+                cameras[id(world)] = RgbdCamera(world, *size)
+            camera = cameras[id(world)]
+            if camera.appearance is not look:
+                camera.set_appearance(look, noise_seed=start)
+            rows.append((*frame_row(camera.frame(labels=True), world.snapshot(), world.blocks), list(TASKS).index(task.name)))
+            bar.update(1)
+
+        agent.run_goals(task.initial_state(start)[0], (task.name,), start, label=task.name, on_step=record)
+        episode += 1
+    bar.close()
+    for camera in cameras.values():
+        camera.close()
+    return stack_rows(rows[:count])
+
+
+def interleaved(first, second):
+    """Two sets of labelled frames as one, the second's spread evenly through the first's (training holds out the
+    last frames: both kinds are among them)."""
+    import numpy as np
+
+    from semgoal_sim.perception_data import LabelledFrames
+
+    order = np.argsort(np.concatenate([np.arange(len(first.rgb)) / len(first.rgb),
+                                       np.arange(len(second.rgb)) / len(second.rgb)]), kind="stable")
+    return LabelledFrames(**{name: np.concatenate([getattr(first, name), getattr(second, name)])[order]
+                             for name in LabelledFrames.__dataclass_fields__})
 
 
 def main(argv: list[str]) -> int:
@@ -45,6 +108,10 @@ def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal train perception", description=__doc__.split("\n\n")[0])
     parser.add_argument("--images", type=count, default=recipe["images"], help="labelled frames to render and train on")
     parser.add_argument("--seed", type=natural, default=recipe["seed"], help="task starts seed + episode (8,000,000: training's range)")
+    parser.add_argument("--two-arm-images", type=natural, default=recipe["two_arm_images"],
+                        help="frames more with a second Fetch across the table (the desk's tasks, both arms at work)")
+    parser.add_argument("--two-arm-seed", type=natural, default=recipe["two_arm_seed"],
+                        help="their task starts: seed + episode")
     parser.add_argument("--epochs", type=count, default=recipe["voter"]["epochs"])
     parser.add_argument("--out", type=Path, default=CHECKOUT_PACKAGE / "models" / "block_voter",
                         help="export folder (default: the shipped model, in the checkout)")
@@ -55,13 +122,17 @@ def main(argv: list[str]) -> int:
     size = tuple(recipe["camera_size"])
     started = time.perf_counter()
     frames = cached_frames(args.images, args.seed, size, recipe["randomisation_strength"], args.cache)
+    if args.two_arm_images:
+        frames = interleaved(frames, cached_frames(args.two_arm_images, args.two_arm_seed, size,
+                                                   recipe["randomisation_strength"], args.cache, arms=2))
     rendered = time.perf_counter() - started
     if args.literal_net:
         return train_literal_alternative(frames, args.out.parent / "literal_net", args.epochs, argv)
     voter = {f.name: recipe["voter"][f.name] for f in fields(VoterRecipe)}
     voter.update(epochs=args.epochs, crop=tuple(voter["crop"]))
     summary = train_voter(frames, args.out, VoterRecipe(**voter), VoterConfig(**recipe["network"]))
-    summary.update(images=args.images, seed=args.seed, camera_size=list(size),
+    summary.update(images=args.images, seed=args.seed, two_arm_images=args.two_arm_images,
+                   two_arm_seed=args.two_arm_seed, camera_size=list(size),
                    randomisation_strength=recipe["randomisation_strength"],
                    render_s=round(rendered, 1), total_s=round(time.perf_counter() - started, 1),
                    provenance=provenance("./semgoal train-perception " + " ".join(argv), args.seed))
@@ -117,7 +188,9 @@ block colour (or none) and the 3-D offset to that block's centre; `semgoal_perce
 each block's votes. Inputs: colour and each pixel's world point (from depth and the camera's pose).
 
 - **Data**: {summary['images']} frames rendered by `./semgoal train-perception` (the expert working the eight tasks,
-  6 frames per episode, task starts from seed {summary['seed']:,}), with the look randomised per episode
+  6 frames per episode, task starts from seed {summary['seed']:,}) and {summary.get('two_arm_images', 0)} more with a
+  second Fetch across the table (both arms working the desk's tasks under the expert, task starts from seed
+  {summary.get('two_arm_seed', 0):,}: its blue links are not a blue block), with the look randomised per episode
   (light strength and tint, camera 2 cm / 2 degrees, block shades, table colour, depth noise and drop-outs; strength
   {summary['randomisation_strength']}). Labels are the simulator's: block centres and per-pixel block ids.
 - **Training**: {recipe['epochs']} epochs of {recipe['batch']}-crop batches ({recipe['crop'][0]}x{recipe['crop'][1]},

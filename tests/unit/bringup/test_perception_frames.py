@@ -1,0 +1,35 @@
+"""The block voter's training frames with a second Fetch in view: both arms at work on the desk, each frame labelled
+with the blocks' true centres, and spread through the one-arm frames so that training's held-out frames have both."""
+
+import numpy as np
+
+from semgoal_bringup.experiments.perception_training import TWO_ARM_TASKS, interleaved, two_arm_frames
+from semgoal_core.tasks import TASKS
+from semgoal_core.vocabulary import BLOCK_COLOURS
+from semgoal_sim.perception_data import LabelledFrames
+
+
+def frames_of(count: int, task: int) -> LabelledFrames:
+    """``count`` blank frames, each's grip holding its index (to follow it through a reordering)."""
+    rows = {name: np.zeros((count, 2)) for name in LabelledFrames.__dataclass_fields__}
+    rows["grip"] = np.arange(count, dtype=float)[:, None].repeat(4, axis=1)
+    rows["task"] = np.full(count, task)
+    return LabelledFrames(**rows)
+
+
+def test_the_second_kind_is_spread_through_the_first_in_order():
+    merged = interleaved(frames_of(10, 0), frames_of(2, 1))
+    assert list(merged.task) == [0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0]
+    assert list(merged.grip[merged.task == 0, 0]) == list(range(10))
+    assert list(merged.grip[merged.task == 1, 0]) == [0, 1]
+
+
+def test_two_arm_frames_show_both_robots_at_the_desk_with_the_blocks_labelled():
+    frames = two_arm_frames(8, 8_500_000, (80, 60), strength=1.0)
+    assert frames.rgb.shape == (8, 60, 80, 3) and frames.depth.shape == (8, 60, 80)
+    assert {list(TASKS)[t] for t in frames.task} <= set(TWO_ARM_TASKS) and len(set(frames.task)) == 2
+    colours = list(BLOCK_COLOURS)
+    for labels, centres, task in zip(frames.labels, frames.centres, frames.task, strict=True):
+        present = [c for c in range(len(colours)) if np.isfinite(centres[c]).all()]
+        assert len(present) == int(list(TASKS)[task][-1])  # DC-N: N blocks, each with its true centre
+        assert set(np.unique(labels)) - {0} <= {c + 1 for c in present}

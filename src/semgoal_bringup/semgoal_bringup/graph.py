@@ -121,8 +121,8 @@ def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: 
     namespace under :data:`NAMESPACE_KEY`). ValueError for a port that is not a number, or two arms that cannot be."""
     from semgoal_core.arms import MAX_ARMS, arm_namespace
 
-    if not 1 <= robots <= MAX_ARMS or (robots > 1 and sight.policy_input == "camera"):
-        raise ValueError(f"robots must be 1 to {MAX_ARMS}, and the second arm's policy reads the sim's poses")
+    if not 1 <= robots <= MAX_ARMS:
+        raise ValueError(f"robots must be 1 to {MAX_ARMS}")
     params = node_params(task_name, seed, mode, models, state_dir, sight, robots)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
     views = []
@@ -174,7 +174,7 @@ def node_params(task_name: str, seed: int, mode: str, models: str = "",
         "sim_node": {"scene": task.scene, "task": task.name, "seed": seed, "mode": mode, **camera,
                      **({"arms": robots} if two else {})},
         "predicate_node": {},
-        "perception_node": {},
+        "perception_node": {"arms": robots} if two else {},
         "planner_node": {"scene": task.scene, **({"state_dir": state_dir} if state_dir else {}),
                          **({"arms": robots} if two else {}),
                          **({"world_topic": topics.PERCEIVED_WORLD} if two and sight.perception == "camera" else {})},

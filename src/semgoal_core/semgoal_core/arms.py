@@ -11,14 +11,15 @@ edge in y) at the near edge, where the actor never saw it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from semgoal_core import layout
-from semgoal_core.geometry import TABLE_CENTER
+from semgoal_core.geometry import TABLE_CENTER, TABLE_TOP
 from semgoal_core.names import Assignee
-from semgoal_core.vocabulary import held_alone
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, held_alone
 
 MAX_ARMS = 2
 MIRROR_X = TABLE_CENTER[0]
@@ -119,3 +120,18 @@ class ArmFrame:
         action = np.array(action, dtype=np.float32)
         action[0] = -action[0]
         return action
+
+
+def arm_observation(scene: str, grip: np.ndarray, grip_velocity: np.ndarray, finger_positions: np.ndarray,
+                    finger_velocities: np.ndarray, positions: np.ndarray, velocities: np.ndarray,
+                    other_hands: Sequence[tuple[np.ndarray, float]] = ()) -> np.ndarray:
+    """The policy observation of one arm's hand, in the world frame (:mod:`semgoal_core.layout`; ``positions`` and
+    ``velocities`` of the scene's blocks present). A block in another arm's hand is shown at rest on the table under
+    it: the actor never saw a block hang in the air in no hand of its own (shown there, one made the first arm let go
+    of its own; left out, too), and it is an obstacle where it will be put down."""
+    for other, opening in other_hands:
+        held = held_alone(positions, other, opening)
+        if held.any():
+            positions, velocities = np.array(positions, dtype=float), np.array(velocities, dtype=float)
+            positions[held, 2], velocities[held] = TABLE_TOP + BLOCK_HALF_SIZE, 0.0
+    return layout.observation(scene, grip, grip_velocity, finger_positions, finger_velocities, positions, velocities)

@@ -7,7 +7,8 @@ block poses. Publishes, per frame:
 - /semgoal/perception/blocks (BlockEstimates): centre, velocity, covariance and status of every block;
 - /semgoal/semantic_state (SemanticState): the predicates on the estimates, with a confidence per literal;
 - /semgoal/perception/world_state (WorldState): the world state with the estimated blocks and the policy's
-  observation rebuilt from them (what the policy reads with ``--policy-input camera``).
+  observation rebuilt from them (what the policy reads with ``--policy-input camera``); with ``arms`` 2, the second
+  arm's on /semgoal/robot2/perception/world_state, from its own slice of the world at the frame's instant.
 
 A frame of the wrong size, encoding or stamp is refused and counted, never a crash. When no whole frame
 has come for longer than ``stale_after_s`` while world states do, each world state gets a semantic state
@@ -26,7 +27,7 @@ from rclpy.node import Node
 from sensor_msgs.msg import CameraInfo, Image
 from tf2_msgs.msg import TFMessage
 
-from semgoal_core import layout as observation_layout
+from semgoal_core.arms import MAX_ARMS, arm_observation
 from semgoal_core.tasks import TASKS, get_task
 from semgoal_core.vocabulary import LAYOUTS, SCENES
 from semgoal_msgs.msg import BlockEstimate, BlockEstimates, SemanticState, WorldState
@@ -43,6 +44,8 @@ PARAMS = (
     Param("model_dir", "", "an exported block voter's folder (empty: the shipped one)"),
     Param("stale_after_s", 1.0, "no frame for this long (wall time) is reported on /diagnostics", low=0.05, high=60.0),
     Param("threads", 1, "torch threads for the voter", low=1, high=64),
+    Param("arms", 1, "robot arms at the table: with 2 the second arm's world state as the camera sees it too "
+          "(/semgoal/robot2/perception/world_state, for its policy)", low=1, high=MAX_ARMS),
 )
 STALE_WORLD_STATES = 3
 """World states that must come without a whole frame (besides ``stale_after_s`` of wall time) before the state
@@ -106,6 +109,14 @@ class PerceptionNode(Node):
         self.create_subscription(WorldState, topics.WORLD_STATE, lambda m: self.pending_in("world", m), topics.STREAM)
         self.create_subscription(TFMessage, topics.TF_STATIC, self.tf_static_callback, topics.LATCHED)
         self.pending: dict[int, dict[str, object]] = {}
+        self.other_arms = [(self.create_publisher(WorldState, topics.arm_topic(topics.PERCEIVED_WORLD, arm), topics.STREAM),
+                            {}) for arm in range(1, values["arms"])]
+        """Per other arm: its perceived world state's publisher, and its world states waiting for their frame."""
+        for arm in range(1, values["arms"]):
+            self.create_subscription(WorldState, topics.arm_topic(topics.WORLD_STATE, arm),
+                                     lambda m, arm=arm: self.other_arm_in(arm, m), topics.STREAM)
+        self.seen_at: dict[int, Perception] = {}
+        """The last frames' perceptions by their stamp: an other arm's world state of that instant is seen by them."""
         self.camera_pose: np.ndarray | None = None
         self.last_frame_at: float | None = None
         self.worlds_unseen = 0
@@ -177,14 +188,41 @@ class PerceptionNode(Node):
         self.blocks_pub.publish(self.estimates(world, seen, latency_ms))
         self.world_pub.publish(self.perceived_world(world, seen, arm))
         self.counters["frames seen"] += 1
+        if self.other_arms:
+            key = stamp_key(world.header)
+            self.seen_at[key] = seen
+            while len(self.seen_at) > PENDING_KEPT:
+                del self.seen_at[min(self.seen_at)]
+            for publisher, waiting in self.other_arms:
+                if (other := waiting.pop(key, None)) is not None:
+                    publisher.publish(self.perceived_world(other, seen, self.arm_state(other)))
+
+    def other_arm_in(self, arm: int, world: WorldState) -> None:
+        """Another arm's slice of the world: as the camera sees it at that instant once its frame is seen (now, if it
+        was); while the camera is blind, the tracks as they stand, marked by the first arm's stale semantic state."""
+        publisher, waiting = self.other_arms[arm - 1]
+        key = stamp_key(world.header)
+        if (seen := self.seen_at.get(key)) is None and self.blind_for() is not None and self._same_episode(world):
+            seen = self.perceiver.read_out(world.scene, get_task(world.task).blocks, self.arm_state(world),
+                                           hands(world)[1:])
+        if seen is not None:
+            publisher.publish(self.perceived_world(world, seen, self.arm_state(world)))
+            return
+        waiting[key] = world
+        while len(waiting) > PENDING_KEPT:
+            del waiting[min(waiting)]
+            self.counters["unmatched messages dropped"] += 1
+
+    def _same_episode(self, world: WorldState) -> bool:
+        """Whether ``world`` is of the episode the camera has tracks of (a new one it has not seen: nothing to hold)."""
+        return (world.scene in LAYOUTS and world.task in TASKS and self.perceiver.episode is not None
+                and self.perceiver.episode == (world.scene, get_task(world.task).blocks, (world.episode, world.seed)))
 
     def publish_stale(self, world: WorldState, reason: str) -> None:
         """The tracks as they stand, for a world state the camera did not see, marked stale with ``reason``."""
-        if world.scene not in LAYOUTS or world.task not in TASKS or self.perceiver.episode is None:
+        if not self._same_episode(world):
             return
         blocks = get_task(world.task).blocks
-        if self.perceiver.episode != (world.scene, blocks, (world.episode, world.seed)):
-            return  # a new episode the camera has not seen at all: nothing to hold on to
         arm = self.arm_state(world)
         seen = self.perceiver.read_out(world.scene, blocks, arm, hands(world)[1:])
         state = self.semantic_state(world, seen)
@@ -239,9 +277,9 @@ class PerceptionNode(Node):
         slots = [SCENES[world.scene].objects.index(name) for name in seen.blocks]
         unturned, unspun = np.tile([1.0, 0.0, 0.0, 0.0], (len(slots), 1)), np.zeros((len(slots), 3))
         set_blocks(msg, seen.blocks, seen.positions[slots], unturned, np.hstack([seen.velocities[slots], unspun]))
-        msg.observation = doubles(observation_layout.observation(
+        msg.observation = doubles(arm_observation(
             world.scene, arm.grip_position, arm.grip_velocity, arm.finger_positions, arm.finger_velocities,
-            seen.positions[seen.present], seen.velocities[seen.present]))
+            seen.positions[seen.present], seen.velocities[seen.present], hands(world)[1:]))
         return msg
 
 

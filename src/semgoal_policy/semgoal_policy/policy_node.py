@@ -70,9 +70,8 @@ class PolicyNode(Node):
         values = declare(self, PARAMS)
         self.mode, scene = values["mode"], values["scene"]
         arm, self.arms = values["arm"] - 1, values["arms"]
-        if arm >= self.arms or (arm and values["world_topic"] != topics.WORLD_STATE):
-            raise ParameterValueError(f"policy: arm {arm + 1} needs arms >= {arm + 1} and the sim's world state (the "
-                                      "camera's perception serves the first arm)")
+        if arm >= self.arms:
+            raise ParameterValueError(f"policy: arm {arm + 1} needs arms >= {arm + 1}")
         try:
             self.controller = SubgoalController(scene, values["model_dir"] or None, values["action_mode"], arm,
                                                 shared=self.arms > 1)

@@ -13,8 +13,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from semgoal_core import layout
-from semgoal_core.arms import ArmFrame, holder_of, robot_name, takers
+from semgoal_core.arms import ArmFrame, arm_observation, holder_of, robot_name, takers
 from semgoal_core.expert import WorldView
 from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP, grip_ceiling
 from semgoal_core.layout import CONTROL_DT
@@ -391,16 +390,9 @@ class FetchWorld:
                          snapshot.finger_opening, self.scene.bin, grip_ceiling(self.scene))
 
     def observation(self, snapshot: Snapshot | None = None, arm: int = 0) -> np.ndarray:
-        """The policy observation of arm ``arm``'s hand, in the world frame (layout: :mod:`semgoal_core.layout`). A
-        block in another arm's hand is shown at rest on the table under it: the actor never saw a block hang in the
-        air in no hand of its (shown there, one made the first arm let go of its own; left out, too), and it is an
-        obstacle where it will be put down."""
+        """The policy observation of arm ``arm``'s hand, in the world frame (:func:`semgoal_core.arms.arm_observation`:
+        a block in another arm's hand shown at rest on the table under it)."""
         snapshot = snapshot or self.snapshot(arm)
-        positions, velocities = snapshot.block_positions, snapshot.block_velocities
-        for grip, opening in snapshot.other_hands:
-            held = held_alone(positions, grip, opening)
-            if held.any():
-                positions, velocities = positions.copy(), velocities.copy()
-                positions[held, 2], velocities[held] = TABLE_TOP + BLOCK_HALF_SIZE, 0.0
-        return layout.observation(self.scene.name, snapshot.grip_position, snapshot.grip_velocity,
-                                  snapshot.finger_positions, snapshot.finger_velocities, positions, velocities)
+        return arm_observation(self.scene.name, snapshot.grip_position, snapshot.grip_velocity,
+                               snapshot.finger_positions, snapshot.finger_velocities, snapshot.block_positions,
+                               snapshot.block_velocities, snapshot.other_hands)

@@ -4,8 +4,19 @@ import numpy as np
 import pytest
 
 from semgoal_core import layout
-from semgoal_core.arms import MIRROR_X, ArmFrame, arm_namespace, arm_of, arms_for, robot_name, robot_names
+from semgoal_core.arms import (
+    MIRROR_X,
+    ArmFrame,
+    arm_namespace,
+    arm_observation,
+    arm_of,
+    arms_for,
+    robot_name,
+    robot_names,
+)
+from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.names import agent
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE
 
 
 def test_arm_names_namespaces_and_agents() -> None:
@@ -64,3 +75,18 @@ def test_a_step_on_a_block_in_a_hand_goes_to_that_hand() -> None:
     assert holder_of(0, positions, hands) == 0 and holder_of(1, positions, hands) is None
     assert takers(0, positions, hands) == (0,)  # though red lies within reach of both
     assert takers(1, positions, hands) == (1,)
+
+
+def test_a_block_in_the_other_arms_hand_is_shown_at_rest_on_the_table_under_it():
+    grip, still, fingers = np.array([1.2, 0.6, 0.6]), np.zeros(3), np.array([0.03, 0.03])
+    positions = np.array([[1.3, 0.9, 0.62], [1.1, 0.7, TABLE_TOP + BLOCK_HALF_SIZE]])
+    velocities = np.array([[0.0, 0.1, 0.2], [0.0, 0.0, 0.0]])
+    alone = arm_observation("two_blocks", grip, still, fingers, still[:2], positions, velocities)
+    assert np.array_equal(alone, layout.observation("two_blocks", grip, still, fingers, still[:2], positions, velocities))
+    other_hand = [(np.array([1.3, 0.9, 0.625]), 0.05)]  # closed on the first block
+    shown = arm_observation("two_blocks", grip, still, fingers, still[:2], positions, velocities, other_hand)
+    on_table = positions.copy()
+    on_table[0, 2] = TABLE_TOP + BLOCK_HALF_SIZE
+    assert np.array_equal(shown, layout.observation("two_blocks", grip, still, fingers, still[:2], on_table,
+                                                    np.zeros_like(velocities)))
+    assert positions[0, 2] == 0.62 and velocities[0, 2] == 0.2  # the caller's arrays untouched

@@ -44,7 +44,6 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     if args.max_steps < 0:
         parser.error("--max-steps must be 0 (no limit) or a number of control steps")
-    sight = sight_of(args, parser)
     from semgoal_core.tasks import get_task
     from semgoal_ros.domains import domain_for_this_process
 
@@ -52,6 +51,7 @@ def main(argv: list[str]) -> int:
         task = get_task(args.task)
     except KeyError as error:
         parser.error(str(error.args[0]))
+    sight = sight_of(args, parser, [task.name])
     gif = None if args.no_gif else args.gif or Path("results") / f"demo-{task.name}.gif"
     record = None if args.no_record else args.record or Path("results") / f"demo-{task.name}.mcap"  # None: a scratch file
     with domain_for_this_process():  # a domain of its own: parallel demos never meet

@@ -7,7 +7,7 @@ from __future__ import annotations
 import functools
 import os
 import subprocess
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -64,12 +64,16 @@ def add_sight_arguments(parser) -> None:
                         help="with --perception camera: the camera's look (moved: beyond training's range)")
 
 
-def sight_of(args, parser) -> Sight:
-    """The :class:`Sight` the arguments ask for; a parser error when they do not go together."""
+def sight_of(args, parser, tasks: Sequence[str] = ()) -> Sight:
+    """The :class:`Sight` the arguments ask for; a parser error when they do not go together, or it cannot see one of
+    ``tasks`` (:func:`check_sight`)."""
     try:
-        return Sight(args.perception, args.policy_input, args.camera_condition)
+        sight = Sight(args.perception, args.policy_input, args.camera_condition)
+        for task in tasks:
+            check_sight(task, sight)
     except ValueError as error:
         parser.error(str(error))
+    return sight
 
 
 LAUNCH_ARGUMENTS = (
@@ -112,17 +116,29 @@ def scene_task(scene: str, task_name: str):
     return task
 
 
+def check_sight(task_name: str, sight: Sight) -> None:
+    """ValueError, with what to do instead, where ``sight``'s camera cannot see ``task_name``'s scene: the block voter
+    knows the paper's scenes and their four block colours."""
+    from semgoal_core.vocabulary import PAPER_SCENES
+
+    if sight.perception == "camera" and (scene := get_task(task_name).scene) not in PAPER_SCENES:
+        raise ValueError(f"the camera's perception knows the paper's scenes ({', '.join(PAPER_SCENES)}) and their four "
+                         f"block colours; {task_name} is set in {scene}: see it by the simulator's poses (perception truth)")
+
+
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",
                 foxglove: str = "", console: str = "", state_dir: str = "",
                 sight: Sight = TRUTH, robots: int = 1) -> list[tuple[str, str, dict[str, object]]]:
     """(package, executable, parameters on top of :func:`params_file`) of every node, in start order; with
     ``record``, a recorder first, so that it hears the graph from its first message; with ``foxglove`` or
     ``console`` (a port each), the live view and the console last; with ``robots`` 2, a second policy node (its
-    namespace under :data:`NAMESPACE_KEY`). ValueError for a port that is not a number, or two arms that cannot be."""
+    namespace under :data:`NAMESPACE_KEY`). ValueError for a port that is not a number, two arms that cannot be, or
+    a camera that cannot see the task's scene."""
     from semgoal_core.arms import MAX_ARMS, arm_namespace
 
     if not 1 <= robots <= MAX_ARMS:
         raise ValueError(f"robots must be 1 to {MAX_ARMS}")
+    check_sight(task_name, sight)
     params = node_params(task_name, seed, mode, models, state_dir, sight, robots)
     recorder = [("semgoal_bringup", "record_node", {"path": str(Path(record).resolve())})] if record else []
     views = []

@@ -190,3 +190,25 @@ def test_with_two_arms_from_the_camera_the_planner_hears_where_blocks_and_hands_
         nodes = {executable: params for _, executable, params in graph_nodes("DC-4", 0, "lockstep", robots=robots,
                                                                               sight=sight)}
         assert "world_topic" not in nodes["planner_node"]
+
+
+def test_a_scene_the_camera_does_not_know_is_refused_with_what_to_do_instead() -> None:
+    from semgoal_bringup.graph import Sight
+
+    with pytest.raises(ValueError, match=r"paper's scenes .* Tower-4 is set in tabletop: see it by the simulator's poses"):
+        graph_nodes("Tower-4", 0, "lockstep", sight=Sight("camera", "truth"))
+    assert graph_nodes("Tower-4", 0, "lockstep")  # by the simulator's poses it runs
+
+
+def test_a_command_asked_to_see_such_a_scene_by_the_camera_stops_with_the_reason(capsys) -> None:
+    import argparse
+
+    from semgoal_bringup.graph import add_sight_arguments, sight_of
+
+    parser = argparse.ArgumentParser(prog="semgoal demo")
+    add_sight_arguments(parser)
+    args = parser.parse_args(["--perception", "camera"])
+    assert sight_of(args, parser, ["DC-3"]).perception == "camera"
+    with pytest.raises(SystemExit) as stopped:
+        sight_of(args, parser, ["DC-3", "Clean-6"])
+    assert stopped.value.code == 2 and "Clean-6 is set in tabletop" in capsys.readouterr().err

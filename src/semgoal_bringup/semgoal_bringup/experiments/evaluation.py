@@ -489,7 +489,7 @@ def main(argv: list[str]) -> int:
         parser.error("--record writes the episodes run through the graph: add --via-ros")
     if args.composed and not args.via_ros:
         parser.error("--composed runs the graph's nodes in one process: add --via-ros")
-    sight = sight_of(args, parser)
+    sight = sight_of(args, parser, tasks)
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     agents = [a.strip() for a in args.agents.split(",") if a.strip()]

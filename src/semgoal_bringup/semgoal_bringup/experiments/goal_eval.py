@@ -88,7 +88,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--json", action="store_true", help="only the JSON line on stdout (the table on stderr)")
     add_sight_arguments(parser)
     args = parser.parse_args(argv)
-    sight = sight_of(args, parser)
+    sight = sight_of(args, parser, tasks.scene_tasks(args.scene)[:1])
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
     families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]

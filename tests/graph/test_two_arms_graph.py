@@ -106,3 +106,15 @@ def test_two_arms_bin_a_desk_from_the_camera(nodes: NodeProcesses, probe: GraphP
                 in_second_hand += 1
                 seen_held += state.vector[LAYOUTS["desk_cleanup"].index(Literal("holding", (name,)))]
     assert in_second_hand > 10 and seen_held >= 0.9 * in_second_hand, (seen_held, in_second_hand)
+
+
+@pytest.mark.timeout(600)
+def test_eval_arms_via_ros_runs_the_starts_through_the_graph_as_in_process() -> None:
+    """`eval arms --via-ros` at a tiny size: two arms through the graph end the start as the in-process episode."""
+    import json
+
+    result = subprocess.run([str(ROOT / "semgoal"), "eval", "arms", "--task", "DC-2", "--episodes", "1", "--via-ros",
+                             "--json"], capture_output=True, text=True, timeout=500, cwd=ROOT)
+    assert result.returncode == 0, result.stderr[-3000:]
+    graph = json.loads(result.stdout.strip().splitlines()[-1])["two_arms_via_ros"]
+    assert graph["episodes"] == 1 and graph["success"] == 1.0 and graph["as_in_process"] == 1, result.stderr[-3000:]

@@ -234,13 +234,13 @@ def node_command(package: str, executable: str, params: dict | None = None, log_
 def start_graph(task_name: str, seed: int, mode: str = "lockstep", log_level: str = "warn",
                 skip: tuple[str, ...] = (), models: str = "", record: str = "",
                 foxglove: str = "", console: str = "", sight: Sight = TRUTH,
-                composed: bool = False) -> dict[str, subprocess.Popen]:
+                composed: bool = False, robots: int = 1) -> dict[str, subprocess.Popen]:
     """Start the nodes (all but ``skip``); ``models``: a folder of exported actors instead of the shipped ones;
     ``record``: an MCAP file that a recorder node writes everything into; ``foxglove``, ``console``: ports for the
     live view and the console; ``sight``: what the planner and the policy see by; ``composed``: the graph's own
-    nodes in one process (:mod:`semgoal_bringup.composed`), the others apart."""
-    nodes = [node for node in graph_nodes(task_name, seed, mode, models, record, foxglove, console, sight=sight)
-             if node[1] not in skip]
+    nodes in one process (:mod:`semgoal_bringup.composed`), the others apart; ``robots``: the arms at the table."""
+    nodes = [node for node in graph_nodes(task_name, seed, mode, models, record, foxglove, console, sight=sight,
+                                          robots=robots) if node[1] not in skip]
     return {name: subprocess.Popen(command) for name, command in graph_commands(nodes, composed, log_level).items()}
 
 
@@ -300,18 +300,20 @@ def stop_graph(processes: dict[str, subprocess.Popen]) -> None:
 
 @contextmanager
 def running_graph(task_name: str, seed: int, mode: str = "lockstep", client_name: str = "semgoal_operator",
-                  models: str = "", watch: bool = True, sight: Sight = TRUTH, composed: bool = False) -> Iterator:
-    """The four nodes and a :class:`GraphClient` on a ROS domain of their own (:mod:`semgoal_ros.domains`), ready;
-    all stopped on exit. ``watch``: the client subscribes to the per-step streams. RuntimeError when the nodes do
-    not come up."""
+                  models: str = "", watch: bool = True, sight: Sight = TRUTH, composed: bool = False,
+                  robots: int = 1) -> Iterator:
+    """The four nodes (with ``robots`` 2, the second arm's policy node too) and a :class:`GraphClient` on a ROS domain
+    of their own (:mod:`semgoal_ros.domains`), ready; all stopped on exit. ``watch``: the client subscribes to the
+    per-step streams. RuntimeError when the nodes do not come up."""
     from semgoal_ros.client import GraphClient
 
     with domain_for_this_process():
-        processes = start_graph(task_name, seed, mode=mode, models=models, sight=sight, composed=composed)
+        processes = start_graph(task_name, seed, mode=mode, models=models, sight=sight, composed=composed,
+                                robots=robots)
         client = None
         try:
             client = GraphClient(client_name, watch=watch, lockstep=mode == "lockstep")
-            if not client.wait_ready():
+            if not client.wait_ready(arms=robots):
                 raise RuntimeError(f"the node graph for {task_name} did not come up")
             yield client
         finally:

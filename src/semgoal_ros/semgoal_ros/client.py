@@ -194,18 +194,20 @@ class GraphClient:
         return topics.spin_executor_until(self.executor, condition, timeout)
 
     # -- calls ---------------------------------------------------------------------------------------
-    def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True) -> bool:
+    def wait_ready(self, timeout: float = READY_TIMEOUT_S, policy: bool = True, arms: int = 1) -> bool:
         """Sim services, the planner's services and action, the predicates and (with ``policy``) the policy
         are up: world state is read by the predicates (or the perception) and the policy (the sim's, or the
-        perceived one), the semantic state by the planner, the sub-goal by the policy, and each of them by this
-        client too when it watches."""
+        perceived one), the semantic state by the planner, the sub-goal by the policy (each arm's by its own of
+        ``arms``), and each of them by this client too when it watches."""
         own = int(self.watch)
         world_readers, subgoal_readers = (2 + own, 1 + own) if policy else (1 + own, own)
         return self.spin_until(lambda: (self.reset_client.service_is_ready() and self.plan_client.service_is_ready()
                                         and self.action.server_is_ready()
                                         and self.world_readers() >= world_readers
                                         and self.node.count_subscribers(topics.SEMANTIC_STATE) >= 1 + own
-                                        and self.node.count_subscribers(topics.SUBGOAL) >= subgoal_readers),
+                                        and self.node.count_subscribers(topics.SUBGOAL) >= subgoal_readers
+                                        and all(self.node.count_subscribers(topics.arm_topic(topics.SUBGOAL, arm))
+                                                >= int(policy) for arm in range(1, arms))),
                                timeout)
 
     def world_readers(self) -> int:

@@ -18,16 +18,17 @@ from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 
 def run_via_ros(task_names: list[str], episodes: int, seed: int, models: str = "",
-                record: Path | None = None, sight: Sight = TRUTH, composed: bool = False) -> Iterator[Outcome]:
+                record: Path | None = None, sight: Sight = TRUTH, composed: bool = False,
+                robots: int = 1) -> Iterator[Outcome]:
     """Yield one :class:`Outcome` per episode, task by task, starting each scene's graph once; ``sight``: what the
     planner and the policy see by (the simulator's poses, or the camera's); ``composed``: the graph's nodes in one
-    process."""
+    process; ``robots``: the arms at the table."""
     by_scene: dict[str, list[str]] = {}
     for name in task_names:
         by_scene.setdefault(get_task(name).scene, []).append(name)
     for scene_tasks in by_scene.values():
         with running_graph(scene_tasks[0], seed, client_name="semgoal_eval", models=models,
-                           watch=False, sight=sight, composed=composed) as client:
+                           watch=False, sight=sight, composed=composed, robots=robots) as client:
             print(f"eval via ROS: the {get_task(scene_tasks[0]).scene} graph on ROS domain {os.environ['ROS_DOMAIN_ID']}",
                   file=sys.stderr, flush=True)
             for task_name in scene_tasks:

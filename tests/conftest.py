@@ -14,6 +14,16 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def decoded_messages(path: Path) -> list[tuple[str, object]]:
+    """(topic, message) of every message of an MCAP recording, decoded (the ``mcap`` reader, ``mcap-ros2-support``)."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    with Path(path).open("rb") as stream:
+        return [(channel.topic, message) for _, channel, _, message
+                in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+
+
 def free_port() -> int:
     """A TCP port free on 127.0.0.1 now (for a server a test starts)."""
     import socket

@@ -8,8 +8,8 @@ from pathlib import Path
 import av
 import pytest
 from mcap.reader import make_reader
-from mcap_ros2.decoder import DecoderFactory
 
+from conftest import decoded_messages
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_ros import interfaces as topics
 
@@ -28,9 +28,7 @@ def test_a_recorded_episode_reads_back_whole_and_replays_step_for_step(ros_domai
                         "--via-ros", "--record", str(tmp_path), "--json", *layout)
     assert evaluated.returncode == 0, evaluated.stderr[-3000:]
     record = tmp_path / f"{TASK}-{SEED}.mcap"
-    with record.open("rb") as stream:
-        decoded = [(channel.topic, message) for _, channel, _, message
-                   in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
+    decoded = decoded_messages(record)
     with record.open("rb") as stream:
         metadata = {m.name: m.metadata for m in make_reader(stream).iter_metadata()}
     assert len(metadata["provenance"]["commit"]) == 40 and "--via-ros" in metadata["provenance"]["command"], metadata
@@ -124,8 +122,5 @@ def test_a_session_recorder_started_late_still_has_the_first_operator_event(node
     assert probe.poll(lambda: f"recording {topics.OPERATOR_EVENTS}\n" in nodes.logs(), timeout=60), nodes.logs()
     probe.poll(lambda: False, 1)
     assert nodes.stop(recorder) == 0, nodes.logs()
-    with record.open("rb") as stream:
-        events = [message for _, channel, _, message
-                  in make_reader(stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()
-                  if channel.topic == topics.OPERATOR_EVENTS]
+    events = [message for topic, message in decoded_messages(record) if topic == topics.OPERATOR_EVENTS]
     assert [(e.kind, e.request, e.accepted) for e in events] == [("edit", "remove index=3", False)], events

@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from conftest import ROOT, GraphProbe, NodeProcesses
+from conftest import ROOT, GraphProbe, NodeProcesses, decoded_messages
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_bringup.graph import TRUTH, Sight, graph_commands, graph_nodes
 from semgoal_bringup.study.fluency import recorded_plans
@@ -51,15 +51,6 @@ def both_arms_at_work(record) -> bool:
     return {"robot", "robot:2"} in at_once and not any(is_person(who) for working in at_once for who in working)
 
 
-def recorded(record) -> list[tuple[str, object]]:
-    from mcap.reader import make_reader
-    from mcap_ros2.decoder import DecoderFactory
-
-    with record.open("rb") as stream:
-        return [(channel.topic, msg) for _, channel, _, msg in make_reader(
-            stream, decoder_factories=[DecoderFactory()]).iter_decoded_messages()]
-
-
 @pytest.mark.timeout(600)
 @pytest.mark.parametrize("composed", [False, True], ids=["a process per node", "every node in one"])
 def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, probe: GraphProbe, tmp_path,
@@ -71,7 +62,7 @@ def test_two_arms_bin_a_desk_at_once_through_the_graph(nodes: NodeProcesses, pro
     assert result.success, result.message
     assert (result.control_steps, result.replans) == (expected.steps, expected.replans), result.message
     assert both_arms_at_work(record)
-    decoded = recorded(record)
+    decoded = decoded_messages(record)
     contacts = [msg.arm_contacts for topic, msg in decoded if topic == topics.WORLD_STATE]
     assert contacts and max(contacts) == 0
     joints = next(msg.name for topic, msg in decoded if topic == topics.JOINT_STATES)
@@ -90,7 +81,7 @@ def test_two_arms_bin_a_desk_from_the_camera(nodes: NodeProcesses, probe: GraphP
     result = run_two_arms(nodes, probe, record, sight=Sight("camera", "camera"))
     assert result.success, result.message
     assert both_arms_at_work(record)
-    decoded = recorded(record)
+    decoded = decoded_messages(record)
     assert max(msg.arm_contacts for topic, msg in decoded if topic == topics.WORLD_STATE) == 0
     # holding in the second arm's hand, as the camera saw it, against the hand and the blocks the sim had
     states = {msg.step: msg for topic, msg in decoded if topic == topics.SEMANTIC_STATE}

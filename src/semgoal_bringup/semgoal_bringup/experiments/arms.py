@@ -14,14 +14,12 @@ the same."""
 from __future__ import annotations
 
 import json
-import statistics
 import sys
 from pathlib import Path
 
 from semgoal_bringup.experiments.episodes import Outcome
-from semgoal_bringup.experiments.evaluation import wilson_interval
 from semgoal_bringup.experiments.executors import run_jobs
-from semgoal_bringup.experiments.together import check_paired, paired_parser, print_summary, summary
+from semgoal_bringup.experiments.together import check_paired, mode_summary, paired_parser, print_summary, summary
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
 from semgoal_core.arguments import count
 from semgoal_core.tasks import get_task
@@ -83,11 +81,8 @@ def via_ros(args, sight: Sight, in_process: list[Outcome]) -> dict:
 
     episodes = min(args.ros_episodes or args.episodes, args.episodes)
     outcomes = list(run_via_ros([args.task], episodes, args.seed, args.models, sight=sight, robots=2))
-    wins = sum(o.success for o in outcomes)
     row = {"sees_by": f"planner {sight.perception}, policy {sight.policy_input}", "episodes": len(outcomes),
-           "success": wins / len(outcomes), "interval": wilson_interval(wins, len(outcomes)),
-           "median_steps": statistics.median(o.steps for o in outcomes if o.success) if wins else None,
-           "replans": sum(o.replans for o in outcomes)}
+           **mode_summary(outcomes), "replans": sum(o.replans for o in outcomes)}
     if sight == TRUTH:
         differ = [(o, p) for o, p in zip(outcomes, in_process, strict=False)
                   if (o.success, o.steps, o.replans) != (p.success, p.steps, p.replans)]

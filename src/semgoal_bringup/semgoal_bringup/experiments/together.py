@@ -94,15 +94,17 @@ def run_start(task: str, seed: int, step_s: float) -> tuple[Outcome, Outcome]:
                                  concurrent=concurrent) for concurrent in (False, True))
 
 
+def mode_summary(outcomes: list[Outcome]) -> dict:
+    """Success at rest with its 95 % Wilson interval and the median control steps of the successes."""
+    wins = sum(o.success for o in outcomes)
+    return {"success": wins / len(outcomes), "interval": wilson_interval(wins, len(outcomes)),
+            "median_steps": statistics.median(o.steps for o in outcomes if o.success) if wins else None}
+
+
 def summary(pairs: list[tuple[Outcome, Outcome]], modes: tuple[str, str] = ("in_turns", "at_once")) -> dict:
     """Success, median steps per mode, the ratios (second mode over first) and the steps worked at once, over the
     starts."""
-    def mode(outcomes: list[Outcome]) -> dict:
-        wins = sum(o.success for o in outcomes)
-        return {"success": wins / len(outcomes), "interval": wilson_interval(wins, len(outcomes)),
-                "median_steps": statistics.median(o.steps for o in outcomes if o.success) if wins else None}
-
-    first, second = mode([p[0] for p in pairs]), mode([p[1] for p in pairs])
+    first, second = mode_summary([p[0] for p in pairs]), mode_summary([p[1] for p in pairs])
     both = [(a.steps, b.steps, b.overlap) for a, b in pairs if a.success and b.success]
     misses = [{"seed": outcome.seed, "mode": name, "why": why_missed(outcome)}
               for pair in pairs for name, outcome in zip(modes, pair, strict=True) if not outcome.success]

@@ -1,7 +1,10 @@
 """The graph from pixels: the sim publishes its RGB-D camera, perception_node stands in for predicate_node,
 and with the policy on the perceived world state nothing downstream reads the simulator's block poses.
 DC-3 is solved from a fresh start; blocks the arm hides keep their tracks (near where they are); a camera
-that stops pauses the plan with the reason, and the plan resumes when frames return."""
+that stops pauses the plan with the reason, and the plan resumes when frames return; a tower of four is built on the
+tabletop."""
+
+import itertools
 
 import numpy as np
 import pytest
@@ -9,10 +12,12 @@ import pytest
 from conftest import NodeProcesses
 from semgoal_bringup.graph import Sight, graph_nodes
 from semgoal_core.names import PlanStatus
+from semgoal_core.settling import REST_SPEED
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 from semgoal_msgs.msg import BlockEstimate, BlockEstimates, SemanticState, WorldState
 from semgoal_ros import interfaces as topics
 from semgoal_ros.client import GraphClient
-from semgoal_ros.messages import block_centres
+from semgoal_ros.messages import block_centres, block_velocities
 
 pytestmark = pytest.mark.graph
 TASK, SEED = "DC-3", 6
@@ -24,8 +29,8 @@ def start(nodes: NodeProcesses):
     """Starts the graph seeing by a :class:`Sight` and gives its client (closed after the test)."""
     clients = []
 
-    def started(sight: Sight) -> GraphClient:
-        for package, executable, params in graph_nodes(TASK, SEED, "lockstep", sight=sight):
+    def started(sight: Sight, task: str = TASK) -> GraphClient:
+        for package, executable, params in graph_nodes(task, SEED, "lockstep", sight=sight):
             nodes.start(package, executable, params=params)
         clients.append(GraphClient("semgoal_test_operator", watch=False))
         assert clients[-1].wait_ready(timeout=60.0), "the graph did not come up"
@@ -100,3 +105,22 @@ def test_a_camera_that_stops_pauses_the_plan_with_the_reason_until_frames_return
     set_paused(False)
     assert client.spin_until(lambda: client.get_plan().plan.status == PlanStatus.SUCCEEDED, 120.0), \
         "the plan did not resume and succeed"
+
+
+def test_a_tower_on_the_tabletop_is_built_from_pixels_and_stands_as_the_simulator_sees_it(start) -> None:
+    """Eight colours, and a tower's lower blocks seen by their sides: the planner and the policy see by the camera
+    alone, and the simulator's own poses at the end show the tower, in order, at rest."""
+    task = "Tower-4"
+    client = start(PIXELS, task)
+    listener = Listener(client)
+    ok, message = client.reset(task, SEED)
+    assert ok, message
+    result = client.execute(task, max_steps=TASK_STEP_BUDGET)
+    assert result.success, result.message
+    assert client.spin_until(lambda: result.control_steps in listener.truth, 10.0)
+    last = listener.truth[result.control_steps]
+    centres = block_centres(last)
+    tower = [centres[block] for block in get_task(task).blocks]  # the first colour at the bottom
+    for below, above in itertools.pairwise(tower):
+        assert np.linalg.norm(above[:2] - below[:2]) < 0.025 and 0.04 < above[2] - below[2] < 0.06, (below, above)
+    assert np.linalg.norm(block_velocities(last)[:, :3], axis=1).max() < REST_SPEED

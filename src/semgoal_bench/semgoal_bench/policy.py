@@ -14,6 +14,9 @@ Each configuration runs in its own child process (``python -O``: gymnasium-robot
 mujoco >= 3.12), one after the other, ``--repeats`` times; the medians and the ratios to the reference
 are printed.
 
+Learning (``--learning STEPS``, instead of the timings): whether the faster configuration learns as well as SB3's,
+step for step (:mod:`semgoal_bench.learning`).
+
 Inference: latency of one action for one observation (what the policy node does per control step):
 ``Actor.act`` on two_blocks, ``SubgoalController.act`` (sampled noise, clipping, derived features) with
 each scene's shipped actor, and SB3's ``policy.predict`` for a network of the same size as two_blocks';
@@ -28,6 +31,7 @@ import statistics
 import subprocess
 import sys
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -167,22 +171,47 @@ def _child(args: list[str]) -> str:
     return result.stdout.strip().splitlines()[-1]
 
 
+def _work(args: argparse.Namespace) -> object:
+    """A child's one measurement: ``inference``, ``learning:CONFIG`` or a training ``CONFIG``'s rate."""
+    if args.worker == "inference":
+        return inference(args.calls)
+    if args.worker.startswith("learning:"):
+        from semgoal_bench.learning import curve
+
+        return curve(args.worker.removeprefix("learning:"), args.learning or args.steps, args.eval_every,
+                     args.eval_episodes, args.warmup)
+    return train_rate(args.worker, args.steps, args.warmup)
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal bench policy", description=__doc__.split("\n\n")[0])
     parser.add_argument("--steps", type=count, default=2_000, help="env steps timed per training run")
     parser.add_argument("--warmup", type=natural, default=WARMUP_STEPS, help="env steps before the first update")
     parser.add_argument("--repeats", type=count, default=3)
     parser.add_argument("--calls", type=count, default=5_000, help="single-observation actions timed")
+    parser.add_argument("--learning", type=count, metavar="STEPS",
+                        help="instead of the timings: train ours and SB3 for STEPS env steps each and compare their "
+                             "success at rest as they learn (semgoal_bench.learning)")
+    parser.add_argument("--eval-every", type=count, default=10_000, help="with --learning: env steps between evaluations")
+    parser.add_argument("--eval-episodes", type=count, default=50, help="with --learning: episodes per sub-goal type")
+    parser.add_argument("--figure", type=Path, help="with --learning: a PNG of both learning curves")
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--worker", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.worker:  # a child: one measurement, printed as its last line
-        print(json.dumps(inference(args.calls)) if args.worker == "inference"
-              else train_rate(args.worker, args.steps, args.warmup))
+        print(json.dumps(_work(args)))
+        return 0
+    out = sys.stderr if args.json else sys.stdout
+    if args.learning:
+        from semgoal_bench.learning import compare
+
+        result = compare(args.learning, args.eval_every, args.eval_episodes, args.warmup, args.figure, out)
+        if args.json:
+            out.flush()
+            print(json.dumps({"learning": result}))
         return 0
     from semgoal_policy.sac import bf16_is_native
 
-    out = sys.stderr if args.json else sys.stdout
     configs, not_measured = train_configs(bf16_is_native())
     for config, reason in not_measured.items():
         print(f"{config}: not measured: {reason}", file=out, flush=True)

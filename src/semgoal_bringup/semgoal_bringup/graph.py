@@ -117,13 +117,18 @@ def scene_task(scene: str, task_name: str):
 
 
 def check_sight(task_name: str, sight: Sight) -> None:
-    """ValueError, with what to do instead, where ``sight``'s camera cannot see ``task_name``'s scene: the block voter
-    knows the paper's scenes and their four block colours."""
-    from semgoal_core.vocabulary import PAPER_SCENES
+    """ValueError, with what to do instead, where ``sight``'s camera cannot see ``task_name``'s blocks: the shipped
+    block voter was not trained on their colours."""
+    from semgoal_perception.voter_colours import check_blocks, exported_colours
+    from semgoal_ros.package_data import share_path
 
-    if sight.perception == "camera" and (scene := get_task(task_name).scene) not in PAPER_SCENES:
-        raise ValueError(f"the camera's perception knows the paper's scenes ({', '.join(PAPER_SCENES)}) and their four "
-                         f"block colours; {task_name} is set in {scene}: see it by the simulator's poses (perception truth)")
+    if sight.perception != "camera":
+        return
+    try:
+        check_blocks(exported_colours(share_path("semgoal_perception", "models", "block_voter")), get_task(task_name).blocks)
+    except ValueError as error:
+        raise ValueError(f"{task_name} from the camera: {error}; or see it by the simulator's poses (perception truth)"
+                         ) from None
 
 
 def graph_nodes(task_name: str, seed: int, mode: str, models: str = "", record: str = "",

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -13,6 +14,7 @@ import torch
 
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.network import OFFSET_SCALE, BlockVoter, VoterConfig, network_input
+from semgoal_perception.voter_colours import check_blocks, colours_of
 
 MIN_PIXELS = 6
 """Fewer labelled pixels than this and a block counts as not seen (a sliver under the arm votes badly)."""
@@ -47,6 +49,12 @@ class BlockEstimator:
     def __init__(self, network: BlockVoter) -> None:
         self.network = network.eval()
         self.frozen: dict[tuple[int, ...], torch.jit.ScriptModule] = {}
+        self.colours = colours_of(network.config.classes)
+        """The block colours it was trained to tell apart."""
+
+    def check_blocks(self, blocks: Sequence[str]) -> None:
+        """ValueError naming the blocks this voter cannot see (colours it was not trained on)."""
+        check_blocks(self.colours, blocks)
 
     def run(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
         """The network's logits and offsets for a batch ``x`` (N, 7, H, W), through the frozen trace."""
@@ -64,8 +72,7 @@ class BlockEstimator:
     @classmethod
     def load(cls, folder: Path) -> BlockEstimator:
         """From an exported folder: ``voter.json`` (architecture) and ``voter.pt`` (weights)."""
-        config = VoterConfig(**json.loads((folder / "voter.json").read_text())["config"])
-        network = BlockVoter(config)
+        network = BlockVoter(VoterConfig(**json.loads((folder / "voter.json").read_text())["config"]))
         network.load_state_dict(torch.load(folder / "voter.pt", map_location="cpu", weights_only=True))
         return cls(network)
 

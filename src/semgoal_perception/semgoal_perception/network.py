@@ -16,6 +16,8 @@ import torch
 from torch import nn
 from torch.nn import functional
 
+from semgoal_core.vocabulary import BLOCK_COLOURS
+
 TABLE_CENTRE = np.array([1.30, 0.75, 0.40], dtype=np.float32)
 """Where world points are taken from (m): the table top's centre."""
 POINT_SCALE = 10.0
@@ -29,8 +31,9 @@ INPUT_CHANNELS = 7  # colour (3), world point (3), depth valid (1)
 class VoterConfig:
     """The architecture (saved beside the weights)."""
 
-    classes: int = 5
-    """No block, then the block colours in ``BLOCK_COLOURS`` order."""
+    classes: int = 1 + len(BLOCK_COLOURS)
+    """No block, then the first ``classes - 1`` block colours in ``BLOCK_COLOURS`` order (the paper's scenes use the
+    first four)."""
     width: int = 16
     """Channels at full resolution; half resolution has 2x, quarter 3x."""
 

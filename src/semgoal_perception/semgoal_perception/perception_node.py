@@ -28,7 +28,7 @@ from sensor_msgs.msg import CameraInfo, Image
 from tf2_msgs.msg import TFMessage
 
 from semgoal_core.arms import MAX_ARMS, arm_observation
-from semgoal_core.tasks import TASKS, get_task
+from semgoal_core.tasks import ALL_TASKS, get_task
 from semgoal_core.vocabulary import LAYOUTS, SCENES
 from semgoal_msgs.msg import BlockEstimate, BlockEstimates, SemanticState, WorldState
 from semgoal_perception.estimator import BlockEstimator
@@ -170,9 +170,10 @@ class PerceptionNode(Node):
             rgb = image_array(parts["colour"], "rgb8", 3, np.uint8)
             depth = image_array(parts["depth"], "32FC1", 1, np.float32)
             camera = self.pinhole(parts["info"], rgb.shape[:2], depth.shape)
-            task = get_task(world.task) if world.task in TASKS else None
+            task = get_task(world.task) if world.task in ALL_TASKS else None
             if world.scene not in LAYOUTS or task is None or task.scene != world.scene:
                 raise ValueError(f"world state of scene {world.scene!r}, task {world.task!r}: not a known task of the scene")
+            self.perceiver.estimator.check_blocks(task.blocks)
         except ValueError as error:
             self.counters["frames refused"] += 1
             self.get_logger().warn(f"refused a camera frame: {error}", throttle_duration_sec=2.0)
@@ -215,7 +216,7 @@ class PerceptionNode(Node):
 
     def _same_episode(self, world: WorldState) -> bool:
         """Whether ``world`` is of the episode the camera has tracks of (a new one it has not seen: nothing to hold)."""
-        return (world.scene in LAYOUTS and world.task in TASKS and self.perceiver.episode is not None
+        return (world.scene in LAYOUTS and world.task in ALL_TASKS and self.perceiver.episode is not None
                 and self.perceiver.episode == (world.scene, get_task(world.task).blocks, (world.episode, world.seed)))
 
     def publish_stale(self, world: WorldState, reason: str) -> None:

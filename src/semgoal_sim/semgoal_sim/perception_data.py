@@ -1,9 +1,10 @@
-"""Labelled camera frames for training and measuring the perception: the expert works the eight tasks while
-the camera records, under a randomised look per episode. Labels come from the simulator (block centres,
-per-pixel block ids); nothing here is seen by the perception at run time.
+"""Labelled camera frames for training and measuring the perception: the expert works a set of tasks (the paper's
+eight, or the tabletop's) while the camera records, under a randomised look per episode. Labels come from the
+simulator (block centres, per-pixel block ids); nothing here is seen by the perception at run time.
 
-Seeds: frames of seed S come from task starts ``S + episode``; training uses S = 8,000,000 and accuracy
-measurements S = 9,000,000, ranges no policy training or evaluation draws from (``docs/perception.md``).
+Seeds: frames of seed S come from task starts ``S + episode``; training uses S = 8,000,000 (the tabletop's
+8,700,000) and accuracy measurements S = 9,000,000 (the tabletop's 9,700,000), ranges no policy training or
+evaluation draws from (``docs/perception.md``).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from semgoal_core.tasks import TASKS, get_task
+from semgoal_core.tasks import ALL_TASKS, TASKS, get_task
 from semgoal_core.vocabulary import BLOCK_COLOURS
 from semgoal_sim.camera import CONDITIONS, Appearance, Frame, RgbdCamera
 from semgoal_sim.rollout import expert_controller, expert_next_steps, run_subgoal
@@ -21,6 +22,10 @@ from semgoal_sim.world import FetchWorld, Snapshot
 
 TRAINING_SEED = 8_000_000
 MEASUREMENT_SEED = 9_000_000
+TABLETOP_TRAINING_SEED = 8_700_000
+TABLETOP_MEASUREMENT_SEED = 9_700_000
+FRAME_TASKS: tuple[str, ...] = tuple(ALL_TASKS)
+"""Every task a frame may come from: a frame's ``task`` is its index here."""
 FRAMES_PER_EPISODE = 6
 MAX_SUBGOALS = 4
 
@@ -37,7 +42,7 @@ class LabelledFrames:
     centres: np.ndarray  # (N, colours, 3) block centres, NaN for a colour not in the scene
     speeds: np.ndarray  # (N, colours) block linear speeds (m/s), NaN for a colour not in the scene
     grip: np.ndarray  # (N, 4) grip site position and finger opening
-    task: np.ndarray  # (N,) task index (TASKS order)
+    task: np.ndarray  # (N,) task index in FRAME_TASKS
 
     def save(self, path) -> None:
         np.savez_compressed(path, **self.__dict__)
@@ -46,6 +51,14 @@ class LabelledFrames:
     def load(cls, path) -> LabelledFrames:
         with np.load(path) as data:
             return cls(**{name: data[name] for name in cls.__dataclass_fields__})
+
+    def tasks(self) -> list:
+        """Each frame's task."""
+        return [get_task(FRAME_TASKS[t]) for t in self.task]
+
+    def where(self, keep: np.ndarray) -> LabelledFrames:
+        """The frames ``keep`` (a mask or indices) selects."""
+        return LabelledFrames(**{name: getattr(self, name)[keep] for name in self.__dataclass_fields__})
 
 
 def _episode_frames(task_name: str, seed: int, appearance: Appearance, camera_size: tuple[int, int],
@@ -104,8 +117,9 @@ def stack_rows(rows: list[tuple]) -> LabelledFrames:
 
 
 def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[int, int] = (160, 120),
-                    strength: float = 1.0, condition: str = "nominal", progress: bool = False) -> LabelledFrames:
-    """``count`` labelled frames from episodes of every task in turn, starts ``seed + episode``; the look is
+                    strength: float = 1.0, condition: str = "nominal", progress: bool = False,
+                    tasks: Sequence[str] = tuple(TASKS)) -> LabelledFrames:
+    """``count`` labelled frames from episodes of each of ``tasks`` in turn, starts ``seed + episode``; the look is
     the named ``condition`` (``semgoal_sim.camera.CONDITIONS``), randomised around its camera placement
     when ``strength`` > 0."""
     from tqdm import tqdm
@@ -114,12 +128,12 @@ def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[in
     bar = tqdm(total=count, desc="rendering labelled frames", unit="frame", disable=not progress)
     episode = 0
     while len(rows) < count:
-        task_name = list(TASKS)[episode % len(TASKS)]
+        task_name = tasks[episode % len(tasks)]
         rng = np.random.default_rng([seed, episode])
         look = CONDITIONS[condition]
         appearance = Appearance.randomised(rng, strength, look.placement) if strength > 0 else look
         for row in _episode_frames(task_name, seed + episode, appearance, camera_size, rng):
-            rows.append((*row, list(TASKS).index(task_name)))
+            rows.append((*row, FRAME_TASKS.index(task_name)))
             bar.update(1)
         episode += 1
     bar.close()

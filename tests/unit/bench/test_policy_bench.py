@@ -8,6 +8,7 @@ import sys
 import pytest
 
 from conftest import ROOT
+from semgoal_bench.learning import LEARNERS, learning_point
 from semgoal_bench.policy import REFERENCE, TRAIN_CONFIGS, inference, our_config, train_configs
 from semgoal_core.vocabulary import PAPER_SCENES
 
@@ -51,3 +52,29 @@ def test_bench_policy_runs_every_configuration_at_a_tiny_size():
     assert set(rates) == set(train_configs(training["bf16_native"])[0]) and all(rate > 0 for rate in rates.values())
     assert set(rates) | set(training["not_measured"]) == set(TRAIN_CONFIGS)
     assert training["ratio_to_reference"][REFERENCE] == 1.0
+
+
+def test_a_learning_point_pools_the_types_with_a_wilson_interval():
+    point = learning_point(4000, {"pick": 0.5, "put_near": 1.0}, episodes=10)
+    assert point["overall"] == 0.75 and point["env_steps"] == 4000
+    low, high = point["wilson_95"]
+    assert 0.5 < low < 0.75 < high < 0.95
+
+
+@pytest.mark.slow
+def test_bench_policy_compares_learning_curves_at_a_tiny_size(tmp_path):
+    """Ours and SB3 trained side by side and evaluated the same way, every few hundred steps."""
+    figure = tmp_path / "curves.png"
+    result = subprocess.run([sys.executable, "-m", "semgoal_bench.policy", "--learning", "800", "--eval-every", "400",
+                             "--eval-episodes", "2", "--warmup", "110", "--figure", str(figure), "--json"],
+                            capture_output=True, text=True, cwd=ROOT, timeout=280)
+    assert result.returncode == 0, result.stderr[-3000:]
+    curves = json.loads(result.stdout.strip().splitlines()[-1])["learning"]["curves"]
+    assert set(curves) == set(LEARNERS)
+    for points in curves.values():
+        steps = [point["env_steps"] for point in points]
+        assert len(steps) == 2 and steps == sorted(steps) and steps[-1] >= 800
+        for point in points:
+            assert set(point["success"]) == set(points[0]["success"]) and len(point["success"]) >= 4
+            assert all(0.0 <= rate <= 1.0 for rate in point["success"].values())
+    assert figure.stat().st_size > 10_000

@@ -192,23 +192,33 @@ def test_with_two_arms_from_the_camera_the_planner_hears_where_blocks_and_hands_
         assert "world_topic" not in nodes["planner_node"]
 
 
-def test_a_scene_the_camera_does_not_know_is_refused_with_what_to_do_instead() -> None:
+def test_the_shipped_voter_sees_every_scene_the_tabletop_too() -> None:
     from semgoal_bringup.graph import Sight
+    from semgoal_core.vocabulary import BLOCK_COLOURS
+    from semgoal_perception.voter_colours import exported_colours
+    from semgoal_ros.package_data import share_path
 
-    with pytest.raises(ValueError, match=r"paper's scenes .* Tower-4 is set in tabletop: see it by the simulator's poses"):
-        graph_nodes("Tower-4", 0, "lockstep", sight=Sight("camera", "truth"))
-    assert graph_nodes("Tower-4", 0, "lockstep")  # by the simulator's poses it runs
+    assert exported_colours(share_path("semgoal_perception", "models", "block_voter")) == tuple(BLOCK_COLOURS)
+    assert graph_nodes("Clean-8", 0, "lockstep", sight=Sight("camera", "camera"))
 
 
-def test_a_command_asked_to_see_such_a_scene_by_the_camera_stops_with_the_reason(capsys) -> None:
+def test_blocks_the_voter_was_not_trained_on_are_refused_with_what_to_do_instead(monkeypatch, capsys) -> None:
+    """A voter of the paper's four colours (the one shipped before the tabletop's frames) cannot see orange."""
     import argparse
 
-    from semgoal_bringup.graph import add_sight_arguments, sight_of
+    from semgoal_bringup.graph import Sight, add_sight_arguments, sight_of
+    from semgoal_perception import voter_colours
 
+    monkeypatch.setattr(voter_colours, "exported_colours", lambda folder: voter_colours.colours_of(5))
+    with pytest.raises(ValueError, match=r"Tower-5 from the camera: the block voter knows red, green, blue, yellow, not "
+                                         r"orange: .* or see it by the simulator's poses"):
+        graph_nodes("Tower-5", 0, "lockstep", sight=Sight("camera", "truth"))
+    assert graph_nodes("Tower-5", 0, "lockstep")  # by the simulator's poses it runs
+    assert graph_nodes("Tower-4", 0, "lockstep", sight=Sight("camera", "truth"))  # four colours it knows
     parser = argparse.ArgumentParser(prog="semgoal demo")
     add_sight_arguments(parser)
     args = parser.parse_args(["--perception", "camera"])
     assert sight_of(args, parser, ["DC-3"]).perception == "camera"
     with pytest.raises(SystemExit) as stopped:
         sight_of(args, parser, ["DC-3", "Clean-6"])
-    assert stopped.value.code == 2 and "Clean-6 is set in tabletop" in capsys.readouterr().err
+    assert stopped.value.code == 2 and "not orange, purple" in capsys.readouterr().err

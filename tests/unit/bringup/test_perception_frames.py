@@ -4,9 +4,9 @@ with the blocks' true centres, and spread through the one-arm frames so that tra
 import numpy as np
 
 from semgoal_bringup.experiments.perception_training import TWO_ARM_TASKS, interleaved, two_arm_frames
-from semgoal_core.tasks import TASKS
+from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import BLOCK_COLOURS
-from semgoal_sim.perception_data import LabelledFrames
+from semgoal_sim.perception_data import LabelledFrames, labelled_frames
 
 
 def frames_of(count: int, task: int) -> LabelledFrames:
@@ -22,6 +22,18 @@ def test_the_second_kind_is_spread_through_the_first_in_order():
     assert list(merged.task) == [0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0]
     assert list(merged.grip[merged.task == 0, 0]) == list(range(10))
     assert list(merged.grip[merged.task == 1, 0]) == [0, 1]
+
+
+def test_tabletop_frames_come_from_its_tasks_with_every_block_labelled():
+    frames = labelled_frames(12, 8_700_000, (80, 60), tasks=tuple(TABLETOP_TASKS))
+    assert [task.name for task in frames.tasks()] == ["Tower-3"] * 6 + ["Tower-4"] * 6
+    colours = list(BLOCK_COLOURS)
+    for labels, centres, task in zip(frames.labels, frames.centres, frames.tasks(), strict=True):
+        present = {c for c in range(len(colours)) if np.isfinite(centres[c]).all()}
+        assert present == {colours.index(block) for block in task.blocks}
+        assert set(np.unique(labels)) - {0} <= {c + 1 for c in present}
+    first = frames.where(frames.task == frames.task[0])
+    assert len(first.rgb) == 6 and {task.name for task in first.tasks()} == {"Tower-3"}
 
 
 def test_two_arm_frames_show_both_robots_at_the_desk_with_the_blocks_labelled():

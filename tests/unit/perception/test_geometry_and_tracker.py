@@ -8,7 +8,7 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
-from semgoal_perception.tracker import LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
+from semgoal_perception.tracker import HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""
@@ -83,8 +83,43 @@ def test_a_block_in_the_closed_hand_follows_the_grip_when_unseen() -> None:
     for _ in range(10):
         grip = grip + np.array([0.0, 0.0, 0.01])
         track = tracker.update([], [Hand(grip, np.array([0.0, 0.0, 0.25]), 0.05)])[0]
-    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip - [0, 0, 0.005])
+    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip + np.array([0, 0, HELD_HANG]))
     assert np.allclose(track.velocity, [0, 0, 0.25]) and track.sigma.min() >= SIGMA_HELD
+
+
+def test_a_block_seen_in_the_hand_is_carried_at_its_grasp_not_where_its_hidden_pixels_vote() -> None:
+    """The fingers hide most of a held block and its votes wander; the grasp was seen with the block at rest."""
+    tracker, rest = BlockTracker([0]), np.array([1.3, 0.7, 0.425])
+    for _ in range(3):
+        tracker.update([seen(0, rest)], AWAY)
+    grip = rest + np.array([0.0, 0.0, 0.014])
+    tracker.update([seen(0, rest + np.array([0.0, 0.003, -0.004]))], [Hand(grip, STILL, 0.05)])  # the fingers close, votes move
+    for _ in range(10):
+        grip = grip + np.array([0.01, 0.0, 0.01])
+        track = tracker.update([seen(0, grip + np.array([0.015, -0.01, -0.033]))], [Hand(grip, np.array([0.25, 0, 0.25]), 0.05)])[0]
+    assert track.status == TrackStatus.VISIBLE and track.hand == 0
+    assert np.allclose(track.position, grip + np.array([0, 0, HELD_HANG])) and np.allclose(track.velocity, [0.25, 0, 0.25])
+
+
+def test_a_grasped_block_rests_where_it_was_until_it_hangs_below_the_rising_grip() -> None:
+    tracker, rest = BlockTracker([0]), np.array([1.3, 0.7, 0.425])
+    tracker.update([seen(0, rest)], AWAY)
+    heights = []
+    for rise in (0.0, 0.005, 0.01, 0.015, 0.02, 0.03, 0.05, 0.02):  # closes at the block's centre, lifts, lowers
+        grip = rest + np.array([0.002, 0.0, rise])
+        heights.append(tracker.update([], [Hand(grip, STILL, 0.05)])[0].position[2] - rest[2])
+    assert np.allclose(heights, [0, 0, 0, 0, 0.002, 0.012, 0.032, 0.002])
+    assert np.allclose(tracker.tracks[0].position[:2], rest[:2])
+
+
+def test_a_held_block_seen_far_from_its_hand_has_left_it() -> None:
+    tracker, grip = BlockTracker([0]), np.array([1.3, 0.7, 0.43])
+    tracker.update([seen(0, [1.3, 0.7, 0.425])], [Hand(grip, STILL, 0.05)])
+    lifted = Hand(grip + np.array([0, 0, 0.1]), STILL, 0.05)
+    tracker.update([], [lifted])
+    assert tracker.tracks[0].status == TrackStatus.HELD
+    track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted])[0]  # it fell
+    assert track.hand is None and track.status == TrackStatus.VISIBLE and np.allclose(track.position, [1.35, 0.7, 0.425])
 
 
 def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_table_when_let_go() -> None:
@@ -94,7 +129,7 @@ def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_t
     for _ in range(10):  # the second arm lifts it out of sight; the first arm's hand stays away
         grip = grip + np.array([0.0, 0.01, 0.01])
         track = tracker.update([seen(1, [1.2, 0.7, 0.425])], [*AWAY, Hand(grip, np.array([0.0, 0.25, 0.25]), 0.05)])[0]
-    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip - [0, 0, 0.005])
+    assert track.status == TrackStatus.HELD and np.allclose(track.position, grip + np.array([0, 0, HELD_HANG]))
     assert np.allclose(track.velocity, [0, 0.25, 0.25])
     track = tracker.update([seen(0, [1.3, 1.0, 0.425])], [*AWAY, Hand(grip + np.array([0, 0, 0.1]), STILL, 0.1)])[0]
     assert track.status == TrackStatus.VISIBLE and track.hand is None and track.grip_offset is None

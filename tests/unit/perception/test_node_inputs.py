@@ -37,3 +37,15 @@ def test_a_transform_becomes_its_rotation_and_translation() -> None:
     transform.rotation.w, transform.rotation.z = np.cos(np.pi / 4), np.sin(np.pi / 4)  # 90 degrees about z
     pose = pose_matrix(transform)
     assert np.allclose(pose[:3, :3], [[0, -1, 0], [1, 0, 0], [0, 0, 1]]) and np.allclose(pose[:3, 3], [1, 2, 3])
+
+
+def test_blocks_of_colours_the_voter_was_not_trained_on_are_refused_by_name() -> None:
+    from semgoal_perception.estimator import BlockEstimator
+    from semgoal_perception.network import BlockVoter, VoterConfig
+
+    paper = BlockEstimator(BlockVoter(VoterConfig(classes=5)))
+    assert paper.colours == ("red", "green", "blue", "yellow")
+    paper.check_blocks(("red", "yellow"))
+    with pytest.raises(ValueError, match="knows red, green, blue, yellow, not orange, pink: train one"):
+        paper.check_blocks(("red", "orange", "pink"))
+    BlockEstimator(BlockVoter()).check_blocks(("orange", "pink", "cyan", "purple"))

@@ -1,6 +1,6 @@
-"""`./semgoal train perception [--images N] [--seed S] [--two-arm-images N]`: render labelled frames (the expert at work
-under a randomised look; some with a second Fetch across the table), train the block voter on them and export it
-beside its model card.
+"""`./semgoal train perception [--images N] [--seed S] [--two-arm-images N] [--tabletop-images N]`: render labelled frames
+(the expert at work under a randomised look; some with a second Fetch across the table, some on the tabletop with its
+eight colours and towers), train the block voter on them and export it beside its model card.
 
 The recipe is data (``semgoal_perception/recipes/block_voter.json``); flags override it and the exported
 ``voter.json`` records what ran. Rendered frames are cached under ``runs/perception/`` by seed, count and size.
@@ -27,15 +27,19 @@ TWO_ARM_STEPS = 60
 
 
 def cached_frames(count: int, seed: int, size: tuple[int, int], strength: float, cache: Path,
-                  condition: str = "nominal", arms: int = 1):
-    """Labelled frames from the cache, rendered first when missing (``arms`` 2: :func:`two_arm_frames`)."""
+                  condition: str = "nominal", arms: int = 1, tabletop: bool = False):
+    """Labelled frames from the cache, rendered first when missing: of the paper's eight tasks, or with ``tabletop``
+    of the tabletop's (``arms`` 2: :func:`two_arm_frames`, the desk's)."""
+    from semgoal_core.tasks import TABLETOP_TASKS, TASKS
     from semgoal_sim.perception_data import LabelledFrames, labelled_frames
 
     kind = "frames" if arms == 1 else "two-arm-frames"
+    kind = f"tabletop-{kind}" if tabletop else kind
     path = cache / f"{kind}-seed{seed}-n{count}-{size[0]}x{size[1]}-s{strength:g}-{condition}.npz"
     if path.exists():
         return LabelledFrames.load(path)
-    frames = (labelled_frames(count, seed, size, strength, condition, progress=True) if arms == 1
+    tasks = tuple(TABLETOP_TASKS if tabletop else TASKS)
+    frames = (labelled_frames(count, seed, size, strength, condition, progress=True, tasks=tasks) if arms == 1
               else two_arm_frames(count, seed, size, strength))
     cache.mkdir(parents=True, exist_ok=True)
     frames.save(path)
@@ -50,10 +54,10 @@ def two_arm_frames(count: int, seed: int, size: tuple[int, int], strength: float
     from tqdm import tqdm
 
     from semgoal_bringup.experiments.episodes import make_agent
-    from semgoal_core.tasks import TASKS, get_task
+    from semgoal_core.tasks import get_task
     from semgoal_policy.expert_actor import EXPERT
     from semgoal_sim.camera import CONDITIONS, Appearance, RgbdCamera
-    from semgoal_sim.perception_data import FRAMES_PER_EPISODE, frame_row, stack_rows
+    from semgoal_sim.perception_data import FRAME_TASKS, FRAMES_PER_EPISODE, frame_row, stack_rows
 
     agent = make_agent("hierarchical", "desk_cleanup", Path(EXPERT), arms=2)
     cameras: dict[int, RgbdCamera] = {}
@@ -74,7 +78,7 @@ def two_arm_frames(count: int, seed: int, size: tuple[int, int], strength: float
             camera = cameras[id(world)]
             if camera.appearance is not look:
                 camera.set_appearance(look, noise_seed=start)
-            rows.append((*frame_row(camera.frame(labels=True), world.snapshot(), world.blocks), list(TASKS).index(task.name)))
+            rows.append((*frame_row(camera.frame(labels=True), world.snapshot(), world.blocks), FRAME_TASKS.index(task.name)))
             bar.update(1)
 
         agent.run_goals(task.initial_state(start)[0], (task.name,), start, label=task.name, on_step=record)
@@ -112,6 +116,10 @@ def main(argv: list[str]) -> int:
                         help="frames more with a second Fetch across the table (the desk's tasks, both arms at work)")
     parser.add_argument("--two-arm-seed", type=natural, default=recipe["two_arm_seed"],
                         help="their task starts: seed + episode")
+    parser.add_argument("--tabletop-images", type=natural, default=recipe["tabletop_images"],
+                        help="frames more of the tabletop's tasks (eight colours, towers)")
+    parser.add_argument("--tabletop-seed", type=natural, default=recipe["tabletop_seed"],
+                        help="their task starts: seed + episode")
     parser.add_argument("--epochs", type=count, default=recipe["voter"]["epochs"])
     parser.add_argument("--out", type=Path, default=CHECKOUT_PACKAGE / "models" / "block_voter",
                         help="export folder (default: the shipped model, in the checkout)")
@@ -125,6 +133,9 @@ def main(argv: list[str]) -> int:
     if args.two_arm_images:
         frames = interleaved(frames, cached_frames(args.two_arm_images, args.two_arm_seed, size,
                                                    recipe["randomisation_strength"], args.cache, arms=2))
+    if args.tabletop_images:
+        frames = interleaved(frames, cached_frames(args.tabletop_images, args.tabletop_seed, size,
+                                                   recipe["randomisation_strength"], args.cache, tabletop=True))
     rendered = time.perf_counter() - started
     if args.literal_net:
         return train_literal_alternative(frames, args.out.parent / "literal_net", args.epochs, argv)
@@ -132,7 +143,8 @@ def main(argv: list[str]) -> int:
     voter.update(epochs=args.epochs, crop=tuple(voter["crop"]))
     summary = train_voter(frames, args.out, VoterRecipe(**voter), VoterConfig(**recipe["network"]))
     summary.update(images=args.images, seed=args.seed, two_arm_images=args.two_arm_images,
-                   two_arm_seed=args.two_arm_seed, camera_size=list(size),
+                   two_arm_seed=args.two_arm_seed, tabletop_images=args.tabletop_images,
+                   tabletop_seed=args.tabletop_seed, camera_size=list(size),
                    randomisation_strength=recipe["randomisation_strength"],
                    render_s=round(rendered, 1), total_s=round(time.perf_counter() - started, 1),
                    provenance=provenance("./semgoal train-perception " + " ".join(argv), args.seed))
@@ -144,11 +156,15 @@ def main(argv: list[str]) -> int:
 
 
 def train_literal_alternative(frames, out: Path, epochs: int, argv: list[str]) -> int:
-    """The paper's alternative on the same frames, exported beside the voter (``eval-perception`` compares them)."""
-    from semgoal_core.tasks import TASKS, get_task
+    """The paper's alternative on the same frames of the paper's scenes, exported beside the voter (``eval-perception``
+    compares them)."""
+    import numpy as np
+
+    from semgoal_core.vocabulary import PAPER_SCENES
     from semgoal_perception.literal_net import train_literal_net
 
-    summary = train_literal_net(frames, [get_task(list(TASKS)[t]) for t in frames.task], out, epochs=epochs)
+    frames = frames.where(np.array([task.scene in PAPER_SCENES for task in frames.tasks()]))
+    summary = train_literal_net(frames, frames.tasks(), out, epochs=epochs)
     summary["provenance"] = provenance("./semgoal train-perception " + " ".join(argv), None)
     (out / "literal_net.json").write_text(json.dumps(summary, indent=2) + "\n")
     print(json.dumps({k: summary[k] for k in ("frames", "epochs", "final_loss", "wall_s")}, indent=2))
@@ -190,18 +206,21 @@ each block's votes. Inputs: colour and each pixel's world point (from depth and 
 - **Data**: {summary['images']} frames rendered by `./semgoal train-perception` (the expert working the eight tasks,
   6 frames per episode, task starts from seed {summary['seed']:,}) and {summary.get('two_arm_images', 0)} more with a
   second Fetch across the table (both arms working the desk's tasks under the expert, task starts from seed
-  {summary.get('two_arm_seed', 0):,}: its blue links are not a blue block), with the look randomised per episode
+  {summary.get('two_arm_seed', 0):,}: its blue links are not a blue block) and {summary.get('tabletop_images', 0)} of the
+  tabletop (its eleven tasks, eight colours and towers, task starts from seed {summary.get('tabletop_seed', 0):,}), with
+  the look randomised per episode
   (light strength and tint, camera 2 cm / 2 degrees, block shades, table colour, depth noise and drop-outs; strength
   {summary['randomisation_strength']}). Labels are the simulator's: block centres and per-pixel block ids.
 - **Training**: {recipe['epochs']} epochs of {recipe['batch']}-crop batches ({recipe['crop'][0]}x{recipe['crop'][1]},
   {recipe['block_crop_fraction']:.0%} around a block), AdamW with a one-cycle rate up to {recipe['learning_rate']}, seed
-  {recipe['seed']}; rendering {summary['render_s']} s, all told {summary['total_s']} s on this machine (2 cores).
+  {recipe['seed']}; the frames rendered (or read from the cache) in {summary['render_s']} s, all told {summary['total_s']} s on
+  this machine (2 cores).
 - **Held-out frames of training's seeds** (the last {recipe['validation_fraction']:.0%}, moving blocks included):
   median centre error {final['val_median_mm']:.2f} mm, p99 {final['val_p99_mm']:.1f} mm (`curve.csv`, `curve.png`).
 - **Accuracy at rest on unseen starts**, literal agreement and latency: `./semgoal eval-perception`, in
   docs/perception.md.
 - **Provenance**: commit {summary['provenance']['commit'][:12]}, command `{summary['provenance']['command'].strip()}`.
 
-Limits: the four block colours of the scenes are the classes (a new colour needs new data); the camera's pose must be
-known (/tf_static); blocks are taken as cubes of 5 cm.
+Limits: the block colours it was trained on ({summary['config']['classes'] - 1}) are its classes (a new colour needs new
+data); the camera's pose must be known (/tf_static); blocks are taken as cubes of 5 cm.
 """)

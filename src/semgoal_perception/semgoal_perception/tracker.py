@@ -7,7 +7,9 @@ had when the fingers closed on it, taken from where it last rested, and in heigh
 hangs :data:`HELD_HANG` below the grip, as a lifted block slides down the closed fingers. The fingers hide most of a
 held block, and its votes then wander by one to three centimetres (a tower's top block was let go that far off its
 mark, and the tower fell); the kinematics and a grasp seen at rest do not. Seen far from the hand that held it, the
-block has left it. Any other
+block has left it. A block that no hand is near cannot jump: a detection far from where its track stands is doubted
+(the Fetch's arm is blue, and its links near another block have read as the blue block) until it persists for
+:data:`DOUBT_FRAMES` frames, as a block that really fell or was knocked does. Any other
 unseen block stays where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen
 frames it is reported lost, with its last estimate, never dropped.
 """
@@ -40,6 +42,13 @@ and two DC-4 starts, 401 control steps held 6 cm or more above the table) read -
 HELD_GATE = 0.04
 """A held block seen farther than this (m) from where its hand carries it has left the hand (fallen, knocked out);
 the votes of a block in the hand stay within about 2.5 cm."""
+JUMP_GATE = 0.05
+"""A detection this far (m) from a free block's predicted position, with no hand within :data:`HAND_REACH` of the
+block, is doubted."""
+HAND_REACH = 0.12
+"""A hand this near (m) may have moved a block: a jump there is believed at once."""
+DOUBT_FRAMES = 5
+"""Frames in a row a far detection must persist before the track follows it (0.2 s at 25 Hz)."""
 SIGMA_MAX = 0.05
 LOST_FRAMES = 75
 """Unseen this many frames in a row (3 s at 25 Hz) and a block is lost (its last estimate still kept)."""
@@ -76,6 +85,8 @@ class Track:
     """Block centre minus grip site while it is in a closed hand; None when it is not."""
     rest_position: np.ndarray | None = None
     """Where it was last seen at rest, out of any hand: a grasp's offset is taken from there."""
+    doubted: int = 0
+    """Frames in a row its detection was too far from it to believe (:data:`JUMP_GATE`)."""
     lifted_from: float = np.nan
     """Its centre's height when the hand that holds it took it (m)."""
     hand: int | None = None
@@ -107,7 +118,7 @@ class BlockTracker:
             detection, rested = seen.get(colour), track.rest_position  # before this frame: the fingers may move it
             if track.hand is not None and track.hand < len(hands) and not self._left_hand(track, hands, detection):
                 self._carry(track, hands[track.hand], detection, frames)
-            elif detection is not None:
+            elif detection is not None and not self._doubtful(track, hands, detection, dt):
                 self._measure(track, detection, dt)
             else:
                 self._predict(track, frames)
@@ -129,6 +140,21 @@ class BlockTracker:
             return False
         track.grip_offset, track.hand, track.status = None, None, TrackStatus.LOST  # measured afresh
         return True
+
+    @staticmethod
+    def _doubtful(track: Track, hands: Sequence[Hand], detection: Detection, dt: float) -> bool:
+        """Whether ``detection`` puts a block no hand is near too far from its track to believe yet."""
+        if track.status in (TrackStatus.NEVER_SEEN, TrackStatus.LOST):
+            return False
+        jump = np.linalg.norm(detection.centre - track.position - track.velocity * dt) > JUMP_GATE
+        if not jump or any(np.linalg.norm(hand.position - track.position) < HAND_REACH for hand in hands):
+            track.doubted = 0
+            return False
+        track.doubted += 1
+        if track.doubted < DOUBT_FRAMES:
+            return True
+        track.doubted, track.status = 0, TrackStatus.LOST  # it did move: measured afresh
+        return False
 
     def _measure(self, track: Track, detection: Detection, dt: float) -> None:
         if track.status in (TrackStatus.NEVER_SEEN, TrackStatus.LOST):

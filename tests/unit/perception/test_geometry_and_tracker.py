@@ -8,7 +8,7 @@ from semgoal_core.vocabulary import LAYOUTS, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
-from semgoal_perception.tracker import HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
+from semgoal_perception.tracker import DOUBT_FRAMES, HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""
@@ -133,6 +133,26 @@ def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_t
     assert np.allclose(track.velocity, [0, 0.25, 0.25])
     track = tracker.update([seen(0, [1.3, 1.0, 0.425])], [*AWAY, Hand(grip + np.array([0, 0, 0.1]), STILL, 0.1)])[0]
     assert track.status == TrackStatus.VISIBLE and track.hand is None and track.grip_offset is None
+
+
+def test_a_resting_block_no_hand_is_near_does_not_jump_to_a_far_detection_until_it_persists() -> None:
+    """The arm's blue links near another block have read as the blue block for a few frames."""
+    tracker, rest, far = BlockTracker([0]), np.array([1.3, 0.7, 0.425]), np.array([1.3, 0.95, 0.425])
+    for _ in range(3):
+        tracker.update([seen(0, rest)], AWAY)
+    for _ in range(DOUBT_FRAMES - 1):
+        track = tracker.update([seen(0, far)], [Hand(far + np.array([0.0, 0.0, 0.05]), STILL, 0.08)])[0]
+        assert np.allclose(track.position, rest) and track.status == TrackStatus.OCCLUDED
+    track = tracker.update([seen(0, far)], AWAY)[0]  # it persists: the block did move (fell, was knocked)
+    assert np.allclose(track.position, far) and np.allclose(track.velocity, 0) and track.status == TrackStatus.VISIBLE
+
+
+def test_a_block_a_hand_is_near_follows_its_detection_at_once() -> None:
+    tracker, rest = BlockTracker([0]), np.array([1.3, 0.7, 0.425])
+    tracker.update([seen(0, rest)], AWAY)
+    pushed = rest + np.array([0.08, 0.0, 0.0])
+    track = tracker.update([seen(0, pushed)], [Hand(rest + np.array([0.05, 0.0, 0.03]), STILL, 0.08)])[0]
+    assert track.status == TrackStatus.VISIBLE and track.position[0] > rest[0] + 0.04
 
 
 def test_a_never_seen_block_stays_unknown() -> None:

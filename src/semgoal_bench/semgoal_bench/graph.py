@@ -21,7 +21,7 @@ import json
 import os
 import statistics
 import time
-from collections.abc import Iterator
+from collections.abc import Collection, Iterator
 from itertools import pairwise
 from typing import NamedTuple
 
@@ -42,13 +42,15 @@ class Run(NamedTuple):
     cpu_s: float
 
 
-def descendants_cpu_s() -> float:
+def descendants_cpu_s(exclude: Collection[int] = ()) -> float:
     """CPU seconds (user + system) spent so far by this process's descendants that are still running: the graph's
-    node processes."""
+    node processes; ``exclude``: process ids left out (others', whose ending would take their CPU out of the sum)."""
     import psutil
 
     total = 0.0
     for process in psutil.Process().children(recursive=True):
+        if process.pid in exclude:
+            continue
         with contextlib.suppress(psutil.NoSuchProcess):  # ended meanwhile
             times = process.cpu_times()
             total += times.user + times.system

@@ -71,10 +71,10 @@ class _Remembered(SubgoalEnv):
 
 def sb3_curve(env_name: str, steps: int, every: int, episodes: int, warmup: int) -> list[dict]:
     """SB3's SAC + HER on our ``env_name`` scene, evaluated as :func:`ours_curve` evaluates ours."""
-    from semgoal_bench.policy import _sb3_model
+    from semgoal_bench.policy import sb3_model
     from semgoal_policy.evaluate import EVAL_SEED_BASE, success_by_kind
 
-    model = _sb3_model(SubgoalEnv(env_name), keep_infos=True, warmup=warmup)
+    model = sb3_model(SubgoalEnv(env_name), keep_infos=True, warmup=warmup)
     envs = [_Remembered(env_name) for _ in range(EVAL_ENVS)]
 
     def act(obs: np.ndarray, goal: np.ndarray) -> np.ndarray:

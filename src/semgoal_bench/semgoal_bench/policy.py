@@ -57,7 +57,7 @@ def train_configs(bf16_native: bool) -> tuple[tuple[str, ...], dict[str, str]]:
     return tuple(config for config in TRAIN_CONFIGS if config not in left_out), left_out
 
 
-def _sb3_model(env, keep_infos: bool, warmup: int = WARMUP_STEPS):
+def sb3_model(env, keep_infos: bool, warmup: int = WARMUP_STEPS):
     """SB3's SAC + HER as the reference runs it; ``keep_infos`` for envs whose reward reads the step's info."""
     import torch
     from stable_baselines3 import SAC, HerReplayBuffer
@@ -124,7 +124,7 @@ def train_rate(config: str, steps: int, warmup: int = WARMUP_STEPS) -> float:
                 self.locals["self"].bench_start = time.perf_counter()
             return True
 
-    model = _sb3_model(_sb3_env(arg), keep_infos=arg == "two_blocks", warmup=warmup)
+    model = sb3_model(_sb3_env(arg), keep_infos=arg == "two_blocks", warmup=warmup)
     model.learn(total_timesteps=warmup + steps, callback=Clock())
     return steps / (time.perf_counter() - model.bench_start)
 
@@ -154,7 +154,7 @@ def inference(calls: int) -> dict[str, dict[str, float]]:
         controllers[scene] = SubgoalController(scene)
         controllers[scene].set_subgoal(envs[scene].subgoal.literals())
     obs, actor = observations["two_blocks"], controllers["two_blocks"].actor
-    sb3 = _sb3_model(envs["two_blocks"], keep_infos=True)
+    sb3 = sb3_model(envs["two_blocks"], keep_infos=True)
     return {
         "ours:Actor.act": _percentiles(lambda: actor.act(obs["observation"], obs["desired_goal"]), calls),
         **{f"ours:SubgoalController.act[{scene}]":

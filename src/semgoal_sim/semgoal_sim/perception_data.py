@@ -22,7 +22,6 @@ from semgoal_sim.world import FetchWorld, Snapshot
 
 TRAINING_SEED = 8_000_000
 MEASUREMENT_SEED = 9_000_000
-TABLETOP_TRAINING_SEED = 8_700_000
 TABLETOP_MEASUREMENT_SEED = 9_700_000
 FRAME_TASKS: tuple[str, ...] = tuple(ALL_TASKS)
 """Every task a frame may come from: a frame's ``task`` is its index here."""

@@ -10,6 +10,7 @@ from pathlib import Path
 from semgoal_bringup.study.protocol import Protocol
 from semgoal_bringup.study.session import Phase, StudySession
 from semgoal_ros.client import RECORDER_MATCH_S, RECORDER_SETTLE_S, GraphUnavailableError
+from semgoal_ros.interfaces import send_until_answered
 
 PARAMETER_WAIT_S = 5.0
 PLANNER_NODE = "planner"
@@ -98,8 +99,10 @@ class StudyDriver:
 
         if not self.parameters.wait_for_services(PARAMETER_WAIT_S):
             return False, "the planner's parameter services did not answer: is planner_node running?"
-        future = self.parameters.set_parameters([Parameter("concurrent", value=concurrent)])
-        if not self.client.spin_until(future.done, PARAMETER_WAIT_S):
+        # Setting a value is safe to repeat, so a reply lost to the service discovery race is asked again.
+        answer = send_until_answered(lambda: self.parameters.set_parameters([Parameter("concurrent", value=concurrent)]),
+                                     self.client.spin_until)
+        if answer is None:
             return False, "the planner did not answer setting concurrent"
-        result = future.result().results[0]
+        result = answer.results[0]
         return (True, "") if result.successful else (False, f"the planner refused concurrent: {result.reason}")

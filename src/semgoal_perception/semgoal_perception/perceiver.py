@@ -16,7 +16,7 @@ import numpy as np
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import moving_blocks
-from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, fallen_blocks
+from semgoal_core.vocabulary import BLOCK_COLOURS, LAYOUTS, SCENES, fallen_blocks
 from semgoal_perception.estimator import BlockEstimator
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
@@ -76,7 +76,7 @@ class Perceiver:
         """A new episode (a reset): tracks start unseen."""
         colours = list(BLOCK_COLOURS)
         self.episode = (scene, blocks, episode)
-        self.tracker = BlockTracker([colours.index(b) for b in blocks])
+        self.tracker = BlockTracker([colours.index(b) for b in blocks], bin_geometry=SCENES[scene].bin)
         self.semantics = SemanticEstimator(LAYOUTS[scene])
         self.last_step = 0
         self.other_grips = []

@@ -7,11 +7,13 @@ had when the fingers closed on it, taken from where it last rested, and in heigh
 hangs :data:`HELD_HANG` below the grip, as a lifted block slides down the closed fingers. The fingers hide most of a
 held block, and its votes then wander by one to three centimetres (a tower's top block was let go that far off its
 mark, and the tower fell); the kinematics and a grasp seen at rest do not. Seen far from the hand that held it, the
-block has left it. A block that no hand is near cannot jump: a detection far from where its track stands is doubted
-(the Fetch's arm is blue, and its links near another block have read as the blue block) until it persists for
-:data:`DOUBT_FRAMES` frames, as a block that really fell or was knocked does. Any other
-unseen block stays where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen
-frames it is reported lost, with its last estimate, never dropped.
+block has left it. A block the fingers open on is let go: it falls onto what is under it (the table, the bin's floor,
+a block), as the open hand over it still hides it (a block let go into a crowded bin stayed in the hand's place,
+above the rim, and the planner waited for it). A block that no hand is near cannot jump: a detection far from where
+its track stands is doubted (the Fetch's arm is blue, and its links near another block have read as the blue block)
+until it persists for :data:`DOUBT_FRAMES` frames, as a block that really fell or was knocked does. Any other unseen
+block stays where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames
+it is reported lost, with its last estimate, never dropped.
 """
 
 from __future__ import annotations
@@ -23,9 +25,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import REST_SPEED
-from semgoal_core.vocabulary import THRESHOLDS
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry
 from semgoal_perception.estimator import Detection
 
 ALPHA, BETA = 0.6, 0.12
@@ -101,12 +104,22 @@ def in_hand(position: np.ndarray, grip: np.ndarray, opening: float) -> bool:
                 and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
 
 
-class BlockTracker:
-    """Tracks of the blocks of one scene (by colour index), updated once per frame."""
+def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float:
+    """The top of what stands under ``xy`` (m): the bin's floor inside its walls, else the table."""
+    if bin_geometry is not None and all(abs(xy[i] - bin_geometry.center[i]) < bin_geometry.inner_half_size[i]
+                                        for i in range(2)):
+        return TABLE_TOP + bin_geometry.floor_thickness
+    return TABLE_TOP
 
-    def __init__(self, colours: list[int], dt: float = CONTROL_DT) -> None:
+
+class BlockTracker:
+    """Tracks of the blocks of one scene (by colour index), updated once per frame; ``bin_geometry``: the scene's
+    bin, whose floor a block let go over it falls onto."""
+
+    def __init__(self, colours: list[int], dt: float = CONTROL_DT, bin_geometry: BinGeometry | None = None) -> None:
         self.colours = list(colours)
         self.dt = dt
+        self.bin_geometry = bin_geometry
         self.tracks = {colour: Track() for colour in self.colours}
 
     def update(self, found: list[Detection], hands: Sequence[Hand], frames: int = 1) -> dict[int, Track]:
@@ -116,7 +129,8 @@ class BlockTracker:
         seen = {d.colour: d for d in found if d.colour in self.tracks}
         for colour, track in self.tracks.items():
             detection, rested = seen.get(colour), track.rest_position  # before this frame: the fingers may move it
-            if track.hand is not None and track.hand < len(hands) and not self._left_hand(track, hands, detection):
+            carried = track.hand is not None and track.hand < len(hands) and not self._left_hand(track, hands, detection)
+            if carried:
                 self._carry(track, hands[track.hand], detection, frames)
             elif detection is not None and not self._doubtful(track, hands, detection, dt):
                 self._measure(track, detection, dt)
@@ -125,6 +139,8 @@ class BlockTracker:
             holder = None if track.status == TrackStatus.NEVER_SEEN else next(
                 (i for i, hand in enumerate(hands) if in_hand(track.position, hand.position, hand.opening)), None)
             if holder is None:
+                if carried:
+                    self._let_go(track)
                 track.grip_offset, track.hand = None, None
             elif track.grip_offset is None or track.hand != holder:
                 grasped = track.position if rested is None else rested
@@ -183,6 +199,17 @@ class BlockTracker:
         else:
             track.status, track.unseen, track.pixels = TrackStatus.VISIBLE, 0, detection.pixels
 
+    def _let_go(self, track: Track) -> None:
+        """The fingers opened on ``track``'s block: it falls onto the highest of the furniture and the other blocks'
+        tops under it (their footprints overlapping) and lies there, until the camera sees it elsewhere."""
+        xy, bottom = track.position[:2], track.position[2]
+        tops = [other.position[2] + BLOCK_HALF_SIZE for other in self.tracks.values()
+                if other is not track and other.hand is None and np.isfinite(other.position).all()
+                and other.position[2] < bottom and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
+        landing = max([furniture_height(xy, self.bin_geometry), *tops]) + BLOCK_HALF_SIZE
+        track.position[2] = min(bottom, landing)
+        track.velocity = np.zeros(3)
+
     def _predict(self, track: Track, frames: int) -> None:
         if track.status == TrackStatus.NEVER_SEEN:
             return
@@ -191,11 +218,6 @@ class BlockTracker:
         track.velocity = np.zeros(3)
         track.sigma = np.minimum(track.sigma + SIGMA_GROWTH * frames, SIGMA_MAX)
         track.status = TrackStatus.LOST if track.unseen >= LOST_FRAMES else TrackStatus.OCCLUDED
-
-    def reset(self, colours: list[int]) -> None:
-        """A new episode (or scene): every track starts unseen."""
-        self.colours = list(colours)
-        self.tracks = {colour: Track() for colour in self.colours}
 
     def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Positions, velocities and standard deviations, (N, 3) each, in ``colours`` order."""

@@ -3,12 +3,13 @@
 import numpy as np
 import pytest
 
+from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.settling import REST_SPEED
-from semgoal_core.vocabulary import LAYOUTS, Literal
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
-from semgoal_perception.tracker import DOUBT_FRAMES, HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, TrackStatus
+from semgoal_perception.tracker import DOUBT_FRAMES, HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, Track, TrackStatus
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""
@@ -195,3 +196,37 @@ def test_a_literal_of_a_block_never_seen_has_no_confidence(two_blocks) -> None:
     value, confidence = confidence_of(two_blocks, Literal("close", ("red", "green")),
                                       [[np.nan] * 3, [1.3, 0.75, 0.425]], 0.002)
     assert (value, confidence) == (False, 0.0)
+
+
+def carried_then_let_go(tracker: BlockTracker, start, over, others=()) -> Track:
+    """Block 0 grasped at ``start``, carried unseen to 3 cm above ``over``, and let go there, still unseen (the open
+    hand hides it); ``others``: the other blocks' detections, every frame."""
+    start, over = np.asarray(start, dtype=float), np.asarray(over, dtype=float)
+    grasp, up = start + np.array([0.0, 0.0, 0.005]), np.array([0.0, 0.0, 0.12])
+    tracker.update([seen(0, start), *others], [Hand(grasp, STILL, 0.05)])
+    path = np.linspace(grasp + up, over + np.array([0.0, 0.0, 0.03 - HELD_HANG]), 10)
+    for grip in path:
+        track = tracker.update(list(others), [Hand(grip, STILL, 0.05)])[0]
+        assert track.status == TrackStatus.HELD
+    return tracker.update(list(others), [Hand(path[-1], STILL, 0.09)])[0]
+
+
+def test_a_block_let_go_unseen_falls_onto_the_bins_floor() -> None:
+    """Let go into a crowded bin, under the open hand, a block stayed where the hand had held it, above the rim."""
+    bin_geometry = SCENES["tabletop"].bin
+    tracker = BlockTracker([0], bin_geometry=bin_geometry)
+    over = np.array([*bin_geometry.center, 0.46])
+    track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], over)
+    landed = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
+    assert track.hand is None and np.allclose(track.position, [*over[:2], landed]) and np.allclose(track.velocity, 0)
+    assert bin_geometry.contains(track.position[None], TABLE_TOP)[0]
+
+
+def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> None:
+    below = np.array([1.3, 0.7, 0.425])
+    tracker = BlockTracker([0, 1])
+    track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.01, 0.0, 0.05]), [seen(1, below)])
+    assert np.allclose(track.position, below + np.array([0.01, 0.0, 2 * BLOCK_HALF_SIZE]))
+    tracker = BlockTracker([0, 1])
+    track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.06, 0.0, 0.05]), [seen(1, below)])
+    assert np.allclose(track.position, [1.36, 0.7, TABLE_TOP + BLOCK_HALF_SIZE])

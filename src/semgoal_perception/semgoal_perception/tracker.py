@@ -3,17 +3,20 @@ and velocities, and carries a block the camera does not see this frame.
 
 Occlusion is normal: a block under the arm, in the hand or below another block keeps its track. A block in a hand
 is carried by that hand's grip site (the arms' kinematics; with two arms, either): across the table at the offset it
-had when the fingers closed on it, taken from where it last rested, and in height no lower than it rested until it
+had when the fingers closed on it, taken from where it last rested, but centred between the fingers along the axis they
+close on (:data:`FINGER_AXIS`), and in height no lower than it rested until it
 hangs :data:`HELD_HANG` below the grip, as a lifted block slides down the closed fingers. The fingers hide most of a
 held block, and its votes then wander by one to three centimetres (a tower's top block was let go that far off its
 mark, and the tower fell); the kinematics and a grasp seen at rest do not. Seen far from the hand that held it, the
-block has left it. A block the fingers open on is let go: it falls onto what is under it (the table, the bin's floor,
+block has left it (while the fingers still close on a block's width, only if it is seen there for a few frames). A
+block the fingers open on is let go: it falls onto what is under it (the table, the bin's floor,
 a block), as the open hand over it still hides it (a block let go into a crowded bin stayed in the hand's place,
 above the rim, and the planner waited for it). A block that no hand is near cannot jump: a detection far from where
 its track stands is doubted (the Fetch's arm is blue, and its links near another block have read as the blue block)
 until it persists for :data:`DOUBT_FRAMES` frames, as a block that really fell or was knocked does. Any other unseen
 block stays where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames
-it is reported lost, with its last estimate, never dropped.
+it is reported lost, with its last estimate, never dropped. No block lies lower than the table or the bin's floor under
+it lets it.
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from semgoal_core.geometry import TABLE_TOP
+from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT
 from semgoal_core.settling import REST_SPEED
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, THRESHOLDS, BinGeometry
@@ -44,7 +47,12 @@ and two DC-4 starts, 401 control steps held 6 cm or more above the table) read -
 -15.8 +- 3.6 mm on the desk."""
 HELD_GATE = 0.04
 """A held block seen farther than this (m) from where its hand carries it has left the hand (fallen, knocked out);
-the votes of a block in the hand stay within about 2.5 cm."""
+the votes of a block in the hand stay within about 2.5 cm. While the fingers still close on a block's width, only
+once it is seen there for :data:`DOUBT_FRAMES` frames (a lifted block, tracked in the fingers, was once taken out of
+them by one stray red vote 18 cm away, and the expert let it fall)."""
+FINGER_AXIS = 1
+"""The world axis the fingers close along (y: the Fetch's gripper points down, unturned; the arm across the table
+too). Closing, they centre a block between them on it: a block grasped off-centre is pushed there."""
 JUMP_GATE = 0.05
 """A detection this far (m) from a free block's predicted position, with no hand within :data:`HAND_REACH` of the
 block, is doubted."""
@@ -104,8 +112,11 @@ def in_hand(position: np.ndarray, grip: np.ndarray, opening: float) -> bool:
                 and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
 
 
-def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float:
-    """The top of what stands under ``xy`` (m): the bin's floor inside its walls, else the table."""
+def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float | None:
+    """The top of what stands under ``xy`` (m): the bin's floor inside its walls, else the table; None beyond the
+    table's edges."""
+    if any(abs(xy[i] - TABLE_CENTER[i]) > TABLE_HALF_SIZE[i] for i in range(2)):
+        return None
     if bin_geometry is not None and all(abs(xy[i] - bin_geometry.center[i]) < bin_geometry.inner_half_size[i]
                                         for i in range(2)):
         return TABLE_TOP + bin_geometry.floor_thickness
@@ -114,7 +125,7 @@ def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float:
 
 class BlockTracker:
     """Tracks of the blocks of one scene (by colour index), updated once per frame; ``bin_geometry``: the scene's
-    bin, whose floor a block let go over it falls onto."""
+    bin, whose floor holds the blocks in it."""
 
     def __init__(self, colours: list[int], dt: float = CONTROL_DT, bin_geometry: BinGeometry | None = None) -> None:
         self.colours = list(colours)
@@ -145,15 +156,25 @@ class BlockTracker:
             elif track.grip_offset is None or track.hand != holder:
                 grasped = track.position if rested is None else rested
                 track.grip_offset, track.hand = grasped - hands[holder].position, holder
+                track.grip_offset[FINGER_AXIS] = 0.0
                 track.lifted_from = float(grasped[2])
                 self._carry(track, hands[holder], detection, 0)
+            if track.status != TrackStatus.NEVER_SEEN:
+                self._above_furniture(track)
         return self.tracks
 
     @staticmethod
     def _left_hand(track: Track, hands: Sequence[Hand], detection: Detection | None) -> bool:
         """Whether ``detection`` shows a held block away from its hand; it is then a free block again."""
-        if detection is None or np.linalg.norm(detection.centre - hands[track.hand].position - track.grip_offset) <= HELD_GATE:
+        hand = hands[track.hand]
+        if detection is None or np.linalg.norm(detection.centre - hand.position - track.grip_offset) <= HELD_GATE:
+            track.doubted = 0
             return False
+        if THRESHOLDS.holding_opening_min <= hand.opening <= THRESHOLDS.holding_opening_max:  # still on a block
+            track.doubted += 1
+            if track.doubted < DOUBT_FRAMES:
+                return False
+        track.doubted = 0
         track.grip_offset, track.hand, track.status = None, None, TrackStatus.LOST  # measured afresh
         return True
 
@@ -206,9 +227,19 @@ class BlockTracker:
         tops = [other.position[2] + BLOCK_HALF_SIZE for other in self.tracks.values()
                 if other is not track and other.hand is None and np.isfinite(other.position).all()
                 and other.position[2] < bottom and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
-        landing = max([furniture_height(xy, self.bin_geometry), *tops]) + BLOCK_HALF_SIZE
-        track.position[2] = min(bottom, landing)
+        furniture = furniture_height(xy, self.bin_geometry)
+        supports = tops if furniture is None else [furniture, *tops]
+        if supports:  # beyond the table's edges, with nothing under it, it falls out of reach: the camera will say where
+            track.position[2] = min(bottom, max(supports) + BLOCK_HALF_SIZE)
         track.velocity = np.zeros(3)
+
+    def _above_furniture(self, track: Track) -> None:
+        """No block lies lower than the furniture under it lets it: votes pushed into the table by the fingers over a
+        block once put it 14 mm under the table's top, and the hand, unable to reach that low, never closed on it."""
+        floor = furniture_height(track.position[:2], self.bin_geometry)
+        if floor is not None and track.position[2] < floor + BLOCK_HALF_SIZE:
+            track.position[2] = floor + BLOCK_HALF_SIZE
+            track.velocity[2] = max(track.velocity[2], 0.0)
 
     def _predict(self, track: Track, frames: int) -> None:
         if track.status == TrackStatus.NEVER_SEEN:

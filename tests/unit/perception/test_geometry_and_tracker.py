@@ -113,14 +113,49 @@ def test_a_grasped_block_rests_where_it_was_until_it_hangs_below_the_rising_grip
     assert np.allclose(tracker.tracks[0].position[:2], rest[:2])
 
 
-def test_a_held_block_seen_far_from_its_hand_has_left_it() -> None:
-    tracker, grip = BlockTracker([0]), np.array([1.3, 0.7, 0.43])
+def lifted_unseen(tracker: BlockTracker) -> Hand:
+    """Block 0 grasped at rest and lifted 10 cm, out of sight; the hand holding it."""
+    grip = np.array([1.3, 0.7, 0.43])
     tracker.update([seen(0, [1.3, 0.7, 0.425])], [Hand(grip, STILL, 0.05)])
     lifted = Hand(grip + np.array([0, 0, 0.1]), STILL, 0.05)
     tracker.update([], [lifted])
     assert tracker.tracks[0].status == TrackStatus.HELD
-    track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted])[0]  # it fell
+    return lifted
+
+
+def test_a_held_block_seen_far_from_its_hand_while_the_fingers_stay_closed_on_it_has_left_it_once_that_persists() -> None:
+    """One stray vote 18 cm away once took a lifted block out of the fingers, and the expert let it fall."""
+    tracker = BlockTracker([0])
+    lifted = lifted_unseen(tracker)
+    for _ in range(DOUBT_FRAMES - 1):
+        track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted])[0]
+        assert track.hand == 0 and np.allclose(track.position, lifted.position + np.array([0, 0, HELD_HANG]))
+    track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted])[0]  # it persists: it did fall
     assert track.hand is None and track.status == TrackStatus.VISIBLE and np.allclose(track.position, [1.35, 0.7, 0.425])
+
+
+def test_a_held_block_seen_far_from_fingers_closed_past_its_width_has_left_them_at_once() -> None:
+    tracker = BlockTracker([0])
+    lifted = lifted_unseen(tracker)
+    track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted._replace(opening=0.01)])[0]
+    assert track.hand is None and track.status == TrackStatus.VISIBLE and np.allclose(track.position, [1.35, 0.7, 0.425])
+
+
+def test_fingers_closing_on_a_block_off_their_centre_centre_it_between_them() -> None:
+    tracker, rest = BlockTracker([0]), np.array([1.3, 0.7, 0.425])
+    tracker.update([seen(0, rest)], AWAY)
+    grip = rest + np.array([0.004, -0.02, 0.005])  # 2 cm off in y, the axis the fingers close on
+    track = tracker.update([], [Hand(grip, STILL, 0.05)])[0]
+    assert track.hand == 0 and np.allclose(track.position[:2], [rest[0], grip[1]])
+
+
+def test_no_block_lies_under_the_table_top_but_one_beyond_its_edge_can() -> None:
+    """Votes pushed into the table by the fingers over a block put it 14 mm under the table's top, lower than the hand
+    can reach, and the hand never closed on it."""
+    tracker = BlockTracker([0, 1])
+    tracker.update([seen(0, [1.3, 0.7, 0.411]), seen(1, [1.3, 1.15, 0.2])], AWAY)
+    assert np.isclose(tracker.tracks[0].position[2], TABLE_TOP + BLOCK_HALF_SIZE)
+    assert np.isclose(tracker.tracks[1].position[2], 0.2)
 
 
 def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_table_when_let_go() -> None:

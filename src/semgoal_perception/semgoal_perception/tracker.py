@@ -63,6 +63,9 @@ too). Closing, they centre a block between them on it: a block grasped off-centr
 JUMP_GATE = 0.05
 """A detection this far (m) from a free block's predicted position, with no hand within :data:`HAND_REACH` of the
 block, is doubted."""
+OVERLAP = 0.04
+"""Two detections nearer than this (m) cannot be two blocks: a block's centre is at least its size, 5 cm, from another's
+(each holds the ball inscribed in it); the margin is the voter's error."""
 HAND_REACH = 0.12
 """A hand this near (m) may have moved a block: a jump there is believed at once."""
 DOUBT_FRAMES = 5
@@ -144,7 +147,7 @@ class BlockTracker:
         """Fold one frame's detections in; ``hands``: every arm's hand, the own arm's first; ``frames`` control
         steps since the last update."""
         dt = self.dt * frames
-        seen = {d.colour: d for d in found if d.colour in self.tracks}
+        seen = self._believable({d.colour: d for d in found if d.colour in self.tracks}, dt)
         for colour, track in self.tracks.items():
             detection, rested = seen.get(colour), track.rest_position  # before this frame: the fingers may move it
             carried = track.hand is not None and track.hand < len(hands) and not self._left_hand(track, hands, detection)
@@ -169,6 +172,20 @@ class BlockTracker:
             if track.status != TrackStatus.NEVER_SEEN:
                 self._above_furniture(track)
         return self.tracks
+
+    def _believable(self, seen: dict[int, Detection], dt: float) -> dict[int, Detection]:
+        """``seen`` without a block's detection that jumped from its track into another block seen this frame: two
+        blocks cannot be in one place (:data:`OVERLAP`), so it is that block misread (part of a red block read as
+        orange, 4 cm from red's centre and 20 cm from orange's, took orange's track there while the hand came down on
+        orange, which it hid, and the hand went back and forth between the two)."""
+        def jumped(colour: int) -> bool:
+            track = self.tracks[colour]
+            return (track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST) and
+                    np.linalg.norm(seen[colour].centre - track.position - track.velocity * dt) > JUMP_GATE)
+
+        return {colour: detection for colour, detection in seen.items()
+                if not (jumped(colour) and any(np.linalg.norm(detection.centre - other.centre) < OVERLAP
+                                               for c, other in seen.items() if c != colour))}
 
     @staticmethod
     def _left_hand(track: Track, hands: Sequence[Hand], detection: Detection | None) -> bool:

@@ -268,3 +268,17 @@ def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> 
     tracker = BlockTracker([0, 1])
     track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.06, 0.0, 0.05]), [seen(1, below)])
     assert np.allclose(track.position, [1.36, 0.7, TABLE_TOP + BLOCK_HALF_SIZE])
+
+
+def test_a_block_that_would_jump_into_another_block_seen_there_is_that_block_misread() -> None:
+    """Part of a red block read as orange, 4 cm from red, took orange's track there while the hand over orange hid it."""
+    tracker, orange, red = BlockTracker([0, 1]), np.array([1.15, 0.59, 0.425]), np.array([1.37, 0.68, 0.425])
+    tracker.update([seen(0, orange), seen(1, red)], AWAY)
+    hand_over_orange = [Hand(orange + np.array([0.0, 0.0, 0.02]), STILL, 0.08)]
+    for _ in range(DOUBT_FRAMES + 2):
+        tracks = tracker.update([seen(0, red - np.array([0.035, 0.0, 0.0])), seen(1, red)], hand_over_orange)
+        assert np.allclose(tracks[0].position, orange) and tracks[0].status == TrackStatus.OCCLUDED
+    assert np.allclose(tracks[1].position, red, atol=1e-3)
+    moved = orange + np.array([0.06, 0.0, 0.0])  # the fingers did push it: seen there, apart from red, it is believed
+    track = tracker.update([seen(0, moved), seen(1, red)], hand_over_orange)[0]
+    assert track.status == TrackStatus.VISIBLE and track.position[0] > orange[0] + 0.03

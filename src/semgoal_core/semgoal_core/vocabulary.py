@@ -80,6 +80,10 @@ class Thresholds:
     fallen_depth: float = 0.10
     """A block whose centre lies this far below the table top has fallen off the table (see :func:`fallen_blocks`)."""
 
+    def closed_on_a_block(self, finger_opening: float) -> bool:
+        """Whether fingers this far open are closed on a block (neither open nor shut on nothing)."""
+        return self.holding_opening_min <= finger_opening <= self.holding_opening_max
+
 
 THRESHOLDS = Thresholds()
 
@@ -132,12 +136,15 @@ class BinGeometry:
         xs, ys = (np.arange(-r, r + 1e-9, step) + c for r, c in zip(reach, self.center, strict=True))
         return np.array(np.meshgrid(xs, ys, indexing="ij")).reshape(2, -1).T
 
+    def inside(self, points: np.ndarray) -> np.ndarray:
+        """Whether ``points`` (..., 2 or more: x, y first) lie inside the inner walls in the table plane."""
+        return np.all(np.abs(np.asarray(points)[..., :2] - self.center) < self.inner_half_size, axis=-1)
+
     def contains(self, positions: np.ndarray, table_height: float) -> np.ndarray:
         """in_bin for block centres ``positions`` (N, 3): inside the walls and below the rim."""
-        x, y, z = np.asarray(positions).T
+        positions = np.asarray(positions)
         rim_top = table_height + self.floor_thickness + self.wall_height
-        return ((np.abs(x - self.center[0]) < self.inner_half_size[0]) & (np.abs(y - self.center[1]) < self.inner_half_size[1])
-                & (z < rim_top))
+        return self.inside(positions) & (positions[:, 2] < rim_top)
 
 
 TABLETOP_BIN = BinGeometry(center=(1.30, 0.955), inner_half_size=(0.18, 0.11), back_wall_height=0.10, rows=2,
@@ -386,7 +393,7 @@ def held_alone(block_positions: np.ndarray, grip_position: np.ndarray, finger_op
                present: np.ndarray | None = None, thresholds: Thresholds = THRESHOLDS) -> np.ndarray:
     """(N,) bool: which block the closed fingers hold, alone (the geometry of ``holding``, module doc)."""
     positions = np.asarray(block_positions, dtype=np.float64)
-    if not thresholds.holding_opening_min <= finger_opening <= thresholds.holding_opening_max:
+    if not thresholds.closed_on_a_block(finger_opening):
         return np.zeros(len(positions), dtype=bool)  # fingers open, or shut on nothing: most states, at once
     rel = positions - np.asarray(grip_position)
     flat = rel[:, :2]

@@ -118,8 +118,13 @@ def in_hand(position: np.ndarray, grip: np.ndarray, opening: float) -> bool:
     """The geometry of ``holding`` for one block (the thresholds of :mod:`semgoal_core.vocabulary`)."""
     rel = position - grip
     t = THRESHOLDS
-    return bool(t.holding_opening_min <= opening <= t.holding_opening_max
-                and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
+    return bool(t.closed_on_a_block(opening) and np.linalg.norm(rel[:2]) < t.holding_xy and abs(rel[2]) < t.holding_z)
+
+
+def _jumps(track: Track, detection: Detection, dt: float) -> bool:
+    """Whether ``detection`` lies more than :data:`JUMP_GATE` from where its known track predicts the block."""
+    return (track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST)
+            and np.linalg.norm(detection.centre - track.position - track.velocity * dt) > JUMP_GATE)
 
 
 def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float | None:
@@ -127,8 +132,7 @@ def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float 
     table's edges."""
     if any(abs(xy[i] - TABLE_CENTER[i]) > TABLE_HALF_SIZE[i] for i in range(2)):
         return None
-    if bin_geometry is not None and all(abs(xy[i] - bin_geometry.center[i]) < bin_geometry.inner_half_size[i]
-                                        for i in range(2)):
+    if bin_geometry is not None and bin_geometry.inside(xy):
         return TABLE_TOP + bin_geometry.floor_thickness
     return TABLE_TOP
 
@@ -178,13 +182,8 @@ class BlockTracker:
         blocks cannot be in one place (:data:`OVERLAP`), so it is that block misread (part of a red block read as
         orange, 4 cm from red's centre and 20 cm from orange's, took orange's track there while the hand came down on
         orange, which it hid, and the hand went back and forth between the two)."""
-        def jumped(colour: int) -> bool:
-            track = self.tracks[colour]
-            return (track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST) and
-                    np.linalg.norm(seen[colour].centre - track.position - track.velocity * dt) > JUMP_GATE)
-
         return {colour: detection for colour, detection in seen.items()
-                if not (jumped(colour) and any(np.linalg.norm(detection.centre - other.centre) < OVERLAP
+                if not (_jumps(self.tracks[colour], detection, dt) and any(np.linalg.norm(detection.centre - other.centre) < OVERLAP
                                                for c, other in seen.items() if c != colour))}
 
     @staticmethod
@@ -194,7 +193,7 @@ class BlockTracker:
         if detection is None or np.linalg.norm(detection.centre - hand.position - track.grip_offset) <= HELD_GATE:
             track.doubted = 0
             return False
-        if THRESHOLDS.holding_opening_min <= hand.opening <= THRESHOLDS.holding_opening_max:  # still on a block
+        if THRESHOLDS.closed_on_a_block(hand.opening):
             track.doubted += 1
             if track.doubted < DOUBT_FRAMES:
                 return False
@@ -205,10 +204,7 @@ class BlockTracker:
     @staticmethod
     def _doubtful(track: Track, hands: Sequence[Hand], detection: Detection, dt: float) -> bool:
         """Whether ``detection`` puts a block no hand is near too far from its track to believe yet."""
-        if track.status in (TrackStatus.NEVER_SEEN, TrackStatus.LOST):
-            return False
-        jump = np.linalg.norm(detection.centre - track.position - track.velocity * dt) > JUMP_GATE
-        if not jump or any(np.linalg.norm(hand.position - track.position) < HAND_REACH for hand in hands):
+        if not _jumps(track, detection, dt) or any(np.linalg.norm(hand.position - track.position) < HAND_REACH for hand in hands):
             track.doubted = 0
             return False
         track.doubted += 1

@@ -4,19 +4,19 @@ and velocities, and carries a block the camera does not see this frame.
 Occlusion is normal: a block under the arm, in the hand or below another block keeps its track. A block in a hand is
 carried by that hand's grip site (the arms' kinematics; with two arms, either): across the table at the offset it had
 when the fingers closed on it, taken from where it last rested, but centred between the fingers along the axis they
-close on (:data:`FINGER_AXIS`), and in height no lower than it rested until it hangs :data:`HELD_HANG` below the grip,
-as a lifted block slides down the closed fingers; where the camera sees it in the hand, the offset follows what it
-sees (it slips and swings there). Filtered as a free block, a carried block lagged the hand by one to three
-centimetres (a tower's top block was let go that far off its mark, and the tower fell); the hand's kinematics do not
-lag. Seen far from the hand that held it, the block has left it (while the fingers still close on a block's width,
-only if it is seen there for a few frames). A block the fingers open on is let go: it falls onto what is under it (the
-table, the bin's floor, a block), as the open hand over it still hides it (a block let go into a crowded bin stayed in
-the hand's place, above the rim, and the planner waited for it). A block that no hand is near cannot jump: a detection
-far from where its track stands is doubted (the Fetch's arm is blue, and its links near another block have read as the
-blue block) until it persists for :data:`DOUBT_FRAMES` frames, as a block that really fell or was knocked does. Any
-other unseen block stays where it was, presumed still, its uncertainty growing each frame. After :data:`LOST_FRAMES`
-unseen frames it is reported lost, with its last estimate, never dropped. No block lies lower than the table or the
-bin's floor under it lets it.
+close on (:data:`FINGER_AXIS`), and in height no lower than it rested until it hangs :data:`HELD_HANG` below the
+grip, as a lifted block slides down the closed fingers; where the camera sees it in the hand, the offset follows what
+it sees (it slips and swings there), never out of the hand's reach (:data:`HELD_BOX`). Filtered as a free block, a
+carried block lagged the hand by one to three centimetres (a tower's top block was let go that far off its mark, and
+the tower fell); the hand's kinematics do not lag. Seen far from the hand that held it, the block has left it (while
+the fingers still close on a block's width, only if it is seen there for a few frames). A block the fingers open on
+is let go: it falls onto what is under it (the table, the bin's floor, a block), as the open hand over it still hides
+it (a block let go into a crowded bin stayed in the hand's place, above the rim, and the planner waited for it). A
+block that no hand is near cannot jump: a detection far from where its track stands is doubted (the Fetch's arm is
+blue, and its links near another block have read as the blue block) until it persists for :data:`DOUBT_FRAMES`
+frames, as a block that really fell or was knocked does. Any other unseen block stays where it was, presumed still,
+its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames it is reported lost, with its last
+estimate, never dropped. No block lies lower than the table or the bin's floor under it lets it.
 """
 
 from __future__ import annotations
@@ -57,6 +57,13 @@ and the tower fell), while the voter's centre of a lifted block is 1.8 mm from t
 at the 99th percentile (the scripted expert's Tower-7, starts 3,000,000 and 3,000,001, 206 frames with the block
 seen). The hand's motion is the kinematics', with no lag; the offset is the camera's. Along :data:`FINGER_AXIS` the
 fingers keep it centred."""
+HELD_BOX = 0.8
+"""Share of ``holding``'s box around the grip site (:data:`~semgoal_core.vocabulary.THRESHOLDS`) that a carried
+block's offset is kept within: while a hand carries it, the block is in that hand, as ``holding`` must read. A block
+lifted 6 cm between two camera frames took its offset from where it had rested, 6 cm under the grip, and votes of a
+block slipped 2 cm along the fingers drew it past ``holding``'s 3 cm: either way the hand no longer held it, and the
+block was let go onto the table while it rode in the fingers (the planner then had the hand pick it again; 13 of 16
+such drops in ten Clean-8 starts of the learned actor from the camera)."""
 FINGER_AXIS = 1
 """The world axis the fingers close along (y: the Fetch's gripper points down, unturned; the arm across the table
 too). Closing, they centre a block between them on it: a block grasped off-centre is pushed there."""
@@ -127,6 +134,15 @@ def _jumps(track: Track, detection: Detection, dt: float) -> bool:
             and np.linalg.norm(detection.centre - track.position - track.velocity * dt) > JUMP_GATE)
 
 
+def _within_the_hand(offset: np.ndarray) -> None:
+    """Pull a carried block's ``offset`` from the grip site into :data:`HELD_BOX` of ``holding``'s box, in place."""
+    reach_xy, reach_z = HELD_BOX * THRESHOLDS.holding_xy, HELD_BOX * THRESHOLDS.holding_z
+    across = float(np.linalg.norm(offset[:2]))
+    if across > reach_xy:
+        offset[:2] *= reach_xy / across
+    offset[2] = np.clip(offset[2], -reach_z, reach_z)
+
+
 def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float | None:
     """The top of what stands under ``xy`` (m): the bin's floor inside its walls, else the table; None beyond the
     table's edges."""
@@ -157,34 +173,54 @@ class BlockTracker:
             carried = track.hand is not None and track.hand < len(hands) and not self._left_hand(track, hands, detection)
             if carried:
                 self._carry(track, hands[track.hand], detection, frames)
+            elif detection is not None and self._holder(colour, detection.centre, hands) is not None:
+                self._measure(track, detection, dt)  # seen in a hand: where the hand has it, not where a filter lags
+                track.position, track.doubted = detection.centre.copy(), 0
             elif detection is not None and not self._doubtful(track, hands, detection, dt):
                 self._measure(track, detection, dt)
             else:
                 self._predict(track, frames)
-            holder = None if track.status == TrackStatus.NEVER_SEEN else next(
-                (i for i, hand in enumerate(hands) if in_hand(track.position, hand.position, hand.opening)), None)
+            holder = None if track.status == TrackStatus.NEVER_SEEN else self._holder(colour, track.position, hands)
             if holder is None:
                 if carried:
                     self._let_go(track)
                 track.grip_offset, track.hand = None, None
             elif track.grip_offset is None or track.hand != holder:
-                grasped = track.position if rested is None else rested
-                track.grip_offset, track.hand = grasped - hands[holder].position, holder
+                hand = hands[holder]
+                grasped = rested if rested is not None and in_hand(rested, hand.position, hand.opening) else track.position
+                track.grip_offset, track.hand = grasped - hand.position, holder
                 track.grip_offset[FINGER_AXIS] = 0.0
                 track.lifted_from = float(grasped[2])
-                self._carry(track, hands[holder], detection, 0)
+                self._carry(track, hand, detection, 0)
             if track.status != TrackStatus.NEVER_SEEN:
                 self._above_furniture(track)
         return self.tracks
 
+    def _holder(self, colour: int, position: np.ndarray, hands: Sequence[Hand]) -> int | None:
+        """The hand that would hold block ``colour`` at ``position``: one closed on it, carrying no other block (a hand
+        holds one). A block is first taken as held where the camera sees it in the hand, too: it rises faster than
+        its filter follows (a block lifted 9 cm between two frames, its filtered centre 5 cm under the grip, was
+        never taken as held, and its detections, moving with the hand, were doubted until the hand had put it down)."""
+        busy = {track.hand for c, track in self.tracks.items() if c != colour and track.hand is not None}
+        return next((i for i, hand in enumerate(hands)
+                     if i not in busy and in_hand(position, hand.position, hand.opening)), None)
+
     def _believable(self, seen: dict[int, Detection], dt: float) -> dict[int, Detection]:
-        """``seen`` without a block's detection that jumped from its track into another block seen this frame: two
-        blocks cannot be in one place (:data:`OVERLAP`), so it is that block misread (part of a red block read as
-        orange, 4 cm from red's centre and 20 cm from orange's, took orange's track there while the hand came down on
-        orange, which it hid, and the hand went back and forth between the two)."""
-        return {colour: detection for colour, detection in seen.items()
-                if not (_jumps(self.tracks[colour], detection, dt) and any(np.linalg.norm(detection.centre - other.centre) < OVERLAP
-                                               for c, other in seen.items() if c != colour))}
+        """``seen`` without a block's detection that jumped from its track into another block, seen there this frame
+        or standing there by its track: two blocks cannot be in one place (:data:`OVERLAP`), so it is that block
+        misread. Part of a red block read as orange, 4 cm from red's centre and 20 cm from orange's, took orange's track
+        there while the hand came down on orange, which it hid, and the hand went back and forth between the two; a
+        yellow block lifted high in the hand read as orange while orange on the table read as yellow, and each took
+        the other's place."""
+        def misread(colour: int, detection: Detection) -> bool:
+            if not _jumps(self.tracks[colour], detection, dt):
+                return False
+            others = [other.centre for c, other in seen.items() if c != colour]
+            others += [track.position for c, track in self.tracks.items()
+                       if c != colour and track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST)]
+            return any(np.linalg.norm(detection.centre - other) < OVERLAP for other in others)
+
+        return {colour: detection for colour, detection in seen.items() if not misread(colour, detection)}
 
     @staticmethod
     def _left_hand(track: Track, hands: Sequence[Hand], detection: Detection | None) -> bool:
@@ -236,6 +272,7 @@ class BlockTracker:
             if np.linalg.norm(residual) <= HELD_GATE:
                 track.grip_offset = track.grip_offset + OFFSET_GAIN * residual
         track.grip_offset[2] = min(track.grip_offset[2], max(track.lifted_from - hand.position[2], HELD_HANG))
+        _within_the_hand(track.grip_offset)
         track.position = hand.position + track.grip_offset
         track.velocity = np.asarray(hand.velocity, dtype=float).copy()
         track.sigma = np.maximum(track.sigma, SIGMA_HELD)

@@ -9,7 +9,7 @@ from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
-from semgoal_perception.tracker import DOUBT_FRAMES, HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, Track, TrackStatus
+from semgoal_perception.tracker import DOUBT_FRAMES, HELD_HANG, LOST_FRAMES, SIGMA_HELD, BlockTracker, Hand, Track, TrackStatus, in_hand
 
 LOOKING_DOWN = np.array([[1.0, 0, 0, 1.3], [0, -1.0, 0, 0.75], [0, 0, -1.0, 1.4], [0, 0, 0, 1.0]])
 """An optical frame 1 m over the table top (z = 0.4), looking straight down."""
@@ -142,6 +142,51 @@ def test_a_held_block_seen_far_from_fingers_closed_past_its_width_has_left_them_
     lifted = lifted_unseen(tracker)
     track = tracker.update([seen(0, [1.35, 0.7, 0.425])], [lifted._replace(opening=0.01)])[0]
     assert track.hand is None and track.status == TrackStatus.VISIBLE and np.allclose(track.position, [1.35, 0.7, 0.425])
+
+
+def test_a_block_seen_slipped_to_the_fingers_ends_stays_in_the_hand() -> None:
+    """Votes of a block slipped 2 cm along the fingers, 1 cm off themselves, drew it past holding's 3 cm, and the
+    tracker let it go onto the table while it rode in the hand."""
+    tracker = BlockTracker([0])
+    lifted = lifted_unseen(tracker)
+    for _ in range(10):
+        track = tracker.update([seen(0, lifted.position + np.array([0.035, 0.0, HELD_HANG]))], [lifted])[0]
+        assert track.hand == 0 and in_hand(track.position, lifted.position, lifted.opening)
+    assert track.position[0] > lifted.position[0] + 0.02
+
+
+def test_a_block_lifted_between_two_frames_is_in_the_hand_and_follows_it() -> None:
+    """Lifted 6 to 9 cm between two frames, a block was never taken as held (its filtered centre lagged under the grip),
+    or was taken with its offset from where it had rested, out of the hand's reach, and let go in mid-air."""
+    rest = np.array([1.3, 0.7, 0.425])
+    up = np.array([0.0, 0.0, 1.0])
+    for first_grip, first_seen in ((rest + 0.06 * up, rest + 0.048 * up),  # its filter still within reach
+                                   (rest + 0.1 * up, rest + 0.09 * up)):  # beyond: seen in the hand
+        tracker = BlockTracker([0])
+        for _ in range(3):
+            tracker.update([seen(0, rest)], AWAY)
+        grip = first_grip
+        track = tracker.update([seen(0, first_seen)], [Hand(grip, np.array([0.0, 0.0, 0.5]), 0.048)])[0]
+        assert track.hand == 0
+        for _ in range(5):
+            grip = grip + np.array([0.0, 0.02, 0.03])
+            track = tracker.update([seen(0, grip + np.array([0.0, 0.0, HELD_HANG - 0.004]))], [Hand(grip, STILL, 0.048)])[0]
+            assert track.hand == 0 and in_hand(track.position, grip, 0.048)
+        assert abs(track.position[2] - (grip[2] + HELD_HANG - 0.004)) < 0.003
+
+
+def test_two_blocks_misread_as_each_other_keep_their_places() -> None:
+    """Lifted high in the hand, a yellow block read as orange while orange on the table read as yellow: each took the
+    other's place, and the hand seemed to hold orange."""
+    tracker = BlockTracker([0, 1])
+    lifted = lifted_unseen(tracker)  # block 0 in the hand
+    orange = np.array([1.2, 0.95, 0.435])
+    tracker.update([seen(1, orange)], [lifted])
+    for _ in range(2 * DOUBT_FRAMES):
+        held, other = tracker.update([seen(1, lifted.position + np.array([0.0, 0.0, HELD_HANG])), seen(0, orange)],
+                                     [lifted]).values()
+        assert held.hand == 0 and np.allclose(held.position, lifted.position + np.array([0, 0, HELD_HANG]))
+        assert other.hand is None and np.allclose(other.position, orange)
 
 
 def test_fingers_closing_on_a_block_off_their_centre_centre_it_between_them() -> None:

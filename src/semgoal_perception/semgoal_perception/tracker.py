@@ -16,7 +16,8 @@ block that no hand is near cannot jump: a detection far from where its track sta
 blue, and its links near another block have read as the blue block) until it persists for :data:`DOUBT_FRAMES`
 frames, as a block that really fell or was knocked does. Any other unseen block stays where it was, presumed still,
 its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames it is reported lost, with its last
-estimate, never dropped. No block lies lower than the table or the bin's floor under it lets it.
+estimate, never dropped. No block lies lower than the table or the bin's floor under it lets it, and none unseen
+beyond the table's edges stays above the floor.
 """
 
 from __future__ import annotations
@@ -305,8 +306,13 @@ class BlockTracker:
             track.velocity[2] = max(track.velocity[2], 0.0)
 
     def _predict(self, track: Track, frames: int) -> None:
+        """An unseen free block stays where it was, unless nothing holds it up there: beyond the table's edges it fell to
+        the floor (a block knocked off the table was last seen falling, 7 cm under the table's top; its estimate stayed
+        in mid-air, and the hand tried to pick it there for 150 steps)."""
         if track.status == TrackStatus.NEVER_SEEN:
             return
+        if furniture_height(track.position[:2], self.bin_geometry) is None:
+            track.position[2] = BLOCK_HALF_SIZE
         track.unseen += frames
         track.pixels = 0
         track.velocity = np.zeros(3)

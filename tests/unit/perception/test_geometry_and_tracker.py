@@ -5,7 +5,7 @@ import pytest
 
 from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.settling import REST_SPEED
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal, fallen_blocks
 from semgoal_perception.estimator import Detection, detections
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_perception.semantics import SemanticEstimator
@@ -204,6 +204,19 @@ def test_no_block_lies_under_the_table_top_but_one_beyond_its_edge_can() -> None
     tracker.update([seen(0, [1.3, 0.7, 0.411]), seen(1, [1.3, 1.15, 0.2])], AWAY)
     assert np.isclose(tracker.tracks[0].position[2], TABLE_TOP + BLOCK_HALF_SIZE)
     assert np.isclose(tracker.tracks[1].position[2], 0.2)
+
+
+def test_a_block_last_seen_falling_beyond_the_table_is_on_the_floor_and_has_fallen() -> None:
+    """Knocked off the table and last seen 7 cm under its top, a block stayed in mid-air, and the hand tried to pick it
+    there for 150 steps."""
+    tracker = BlockTracker([0, 1])
+    tracker.update([seen(0, [0.99, 0.71, 0.33]), seen(1, [1.2, 0.7, 0.425])], AWAY)
+    positions = tracker.arrays()[0]
+    assert fallen_blocks(["red", "green"], positions, TABLE_TOP) == []
+    tracker.update([seen(1, [1.2, 0.7, 0.425])], AWAY)  # unseen now
+    positions = tracker.arrays()[0]
+    assert np.allclose(positions[0], [0.99, 0.71, BLOCK_HALF_SIZE]) and np.allclose(positions[1], [1.2, 0.7, 0.425])
+    assert fallen_blocks(["red", "green"], positions, TABLE_TOP) == ["red"]
 
 
 def test_a_block_in_the_other_arms_hand_follows_that_hand_and_goes_back_to_the_table_when_let_go() -> None:

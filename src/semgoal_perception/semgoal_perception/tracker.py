@@ -74,6 +74,11 @@ block, is doubted."""
 OVERLAP = 0.04
 """Two detections nearer than this (m) cannot be two blocks: a block's centre is at least its size, 5 cm, from another's
 (each holds the ball inscribed in it); the margin is the voter's error."""
+LANDING_SLACK = 0.015
+"""How far (m) a block let go may seem to be below the top of a block under it and still land on it: the estimates'
+error. A block let go lower than that beside a block in a crowded bin is beside it, and falls to the floor (it had been
+left 2 cm above the bin's floor, over a neighbour's edge, where ``in_bin`` was unsure, and the hand, sent to pick it
+again, hid it from the camera for 300 control steps)."""
 HAND_REACH = 0.12
 """A hand this near (m) may have moved a block: a jump there is believed at once."""
 DOUBT_FRAMES = 5
@@ -286,15 +291,17 @@ class BlockTracker:
 
     def _let_go(self, track: Track) -> None:
         """The fingers opened on ``track``'s block: it falls onto the highest of the furniture and the other blocks'
-        tops under it (their footprints overlapping) and lies there, until the camera sees it elsewhere."""
-        xy, bottom = track.position[:2], track.position[2]
+        tops under it (their footprints overlapping, their tops no higher than its bottom, :data:`LANDING_SLACK` aside)
+        and lies there, until the camera sees it elsewhere."""
+        xy, centre = track.position[:2], track.position[2]
         tops = [other.position[2] + BLOCK_HALF_SIZE for other in self.tracks.values()
                 if other is not track and other.hand is None and np.isfinite(other.position).all()
-                and other.position[2] < bottom and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
+                and other.position[2] + BLOCK_HALF_SIZE <= centre - BLOCK_HALF_SIZE + LANDING_SLACK
+                and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
         furniture = furniture_height(xy, self.bin_geometry)
         supports = tops if furniture is None else [furniture, *tops]
         if supports:  # beyond the table's edges, with nothing under it, it falls out of reach: the camera will say where
-            track.position[2] = min(bottom, max(supports) + BLOCK_HALF_SIZE)
+            track.position[2] = min(centre, max(supports) + BLOCK_HALF_SIZE)
         track.velocity = np.zeros(3)
 
     def _above_furniture(self, track: Track) -> None:

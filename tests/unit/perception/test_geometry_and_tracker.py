@@ -328,6 +328,18 @@ def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> 
     assert np.allclose(track.position, [1.36, 0.7, TABLE_TOP + BLOCK_HALF_SIZE])
 
 
+def test_a_block_let_go_lower_than_a_neighbours_top_lands_beside_it() -> None:
+    """Let go 1 cm above the bin's floor over a neighbour's edge, a block stayed there, neither on the floor nor on the
+    neighbour, where ``in_bin`` was unsure."""
+    bin_geometry = SCENES["tabletop"].bin
+    floor = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
+    neighbour = np.array([*bin_geometry.center, floor])
+    tracker = BlockTracker([0, 1], bin_geometry=bin_geometry)
+    over = neighbour + np.array([0.03, 0.0, -0.02])  # let go with its centre 1 cm above its place on the floor
+    track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], over, [seen(1, neighbour)])
+    assert np.allclose(track.position, [*over[:2], floor])
+
+
 def test_a_block_that_would_jump_into_another_block_seen_there_is_that_block_misread() -> None:
     """Part of a red block read as orange, 4 cm from red, took orange's track there while the hand over orange hid it."""
     tracker, orange, red = BlockTracker([0, 1]), np.array([1.15, 0.59, 0.425]), np.array([1.37, 0.68, 0.425])

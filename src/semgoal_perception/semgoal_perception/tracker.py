@@ -290,18 +290,26 @@ class BlockTracker:
             track.status, track.unseen, track.pixels = TrackStatus.VISIBLE, 0, detection.pixels
 
     def _let_go(self, track: Track) -> None:
-        """The fingers opened on ``track``'s block: it falls onto the highest of the furniture and the other blocks'
-        tops under it (their footprints overlapping, their tops no higher than its bottom, :data:`LANDING_SLACK` aside)
-        and lies there, until the camera sees it elsewhere."""
+        """The fingers opened on ``track``'s block: it falls onto the highest of the furniture and the tops of the other
+        blocks under it (their tops no higher than its bottom, :data:`LANDING_SLACK` aside) and lies there, until the
+        camera sees it elsewhere. It rests on a block only with its centre over that block's top face; overlapping one
+        less, it tips off it and lands beside it (a block let go 3 cm off a block's centre in a crowded bin slid off it
+        onto the floor, while its estimate stayed on top, above the rim, and the hand was sent to put it in again)."""
         xy, centre = track.position[:2], track.position[2]
-        tops = [other.position[2] + BLOCK_HALF_SIZE for other in self.tracks.values()
-                if other is not track and other.hand is None and np.isfinite(other.position).all()
-                and other.position[2] + BLOCK_HALF_SIZE <= centre - BLOCK_HALF_SIZE + LANDING_SLACK
-                and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
+        under = [other for other in self.tracks.values()
+                 if other is not track and other.hand is None and np.isfinite(other.position).all()
+                 and other.position[2] + BLOCK_HALF_SIZE <= centre - BLOCK_HALF_SIZE + LANDING_SLACK
+                 and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
+        tops = [other.position[2] + BLOCK_HALF_SIZE for other in under
+                if (np.abs(other.position[:2] - xy) < BLOCK_HALF_SIZE).all()]
         furniture = furniture_height(xy, self.bin_geometry)
         supports = tops if furniture is None else [furniture, *tops]
         if supports:  # beyond the table's edges, with nothing under it, it falls out of reach: the camera will say where
             track.position[2] = min(centre, max(supports) + BLOCK_HALF_SIZE)
+        for other in under:  # one it overlaps below its landing, it tipped off: beside it
+            if other.position[2] > track.position[2] - BLOCK_HALF_SIZE:
+                away = xy - other.position[:2]
+                track.position[:2] = other.position[:2] + away * (2 * BLOCK_HALF_SIZE / max(np.abs(away).max(), 1e-6))
         track.velocity = np.zeros(3)
 
     def _above_furniture(self, track: Track) -> None:

@@ -340,6 +340,19 @@ def test_a_block_let_go_lower_than_a_neighbours_top_lands_beside_it() -> None:
     assert np.allclose(track.position, [*over[:2], floor])
 
 
+def test_a_block_let_go_off_a_blocks_top_face_tips_off_beside_it() -> None:
+    """Let go 3 cm off a block's centre in a crowded bin, a block slid off it onto the floor, while its estimate stayed
+    on top, above the rim."""
+    bin_geometry = SCENES["tabletop"].bin
+    floor = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
+    below = np.array([*bin_geometry.center, floor])
+    for off, lands in ((0.015, below + np.array([0.0, 0.015, 2 * BLOCK_HALF_SIZE])),  # over its top face: on it
+                       (0.03, below + np.array([0.0, 2 * BLOCK_HALF_SIZE, 0.0]))):  # beyond: beside it, on the floor
+        tracker = BlockTracker([0, 1], bin_geometry=bin_geometry)
+        track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.0, off, 0.05]), [seen(1, below)])
+        assert np.allclose(track.position, lands)
+
+
 def test_a_block_that_would_jump_into_another_block_seen_there_is_that_block_misread() -> None:
     """Part of a red block read as orange, 4 cm from red, took orange's track there while the hand over orange hid it."""
     tracker, orange, red = BlockTracker([0, 1]), np.array([1.15, 0.59, 0.425]), np.array([1.37, 0.68, 0.425])

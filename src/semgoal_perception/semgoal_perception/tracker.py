@@ -63,8 +63,8 @@ HELD_BOX = 0.8
 block's offset is kept within: while a hand carries it, the block is in that hand, as ``holding`` must read. A block
 lifted 6 cm between two camera frames took its offset from where it had rested, 6 cm under the grip, and votes of a
 block slipped 2 cm along the fingers drew it past ``holding``'s 3 cm: either way the hand no longer held it, and the
-block was let go onto the table while it rode in the fingers (the planner then had the hand pick it again; 13 of 16
-such drops in ten Clean-8 starts of the learned actor from the camera)."""
+block was let go onto the table while it rode in the fingers (the planner then had the hand pick it again: 13 such
+drops in ten Clean-8 starts of the learned actor from the camera)."""
 FINGER_AXIS = 1
 """The world axis the fingers close along (y: the Fetch's gripper points down, unturned; the arm across the table
 too). Closing, they centre a block between them on it: a block grasped off-centre is pushed there."""

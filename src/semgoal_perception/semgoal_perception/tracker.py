@@ -218,15 +218,12 @@ class BlockTracker:
         there while the hand came down on orange, which it hid, and the hand went back and forth between the two; a
         yellow block lifted high in the hand read as orange while orange on the table read as yellow, and each took
         the other's place."""
-        def misread(colour: int, detection: Detection) -> bool:
-            if not _jumps(self.tracks[colour], detection, dt):
-                return False
-            others = [other.centre for c, other in seen.items() if c != colour]
-            others += [track.position for c, track in self.tracks.items()
-                       if c != colour and track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST)]
-            return any(np.linalg.norm(detection.centre - other) < OVERLAP for other in others)
-
-        return {colour: detection for colour, detection in seen.items() if not misread(colour, detection)}
+        places = [(c, other.centre) for c, other in seen.items()]
+        places += [(c, track.position) for c, track in self.tracks.items()
+                   if track.status not in (TrackStatus.NEVER_SEEN, TrackStatus.LOST)]
+        return {colour: detection for colour, detection in seen.items()
+                if not (_jumps(self.tracks[colour], detection, dt)
+                        and any(c != colour and np.linalg.norm(detection.centre - place) < OVERLAP for c, place in places))}
 
     @staticmethod
     def _left_hand(track: Track, hands: Sequence[Hand], detection: Detection | None) -> bool:

@@ -45,6 +45,9 @@ def seen(colour: int, centre) -> Detection:
 GRIP_AWAY, STILL = np.array([1.3, 0.6, 0.7]), np.zeros(3)
 AWAY = [Hand(GRIP_AWAY, STILL, 0.1)]
 """The one arm's hand, open and far above the blocks."""
+TABLETOP_BIN = SCENES["tabletop"].bin
+ON_BIN_FLOOR = TABLE_TOP + TABLETOP_BIN.floor_thickness + BLOCK_HALF_SIZE
+"""The height of a block's centre lying on the tabletop bin's floor."""
 
 
 def test_a_resting_block_seen_with_millimetre_noise_reads_as_at_rest() -> None:
@@ -309,13 +312,11 @@ def carried_then_let_go(tracker: BlockTracker, start, over, others=()) -> Track:
 
 def test_a_block_let_go_unseen_falls_onto_the_bins_floor() -> None:
     """Let go into a crowded bin, under the open hand, a block stayed where the hand had held it, above the rim."""
-    bin_geometry = SCENES["tabletop"].bin
-    tracker = BlockTracker([0], bin_geometry=bin_geometry)
-    over = np.array([*bin_geometry.center, 0.46])
+    tracker = BlockTracker([0], bin_geometry=TABLETOP_BIN)
+    over = np.array([*TABLETOP_BIN.center, 0.46])
     track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], over)
-    landed = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
-    assert track.hand is None and np.allclose(track.position, [*over[:2], landed]) and np.allclose(track.velocity, 0)
-    assert bin_geometry.contains(track.position[None], TABLE_TOP)[0]
+    assert track.hand is None and np.allclose(track.position, [*over[:2], ON_BIN_FLOOR]) and np.allclose(track.velocity, 0)
+    assert TABLETOP_BIN.contains(track.position[None], TABLE_TOP)[0]
 
 
 def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> None:
@@ -331,24 +332,20 @@ def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> 
 def test_a_block_let_go_lower_than_a_neighbours_top_lands_beside_it() -> None:
     """Let go 1 cm above the bin's floor over a neighbour's edge, a block stayed there, neither on the floor nor on the
     neighbour, where ``in_bin`` was unsure."""
-    bin_geometry = SCENES["tabletop"].bin
-    floor = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
-    neighbour = np.array([*bin_geometry.center, floor])
-    tracker = BlockTracker([0, 1], bin_geometry=bin_geometry)
+    neighbour = np.array([*TABLETOP_BIN.center, ON_BIN_FLOOR])
+    tracker = BlockTracker([0, 1], bin_geometry=TABLETOP_BIN)
     over = neighbour + np.array([0.03, 0.0, -0.02])  # let go with its centre 1 cm above its place on the floor
     track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], over, [seen(1, neighbour)])
-    assert np.allclose(track.position, [*over[:2], floor])
+    assert np.allclose(track.position, [*over[:2], ON_BIN_FLOOR])
 
 
 def test_a_block_let_go_off_a_blocks_top_face_tips_off_beside_it() -> None:
     """Let go 3 cm off a block's centre in a crowded bin, a block slid off it onto the floor, while its estimate stayed
     on top, above the rim."""
-    bin_geometry = SCENES["tabletop"].bin
-    floor = TABLE_TOP + bin_geometry.floor_thickness + BLOCK_HALF_SIZE
-    below = np.array([*bin_geometry.center, floor])
+    below = np.array([*TABLETOP_BIN.center, ON_BIN_FLOOR])
     for off, lands in ((0.015, below + np.array([0.0, 0.015, 2 * BLOCK_HALF_SIZE])),  # over its top face: on it
                        (0.03, below + np.array([0.0, 2 * BLOCK_HALF_SIZE, 0.0]))):  # beyond: beside it, on the floor
-        tracker = BlockTracker([0, 1], bin_geometry=bin_geometry)
+        tracker = BlockTracker([0, 1], bin_geometry=TABLETOP_BIN)
         track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.0, off, 0.05]), [seen(1, below)])
         assert np.allclose(track.position, lands)
 

@@ -362,3 +362,20 @@ def test_a_block_that_would_jump_into_another_block_seen_there_is_that_block_mis
     moved = orange + np.array([0.06, 0.0, 0.0])  # the fingers did push it: seen there, apart from red, it is believed
     track = tracker.update([seen(0, moved), seen(1, red)], hand_over_orange)[0]
     assert track.status == TrackStatus.VISIBLE and track.position[0] > orange[0] + 0.03
+
+
+def test_a_lost_block_is_not_taken_to_another_blocks_place_by_stray_votes_there() -> None:
+    """Pink in a full bin's far corner, read as background for good, was lost; eight pink votes on purple beside it
+    took pink's track there, and the expert put yellow onto pink."""
+    tracker = BlockTracker([0, 1], bin_geometry=TABLETOP_BIN)
+    pink, purple = np.array([1.44, 1.006, ON_BIN_FLOOR]), np.array([1.279, 1.01, ON_BIN_FLOOR])
+    tracker.update([seen(0, pink), seen(1, purple)], AWAY)
+    for _ in range(LOST_FRAMES):
+        tracker.update([seen(1, purple)], AWAY)
+    assert tracker.tracks[0].status == TrackStatus.LOST
+    for _ in range(DOUBT_FRAMES + 2):
+        stray = Detection(0, purple + np.array([0.001, 0.011, -0.013]), np.full(3, 0.0015), 8)
+        tracks = tracker.update([stray, seen(1, purple)], AWAY)
+        assert np.allclose(tracks[0].position, pink) and tracks[0].status == TrackStatus.LOST
+    moved = np.array([1.2, 0.9, ON_BIN_FLOOR])  # seen apart from every other block, it is found again at once
+    assert tracker.update([seen(0, moved), seen(1, purple)], AWAY)[0].status == TrackStatus.VISIBLE

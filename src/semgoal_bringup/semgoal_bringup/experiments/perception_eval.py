@@ -9,6 +9,9 @@ training's are from 8,000,000 and 8,700,000), one frame at a time (no tracker: w
   estimated centres against the same predicates on the true ones, overall and per predicate; literals whose
   true geometry lies within 5 mm of a threshold are reported apart.
 - **Latency**: wall time of one frame through the voter and the reduction (one torch thread), p50 and p99.
+
+With ``--recordings FILE...`` instead: the voter and the tracker over recorded episodes, against the simulator's poses
+recorded beside them (:mod:`semgoal_bringup.experiments.perception_replay`).
 """
 
 from __future__ import annotations
@@ -198,6 +201,30 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
     plt.close(plot)
 
 
+def replay_recordings(paths: list[Path], estimator, as_json: bool, parser: argparse.ArgumentParser) -> int:
+    """``--recordings``: each file's :class:`~semgoal_bringup.experiments.perception_replay.TrackingScore`, and all."""
+    from mcap.exceptions import McapError
+
+    from semgoal_bringup.experiments.perception_replay import TrackingScore, replay_table, score_recording
+
+    scores: dict[str, TrackingScore] = {}
+    for path in paths:
+        if not path.is_file():
+            parser.error(f"no such file: {path}")
+        try:
+            scores[path.name] = score_recording(path, estimator)
+        except McapError as error:
+            parser.error(f"{path}: not an MCAP recording ({error})")
+        if not scores[path.name].frames:
+            parser.error(f"{path}: no camera frame with its world state (record an episode run on the camera)")
+    total = TrackingScore()
+    for score in scores.values():
+        total += score
+    print(json.dumps({"recordings": {name: s.as_dict() for name, s in scores.items()}, "all": total.as_dict()})
+          if as_json else replay_table(scores))
+    return 0
+
+
 def main(argv: list[str]) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")
     from semgoal_bringup.experiments.perception_training import cached_frames
@@ -217,9 +244,14 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--figure", type=Path, help="also draw frames of a condition with the estimates (PNG)")
     parser.add_argument("--figure-of", help="the condition drawn (default: the first)")
+    parser.add_argument("--recordings", type=Path, nargs="+", metavar="FILE",
+                        help="instead: the voter and the tracker over these MCAP recordings of episodes on the camera, "
+                             "beside the simulator's poses recorded with them")
     args = parser.parse_args(argv)
     folder = args.model_dir or share_path("semgoal_perception", "models", "block_voter")
     estimator = BlockEstimator.load(folder)
+    if args.recordings:
+        return replay_recordings(args.recordings, estimator, args.json, parser)
     literals_folder = folder.parent / "literal_net"
     literal_net = load_literal_net(literals_folder) if (literals_folder / "literal_net.pt").exists() else None
     size = tuple(json.loads((folder / "voter.json").read_text())["camera_size"])

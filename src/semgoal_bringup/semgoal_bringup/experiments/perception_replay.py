@@ -1,0 +1,131 @@
+"""`./semgoal eval perception --recordings FILE...`: the perceiver (the voter and the tracker as the code has them now)
+run again over episodes recorded through the graph (``eval --via-ros --record DIR``, ``demo``, ``up --record``),
+beside the simulator's poses recorded in the same world states.
+
+Each recorded RGB-D frame goes through :class:`~semgoal_perception.perceiver.Perceiver` with the arm's state of its
+world state, as the perception node runs it, and every tracked block is compared with where the simulator had it:
+how many block-frames are more than :data:`FAR` off, and how many of the scene's literals the camera reads otherwise
+than the simulator (its semantic vector against the one of the recorded poses). A recording keeps the camera's frames at
+5 Hz of sim time (``semgoal_ros.recording.CAMERA_RECORD_PERIOD_S``), a fifth of what the node saw live, so the tracker
+bridges five control steps a frame here: the figures are a change's offline measure on fixed frames (the same frames
+before and after), not the live run's. Blocks that fell off the table are left out (the camera does not look there).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, fields
+from pathlib import Path
+
+import numpy as np
+
+from semgoal_ros import interfaces as topics
+
+FAR = 0.03
+"""A tracked block this far (m) from the simulator's pose counts as off."""
+FRAME_PARTS = {topics.WORLD_STATE: "world", topics.RGBD_COLOUR: "colour", topics.RGBD_DEPTH: "depth",
+               topics.RGBD_INFO: "info"}
+"""The topics whose messages of one stamp make one frame: the sim's world state and the camera's colour, depth, info."""
+
+
+@dataclass
+class TrackingScore:
+    """What the camera got wrong over a set of frames (module doc)."""
+
+    frames: int = 0
+    block_frames: int = 0
+    far: int = 0
+    literals: int = 0
+    wrong: int = 0
+
+    def __iadd__(self, other: TrackingScore) -> TrackingScore:
+        for name in (f.name for f in fields(self)):
+            setattr(self, name, getattr(self, name) + getattr(other, name))
+        return self
+
+    def as_dict(self) -> dict:
+        return {**{f.name: getattr(self, f.name) for f in fields(self)},
+                "far_share": round(self.far / self.block_frames, 5) if self.block_frames else None,
+                "wrong_share": round(self.wrong / self.literals, 5) if self.literals else None}
+
+
+@dataclass(frozen=True)
+class RecordedFrame:
+    world: object
+    """The sim's ``WorldState`` of the frame's instant: the arm's state and the true block poses."""
+    rgb: np.ndarray
+    depth: np.ndarray
+    camera: object
+    """:class:`~semgoal_perception.geometry.PinholeCamera` of the frame."""
+
+
+def recorded_frames(path: Path) -> Iterator[RecordedFrame]:
+    """Every instant of ``path`` whose world state, colour, depth and camera info were all recorded, in order."""
+    from mcap.reader import make_reader
+    from mcap_ros2.decoder import DecoderFactory
+
+    from semgoal_perception.geometry import PinholeCamera
+    from semgoal_perception.perception_node import CAMERA_FRAME, image_array, pose_matrix, stamp_key
+
+    pending: dict[int, dict] = {}
+    pose = None
+    with path.open("rb") as stream:
+        reader = make_reader(stream, decoder_factories=[DecoderFactory()])
+        for _, channel, _, msg in reader.iter_decoded_messages(topics=[*FRAME_PARTS, topics.TF_STATIC]):
+            if channel.topic == topics.TF_STATIC:
+                pose = next((pose_matrix(t.transform) for t in msg.transforms if t.child_frame_id == CAMERA_FRAME), pose)
+                continue
+            parts = pending.setdefault(stamp_key(msg.header), {})
+            parts[FRAME_PARTS[channel.topic]] = msg
+            if len(parts) < len(FRAME_PARTS) or pose is None:
+                continue
+            del pending[stamp_key(msg.header)]
+            info = parts["info"]
+            yield RecordedFrame(parts["world"], image_array(parts["colour"], "rgb8", 3, np.uint8),
+                                image_array(parts["depth"], "32FC1", 1, np.float32),
+                                PinholeCamera(info.k[0], info.k[4], info.k[2], info.k[5], pose))
+
+
+def score_recording(path: Path, estimator) -> TrackingScore:
+    """The perceiver's :class:`TrackingScore` over the frames of one recording (a new episode starts its tracks
+    afresh, as in the node)."""
+    from semgoal_core.geometry import TABLE_TOP
+    from semgoal_core.tasks import get_task
+    from semgoal_core.vocabulary import fallen_blocks
+    from semgoal_perception.perceiver import Perceiver
+    from semgoal_perception.perception_node import PerceptionNode
+    from semgoal_ros.messages import block_centres, hands, semantic_vector
+
+    perceiver, score = Perceiver(estimator), TrackingScore()
+    for frame in recorded_frames(path):
+        world = frame.world
+        seen = perceiver.perceive(frame.rgb, frame.depth, frame.camera, PerceptionNode.arm_state(world), world.scene,
+                                  get_task(world.task).blocks, (world.episode, world.seed), world.step,
+                                  hands(world)[1:])
+        truth = block_centres(world)
+        names = list(truth)
+        on_the_table = set(names) - set(fallen_blocks(names, np.array([truth[n] for n in names]), TABLE_TOP))
+        for name, track in zip(seen.blocks, seen.tracks, strict=True):
+            if name in on_the_table:
+                score.block_frames += 1
+                score.far += bool(np.linalg.norm(track.position - truth[name]) > FAR)  # never seen: NaN, not off
+        true_vector, seen_vector = semantic_vector(world) > 0.5, np.asarray(seen.vector) > 0.5
+        score.frames += 1
+        score.literals += true_vector.size
+        score.wrong += int((true_vector != seen_vector).sum())
+    return score
+
+
+def replay_table(scores: dict[str, TrackingScore]) -> str:
+    """One row per recording and one for all of them."""
+    total = TrackingScore()
+    for score in scores.values():
+        total += score
+    lines = [f"{'recording':32s} {'frames':>6s} {'block-frames':>12s} {'> 3 cm off':>14s} {'literals':>9s} "
+             f"{'read wrong':>14s}"]
+    for name, score in [*scores.items(), ("all", total)]:
+        row = score.as_dict()
+        lines.append(f"{name:32s} {score.frames:6d} {score.block_frames:12d} {score.far:6d} "
+                     f"({100 * (row['far_share'] or 0):5.2f} %) {score.literals:9d} {score.wrong:6d} "
+                     f"({100 * (row['wrong_share'] or 0):5.2f} %)")
+    return "\n".join(lines)

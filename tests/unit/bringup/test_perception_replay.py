@@ -1,6 +1,7 @@
 """The perceiver run again over a recording (`eval perception --recordings`): a small MCAP written as the recorder
 writes one (the sim's world states, the camera's frames and its pose, CDR with ros2msg schemas), read back."""
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -73,6 +74,7 @@ def test_a_still_scene_is_tracked_where_the_simulator_has_it(still, estimator) -
     score = score_recording(still, estimator)
     assert (score.frames, score.block_frames, score.far, score.wrong) == (FRAMES, 3 * FRAMES, 0, 0)
     assert score.literals == FRAMES * LAYOUTS["three_blocks"].size
+    assert {key: counts[1] for key, counts in score.labelled.items()} == {f"{b} table": FRAMES for b in ("red", "green", "blue")}
 
 
 def test_a_block_the_camera_places_elsewhere_than_the_simulator_counts_as_off(tmp_path, estimator) -> None:
@@ -83,8 +85,12 @@ def test_a_block_the_camera_places_elsewhere_than_the_simulator_counts_as_off(tm
 
 
 def test_the_command_reads_recordings_and_refuses_what_is_none(still, tmp_path, capsys) -> None:
-    assert eval_perception(["--recordings", str(still), "--json"]) == 0
-    assert '"far": 0' in capsys.readouterr().out
+    again = tmp_path / "another run" / still.name  # two runs' recordings share their names
+    again.parent.mkdir()
+    again.write_bytes(still.read_bytes())
+    assert eval_perception(["--recordings", str(still), str(again), "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert len(result["recordings"]) == 2 and result["all"]["frames"] == 2 * FRAMES and result["all"]["far"] == 0
     (tmp_path / "empty.mcap").write_bytes(b"not an mcap")
     with pytest.raises(SystemExit):
         eval_perception(["--recordings", str(tmp_path / "empty.mcap")])

@@ -207,15 +207,15 @@ def replay_recordings(paths: list[Path], estimator, as_json: bool, parser: argpa
 
     from semgoal_bringup.experiments.perception_replay import TrackingScore, replay_table, score_recording
 
-    scores: dict[str, TrackingScore] = {}
+    scores: dict[str, TrackingScore] = {}  # by the path as given: recordings of two runs share their names
     for path in paths:
         if not path.is_file():
             parser.error(f"no such file: {path}")
         try:
-            scores[path.name] = score_recording(path, estimator)
+            scores[str(path)] = score_recording(path, estimator)
         except McapError as error:
             parser.error(f"{path}: not an MCAP recording ({error})")
-        if not scores[path.name].frames:
+        if not scores[str(path)].frames:
             parser.error(f"{path}: no camera frame with its world state (record an episode run on the camera)")
     total = TrackingScore()
     for score in scores.values():

@@ -5,16 +5,20 @@ beside the simulator's poses recorded in the same world states.
 Each recorded RGB-D frame goes through :class:`~semgoal_perception.perceiver.Perceiver` with the arm's state of its
 world state, as the perception node runs it, and every tracked block is compared with where the simulator had it:
 how many block-frames are more than :data:`FAR` off, and how many of the scene's literals the camera reads otherwise
-than the simulator (its semantic vector against the one of the recorded poses). A recording keeps the camera's frames at
-5 Hz of sim time (``semgoal_ros.recording.CAMERA_RECORD_PERIOD_S``), a fifth of what the node saw live, so the tracker
-bridges five control steps a frame here: the figures are a change's offline measure on fixed frames (the same frames
-before and after), not the live run's. Blocks that fell off the table are left out (the camera does not look there).
+than the simulator (its semantic vector against the one of the recorded poses). Per block colour and place (on the
+table, in the bin), the voter's own share: of the frames in which the block shows at least :data:`SHOWN_PIXELS`
+pixels within :data:`SHOWN_RADIUS` of its true centre, those on which most of them are labelled its colour.
+
+A recording keeps the camera's frames at 5 Hz of sim time (``semgoal_ros.recording.CAMERA_RECORD_PERIOD_S``), a fifth
+of what the node saw live, so the tracker bridges five control steps a frame here: the figures are a change's offline
+measure on fixed frames (the same frames before and after), not the live run's. Blocks that fell off the table are
+left out (the camera does not look there).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +27,10 @@ from semgoal_ros import interfaces as topics
 
 FAR = 0.03
 """A tracked block this far (m) from the simulator's pose counts as off."""
+SHOWN_RADIUS = 0.035
+"""Pixels whose 3-D point lies this near (m) a block's true centre show that block (its top face and sides)."""
+SHOWN_PIXELS = 8
+"""A block showing fewer pixels than this in a frame is not counted in the voter's share (hidden, or a sliver)."""
 FRAME_PARTS = {topics.WORLD_STATE: "world", topics.RGBD_COLOUR: "colour", topics.RGBD_DEPTH: "depth",
                topics.RGBD_INFO: "info"}
 """The topics whose messages of one stamp make one frame: the sim's world state and the camera's colour, depth, info."""
@@ -37,16 +45,23 @@ class TrackingScore:
     far: int = 0
     literals: int = 0
     wrong: int = 0
+    labelled: dict[str, list[int]] = field(default_factory=dict)
+    """``"colour place"`` -> [frames it showed in, frames most of its pixels were labelled its colour]."""
 
     def __iadd__(self, other: TrackingScore) -> TrackingScore:
-        for name in (f.name for f in fields(self)):
+        for name in (f.name for f in fields(self) if f.name != "labelled"):
             setattr(self, name, getattr(self, name) + getattr(other, name))
+        for key, (shown, right) in other.labelled.items():
+            counts = self.labelled.setdefault(key, [0, 0])
+            counts[0], counts[1] = counts[0] + shown, counts[1] + right
         return self
 
     def as_dict(self) -> dict:
-        return {**{f.name: getattr(self, f.name) for f in fields(self)},
+        return {**{f.name: getattr(self, f.name) for f in fields(self) if f.name != "labelled"},
                 "far_share": round(self.far / self.block_frames, 5) if self.block_frames else None,
-                "wrong_share": round(self.wrong / self.literals, 5) if self.literals else None}
+                "wrong_share": round(self.wrong / self.literals, 5) if self.literals else None,
+                "labelled": {key: {"shown": shown, "labelled_right": right, "share": round(right / shown, 3)}
+                             for key, (shown, right) in sorted(self.labelled.items())}}
 
 
 @dataclass(frozen=True)
@@ -109,6 +124,7 @@ def score_recording(path: Path, estimator) -> TrackingScore:
             if name in on_the_table:
                 score.block_frames += 1
                 score.far += bool(np.linalg.norm(track.position - truth[name]) > FAR)  # never seen: NaN, not off
+        _count_labelled(score, estimator, frame, {name: truth[name] for name in on_the_table})
         true_vector, seen_vector = semantic_vector(world) > 0.5, np.asarray(seen.vector) > 0.5
         score.frames += 1
         score.literals += true_vector.size
@@ -116,16 +132,40 @@ def score_recording(path: Path, estimator) -> TrackingScore:
     return score
 
 
+def _count_labelled(score: TrackingScore, estimator, frame: RecordedFrame, centres: dict[str, np.ndarray]) -> None:
+    """Fold one frame's voter labels into ``score.labelled`` (module doc): each block at ``centres`` (its true one)."""
+    import torch
+
+    from semgoal_core.vocabulary import BLOCK_COLOURS, SCENES
+    from semgoal_perception.network import network_input
+
+    points, valid = frame.camera.world_points(frame.depth)
+    logits, _ = estimator.run(torch.from_numpy(network_input(frame.rgb, points, valid))[None])
+    labels, bin_ = logits[0].numpy().argmax(0), SCENES[frame.world.scene].bin
+    for name, centre in centres.items():
+        shown = valid & (np.linalg.norm(points - centre, axis=-1) < SHOWN_RADIUS)
+        if shown.sum() < SHOWN_PIXELS:
+            continue
+        place = "bin" if bin_ is not None and bin_.inside(centre[:2]) else "table"
+        counts = score.labelled.setdefault(f"{name} {place}", [0, 0])
+        counts[0] += 1
+        counts[1] += bool((labels[shown] == list(BLOCK_COLOURS).index(name) + 1).mean() > 0.5)
+
+
 def replay_table(scores: dict[str, TrackingScore]) -> str:
     """One row per recording and one for all of them."""
     total = TrackingScore()
     for score in scores.values():
         total += score
-    lines = [f"{'recording':32s} {'frames':>6s} {'block-frames':>12s} {'> 3 cm off':>14s} {'literals':>9s} "
+    width = max(len("recording"), *map(len, scores))
+    lines = [f"{'recording':{width}s} {'frames':>6s} {'block-frames':>12s} {'> 3 cm off':>14s} {'literals':>9s} "
              f"{'read wrong':>14s}"]
     for name, score in [*scores.items(), ("all", total)]:
         row = score.as_dict()
-        lines.append(f"{name:32s} {score.frames:6d} {score.block_frames:12d} {score.far:6d} "
+        lines.append(f"{name:{width}s} {score.frames:6d} {score.block_frames:12d} {score.far:6d} "
                      f"({100 * (row['far_share'] or 0):5.2f} %) {score.literals:9d} {score.wrong:6d} "
                      f"({100 * (row['wrong_share'] or 0):5.2f} %)")
+    lines.append("the voter's labels, all recordings: of the frames a block showed in, those mostly labelled its colour")
+    lines += [f"  {key:16s} {counts['labelled_right']:6d} of {counts['shown']:6d} ({100 * counts['share']:5.1f} %)"
+              for key, counts in total.as_dict()["labelled"].items()]
     return "\n".join(lines)

@@ -160,6 +160,18 @@ def test_the_graphs_episodes_are_compared_with_the_same_starts_in_process(capsys
     assert "seed 9: not run in process" in said
 
 
+def test_the_starts_the_graph_missed_from_the_camera_are_named(capsys) -> None:
+    from semgoal_bringup.experiments.episodes import Outcome
+    from semgoal_bringup.graph import Sight
+
+    in_process, via_ros = evaluation.Row("hierarchical"), evaluation.Row(evaluation.VIA_ROS)
+    for seed, success in ((7, True), (8, False), (9, False)):
+        via_ros.add("expert", Outcome("Clean-8", seed, success, 600 if not success else 377), first_step_observed=False)
+    assert evaluation.compare_with_graph([in_process, via_ros], ["Clean-8"], "expert", Sight("camera")) == {}
+    said = capsys.readouterr().err
+    assert "2 start(s) missed" in said and "Clean-8 from seed 8: failed after 600 steps" in said and "seed 7" not in said
+
+
 @pytest.mark.slow
 def test_a_table_of_tasks_the_paper_has_not_is_not_called_table_1(tmp_path) -> None:
     code = evaluation.main(["--tasks", "Tower-3", "--episodes", "1", "--models", "expert", "--jobs", "1",

@@ -82,7 +82,11 @@ def via_ros(args, sight: Sight, in_process: list[Outcome]) -> dict:
     episodes = min(args.ros_episodes or args.episodes, args.episodes)
     outcomes = list(run_via_ros([args.task], episodes, args.seed, args.models, sight=sight, robots=2))
     row = {"sees_by": f"planner {sight.perception}, policy {sight.policy_input}", "episodes": len(outcomes),
-           **mode_summary(outcomes), "replans": sum(o.replans for o in outcomes)}
+           **mode_summary(outcomes), "replans": sum(o.replans for o in outcomes),
+           "missed": [o.seed for o in outcomes if not o.success]}
+    for outcome in outcomes:
+        if not outcome.success:
+            print(f"start {outcome.seed}: missed through the graph, after {outcome.steps} steps", file=sys.stderr)
     if sight == TRUTH:
         differ = [(o, p) for o, p in zip(outcomes, in_process, strict=False)
                   if (o.success, o.steps, o.replans) != (p.success, p.steps, p.replans)]

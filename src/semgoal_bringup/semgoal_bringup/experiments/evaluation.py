@@ -179,6 +179,21 @@ def unlike_in_process(in_process: Row, via_ros: Row, label: str, task: str) -> l
     return unlike
 
 
+def missed_starts(row: Row, label: str, task: str) -> list[str]:
+    """The starts of ``task`` that ``label``'s actors missed in ``row``, each said in words (to trace them)."""
+    ends = row.per_seed.get(label, {}).get(task, Tally()).ends
+    return [f"{task} from seed {seed}: {_ending(False, steps)}" for seed, (success, steps) in sorted(ends.items())
+            if not success]
+
+
+def print_missed(row: Row, tasks: list[str], label: str) -> None:
+    """Say which starts the graph missed (where the graph sees by the camera, in process is no reference)."""
+    missed = [line for task in tasks for line in missed_starts(row, label, task)]
+    print(f"via ROS: {len(missed)} start(s) missed" + (":" if missed else ""), file=sys.stderr)
+    for line in missed:
+        print(f"    {line}", file=sys.stderr)
+
+
 def _ending(success: bool, steps: int) -> str:
     return f"{'succeeded' if success else 'failed'} after {steps} steps"
 
@@ -539,9 +554,11 @@ def main(argv: list[str]) -> int:
 def compare_with_graph(rows: list[Row], tasks: list[str], label: str, sight: Sight) -> dict[str, dict[str, int]]:
     """Print how many of the graph's episodes ended as the same starts did in process, and each that did not; per
     task ``{"same": k, "episodes": n}`` (on ground truth the two agree episode for episode: the graph runs in
-    lockstep). Empty where there is nothing to compare (no in-process hierarchical row, or the graph saw by camera)."""
+    lockstep). Empty where there is nothing to compare (no in-process hierarchical row, or the graph saw by camera):
+    then it names the starts the graph missed."""
     in_process = next((row for row in rows if row.agent == "hierarchical"), None)
     if in_process is None or sight != TRUTH:
+        print_missed(rows[-1], tasks, label)
         return {}
     via_ros, counts, unlike_all = rows[-1], {}, []
     for task in tasks:

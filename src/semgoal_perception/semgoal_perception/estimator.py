@@ -78,12 +78,34 @@ class BlockEstimator:
 
     def detect(self, rgb: np.ndarray, depth: np.ndarray, camera: PinholeCamera) -> list[Detection]:
         """The blocks seen in one frame, each once, with their centres and uncertainties."""
+        return self.label(rgb, depth, camera).detections()
+
+    def label(self, rgb: np.ndarray, depth: np.ndarray, camera: PinholeCamera) -> LabelledPixels:
+        """One frame's pixels through the voter: what :meth:`detect` reduces, for those who also read the labels."""
         points, valid = camera.world_points(depth)
         logits, offsets = self.run(torch.from_numpy(network_input(rgb, points, valid))[None])
         labels = logits[0].numpy().argmax(0)  # numpy's: torch's argmax over channels of the sliced output took 1.7 ms
-        block = valid & (labels > 0)
-        votes = points[block] + offsets[0].numpy()[:, block].T * OFFSET_SCALE
-        return detections(labels[block], votes)
+        return LabelledPixels(points, valid, labels, offsets[0].numpy())
+
+
+@dataclass(frozen=True)
+class LabelledPixels:
+    """The voter's answer for one frame, per pixel."""
+
+    points: np.ndarray
+    """(H, W, 3) world points of the pixels (m)."""
+    valid: np.ndarray
+    """(H, W) bool: the pixel has depth."""
+    labels: np.ndarray
+    """(H, W): 0 = no block, k + 1 = colour k."""
+    offsets: np.ndarray
+    """(3, H, W) the scaled offset from each pixel's point to its block's centre."""
+
+    def detections(self) -> list[Detection]:
+        """The blocks the labels and votes give (:func:`detections`)."""
+        block = self.valid & (self.labels > 0)
+        votes = self.points[block] + self.offsets[:, block].T * OFFSET_SCALE
+        return detections(self.labels[block], votes)
 
 
 def detections(labels: np.ndarray, votes: np.ndarray) -> list[Detection]:

@@ -167,10 +167,8 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    import torch
 
     from semgoal_core.vocabulary import BLOCK_COLOURS
-    from semgoal_perception.network import network_input
     from semgoal_perception.training import frame_camera
 
     colours = list(BLOCK_COLOURS)
@@ -179,18 +177,17 @@ def figure(frames, estimator, path: Path, count: int = 4) -> None:
     plot, axes = plt.subplots(2, len(chosen), figsize=(3.2 * len(chosen), 5.0))
     for column, i in enumerate(chosen):
         camera = frame_camera(frames.camera[i], frames.world_from_camera[i])
-        points, valid = camera.world_points(frames.depth[i])
-        logits, _ = estimator.run(torch.from_numpy(network_input(frames.rgb[i], points, valid))[None])
+        pixels = estimator.label(frames.rgb[i], frames.depth[i], camera)
         top, bottom = axes[0, column], axes[1, column]
         top.imshow(frames.rgb[i])
-        for found in estimator.detect(frames.rgb[i], frames.depth[i], camera):
+        for found in pixels.detections():
             u, v = camera.project(found.centre[None])[0]
             top.plot(u, v, "x", color="black", markersize=9, markeredgewidth=2)
             top.annotate(colours[found.colour], (u, v), xytext=(4, -6), textcoords="offset points", fontsize=7)
         truth = frames.centres[i][np.isfinite(frames.centres[i]).all(axis=1)]
         u, v = camera.project(truth).T
         top.plot(u, v, "o", markerfacecolor="none", color="white", markersize=10)
-        bottom.imshow(logits[0].numpy().argmax(0), cmap=labels_map, vmin=0, vmax=len(colours), interpolation="nearest")
+        bottom.imshow(pixels.labels, cmap=labels_map, vmin=0, vmax=len(colours), interpolation="nearest")
         for axis in (top, bottom):
             axis.set_xticks([])
             axis.set_yticks([])
@@ -205,7 +202,7 @@ def replay_recordings(paths: list[Path], estimator, as_json: bool, parser: argpa
     """``--recordings``: each file's :class:`~semgoal_bringup.experiments.perception_replay.TrackingScore`, and all."""
     from mcap.exceptions import McapError
 
-    from semgoal_bringup.experiments.perception_replay import TrackingScore, replay_table, score_recording
+    from semgoal_bringup.experiments.perception_replay import TrackingScore, replay_table, score_recording, summed
 
     scores: dict[str, TrackingScore] = {}  # by the path as given: recordings of two runs share their names
     for path in paths:
@@ -217,10 +214,8 @@ def replay_recordings(paths: list[Path], estimator, as_json: bool, parser: argpa
             parser.error(f"{path}: not an MCAP recording ({error})")
         if not scores[str(path)].frames:
             parser.error(f"{path}: no camera frame with its world state (record an episode run on the camera)")
-    total = TrackingScore()
-    for score in scores.values():
-        total += score
-    print(json.dumps({"recordings": {name: s.as_dict() for name, s in scores.items()}, "all": total.as_dict()})
+    print(json.dumps({"recordings": {name: s.as_dict() for name, s in scores.items()},
+                      "all": summed(scores.values()).as_dict()})
           if as_json else replay_table(scores))
     return 0
 

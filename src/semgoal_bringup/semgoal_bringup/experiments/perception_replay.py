@@ -17,7 +17,7 @@ left out (the camera does not look there).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 
@@ -62,6 +62,26 @@ class TrackingScore:
                 "wrong_share": round(self.wrong / self.literals, 5) if self.literals else None,
                 "labelled": {key: {"shown": shown, "labelled_right": right, "share": round(right / shown, 3)}
                              for key, (shown, right) in sorted(self.labelled.items())}}
+
+
+def summed(scores: Iterable[TrackingScore]) -> TrackingScore:
+    """All of ``scores`` as one."""
+    total = TrackingScore()
+    for score in scores:
+        total += score
+    return total
+
+
+class _KeepingLabels:
+    """The estimator as the perceiver calls it, keeping the last frame's pixel labels: the voter's share is read from
+    the same network run that gave the detections."""
+
+    def __init__(self, estimator) -> None:
+        self.estimator, self.pixels = estimator, None
+
+    def detect(self, rgb: np.ndarray, depth: np.ndarray, camera) -> list:
+        self.pixels = self.estimator.label(rgb, depth, camera)
+        return self.pixels.detections()
 
 
 @dataclass(frozen=True)
@@ -111,7 +131,8 @@ def score_recording(path: Path, estimator) -> TrackingScore:
     from semgoal_perception.perception_node import PerceptionNode
     from semgoal_ros.messages import block_centres, hands, semantic_vector
 
-    perceiver, score = Perceiver(estimator), TrackingScore()
+    keeping = _KeepingLabels(estimator)
+    perceiver, score = Perceiver(keeping), TrackingScore()
     for frame in recorded_frames(path):
         world = frame.world
         seen = perceiver.perceive(frame.rgb, frame.depth, frame.camera, PerceptionNode.arm_state(world), world.scene,
@@ -124,7 +145,7 @@ def score_recording(path: Path, estimator) -> TrackingScore:
             if name in on_the_table:
                 score.block_frames += 1
                 score.far += bool(np.linalg.norm(track.position - truth[name]) > FAR)  # never seen: NaN, not off
-        _count_labelled(score, estimator, frame, {name: truth[name] for name in on_the_table})
+        _count_labelled(score, keeping.pixels, frame.world.scene, {name: truth[name] for name in on_the_table})
         true_vector, seen_vector = semantic_vector(world) > 0.5, np.asarray(seen.vector) > 0.5
         score.frames += 1
         score.literals += true_vector.size
@@ -132,31 +153,25 @@ def score_recording(path: Path, estimator) -> TrackingScore:
     return score
 
 
-def _count_labelled(score: TrackingScore, estimator, frame: RecordedFrame, centres: dict[str, np.ndarray]) -> None:
-    """Fold one frame's voter labels into ``score.labelled`` (module doc): each block at ``centres`` (its true one)."""
-    import torch
-
+def _count_labelled(score: TrackingScore, pixels, scene: str, centres: dict[str, np.ndarray]) -> None:
+    """Fold one frame's voter labels (:class:`~semgoal_perception.estimator.LabelledPixels`) into ``score.labelled``
+    (module doc): each block at ``centres`` (its true one)."""
     from semgoal_core.vocabulary import BLOCK_COLOURS, SCENES
-    from semgoal_perception.network import network_input
 
-    points, valid = frame.camera.world_points(frame.depth)
-    logits, _ = estimator.run(torch.from_numpy(network_input(frame.rgb, points, valid))[None])
-    labels, bin_ = logits[0].numpy().argmax(0), SCENES[frame.world.scene].bin
+    bin_ = SCENES[scene].bin
     for name, centre in centres.items():
-        shown = valid & (np.linalg.norm(points - centre, axis=-1) < SHOWN_RADIUS)
+        shown = pixels.valid & (np.linalg.norm(pixels.points - centre, axis=-1) < SHOWN_RADIUS)
         if shown.sum() < SHOWN_PIXELS:
             continue
         place = "bin" if bin_ is not None and bin_.inside(centre[:2]) else "table"
         counts = score.labelled.setdefault(f"{name} {place}", [0, 0])
         counts[0] += 1
-        counts[1] += bool((labels[shown] == list(BLOCK_COLOURS).index(name) + 1).mean() > 0.5)
+        counts[1] += bool((pixels.labels[shown] == list(BLOCK_COLOURS).index(name) + 1).mean() > 0.5)
 
 
 def replay_table(scores: dict[str, TrackingScore]) -> str:
     """One row per recording and one for all of them."""
-    total = TrackingScore()
-    for score in scores.values():
-        total += score
+    total = summed(scores.values())
     width = max(len("recording"), *map(len, scores))
     lines = [f"{'recording':{width}s} {'frames':>6s} {'block-frames':>12s} {'> 3 cm off':>14s} {'literals':>9s} "
              f"{'read wrong':>14s}"]

@@ -67,13 +67,18 @@ class Appearance:
     """Standard deviation of Gaussian depth noise (m), applied per pixel."""
     depth_dropout: float = 0.0
     """Fraction of pixels with no depth return."""
+    paint: tuple[int, ...] = ()
+    """Per block colour (:data:`BLOCK_COLOURS` order), the index of the colour it is painted and labelled: a
+    permutation, for training frames only, so that the voter learns each colour in every place the expert puts
+    some block (the tabletop's expert bins its first blocks first); empty = each block its own colour."""
 
     @classmethod
     def randomised(cls, rng: np.random.Generator, strength: float = 1.0,
-                   base: CameraPlacement | None = None) -> Appearance:
+                   base: CameraPlacement | None = None, repaint: bool = False) -> Appearance:
         """A random look around ``base`` (default: the nominal placement): ``strength`` 1 is the training
-        range, 0 the identity."""
+        range, 0 the identity; with ``repaint`` the blocks' colours shuffled among them."""
         s, base = strength, base or CameraPlacement()
+        paint = tuple(int(i) for i in rng.permutation(len(BLOCK_COLOURS))) if repaint else ()
         return cls(
             placement=base.moved(rng.uniform(-0.02, 0.02, 3) * s, rng.uniform(-2.0, 2.0, 2) * s),
             light_scale=float(1.0 + rng.uniform(-0.35, 0.25) * s),
@@ -82,7 +87,13 @@ class Appearance:
             table_tint=tuple(1.0 + rng.uniform(-0.25, 0.15, 3) * s),
             depth_noise=float(rng.uniform(0.0, 0.002) * s),
             depth_dropout=float(rng.uniform(0.0, 0.01) * s),
+            paint=paint,
         )
+
+    def painted(self, block: str) -> str:
+        """The colour ``block`` looks, and is labelled, in this look."""
+        colours = list(BLOCK_COLOURS)
+        return colours[self.paint[colours.index(block)]] if self.paint else block
 
 
 @dataclass(frozen=True)
@@ -125,7 +136,7 @@ class RgbdCamera:
         self._camera = mujoco.MjvCamera()
         self._rng = np.random.default_rng(0)
         model = world.model
-        self._block_geoms = {model.geom(block_body_name(b)).id: block_label(b) for b in world.blocks}
+        self._block_geoms = {model.geom(block_body_name(b)).id: b for b in world.blocks}
         self._table_geoms = {i for i in range(model.ngeom) if model.geom(i).bodyid == model.body("table0").id}
         self.set_appearance(Appearance())
 
@@ -146,8 +157,10 @@ class RgbdCamera:
             geom = scene.geoms[i]
             if geom.objtype != mujoco.mjtObj.mjOBJ_GEOM:
                 continue
-            if geom.objid in self._block_geoms and look.block_shade:
-                geom.rgba[:3] = np.clip(geom.rgba[:3] * look.block_shade[self._block_geoms[geom.objid] - 1], 0, 1)
+            if geom.objid in self._block_geoms:
+                colour = look.painted(self._block_geoms[geom.objid])
+                shade = look.block_shade[block_label(colour) - 1] if look.block_shade else 1.0
+                geom.rgba[:3] = np.clip(np.asarray(BLOCK_COLOURS[colour][:3]) * shade, 0, 1)
             elif geom.objid in self._table_geoms:
                 geom.rgba[:3] = np.clip(geom.rgba[:3] * np.asarray(look.table_tint), 0, 1)
         return scene
@@ -193,8 +206,8 @@ class RgbdCamera:
         self.renderer.disable_segmentation_rendering()
         labels = np.zeros(ids.shape[:2], dtype=np.int8)
         is_geom = ids[..., 1] == mujoco.mjtObj.mjOBJ_GEOM
-        for geom, label in self._block_geoms.items():
-            labels[is_geom & (ids[..., 0] == geom)] = label
+        for geom, block in self._block_geoms.items():
+            labels[is_geom & (ids[..., 0] == geom)] = block_label(self.appearance.painted(block))
         return labels
 
     def close(self) -> None:

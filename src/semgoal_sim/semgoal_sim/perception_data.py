@@ -94,12 +94,13 @@ def _episode_frames(task_name: str, seed: int, appearance: Appearance, camera_si
         world.step(np.zeros(4))
     camera.close()
     for frame, snapshot in frames:
-        yield frame_row(frame, snapshot, world.blocks)
+        yield frame_row(frame, snapshot, [appearance.painted(block) for block in world.blocks])
 
 
 def frame_row(frame: Frame, snapshot: Snapshot, blocks: Sequence[str]) -> tuple:
     """A labelled frame as one row of :class:`LabelledFrames` (all but its task): the picture, its labels, and the
-    blocks' centres and speeds and the first arm's grip and opening from the world's ``snapshot`` at that step."""
+    blocks' centres and speeds and the first arm's grip and opening from the world's ``snapshot`` at that step;
+    ``blocks`` names the world's blocks in order by the colour each looks in the frame."""
     colours = list(BLOCK_COLOURS)
     centres, speeds = np.full((len(colours), 3), np.nan), np.full(len(colours), np.nan)
     for block, position, velocity in zip(blocks, snapshot.block_positions, snapshot.block_velocities, strict=True):
@@ -117,10 +118,10 @@ def stack_rows(rows: list[tuple]) -> LabelledFrames:
 
 def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[int, int] = (160, 120),
                     strength: float = 1.0, condition: str = "nominal", progress: bool = False,
-                    tasks: Sequence[str] = tuple(TASKS)) -> LabelledFrames:
+                    tasks: Sequence[str] = tuple(TASKS), repaint: bool = False) -> LabelledFrames:
     """``count`` labelled frames from episodes of each of ``tasks`` in turn, starts ``seed + episode``; the look is
     the named ``condition`` (``semgoal_sim.camera.CONDITIONS``), randomised around its camera placement
-    when ``strength`` > 0."""
+    when ``strength`` > 0, with the blocks' colours shuffled per episode when ``repaint`` is also set."""
     from tqdm import tqdm
 
     rows: list[tuple] = []
@@ -130,7 +131,7 @@ def labelled_frames(count: int, seed: int = TRAINING_SEED, camera_size: tuple[in
         task_name = tasks[episode % len(tasks)]
         rng = np.random.default_rng([seed, episode])
         look = CONDITIONS[condition]
-        appearance = Appearance.randomised(rng, strength, look.placement) if strength > 0 else look
+        appearance = Appearance.randomised(rng, strength, look.placement, repaint) if strength > 0 else look
         for row in _episode_frames(task_name, seed + episode, appearance, camera_size, rng):
             rows.append((*row, FRAME_TASKS.index(task_name)))
             bar.update(1)

@@ -5,7 +5,8 @@ import numpy as np
 
 from semgoal_bringup.experiments.perception_training import TWO_ARM_TASKS, interleaved, two_arm_frames
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
-from semgoal_core.vocabulary import BLOCK_COLOURS
+from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE
+from semgoal_perception.geometry import PinholeCamera
 from semgoal_sim.perception_data import LabelledFrames, labelled_frames
 
 
@@ -45,3 +46,20 @@ def test_two_arm_frames_show_both_robots_at_the_desk_with_the_blocks_labelled():
         present = [c for c in range(len(colours)) if np.isfinite(centres[c]).all()]
         assert len(present) == int(list(TASKS)[task][-1])  # DC-N: N blocks, each with its true centre
         assert set(np.unique(labels)) - {0} <= {c + 1 for c in present}
+
+
+def test_repainted_frames_label_each_block_by_its_paint_with_the_centre_of_the_block_that_wears_it():
+    frames = labelled_frames(12, 8_700_000, (80, 60), tasks=("Tower-3",), repaint=True)
+    colours = list(BLOCK_COLOURS)
+    worn = set()
+    for i in range(len(frames.rgb)):
+        present = {c for c in range(len(colours)) if np.isfinite(frames.centres[i, c]).all()}
+        assert len(present) == 3
+        worn |= present
+        fx, fy, cx, cy = frames.camera[i]
+        points, valid = PinholeCamera(fx, fy, cx, cy, frames.world_from_camera[i]).world_points(frames.depth[i])
+        for c in present:
+            mask = (frames.labels[i] == c + 1) & valid
+            if mask.sum() > 10:
+                assert np.linalg.norm(np.median(points[mask], axis=0) - frames.centres[i, c]) < 2 * BLOCK_HALF_SIZE
+    assert worn != {0, 1, 2}  # colours beyond the task's own red, green and blue

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from semgoal_core.tasks import get_task
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE
+from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE
 from semgoal_perception.geometry import PinholeCamera
 from semgoal_sim.camera import CONDITIONS, Appearance, RgbdCamera, SimCamera, block_label
 from semgoal_sim.world import FetchWorld
@@ -69,3 +69,25 @@ def test_depth_has_no_return_beyond_range_and_an_unknown_condition_is_refused() 
     with pytest.raises(ValueError, match="unknown camera condition"):
         SimCamera(64, 48, condition="foggy")
     assert set(CONDITIONS) >= {"nominal", "moved"}
+
+
+def test_a_repainted_block_looks_and_is_labelled_as_its_paint() -> None:
+    world = world_of("Tower-3", 2)
+    camera = RgbdCamera(world)
+    try:
+        own = camera.frame(labels=True)
+        look = Appearance.randomised(np.random.default_rng(7), strength=0.0, repaint=True)
+        assert sorted(look.paint) == list(range(len(look.paint))) and look.paint != tuple(range(len(look.paint)))
+        camera.set_appearance(look)
+        repainted = camera.frame(labels=True)
+        for block in world.blocks:
+            paint = look.painted(block)
+            mask = own.labels == block_label(block)
+            assert np.array_equal(repainted.labels == block_label(paint), mask), block
+            hue = np.median(repainted.rgb[mask].astype(float), axis=0)
+            others = [c for c in BLOCK_COLOURS if c != paint]
+            assert paint == min([paint, *others], key=lambda c: np.linalg.norm(
+                hue / hue.max() - np.asarray(BLOCK_COLOURS[c][:3]) / max(BLOCK_COLOURS[c][:3]))), block
+    finally:
+        camera.close()
+    assert Appearance.randomised(np.random.default_rng(7)).paint == ()

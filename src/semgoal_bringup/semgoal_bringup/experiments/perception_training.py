@@ -27,20 +27,24 @@ TWO_ARM_STEPS = 60
 
 
 def cached_frames(count: int, seed: int, size: tuple[int, int], strength: float, cache: Path,
-                  condition: str = "nominal", arms: int = 1, tabletop: bool = False):
+                  condition: str = "nominal", arms: int = 1, tabletop: bool = False, repaint: bool = False):
     """Labelled frames from the cache, rendered first when missing: of the paper's eight tasks, or with ``tabletop``
-    of the tabletop's (``arms`` 2: :func:`two_arm_frames`, the desk's)."""
+    of the tabletop's (``arms`` 2: :func:`two_arm_frames`, the desk's); ``repaint``: the blocks' colours shuffled per
+    episode."""
     from semgoal_core.tasks import TABLETOP_TASKS, TASKS
     from semgoal_sim.perception_data import LabelledFrames, labelled_frames
 
     kind = "frames" if arms == 1 else "two-arm-frames"
     kind = f"tabletop-{kind}" if tabletop else kind
+    kind = f"repainted-{kind}" if repaint else kind
     path = cache / f"{kind}-seed{seed}-n{count}-{size[0]}x{size[1]}-s{strength:g}-{condition}.npz"
     if path.exists():
         return LabelledFrames.load(path)
     tasks = tuple(TABLETOP_TASKS if tabletop else TASKS)
-    frames = (labelled_frames(count, seed, size, strength, condition, progress=True, tasks=tasks) if arms == 1
-              else two_arm_frames(count, seed, size, strength))
+    if arms == 1:
+        frames = labelled_frames(count, seed, size, strength, condition, progress=True, tasks=tasks, repaint=repaint)
+    else:
+        frames = two_arm_frames(count, seed, size, strength)
     cache.mkdir(parents=True, exist_ok=True)
     frames.save(path)
     return frames
@@ -135,7 +139,8 @@ def main(argv: list[str]) -> int:
                                                    recipe["randomisation_strength"], args.cache, arms=2))
     if args.tabletop_images:
         frames = interleaved(frames, cached_frames(args.tabletop_images, args.tabletop_seed, size,
-                                                   recipe["randomisation_strength"], args.cache, tabletop=True))
+                                                   recipe["randomisation_strength"], args.cache, tabletop=True,
+                                                   repaint=recipe["tabletop_repaint"]))
     rendered = time.perf_counter() - started
     if args.literal_net:
         return train_literal_alternative(frames, args.out.parent / "literal_net", args.epochs, argv)
@@ -144,7 +149,8 @@ def main(argv: list[str]) -> int:
     summary = train_voter(frames, args.out, VoterRecipe(**voter), VoterConfig(**recipe["network"]))
     summary.update(images=args.images, seed=args.seed, two_arm_images=args.two_arm_images,
                    two_arm_seed=args.two_arm_seed, tabletop_images=args.tabletop_images,
-                   tabletop_seed=args.tabletop_seed, camera_size=list(size),
+                   tabletop_seed=args.tabletop_seed, tabletop_repaint=recipe["tabletop_repaint"],
+                   camera_size=list(size),
                    randomisation_strength=recipe["randomisation_strength"],
                    render_s=round(rendered, 1), total_s=round(time.perf_counter() - started, 1),
                    provenance=provenance("./semgoal train-perception " + " ".join(argv), args.seed))
@@ -196,6 +202,8 @@ def plot_curve(csv_path: Path, png_path: Path) -> None:
 
 def write_model_card(folder: Path, summary: dict) -> None:
     final, recipe = summary["final"], summary["recipe"]
+    repainted = (", the blocks' colours shuffled per episode so that every colour is seen in every place, the bin too"
+                 if summary.get("tabletop_repaint") else "")
     (folder / "MODEL_CARD.md").write_text(f"""# Block voter
 
 A fully convolutional network (two levels down and up, {summary['config']['width']} channels at full
@@ -207,9 +215,9 @@ each block's votes. Inputs: colour and each pixel's world point (from depth and 
   6 frames per episode, task starts from seed {summary['seed']:,}) and {summary.get('two_arm_images', 0)} more with a
   second Fetch across the table (both arms working the desk's tasks under the expert, task starts from seed
   {summary.get('two_arm_seed', 0):,}: its blue links are not a blue block) and {summary.get('tabletop_images', 0)} of the
-  tabletop (its eleven tasks, eight colours and towers, task starts from seed {summary.get('tabletop_seed', 0):,}), with
-  the look randomised per episode
-  (light strength and tint, camera 2 cm / 2 degrees, block shades, table colour, depth noise and drop-outs; strength
+  tabletop (its eleven tasks, eight colours and towers, task starts from seed
+  {summary.get('tabletop_seed', 0):,}{repainted}), with the look randomised per episode (light
+  strength and tint, camera 2 cm / 2 degrees, block shades, table colour, depth noise and drop-outs; strength
   {summary['randomisation_strength']}). Labels are the simulator's: block centres and per-pixel block ids.
 - **Training**: {recipe['epochs']} epochs of {recipe['batch']}-crop batches ({recipe['crop'][0]}x{recipe['crop'][1]},
   {recipe['block_crop_fraction']:.0%} around a block), AdamW with a one-cycle rate up to {recipe['learning_rate']}, seed

@@ -16,8 +16,8 @@ block that no hand is near cannot jump: a detection far from where its track sta
 blue, and its links near another block have read as the blue block) until it persists for :data:`DOUBT_FRAMES`
 frames, as a block that really fell or was knocked does. Any other unseen block stays where it was, presumed still,
 its uncertainty growing each frame. After :data:`LOST_FRAMES` unseen frames it is reported lost, with its last
-estimate, never dropped. No block lies lower than the table or the bin's floor under it lets it, and none unseen
-beyond the table's edges stays above the floor.
+estimate, never dropped. No block lies lower than the table or the bin's floor under it lets it, none sinks into the
+block it stands on, and none unseen beyond the table's edges stays above the floor.
 """
 
 from __future__ import annotations
@@ -175,6 +175,7 @@ class BlockTracker:
         """Fold one frame's detections in; ``hands``: every arm's hand, the own arm's first; ``frames`` control
         steps since the last update."""
         dt = self.dt * frames
+        stacked = self._stacked()
         seen = self._believable({d.colour: d for d in found if d.colour in self.tracks}, dt)
         for colour, track in self.tracks.items():
             detection, rested = seen.get(colour), track.rest_position  # before this frame: the fingers may move it
@@ -202,7 +203,28 @@ class BlockTracker:
                 self._carry(track, hand, detection, 0)
             if track.status != TrackStatus.NEVER_SEEN:
                 self._above_furniture(track)
+        self._stacks_stand(stacked)
         return self.tracks
+
+    def _stacked(self) -> list[tuple[Track, Track]]:
+        """(upper, lower) of the free blocks that stand one on the other now, lowest first: the upper's centre over the
+        lower's top face, one block higher (:data:`LANDING_SLACK` aside)."""
+        free = [track for track in self.tracks.values() if track.hand is None and track.status != TrackStatus.NEVER_SEEN]
+        pairs = [(upper, lower) for upper in free for lower in free
+                 if (np.abs(upper.position[:2] - lower.position[:2]) < BLOCK_HALF_SIZE).all()
+                 and abs(upper.position[2] - lower.position[2] - 2 * BLOCK_HALF_SIZE) < LANDING_SLACK]
+        return sorted(pairs, key=lambda pair: pair[1].position[2])
+
+    def _stacks_stand(self, stacked: list[tuple[Track, Track]]) -> None:
+        """A block that stood on another still does while no hand holds either and it is still over it: the fingers
+        coming down on a tower's top block hide its top and push its votes down, and its estimate had sunk 4 cm into
+        the block under it; the hand, sent there, pressed on the tower and it fell (Unstack-6 from the camera)."""
+        for upper, lower in stacked:
+            if (upper.hand is None and lower.hand is None
+                    and (np.abs(upper.position[:2] - lower.position[:2]) < BLOCK_HALF_SIZE).all()
+                    and upper.position[2] < lower.position[2] + 2 * BLOCK_HALF_SIZE):
+                upper.position[2] = lower.position[2] + 2 * BLOCK_HALF_SIZE
+                upper.velocity[2] = max(upper.velocity[2], 0.0)
 
     def _holder(self, colour: int, position: np.ndarray, hands: Sequence[Hand]) -> int | None:
         """The hand that would hold block ``colour`` at ``position``: one closed on it, carrying no other block (a hand

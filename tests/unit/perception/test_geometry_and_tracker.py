@@ -379,3 +379,22 @@ def test_a_lost_block_is_not_taken_to_another_blocks_place_by_stray_votes_there(
         assert np.allclose(tracks[0].position, pink) and tracks[0].status == TrackStatus.LOST
     moved = np.array([1.2, 0.9, ON_BIN_FLOOR])  # seen apart from every other block, it is found again at once
     assert tracker.update([seen(0, moved), seen(1, purple)], AWAY)[0].status == TrackStatus.VISIBLE
+
+
+def test_a_block_standing_on_another_does_not_sink_into_it_while_the_fingers_come_down_on_it() -> None:
+    """The fingers coming down on a tower's top block hide its top and push its votes down: its estimate sank 4 cm into
+    the block under it, and the hand, sent there, pressed on the tower until it fell."""
+    tracker = BlockTracker([0, 1, 2])
+    bottom = np.array([1.26, 0.62, TABLE_TOP + BLOCK_HALF_SIZE])
+    up = np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE])
+    middle, top = bottom + up, bottom + 2 * up
+    tracker.update([seen(0, bottom), seen(1, middle), seen(2, top)], AWAY)
+    hand = [Hand(top + np.array([0.0, 0.0, 0.06]), STILL, 0.1)]  # open, coming down
+    for sunk in np.linspace(0.0, 0.04, 10):
+        tracks = tracker.update([seen(0, bottom), seen(1, middle), seen(2, top - np.array([0.0, 0.0, sunk]))], hand)
+    assert np.isclose(tracks[2].position[2], tracks[1].position[2] + 2 * BLOCK_HALF_SIZE)
+    assert np.isclose(tracks[1].position[2], middle[2], atol=0.002)
+    beside = top + np.array([0.06, 0.0, 0.0]) - 2 * up  # taken off and put on the table beside: it goes
+    for _ in range(DOUBT_FRAMES + 2):
+        tracks = tracker.update([seen(0, bottom), seen(1, middle), seen(2, beside)], hand)
+    assert np.allclose(tracks[2].position, beside, atol=0.005)

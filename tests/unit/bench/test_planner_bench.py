@@ -59,4 +59,6 @@ def test_our_runner_times_both_phases(tmp_path: Path) -> None:
     prob.write_text(problem(4, seed=1))
     row = run_one(sys.executable, OURS_RUNNER, DOMAIN_PATH, prob, "astar", "hmax", repeats=2, timeout=60)
     assert row["status"] == "ok" and row["length"] == 8
-    assert 0 < row["parse_ground_ms"] < row["median_ms"] and 0 < row["search_ms"] < row["median_ms"]
+    # parse + ground is timed again in a process of its own, so it may exceed a whole run's median on a busy machine
+    assert row["parse_ground_ms"] > 0 and len(row["parse_ground_runs"]) == 2
+    assert 0 < row["search_ms"] < row["median_ms"]

@@ -151,6 +151,12 @@ def _within_the_hand(offset: np.ndarray) -> None:
     offset[2] = np.clip(offset[2], -reach_z, reach_z)
 
 
+def _over_top_face(upper: np.ndarray, lower: np.ndarray) -> bool:
+    """Whether a block centred at ``upper`` has its centre over the top face of one centred at ``lower`` (it can rest
+    on it; overlapping less, it tips off)."""
+    return bool((np.abs(upper[:2] - lower[:2]) < BLOCK_HALF_SIZE).all())
+
+
 def furniture_height(xy: np.ndarray, bin_geometry: BinGeometry | None) -> float | None:
     """The top of what stands under ``xy`` (m): the bin's floor inside its walls, else the table; None beyond the
     table's edges."""
@@ -211,7 +217,7 @@ class BlockTracker:
         lower's top face, one block higher (:data:`LANDING_SLACK` aside)."""
         free = [track for track in self.tracks.values() if track.hand is None and track.status != TrackStatus.NEVER_SEEN]
         pairs = [(upper, lower) for upper in free for lower in free
-                 if (np.abs(upper.position[:2] - lower.position[:2]) < BLOCK_HALF_SIZE).all()
+                 if _over_top_face(upper.position, lower.position)
                  and abs(upper.position[2] - lower.position[2] - 2 * BLOCK_HALF_SIZE) < LANDING_SLACK]
         return sorted(pairs, key=lambda pair: pair[1].position[2])
 
@@ -220,8 +226,7 @@ class BlockTracker:
         coming down on a tower's top block hide its top and push its votes down, and its estimate had sunk 4 cm into
         the block under it; the hand, sent there, pressed on the tower and it fell (Unstack-6 from the camera)."""
         for upper, lower in stacked:
-            if (upper.hand is None and lower.hand is None
-                    and (np.abs(upper.position[:2] - lower.position[:2]) < BLOCK_HALF_SIZE).all()
+            if (upper.hand is None and lower.hand is None and _over_top_face(upper.position, lower.position)
                     and upper.position[2] < lower.position[2] + 2 * BLOCK_HALF_SIZE):
                 upper.position[2] = lower.position[2] + 2 * BLOCK_HALF_SIZE
                 upper.velocity[2] = max(upper.velocity[2], 0.0)
@@ -317,18 +322,21 @@ class BlockTracker:
         blocks under it (their tops no higher than its bottom, :data:`LANDING_SLACK` aside) and lies there, until the
         camera sees it elsewhere. It rests on a block only with its centre over that block's top face; overlapping one
         less, it tips off it and lands beside it (a block let go 3 cm off a block's centre in a crowded bin slid off it
-        onto the floor, while its estimate stayed on top, above the rim, and the hand was sent to put it in again)."""
+        onto the floor, while its estimate stayed on top, above the rim, and the hand was sent to put it in again).
+        A block with its centre over a lower block's top face lands on it however deep the estimates overlap: the
+        hand brought it from above, so it cannot be inside it (green, let go onto red with its estimate 2 cm low,
+        "fell" to the table inside red, and the planner, reading red on green, lifted red with green on it: Swap-2)."""
         xy, centre = track.position[:2], track.position[2]
         under = [other for other in self.tracks.values()
                  if other is not track and other.hand is None and np.isfinite(other.position).all()
-                 and other.position[2] + BLOCK_HALF_SIZE <= centre - BLOCK_HALF_SIZE + LANDING_SLACK
-                 and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()]
-        tops = [other.position[2] + BLOCK_HALF_SIZE for other in under
-                if (np.abs(other.position[:2] - xy) < BLOCK_HALF_SIZE).all()]
+                 and (np.abs(other.position[:2] - xy) < 2 * BLOCK_HALF_SIZE).all()
+                 and (other.position[2] + BLOCK_HALF_SIZE <= centre - BLOCK_HALF_SIZE + LANDING_SLACK
+                      or (_over_top_face(track.position, other.position) and other.position[2] < centre))]
+        tops = [other.position[2] + BLOCK_HALF_SIZE for other in under if _over_top_face(track.position, other.position)]
         furniture = furniture_height(xy, self.bin_geometry)
         supports = tops if furniture is None else [furniture, *tops]
         if supports:  # beyond the table's edges, with nothing under it, it falls out of reach: the camera will say where
-            track.position[2] = min(centre, max(supports) + BLOCK_HALF_SIZE)
+            track.position[2] = max(supports) + BLOCK_HALF_SIZE
         for other in under:  # one it overlaps below its landing, it tipped off: beside it
             if other.position[2] > track.position[2] - BLOCK_HALF_SIZE:
                 away = xy - other.position[:2]

@@ -329,6 +329,15 @@ def test_a_block_let_go_unseen_lands_on_the_block_under_it_or_on_the_table() -> 
     assert np.allclose(track.position, [1.36, 0.7, TABLE_TOP + BLOCK_HALF_SIZE])
 
 
+def test_a_block_let_go_with_its_estimate_sunk_into_the_block_under_it_lands_on_that_block() -> None:
+    """Green, let go onto red with its estimate 2 cm low (its bottom 2 cm inside red's top), had fallen to the table,
+    inside red, and the planner read red on green (Swap-2 from the camera)."""
+    below = np.array([1.3, 0.7, 0.425])
+    tracker = BlockTracker([0, 1])
+    track = carried_then_let_go(tracker, [1.1, 0.7, 0.425], below + np.array([0.01, 0.0, 0.0]), [seen(1, below)])
+    assert np.allclose(track.position, below + np.array([0.01, 0.0, 2 * BLOCK_HALF_SIZE]))
+
+
 def test_a_block_let_go_lower_than_a_neighbours_top_lands_beside_it() -> None:
     """Let go 1 cm above the bin's floor over a neighbour's edge, a block stayed there, neither on the floor nor on the
     neighbour, where ``in_bin`` was unsure."""

@@ -2,9 +2,11 @@
 ``eval --via-ros --record``), read back with the ``mcap`` reader and ``mcap-ros2-support``'s decoder.
 
 ``--summary`` prints the episode: task and seed, each plan (a re-plan starts a new one), the sub-goal
-timeline and the outcome. ``--verify`` runs the recorded start and the recorded arm commands through the
-simulator again and checks that every recorded world state is reproduced, step for step (lockstep
-episodes: one command per step). ``--gif`` / ``--mp4`` render the episode from the recorded states.
+timeline and the outcome; where the camera saw the blocks (``--perception camera``), each span of steps in which a
+block's estimate was more than :data:`~semgoal_bringup.experiments.perception_replay.FAR` off the simulator's pose,
+beside the sub-goals: where to look first when a run from the camera fails. ``--verify`` runs the recorded start and
+the recorded arm commands through the simulator again and checks that every recorded world state is reproduced, step
+for step (lockstep episodes: one command per step). ``--gif`` / ``--mp4`` render the episode from the recorded states.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import numpy as np
 from mcap.exceptions import McapError
 
 from semgoal_core.layout import CONTROL_DT
+from semgoal_ros.interfaces import BLOCK_ESTIMATES
 
 POSITION_TOLERANCE = 1e-9
 """Metres: the simulator is deterministic, so a replayed state matches the recorded one to float precision."""
@@ -35,6 +38,8 @@ class Episode:
     """The planner's decisions by (episode, step)."""
     operator: list = field(default_factory=list)
     """Every goal and plan edit the planner answered during the recording, with its answer, in order."""
+    estimates: dict[int, object] = field(default_factory=dict)
+    """The camera's block estimates by step (none when the graph saw by the simulator's poses)."""
     topics: dict[str, int] = field(default_factory=dict)
 
     @property
@@ -70,7 +75,61 @@ def read(path: Path) -> Episode:
             episode.subgoals[(msg.episode, int(msg.step))] = msg
         elif topic.endswith("/operator_events"):
             episode.operator.append(msg)
+        elif topic == BLOCK_ESTIMATES and msg.episode == last:
+            episode.estimates.setdefault(int(msg.step), msg)
     return episode
+
+
+@dataclass(frozen=True)
+class OffSpan:
+    """Steps ``first`` to ``last`` over which the camera's estimate of ``block`` was off the simulator's pose by more
+    than FAR, at most ``worst`` (m); ``unseen``: it was not in view at the worst of them (occluded, held, lost)."""
+
+    block: str
+    first: int
+    last: int
+    worst: float
+    unseen: bool
+
+
+def off_spans(episode: Episode) -> list[OffSpan]:
+    """Every span of steps in which a block's estimate was far off where the simulator had it, in order of start.
+    A block not seen yet (no estimate) is not counted; one that fell off the table is, until its estimate follows."""
+    from semgoal_bringup.experiments.perception_replay import FAR
+    from semgoal_perception.tracker import TrackStatus
+    from semgoal_ros.messages import block_centres
+
+    spans, open_spans = [], {}
+    for step in sorted(set(episode.estimates) & set(episode.worlds)):
+        truth = block_centres(episode.worlds[step])
+        for estimate in episode.estimates[step].blocks:
+            centre = np.array([estimate.position.x, estimate.position.y, estimate.position.z])
+            error = float(np.linalg.norm(centre - truth[estimate.name])) if np.isfinite(centre).all() else 0.0
+            span = open_spans.get(estimate.name)
+            if error > FAR and span is None:
+                open_spans[estimate.name] = [step, step, error, estimate.status != TrackStatus.VISIBLE]
+            elif error > FAR:
+                span[1] = step
+                if error > span[2]:
+                    span[2], span[3] = error, estimate.status != TrackStatus.VISIBLE
+            elif span is not None:
+                spans.append(OffSpan(estimate.name, *open_spans.pop(estimate.name)))
+    spans += [OffSpan(block, *span) for block, span in open_spans.items()]
+    return sorted(spans, key=lambda span: (span.first, span.block))
+
+
+def _camera_lines(episode: Episode) -> list[str]:
+    from semgoal_bringup.experiments.perception_replay import FAR
+
+    if not episode.estimates:
+        return []
+    spans = off_spans(episode)
+    lines = [f"camera: {len(episode.estimates)} estimates, "
+             + (f"{len(spans)} span(s) of a block more than {FAR * 100:.0f} cm off the sim's pose" if spans
+                else f"every block within {FAR * 100:.0f} cm of the sim's pose")]
+    lines += [f"  steps {span.first:4d}-{span.last:4d}: {span.block} off by up to {span.worst * 100:.1f} cm"
+              f"{' (unseen)' if span.unseen else ''}" for span in spans]
+    return lines
 
 
 def episode_frames(episode: Episode) -> list:
@@ -104,6 +163,7 @@ def summary(episode: Episode) -> str:
     final = episode.plans[-1] if episode.plans else None
     lines.append(f"outcome: {final.status if final else 'no plan'} at step {last.step} "
                  f"({last.step * CONTROL_DT:.1f} s sim time), {final.replans if final else 0} re-plans")
+    lines += _camera_lines(episode)
     lines.append("topics: " + ", ".join(f"{t} {n}" for t, n in sorted(episode.topics.items())))
     return "\n".join(lines)
 

@@ -1,0 +1,53 @@
+"""`replay --summary` on a recording from the camera: the spans of steps in which a block's estimate was far off the
+simulator's pose, built from real message objects as the recorder's decoder gives them."""
+
+import numpy as np
+
+from semgoal_bringup.experiments.perception_replay import FAR
+from semgoal_bringup.tools.replay import Episode, OffSpan, off_spans, summary
+from semgoal_msgs.msg import BlockEstimate, BlockEstimates, WorldState
+from semgoal_perception.tracker import TrackStatus
+from semgoal_ros.messages import set_blocks
+
+TRUE = {"red": np.array([1.2, 0.6, 0.425]), "green": np.array([1.3, 0.7, 0.425])}
+
+
+def world(step: int) -> WorldState:
+    msg = WorldState(step=step, scene="two_blocks", task="MC-2", seed=7)
+    set_blocks(msg, TRUE, np.array(list(TRUE.values())), np.tile([1.0, 0, 0, 0], (2, 1)), np.zeros((2, 6)))
+    return msg
+
+
+def estimates(step: int, red_off: float, red_status: int = TrackStatus.VISIBLE) -> BlockEstimates:
+    msg = BlockEstimates(step=step)
+    for name, centre in TRUE.items():
+        estimate = BlockEstimate(name=name, status=TrackStatus.VISIBLE)
+        at = centre + (np.array([red_off, 0.0, 0.0]) if name == "red" else 0.0)
+        estimate.position.x, estimate.position.y, estimate.position.z = (float(v) for v in at)
+        msg.blocks.append(estimate)
+        if name == "red":
+            estimate.status = red_status
+    return msg
+
+
+def test_a_block_far_off_over_some_steps_is_one_span_with_its_worst_error_and_whether_it_was_seen_then() -> None:
+    episode = Episode()
+    offs = [0.0, 0.0, 0.04, 0.06, 0.0, 0.05]  # off at steps 2-3, back, off again from step 5 to the end
+    for step, off in enumerate(offs):
+        episode.worlds[step] = world(step)
+        episode.estimates[step] = estimates(step, off, TrackStatus.OCCLUDED if step == 3 else TrackStatus.VISIBLE)
+    spans = off_spans(episode)
+    assert [(s.block, s.first, s.last, s.unseen) for s in spans] == [("red", 2, 3, True), ("red", 5, 5, False)]
+    assert np.isclose(spans[0].worst, 0.06) and isinstance(spans[0], OffSpan)
+    text = summary(episode)
+    assert f"2 span(s) of a block more than {FAR * 100:.0f} cm off" in text
+    assert "steps    2-   3: red off by up to 6.0 cm (unseen)" in text
+
+
+def test_estimates_within_the_margin_read_as_such_and_a_run_without_the_camera_says_nothing() -> None:
+    episode = Episode()
+    for step in range(3):
+        episode.worlds[step] = world(step)
+    assert "camera:" not in summary(episode)
+    episode.estimates = {step: estimates(step, FAR / 2) for step in range(3)}
+    assert off_spans(episode) == [] and "every block within 3 cm of the sim's pose" in summary(episode)

@@ -59,7 +59,8 @@ def read(path: Path) -> Episode:
     if not worlds:
         raise ValueError(f"{path} holds no world state")
     last = max(m.episode for _, m in worlds)
-    since = min(t for t, m in worlds if m.episode == last)  # commands carry no episode: keep those sent after its start
+    since = min(t for t, m in worlds if m.episode == last)  # commands and plans carry no episode: keep those sent
+    # after its start (the episode before's plan, latched, reaches the recorder first)
     episode = Episode()
     for topic, log_time, msg in messages:
         episode.topics[topic] = episode.topics.get(topic, 0) + 1
@@ -69,7 +70,7 @@ def read(path: Path) -> Episode:
             episode.joints[(msg.header.stamp.sec, msg.header.stamp.nanosec)] = dict(zip(msg.name, msg.position, strict=True))
         elif topic.endswith("/arm_command") and log_time >= since:
             episode.commands.setdefault(int(msg.step), msg)
-        elif topic.endswith("/plan"):
+        elif topic.endswith("/plan") and log_time >= since:
             episode.plans.append(msg)
         elif topic.endswith("/subgoal") and msg.episode == last:
             episode.subgoals[(msg.episode, int(msg.step))] = msg

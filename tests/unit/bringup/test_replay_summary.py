@@ -1,5 +1,6 @@
-"""`replay --summary` on a recording from the camera: the spans of steps in which a block's estimate was far off the
-simulator's pose, built from real message objects as the recorder's decoder gives them."""
+"""`replay --summary`: on a recording from the camera, the spans of steps in which a block's estimate was far off the
+simulator's pose, built from real message objects as the recorder's decoder gives them; and the plans of the recorded
+episode alone."""
 
 import numpy as np
 
@@ -51,3 +52,32 @@ def test_estimates_within_the_margin_read_as_such_and_a_run_without_the_camera_s
     assert "camera:" not in summary(episode)
     episode.estimates = {step: estimates(step, FAR / 2) for step in range(3)}
     assert off_spans(episode) == [] and "every block within 3 cm of the sim's pose" in summary(episode)
+
+
+def test_the_episode_befores_plan_latched_to_the_recorder_is_not_this_episodes(tmp_path) -> None:
+    """The planner's last plan is latched: a recorder started for the next episode gets it first, before the reset."""
+    from mcap.writer import Writer
+    from rclpy.serialization import serialize_message
+
+    from semgoal_bringup.tools.replay import read
+    from semgoal_msgs.msg import Plan, SubGoal
+    from semgoal_ros import interfaces as topics
+    from semgoal_ros.recording import message_definition
+
+    path = tmp_path / "episode.mcap"
+    with path.open("wb") as stream:
+        writer = Writer(stream)
+        writer.start(profile="ros2", library="test")
+        channels = {}
+        for topic, type_name in ((topics.WORLD_STATE, "semgoal_msgs/msg/WorldState"), (topics.PLAN, "semgoal_msgs/msg/Plan")):
+            schema = writer.register_schema(type_name, "ros2msg", message_definition(type_name).encode())
+            channels[topic] = writer.register_channel(topic, "cdr", schema)
+        before = Plan(goal="old", replans=3, status="failed", steps=[SubGoal(action="pick(red)")])
+        now = Plan(goal="new", status="executing", steps=[SubGoal(action="pick(green)")])
+        for time, (topic, msg) in enumerate(((topics.PLAN, before), (topics.WORLD_STATE, world(0)),
+                                             (topics.PLAN, now), (topics.WORLD_STATE, world(1)))):
+            writer.add_message(channels[topic], log_time=time, data=serialize_message(msg), publish_time=time)
+        writer.finish()
+    episode = read(path)
+    assert [plan.goal for plan in episode.plans] == ["new"]
+    assert "re-plan 3" not in summary(episode) and "plan for new: 0. pick(green)" in summary(episode)

@@ -11,7 +11,7 @@ from semgoal_core.geometry import TABLE_TOP
 from semgoal_core.names import PlanStatus, StepStatus
 from semgoal_core.settling import moving_blocks
 from semgoal_core.vocabulary import LAYOUTS, SCENES, Literal, evaluate, fallen_blocks
-from semgoal_msgs.msg import Plan, Predicate, SemanticState, WorldState
+from semgoal_msgs.msg import BlockEstimates, Plan, Predicate, SemanticState, WorldState
 
 
 def literal(predicate: Predicate) -> Literal:
@@ -51,6 +51,11 @@ def block_velocities(msg: WorldState) -> np.ndarray:
 def block_centres(msg: WorldState) -> dict[str, np.ndarray]:
     """Each block's centre (m) by name."""
     return dict(zip(msg.block_names, block_poses(msg)[:, :3], strict=True))
+
+
+def estimated_blocks(msg: BlockEstimates) -> list[tuple[str, np.ndarray, int]]:
+    """Each block the camera estimated: name, centre (m; NaN before it is first seen), status."""
+    return [(b.name, np.array([b.position.x, b.position.y, b.position.z]), b.status) for b in msg.blocks]
 
 
 def doubles(values) -> array_type:

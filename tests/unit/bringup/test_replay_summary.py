@@ -22,12 +22,10 @@ def world(step: int) -> WorldState:
 def estimates(step: int, red_off: float, red_status: int = TrackStatus.VISIBLE) -> BlockEstimates:
     msg = BlockEstimates(step=step)
     for name, centre in TRUE.items():
-        estimate = BlockEstimate(name=name, status=TrackStatus.VISIBLE)
-        at = centre + (np.array([red_off, 0.0, 0.0]) if name == "red" else 0.0)
-        estimate.position.x, estimate.position.y, estimate.position.z = (float(v) for v in at)
+        red = name == "red"
+        estimate = BlockEstimate(name=name, status=red_status if red else TrackStatus.VISIBLE)
+        estimate.position.x, estimate.position.y, estimate.position.z = (float(v) for v in centre + np.array([red_off * red, 0, 0]))
         msg.blocks.append(estimate)
-        if name == "red":
-            estimate.status = red_status
     return msg
 
 

@@ -37,7 +37,7 @@ from semgoal_core.names import Assignee, StepStatus, agent
 from semgoal_core.vocabulary import SCENES
 from semgoal_planner.goals import parse_goal
 from semgoal_ros.client import GraphUnavailableError
-from semgoal_ros.messages import block_centres, block_poses, literal
+from semgoal_ros.messages import block_centres, block_poses, estimated_blocks, literal
 from semgoal_ros.package_data import share_path
 from semgoal_ros.parameters import Param
 
@@ -103,9 +103,7 @@ class SeenByCamera:
             return None
         k = self.info.k
         camera = PinholeCamera(k[0], k[4], k[2], k[5], self.pose)
-        blocks = [(b.name, np.array([b.position.x, b.position.y, b.position.z]), b.status)
-                  for b in (self.estimates.blocks if self.estimates else [])]
-        return draw_estimates(rgb, camera, blocks)
+        return draw_estimates(rgb, camera, estimated_blocks(self.estimates) if self.estimates else [])
 
 
 class Console:

@@ -98,23 +98,23 @@ def off_spans(episode: Episode) -> list[OffSpan]:
     A block not seen yet (no estimate) is not counted; one that fell off the table is, until its estimate follows."""
     from semgoal_bringup.experiments.perception_replay import FAR
     from semgoal_perception.tracker import TrackStatus
-    from semgoal_ros.messages import block_centres
+    from semgoal_ros.messages import block_centres, estimated_blocks
 
     spans, open_spans = [], {}
     for step in sorted(set(episode.estimates) & set(episode.worlds)):
         truth = block_centres(episode.worlds[step])
-        for estimate in episode.estimates[step].blocks:
-            centre = np.array([estimate.position.x, estimate.position.y, estimate.position.z])
-            error = float(np.linalg.norm(centre - truth[estimate.name])) if np.isfinite(centre).all() else 0.0
-            span = open_spans.get(estimate.name)
-            if error > FAR and span is None:
-                open_spans[estimate.name] = [step, step, error, estimate.status != TrackStatus.VISIBLE]
-            elif error > FAR:
+        for name, centre, status in estimated_blocks(episode.estimates[step]):
+            error = float(np.linalg.norm(centre - truth[name])) if np.isfinite(centre).all() else 0.0
+            span = open_spans.get(name)
+            if error <= FAR:
+                if span is not None:
+                    spans.append(OffSpan(name, *open_spans.pop(name)))
+            elif span is None:
+                open_spans[name] = [step, step, error, status != TrackStatus.VISIBLE]
+            else:
                 span[1] = step
                 if error > span[2]:
-                    span[2], span[3] = error, estimate.status != TrackStatus.VISIBLE
-            elif span is not None:
-                spans.append(OffSpan(estimate.name, *open_spans.pop(estimate.name)))
+                    span[2:] = error, status != TrackStatus.VISIBLE
     spans += [OffSpan(block, *span) for block, span in open_spans.items()]
     return sorted(spans, key=lambda span: (span.first, span.block))
 

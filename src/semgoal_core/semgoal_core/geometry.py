@@ -38,6 +38,15 @@ def grip_ceiling(scene: Scene) -> float:
     return TABLE_TOP + scene.reach_height - GRIP_BELOW_BODY
 
 
+def table_edge(xy: np.ndarray) -> str:
+    """The edge of the table a point beyond it (or nearest it) lies past, as the first robot sees the table: ``near``
+    and ``far`` across x (it faces +x), ``left`` and ``right`` across y."""
+    over = np.abs(np.asarray(xy[:2], dtype=float) - TABLE_CENTER) - TABLE_HALF_SIZE
+    if over[0] >= over[1]:
+        return "near" if xy[0] < TABLE_CENTER[0] else "far"
+    return "left" if xy[1] > TABLE_CENTER[1] else "right"
+
+
 def clear_of(candidates: np.ndarray, obstacles: list[np.ndarray], clearance: float = MIN_CENTRE_DISTANCE) -> np.ndarray:
     """Spots where a block fits and the fingers, opening there, touch no obstacle."""
     if not obstacles:

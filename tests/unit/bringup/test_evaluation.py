@@ -5,11 +5,12 @@ import json
 import subprocess
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from semgoal_bringup.experiments import evaluation
 from semgoal_bringup.experiments.episodes import make_agent
-from semgoal_core.tasks import TASK_STEP_BUDGET
+from semgoal_core.tasks import TASK_STEP_BUDGET, get_task
 
 ROOT = Path(__file__).parents[3]
 
@@ -158,6 +159,30 @@ def test_the_graphs_episodes_are_compared_with_the_same_starts_in_process(capsys
     assert "1 of 3 episodes ended as in process" in said
     assert "seed 8: via ROS succeeded after 96 steps, in process succeeded after 95 steps" in said
     assert "seed 9: not run in process" in said
+
+
+def test_a_block_knocked_off_the_table_is_traced_to_the_edge_the_step_and_the_robots_step() -> None:
+    """An in-process episode records the first block that left the table: which, over which edge, when and during
+    which robot step; the miss says so, and ``--misses`` lists it per agent, training seed, task and start."""
+    from semgoal_bringup.experiments.episodes import Outcome
+
+    agent = make_agent("hierarchical", "two_blocks")
+
+    def knock_red_off(world) -> None:  # a hand sweeping red over the table's near edge at the fifth control step
+        if world.step_count == 5:
+            world.set_block_pose("red", np.array([0.98, 0.63, 0.3]))
+
+    start = get_task("MA-2").initial_state(3_000_000)[0]
+    outcome = agent.run_goals(start, ("MA-2",), 3_000_000, label="MA-2", on_step=knock_red_off)
+    assert not outcome.success and outcome.fell_off
+    assert outcome.fall.block == "red" and outcome.fall.step == 5 and outcome.fall.during
+    assert outcome.why.startswith("a block ended off the table: red went over the table's near edge at (0.98, 0.63) "
+                                  "at control step 5, during ")
+    row = evaluation.Row("hierarchical")
+    row.add("shipped", outcome)
+    row.add("shipped", Outcome("MA-2", 3_000_001, True, 80))
+    assert evaluation.missed_in_process([row], ["MA-2"]) == [
+        f"missed: hierarchical shipped MA-2 from seed 3000000: {outcome.why}"]
 
 
 def test_the_starts_the_graph_missed_from_the_camera_are_named(capsys) -> None:

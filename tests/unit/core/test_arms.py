@@ -90,3 +90,13 @@ def test_a_block_in_the_other_arms_hand_is_shown_at_rest_on_the_table_under_it()
     assert np.array_equal(shown, layout.observation("two_blocks", grip, still, fingers, still[:2], on_table,
                                                     np.zeros_like(velocities)))
     assert positions[0, 2] == 0.62 and velocities[0, 2] == 0.2  # the caller's arrays untouched
+
+
+def test_a_point_past_the_table_is_named_by_the_edge_it_went_over() -> None:
+    from semgoal_core.geometry import table_edge
+
+    assert table_edge(np.array([0.98, 0.63])) == "near"  # the robot's side: it faces +x
+    assert table_edge(np.array([1.63, 1.02])) == "far"
+    assert table_edge(np.array([1.20, 0.10])) == "right"
+    assert table_edge(np.array([1.35, 1.20])) == "left"
+    assert table_edge(np.array([1.06, 0.75])) == "near"  # on the table: the nearest edge

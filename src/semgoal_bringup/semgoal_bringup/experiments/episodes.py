@@ -24,8 +24,9 @@ import numpy as np
 
 from semgoal_bringup.experiments.training import make_env
 from semgoal_core.arms import robot_names
+from semgoal_core.geometry import table_edge
 from semgoal_core.lockstep import lockstep_subgoal
-from semgoal_core.names import PlanStatus
+from semgoal_core.names import PlanStatus, is_person
 from semgoal_core.settling import Settling, held_blocks_asked, moving_blocks
 from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
 from semgoal_planner.executive import Executive, Observation
@@ -35,6 +36,35 @@ from semgoal_policy.agents import get_agent
 from semgoal_policy.controller import Idle, SubgoalController
 from semgoal_sim.rollout import settled
 from semgoal_sim.world import FetchWorld
+
+
+@dataclass(frozen=True)
+class Fall:
+    """The first block that left the table in an episode: where, when, and during (or after) which robot steps."""
+
+    block: str
+    position: tuple[float, float]
+    """Its centre (x, y, m) at the first control step it was seen off the table (below the table top): past the edge it
+    went over, as far as it flew."""
+    step: int
+    during: tuple[str, ...]
+    """Each robot step at work then, with its agent (``pick(blue) by robot``)."""
+    after: tuple[str, ...] = ()
+    """Where none was (a block falls for a few steps, and a step it knocked from may have ended or been dropped by a
+    re-plan meanwhile): the robot steps last at work before."""
+
+    def __str__(self) -> str:
+        x, y = self.position
+        when = (f", during {' and '.join(self.during)}" if self.during else
+                f", after {' and '.join(self.after)}" if self.after else "")
+        return (f"{self.block} went over the table's {table_edge(np.array(self.position))} edge at ({x:.2f}, {y:.2f}) "
+                f"at control step {self.step}{when}")
+
+
+def robot_steps_at_work(executive: Executive) -> tuple[str, ...]:
+    """Each robot step at work now, with its agent (``pick(blue) by robot``)."""
+    return tuple(f"{executive.steps[index].subgoal} by {who}" for who, index in sorted(executive.working.items())
+                 if not is_person(who))
 
 
 @dataclass(frozen=True)
@@ -55,11 +85,22 @@ class Outcome:
     """Control steps over which two agents worked at once (a scripted person or a second arm beside the robot)."""
     arm_contacts: int = 0
     """Physics substeps over which two robot arms touched."""
+    fall: Fall | None = None
+    """The first block that left the table, where the episode watched for one (the hierarchy in process)."""
 
     @property
     def first_step_success(self) -> bool:
         """Success by the first-step rule: the literals held at some step, moving blocks or not."""
         return self.first_held is not None
+
+    @property
+    def why(self) -> str:
+        """Why an episode is no success, in the at-rest rule's words."""
+        if self.fell_off:
+            return "a block ended off the table" + (f": {self.fall}" if self.fall else "")
+        if self.first_held is not None:
+            return f"the goal held at step {self.first_held} but not at rest at the end"
+        return f"the goal never held in {self.steps} control steps ({self.replans} re-plans)"
 
 
 def observe(world: FetchWorld) -> Observation:
@@ -121,7 +162,7 @@ class HierarchicalAgent:
             self._worlds[key] = FetchWorld(self.scene, len(positions), len(self.robots), self.sleep)
         world = self._worlds[key]
         world.reset(positions)
-        success, replans, first_held, executive, overlap = True, 0, None, None, 0
+        success, replans, first_held, executive, overlap, fall, recent = True, 0, None, None, 0, None, ()
         decided_before: dict[str, list | None] = {}  # a goal's first step follows the decision before it, as the
         for goal in goals:  # policy node does
             executive = Executive(SemanticPlanner(self.scene), concurrent=concurrent, robots=self.robots,
@@ -153,6 +194,13 @@ class HierarchicalAgent:
                 decided_before = decided_now
                 executive.tick(world.step_count)
                 executive.observe(observe(world))
+                at_work = robot_steps_at_work(executive)
+                if fall is None and executive.observation.fallen:
+                    block = executive.observation.fallen[0]
+                    x, y = world.snapshot().block_positions[world.blocks.index(block), :2]
+                    fall = Fall(block, (round(float(x), 3), round(float(y), 3)), world.step_count, at_work,
+                                () if at_work else recent)
+                recent = at_work or recent
                 if first_held is None and executive.observation.holds(executive.goal):
                     first_held = world.step_count
             replans += executive.replans
@@ -162,7 +210,7 @@ class HierarchicalAgent:
         steps = world.step_count
         linger_holds = self._linger(world, executive.goal, seed, linger) if success and linger and executive else None
         return Outcome(label or " -> ".join(goals), seed, success, steps, replans, first_held, linger_holds,
-                       bool(world.fallen_blocks()), overlap, world.arm_contacts)
+                       bool(world.fallen_blocks()), overlap, world.arm_contacts, fall)
 
     def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
         """Run the arm with no step (what the policy node does once a goal is done: it retreats, keeping what the

@@ -76,6 +76,8 @@ class Tally:
     ends: dict[int, tuple[bool, int]] = field(default_factory=dict)
     """Per task seed: how its episode ended (success at rest, control steps), to compare the graph's episodes
     with the same starts in process."""
+    why: dict[int, str] = field(default_factory=dict)
+    """Per task seed missed: why, in words (:attr:`Outcome.why`; ``--misses`` prints them)."""
 
     def add(self, other: Tally) -> None:
         """Count ``other``'s episodes too (the same seed and task, other episodes: another job's chunk)."""
@@ -86,6 +88,7 @@ class Tally:
                                 else self.first_step_wins + other.first_step_wins)
         self.settled_steps += other.settled_steps
         self.ends.update(other.ends)
+        self.why.update(other.why)
 
 
 @dataclass
@@ -113,6 +116,8 @@ class Row:
         tally.ends[outcome.seed] = (outcome.success, outcome.steps)
         if outcome.success:
             tally.settled_steps.append(outcome.steps)
+        else:
+            tally.why[outcome.seed] = outcome.why
         if not first_step_observed or tally.first_step_wins is None:
             tally.first_step_wins = tally.fell_off = None
         else:
@@ -184,6 +189,14 @@ def missed_starts(row: Row, label: str, task: str) -> list[str]:
     ends = row.per_seed.get(label, {}).get(task, Tally()).ends
     return [f"{task} from seed {seed}: {_ending(False, steps)}" for seed, (success, steps) in sorted(ends.items())
             if not success]
+
+
+def missed_in_process(rows: list[Row], tasks: list[str]) -> list[str]:
+    """Each start an agent missed in process, with why (a block off the table: which, over which edge, when and during
+    which steps), per agent, task and training seed: to trace misses without a one-off script."""
+    return [f"missed: {row.agent} {label} {task} from seed {seed}: {why}"
+            for row in rows for label, by_task in row.per_seed.items() for task in tasks
+            for seed, why in sorted(by_task.get(task, Tally()).why.items())]
 
 
 def print_missed(row: Row, tasks: list[str], label: str) -> None:
@@ -493,6 +506,8 @@ def main(argv: list[str]) -> int:
                         "sleeping islands; off as the actors were trained): in process only")
     parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
+    parser.add_argument("--misses", action="store_true", help="list each start missed in process and why (for a block "
+                        "off the table: which, over which edge, at which control step, during which robot steps)")
     args = parser.parse_args(argv)
     try:
         tasks = parse_tasks(args.tasks)
@@ -536,6 +551,9 @@ def main(argv: list[str]) -> int:
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)
+    if args.misses:
+        for line in missed_in_process([row for row in rows if row.agent != VIA_ROS], tasks):
+            print(line, file=sys.stderr if args.json else sys.stdout)
     if args.out:
         args.out.mkdir(parents=True, exist_ok=True)
         record = provenance(shlex.join(["./semgoal", "eval", *argv]), args.seed)

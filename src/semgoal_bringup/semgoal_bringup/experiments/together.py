@@ -106,21 +106,12 @@ def summary(pairs: list[tuple[Outcome, Outcome]], modes: tuple[str, str] = ("in_
     starts."""
     first, second = mode_summary([p[0] for p in pairs]), mode_summary([p[1] for p in pairs])
     both = [(a.steps, b.steps, b.overlap) for a, b in pairs if a.success and b.success]
-    misses = [{"seed": outcome.seed, "mode": name, "why": why_missed(outcome)}
+    misses = [{"seed": outcome.seed, "mode": name, "why": outcome.why}
               for pair in pairs for name, outcome in zip(modes, pair, strict=True) if not outcome.success]
     return {"episodes": len(pairs), modes[0]: first, modes[1]: second, "misses": misses,
             "ratio_of_medians": second["median_steps"] / first["median_steps"] if both else None,
             "median_ratio": statistics.median(b / a for a, b, _ in both) if both else None,
             "median_overlap_steps": statistics.median(o for *_, o in both) if both else None}
-
-
-def why_missed(outcome: Outcome) -> str:
-    """Why an episode is no success, in the at-rest rule's words."""
-    if outcome.fell_off:
-        return "a block ended off the table"
-    if outcome.first_held is not None:
-        return f"the goal held at step {outcome.first_held} but not at rest at the end"
-    return f"the goal never held in {outcome.steps} control steps ({outcome.replans} re-plans)"
 
 
 def print_summary(result: dict, modes: tuple[str, str]) -> None:

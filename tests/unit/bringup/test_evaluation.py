@@ -185,6 +185,13 @@ def test_a_block_knocked_off_the_table_is_traced_to_the_edge_the_step_and_the_ro
         f"missed: hierarchical shipped MA-2 from seed 3000000: {outcome.why}"]
 
 
+def test_an_episode_out_of_steps_names_the_goals_literals_still_unmet() -> None:
+    start = get_task("MA-2").initial_state(3_000_000)[0]
+    outcome = make_agent("hierarchical", "two_blocks").run_goals(start, ("MA-2",), 3_000_000, budget=3, label="MA-2")
+    assert not outcome.success and outcome.unmet == ("not close(red,green)",)
+    assert outcome.why.endswith(": not close(red,green) did not hold at the end")
+
+
 def test_the_starts_the_graph_missed_from_the_camera_are_named(capsys) -> None:
     from semgoal_bringup.experiments.episodes import Outcome
     from semgoal_bringup.graph import Sight

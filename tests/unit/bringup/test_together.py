@@ -48,9 +48,17 @@ def test_the_summary_names_each_missed_start_and_why(capsys) -> None:
     assert result["misses"] == [
         {"seed": 1, "mode": "two_arms", "why": "a block ended off the table"},
         {"seed": 2, "mode": "one_arm", "why": "the goal never held in 400 control steps (3 re-plans)"},
-        {"seed": 2, "mode": "two_arms", "why": "the goal held at step 60 but not at rest at the end"}]
+        {"seed": 2, "mode": "two_arms", "why": "the goal held at step 60, but not at rest at the end"}]
     together.print_summary(result, ("one_arm", "two_arms"))
     assert "missed: start 2 (one_arm): the goal never held in 400 control steps (3 re-plans)" in capsys.readouterr().out
+
+
+def test_a_miss_names_the_goals_literals_that_did_not_hold_at_the_end() -> None:
+    knocked = Outcome("Tower-4", 3, False, 600, first_held=162, unmet=("above(orange,yellow)",))
+    assert knocked.why == "the goal held at step 162, but above(orange,yellow) did not hold at the end"
+    short = Outcome("Tower-4", 4, False, 600, replans=5, unmet=("above(green,red)", "above(yellow,blue)"))
+    assert short.why == ("the goal never held in 600 control steps (5 re-plans): above(green,red), above(yellow,blue) "
+                         "did not hold at the end")
 
 
 @pytest.mark.slow

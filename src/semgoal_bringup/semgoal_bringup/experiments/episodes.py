@@ -87,6 +87,9 @@ class Outcome:
     """Physics substeps over which two robot arms touched."""
     fall: Fall | None = None
     """The first block that left the table, where the episode watched for one (the hierarchy in process)."""
+    unmet: tuple[str, ...] = ()
+    """The goal's literals that did not hold at the end of a missed episode (the hierarchy in process; for goals one
+    after the other, the one that failed)."""
 
     @property
     def first_step_success(self) -> bool:
@@ -98,9 +101,10 @@ class Outcome:
         """Why an episode is no success, in the at-rest rule's words."""
         if self.fell_off:
             return "a block ended off the table" + (f": {self.fall}" if self.fall else "")
+        unmet = f"{', '.join(self.unmet)} did not hold at the end" if self.unmet else ""
         if self.first_held is not None:
-            return f"the goal held at step {self.first_held} but not at rest at the end"
-        return f"the goal never held in {self.steps} control steps ({self.replans} re-plans)"
+            return f"the goal held at step {self.first_held}, but " + (unmet or "not at rest at the end")
+        return f"the goal never held in {self.steps} control steps ({self.replans} re-plans)" + (f": {unmet}" if unmet else "")
 
 
 def observe(world: FetchWorld) -> Observation:
@@ -209,8 +213,10 @@ class HierarchicalAgent:
                 break
         steps = world.step_count
         linger_holds = self._linger(world, executive.goal, seed, linger) if success and linger and executive else None
+        unmet = () if success or executive is None else tuple(
+            str(literal) for literal in executive.goal if not executive.observation.holds([literal]))
         return Outcome(label or " -> ".join(goals), seed, success, steps, replans, first_held, linger_holds,
-                       bool(world.fallen_blocks()), overlap, world.arm_contacts, fall)
+                       bool(world.fallen_blocks()), overlap, world.arm_contacts, fall, unmet)
 
     def _linger(self, world: FetchWorld, goal: list, seed: int, steps: int) -> bool:
         """Run the arm with no step (what the policy node does once a goal is done: it retreats, keeping what the

@@ -507,7 +507,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
     parser.add_argument("--misses", action="store_true", help="list each start missed in process and why (for a block "
-                        "off the table: which, over which edge, at which control step, during which robot steps)")
+                        "off the table: which, over which edge, at which control step, during which robot steps; else "
+                        "the goal's literals that did not hold at the end)")
     args = parser.parse_args(argv)
     try:
         tasks = parse_tasks(args.tasks)

@@ -29,6 +29,7 @@ from semgoal_core.lockstep import lockstep_subgoal
 from semgoal_core.names import PlanStatus, is_person
 from semgoal_core.settling import Settling, held_blocks_asked, moving_blocks
 from semgoal_core.tasks import TASK_STEP_BUDGET, Task, get_task
+from semgoal_core.vocabulary import SubGoal
 from semgoal_planner.executive import Executive, Observation
 from semgoal_planner.semantic import SemanticPlanner
 from semgoal_policy import actor as actor_io
@@ -61,10 +62,14 @@ class Fall:
                 f"at control step {self.step}{when}")
 
 
-def robot_steps_at_work(executive: Executive) -> tuple[str, ...]:
-    """Each robot step at work now, with its agent (``pick(blue) by robot``)."""
-    return tuple(f"{executive.steps[index].subgoal} by {who}" for who, index in sorted(executive.working.items())
+def robot_steps_at_work(executive: Executive) -> tuple[tuple[str, SubGoal], ...]:
+    """Each robot step at work now: its agent and its sub-goal (worded only where a block falls)."""
+    return tuple((who, executive.steps[index].subgoal) for who, index in sorted(executive.working.items())
                  if not is_person(who))
+
+
+def _worded(steps: tuple[tuple[str, SubGoal], ...]) -> tuple[str, ...]:
+    return tuple(f"{subgoal} by {who}" for who, subgoal in steps)
 
 
 @dataclass(frozen=True)
@@ -202,8 +207,8 @@ class HierarchicalAgent:
                 if fall is None and executive.observation.fallen:
                     block = executive.observation.fallen[0]
                     x, y = world.snapshot().block_positions[world.blocks.index(block), :2]
-                    fall = Fall(block, (round(float(x), 3), round(float(y), 3)), world.step_count, at_work,
-                                () if at_work else recent)
+                    fall = Fall(block, (round(float(x), 3), round(float(y), 3)), world.step_count, _worded(at_work),
+                                () if at_work else _worded(recent))
                 recent = at_work or recent
                 if first_held is None and executive.observation.holds(executive.goal):
                     first_held = world.step_count

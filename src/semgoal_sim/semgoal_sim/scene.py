@@ -10,6 +10,8 @@ copy of the same robot, attached under the name prefix ``robot2/`` across the ta
 from __future__ import annotations
 
 import functools
+import itertools
+from dataclasses import dataclass
 from pathlib import Path
 
 import mujoco
@@ -20,6 +22,8 @@ from semgoal_core.vocabulary import BLOCK_COLOURS, BLOCK_HALF_SIZE, SCENES, BinG
 
 BLOCK_MASS = 2.0
 """kg, as the Fetch benchmark's object0."""
+BLOCK_FRICTION = (1.0, 0.005, 0.0001)
+"""Sliding, torsional, rolling: MuJoCo's defaults, as the benchmark's object0."""
 TOUCHING_LINKS = ("forearm_roll_link", "wrist_flex_link", "wrist_roll_link", "gripper_link",
                   "r_gripper_finger_link", "l_gripper_finger_link")
 """The robot links that can reach the desk; only their meshes collide. Over expert runs of six tasks
@@ -35,6 +39,23 @@ REACHING_LINKS = ("shoulder_pan_link", "shoulder_lift_link", "upperarm_roll_link
 ARM_CONTACT_BITS = (4, 8)
 """Collision bits of each arm's reaching links: an arm's type with its own bit, its affinity with the other's,
 so two arms collide (and are seen to: ``FetchWorld.arm_contacts``) and an arm's links never with each other."""
+
+
+@dataclass(frozen=True)
+class Contact:
+    """MuJoCo contact parameters for one kind of geom pair (``solref``, ``solimp``: MuJoCo's "Solver parameters")."""
+
+    solref: tuple[float, float]
+    solimp: tuple[float, float, float, float, float]
+
+
+STACKING_CONTACT = Contact(solref=(0.005, 1.0), solimp=(0.99, 0.999, 0.001, 0.5, 2.0))
+"""Block on block where towers stand high (``Scene.stiff_stacking``): with MuJoCo's default soft contacts (timeconst
+0.02 s, impedance 0.9-0.95) a tower of six whose upper five blocks overhang the bottom one by 6 mm sinks into the
+contact on its overhanging side, tilts and falls, where a rigid one stands until the overhang reaches the block's
+half size (2.5 cm). With this impedance near 1 and the time constant at 2.5 physics steps (MuJoCo asks for at least
+two) it stands to 2 cm, and blocks at rest stop jittering (``tests/unit/sim/test_stacking.py``). Only block-block
+pairs change: the hand's grasp and the table are the benchmark's, as the actor learned them."""
 
 
 def fetch_asset_dir() -> Path:
@@ -70,10 +91,21 @@ def _add_block(spec: mujoco.MjSpec, name: str) -> None:
         size=[BLOCK_HALF_SIZE] * 3,
         rgba=list(BLOCK_COLOURS[name]),
         mass=BLOCK_MASS,
+        friction=list(BLOCK_FRICTION),
         condim=3,
         conaffinity=1 | BLOCK_CONTACT_BIT,
     )
     body.add_site(name=block_body_name(name), size=[0.005, 0.005, 0.005], rgba=[0, 0, 0, 0])
+
+
+def _stiffen_stacking(spec: mujoco.MjSpec, blocks: tuple[str, ...]) -> None:
+    """Every two blocks meet through an explicit contact pair of :data:`STACKING_CONTACT` instead of the default one
+    (excluded): MuJoCo's way to give one kind of geom pair its own contact parameters."""
+    sliding, torsional, rolling = BLOCK_FRICTION
+    for first, second in itertools.combinations(map(block_body_name, blocks), 2):
+        spec.add_exclude(bodyname1=first, bodyname2=second)
+        spec.add_pair(geomname1=first, geomname2=second, condim=3, friction=[sliding, sliding, torsional, rolling, rolling],
+                      solref=list(STACKING_CONTACT.solref), solimp=list(STACKING_CONTACT.solimp))
 
 
 def _add_bin(spec: mujoco.MjSpec, geometry: BinGeometry) -> None:
@@ -147,6 +179,8 @@ def build_spec(scene: Scene, blocks: tuple[str, ...], arms: int = 1) -> mujoco.M
         _arms_collide(spec, arms)
     for block in blocks:
         _add_block(spec, block)
+    if scene.stiff_stacking:
+        _stiffen_stacking(spec, blocks)
     if scene.bin is not None:
         _add_bin(spec, scene.bin)
     return spec

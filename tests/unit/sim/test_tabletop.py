@@ -2,6 +2,7 @@
 
 import itertools
 
+import mujoco
 import numpy as np
 import pytest
 
@@ -17,6 +18,7 @@ from semgoal_core.tasks import (
 )
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, Literal
 from semgoal_sim.rollout import run_task, settled, solve
+from semgoal_sim.scene import STACKING_CONTACT, block_body_name
 from semgoal_sim.world import FetchWorld
 
 TABLETOP = SCENES["tabletop"]
@@ -57,6 +59,41 @@ def test_the_expert_builds_a_tower_of_six_that_stands() -> None:
         world.step(np.zeros(4))
         assert settled(world, stacked(task.blocks))
     assert world.snapshot().block_positions[:, 2].max() > TABLE_TOP + 5.4 * 2 * BLOCK_HALF_SIZE
+
+
+def _leaning_tower(scene: str, overhang: float) -> FetchWorld:
+    """A tower of six (the first two blocks for a scene of two) whose upper blocks all overhang the bottom one by
+    ``overhang`` (m) along x, after 250 control steps (10 s) with the arm at home."""
+    count = min(6, SCENES[scene].max_blocks)
+    world = FetchWorld(scene, count)
+    world.reset(np.array([[1.30 + (overhang if k else 0.0), 0.60, TABLE_TOP + (2 * k + 1) * BLOCK_HALF_SIZE + 5e-4 * k]
+                          for k in range(count)]))
+    for _ in range(250):
+        world.step(np.zeros(4))
+    return world
+
+
+@pytest.mark.parametrize("overhang", [0.0, 0.01, 0.018])
+def test_a_tower_of_six_stands_while_its_upper_blocks_rest_on_the_bottom_one(overhang: float) -> None:
+    """Their centre of mass is over the bottom block (half size 2.5 cm), so a rigid tower stands; the benchmark's soft
+    contacts let one fall from an overhang of 6 mm."""
+    world = _leaning_tower("tabletop", overhang)
+    assert settled(world, stacked(world.blocks))
+    assert np.abs(world.snapshot().block_positions[1:, 0] - 1.30 - overhang).max() < 0.005
+
+
+def test_a_tower_of_six_falls_once_its_upper_blocks_overhang_the_bottom_one() -> None:
+    assert not _leaning_tower("tabletop", 1.2 * BLOCK_HALF_SIZE).snapshot().block_positions[-1, 2] > TABLE_TOP + 0.2
+
+
+@pytest.mark.parametrize(("scene", "impedance"), [("two_blocks", 0.9), ("tabletop", STACKING_CONTACT.solimp[0])])
+def test_only_the_tabletops_blocks_meet_through_stiff_contacts(scene: str, impedance: float) -> None:
+    """The paper's scenes keep the Fetch benchmark's (MuJoCo's default) contacts, with which Table 1 was measured."""
+    world = _leaning_tower(scene, 0.0)
+    model, data = world.model, world.data
+    blocks = {mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, block_body_name(block)) for block in world.blocks}
+    between = [contact for contact in data.contact[:data.ncon] if {contact.geom1, contact.geom2} <= blocks]
+    assert between and all(contact.solimp[0] == pytest.approx(impedance) for contact in between)
 
 
 @pytest.mark.parametrize("name", ["Tower-5", "Unstack-6", "Sort", "Clean-6"])

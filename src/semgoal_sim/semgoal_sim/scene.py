@@ -51,10 +51,10 @@ class Contact:
 
 STACKING_CONTACT = Contact(solref=(0.005, 1.0), solimp=(0.99, 0.999, 0.001, 0.5, 2.0))
 """Block on block where towers stand high (``Scene.stiff_stacking``): with MuJoCo's default soft contacts (timeconst
-0.02 s, impedance 0.9-0.95) a tower of six whose upper five blocks overhang the bottom one by 6 mm sinks into the
+0.02 s, impedance 0.9-0.95) a tower of six whose upper five blocks overhang the bottom one by 8 mm sinks into the
 contact on its overhanging side, tilts and falls, where a rigid one stands until the overhang reaches the block's
 half size (2.5 cm). With this impedance near 1 and the time constant at 2.5 physics steps (MuJoCo asks for at least
-two) it stands to 2 cm, and blocks at rest stop jittering (``tests/unit/sim/test_stacking.py``). Only block-block
+two) it stands to 2 cm, and blocks at rest stop jittering (``tests/unit/sim/test_tabletop.py``). Only block-block
 pairs change: the hand's grasp and the table are the benchmark's, as the actor learned them."""
 
 

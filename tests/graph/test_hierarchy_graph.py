@@ -124,6 +124,7 @@ def test_policy_node_restarted_mid_task_and_the_task_resumes(graph, nodes: NodeP
     assert result.control_steps > frozen[0]
 
 
+@pytest.mark.parametrize("graph", [{"require_approval": True}], indirect=True)
 def test_control_steps_are_the_worlds_steps_from_the_goals_start_to_its_end_across_a_replan_and_a_reset(graph) -> None:
     """The result counts the world's control steps between the planner's first decision on the goal and the one
     that found it held at rest, read from the step stamps of every decision, with an operator's early re-plan and
@@ -133,13 +134,14 @@ def test_control_steps_are_the_worlds_steps_from_the_goals_start_to_its_end_acro
     client.node.create_subscription(SubGoal, topics.SUBGOAL, decisions.append, topics.RECORDING)
     interventions = []
 
-    def replan_and_reset_early() -> None:
-        if not interventions and client.get_plan().plan.current >= 1:
-            interventions.append(client.edit("replan").success)
-            client.reset(TASK, SEED + 1, attempts=1)  # the goal goes on in a new world of the same blocks
-            interventions.append(client.episode)
+    def replan_and_reset(_: str) -> None:
+        interventions.append(client.edit("replan").success)
+        client.reset(TASK, SEED + 1, attempts=1)  # the goal goes on in a new world of the same blocks
+        interventions.append(client.episode)
 
-    result = client.execute(TASK, while_running=replan_and_reset_early, timeout=120)
+    hook, done = _with_the_block_held(client, replan_and_reset)
+    result = client.execute(TASK, while_running=hook, timeout=120)
+    assert done == ["approved", "intervened"], done
     assert result.success, result.message
     assert interventions[0] is True and interventions[1] > 1
     client.spin_until(lambda: False, 0.5)  # the last decisions, still on their way

@@ -12,7 +12,16 @@ from semgoal_core import features, layout
 from semgoal_core.arms import PARK, ArmFrame
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
 from semgoal_core.settling import REST_SPEED, Settling, at_rest
-from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, THRESHOLDS, Literal, VocabularyError, held_alone
+from semgoal_core.vocabulary import (
+    BLOCK_HALF_SIZE,
+    LAYOUTS,
+    SCENES,
+    THRESHOLDS,
+    Literal,
+    VocabularyError,
+    held_alone,
+    rests_on,
+)
 from semgoal_policy import actor as actor_io
 
 HOLD = np.zeros(4, dtype=np.float32)
@@ -52,6 +61,8 @@ beside a neighbour pressed it and lifted its edge."""
 SEATING_SPEED = 0.15
 """Downward command (5 mm a step) that seats a shallow grasp: the hand comes down, squeezing, until the block
 rests on what is under it and the fingers slide down its sides."""
+STRADDLE_HEIGHT = 0.06
+"""An open hand's grip site less than this (m) above a block's centre still has its fingertips beside the block."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -91,6 +102,34 @@ def kept_off_the_walls(scene: str, observation: np.ndarray, action: np.ndarray) 
     over_the_bin = np.all(np.abs(offset) < inner + bin_.wall_thickness + BLOCK_HALF_SIZE)
     on_a_wall = np.abs(offset) > inner - WALL_MARGIN
     return _held_back(action, offset, on_a_wall) if over_the_bin and on_a_wall.any() else action
+
+
+def straddles_a_stack(scene: str, observation: np.ndarray, picking: Iterable[str] = ()) -> bool:
+    """Whether an empty hand's fingers (in the arm's own frame) still straddle a block standing on another, one it is
+    not asked to pick (``picking``), outside the bin. The actor moved sideways there and dragged the block it had just
+    let go on a tower off its centre, and the tower's top fell (tabletop Tower-6, start 3,000,018): the controller
+    rises straight up instead, as a retreating arm does (:meth:`SubgoalController.idle`), and the actor takes over once
+    the fingertips are clear."""
+    if held_slots(scene, observation).any():
+        return False
+    grip = layout.arm_state(observation)["grip_position"]
+    blocks = layout.block_slots(scene, observation)
+    present, positions = blocks["present"][:, 0] > 0.5, blocks["position"]
+    offsets = positions[:, :2] - grip[:2]
+    straddled = (present & (np.sqrt((offsets * offsets).sum(axis=1)) < THRESHOLDS.holding_xy)
+                 & (grip[2] - positions[:, 2] < STRADDLE_HEIGHT) & (grip[2] > positions[:, 2] - BLOCK_HALF_SIZE))
+    bin_, names = SCENES[scene].bin, SCENES[scene].objects
+    if bin_ is not None:  # in the bin the walls keep a block dragged off another, and the actor learned to do so
+        straddled &= ~bin_.inside(positions)
+    return any(names[slot] not in picking and _on_another(scene, observation, slot) for slot in np.flatnonzero(straddled))
+
+
+def _on_another(scene: str, observation: np.ndarray, slot: int) -> bool:
+    """Whether the block in ``slot`` stands on another block (``above``'s geometry)."""
+    blocks = layout.block_slots(scene, observation)
+    others = blocks["present"][:, 0] > 0.5
+    others[slot] = False
+    return bool(rests_on(blocks["position"][slot], blocks["position"][others]).any())
 
 
 def _held_back(action: np.ndarray, offset: np.ndarray, axes: np.ndarray) -> np.ndarray:
@@ -144,6 +183,8 @@ class SubgoalController:
         """What the arm does with no sub-goal."""
         self.into_bin = False
         """The sub-goal puts a block into the bin: :func:`kept_off_the_walls` applies."""
+        self.picking: frozenset[str] = frozenset()
+        """The blocks the sub-goal asks to hold: :func:`straddles_a_stack` leaves the hand beside them be."""
         self.keep: frozenset[str] = frozenset()
         """Blocks the goal asks to be held: the retreating arm keeps them in the hand."""
         self.confirmation = Settling()
@@ -160,6 +201,7 @@ class SubgoalController:
             self.confirmation.reset()  # a new sub-goal: its confirmation starts over
         self.goal, self.literals, self.idling, self.keep = goal, list(literals), Idle(idling), frozenset(keep)
         self.into_bin = any(lit.name == "in_bin" and lit.value for lit in self.literals)
+        self.picking = frozenset(lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value)
 
     def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
         """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
@@ -190,6 +232,8 @@ class SubgoalController:
             if self.idling == Idle.RETREAT:
                 return self.idle(observation)
             return self._hold(observation, make_room=self.idling == Idle.MAKE_ROOM)
+        if straddles_a_stack(self.scene, observation, self.picking):
+            return self._rise(observation, RETREAT_HEIGHT)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
         action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)

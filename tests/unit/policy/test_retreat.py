@@ -9,7 +9,7 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
-from semgoal_core.vocabulary import THRESHOLDS, Literal
+from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, Literal, parse_literal
 from semgoal_policy.controller import (
     EDGE_MARGIN,
     EDGE_NUDGE,
@@ -18,10 +18,12 @@ from semgoal_policy.controller import (
     RETREAT_HEIGHT,
     RETREAT_OPENING,
     ROOM_HEIGHT,
+    STRADDLE_HEIGHT,
     Idle,
     SubgoalController,
     kept_off_the_walls,
     kept_on_the_table,
+    straddles_a_stack,
 )
 from semgoal_sim.rollout import held_blocks
 from semgoal_sim.sim_core import move_block
@@ -216,3 +218,40 @@ def test_on_a_persons_turn_a_block_in_the_hand_is_kept() -> None:
     world.place_in_gripper("red")
     controller.set_subgoal([], Idle.MAKE_ROOM)
     assert np.array_equal(controller.act(world.observation()), HOLD_GRIP)
+
+
+@pytest.mark.parametrize("step", ["above(green,red) & not holding(green)", "holding(blue)"])
+def test_an_empty_hand_around_a_block_on_a_tower_rises_straight_up_before_the_actor_moves_it(step: str) -> None:
+    """The put on the tower done (or the next pick begun), the open hand still around the block on top: whatever the
+    actor asks, it rises without moving in the plane, and the block stays where it was let go."""
+    world, green = _hand_let_go_on_a_tower_of_two()
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal(text) for text in step.split(" & ")])
+    assert straddles_a_stack("tabletop", world.observation())
+    rose = False
+    for _ in range(40):
+        action = controller.act(world.observation(), (3_000_000, world.step_count))
+        if not straddles_a_stack("tabletop", world.observation()):
+            rose = True
+            break
+        assert action[2] >= 0.0 and not action[:2].any(), action
+        world.step(action)
+    assert rose and world.snapshot().grip_position[2] >= green[2] + STRADDLE_HEIGHT
+    assert world.snapshot().finger_opening > THRESHOLDS.holding_opening_max
+    np.testing.assert_allclose(world.snapshot().block_positions[world.blocks.index("green")], green, atol=0.005)
+
+
+def test_a_hand_picking_the_block_it_straddles_or_around_one_on_the_table_or_in_the_bin_is_the_actors() -> None:
+    world, _ = _hand_let_go_on_a_tower_of_two()
+    assert not straddles_a_stack("tabletop", world.observation(), picking={"green"})  # Unstack: the top block's pick
+    world.set_block_pose("green", world.snapshot().block_positions[world.blocks.index("red")] + [0.12, 0.0, 0.0])
+    grip = world.snapshot().block_positions[world.blocks.index("green")] + [0.0, 0.0, 0.02]
+    observation = world.observation()
+    observation[:3] = grip  # the open hand around green, now on the table
+    assert not straddles_a_stack("tabletop", observation)
+    bin_floor = np.array([*TABLETOP_BIN.center, TABLE_TOP + BLOCK_HALF_SIZE + TABLETOP_BIN.floor_thickness])
+    world.set_block_pose("red", bin_floor)
+    world.set_block_pose("green", bin_floor + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE]))  # one binned block on another
+    observation = world.observation()
+    observation[:3] = bin_floor + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE + 0.02])
+    assert not straddles_a_stack("tabletop", observation)

@@ -116,12 +116,14 @@ def straddles_a_stack(scene: str, observation: np.ndarray, picking: Iterable[str
     blocks = layout.block_slots(scene, observation)
     present, positions = blocks["present"][:, 0] > 0.5, blocks["position"]
     offsets = positions[:, :2] - grip[:2]
-    straddled = (present & (np.sqrt((offsets * offsets).sum(axis=1)) < THRESHOLDS.holding_xy)
-                 & (grip[2] - positions[:, 2] < STRADDLE_HEIGHT) & (grip[2] > positions[:, 2] - BLOCK_HALF_SIZE))
-    bin_, names = SCENES[scene].bin, SCENES[scene].objects
-    if bin_ is not None:  # in the bin the walls keep a block dragged off another, and the actor learned to do so
-        straddled &= ~bin_.inside(positions)
-    return any(names[slot] not in picking and _on_another(scene, observation, slot) for slot in np.flatnonzero(straddled))
+    under = present & (np.sqrt((offsets * offsets).sum(axis=1)) < THRESHOLDS.holding_xy) & (
+        positions[:, 2] > grip[2] - STRADDLE_HEIGHT) & (positions[:, 2] < grip[2] + BLOCK_HALF_SIZE)
+    if not under.any():
+        return False
+    slot = int(np.flatnonzero(under)[positions[under, 2].argmax()])  # the fingers' block: the highest under the grip
+    bin_ = SCENES[scene].bin  # in the bin the walls keep a block dragged off another, and the actor learned to do so
+    return (SCENES[scene].objects[slot] not in picking and not (bin_ is not None and bin_.inside(positions[slot]))
+            and _on_another(scene, observation, slot))
 
 
 def _on_another(scene: str, observation: np.ndarray, slot: int) -> bool:

@@ -242,8 +242,13 @@ def test_an_empty_hand_around_a_block_on_a_tower_rises_straight_up_before_the_ac
 
 
 def test_a_hand_picking_the_block_it_straddles_or_around_one_on_the_table_or_in_the_bin_is_the_actors() -> None:
-    world, _ = _hand_let_go_on_a_tower_of_two()
+    world, green = _hand_let_go_on_a_tower_of_two()
     assert not straddles_a_stack("tabletop", world.observation(), picking={"green"})  # Unstack: the top block's pick
+    world.set_block_pose("blue", green + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE]))
+    observation = world.observation()
+    observation[:3] = green + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE])  # around blue, on green on red
+    assert not straddles_a_stack("tabletop", observation, picking={"blue"})  # not green, under the fingers' block
+    assert straddles_a_stack("tabletop", observation)
     world.set_block_pose("green", world.snapshot().block_positions[world.blocks.index("red")] + [0.12, 0.0, 0.0])
     grip = world.snapshot().block_positions[world.blocks.index("green")] + [0.0, 0.0, 0.02]
     observation = world.observation()

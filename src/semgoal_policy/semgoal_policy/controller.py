@@ -122,16 +122,10 @@ def straddles_a_stack(scene: str, observation: np.ndarray, picking: Iterable[str
         return False
     slot = int(np.flatnonzero(under)[positions[under, 2].argmax()])  # the fingers' block: the highest under the grip
     bin_ = SCENES[scene].bin  # in the bin the walls keep a block dragged off another, and the actor learned to do so
-    return (SCENES[scene].objects[slot] not in picking and not (bin_ is not None and bin_.inside(positions[slot]))
-            and _on_another(scene, observation, slot))
-
-
-def _on_another(scene: str, observation: np.ndarray, slot: int) -> bool:
-    """Whether the block in ``slot`` stands on another block (``above``'s geometry)."""
-    blocks = layout.block_slots(scene, observation)
-    others = blocks["present"][:, 0] > 0.5
+    others = present.copy()
     others[slot] = False
-    return bool(rests_on(blocks["position"][slot], blocks["position"][others]).any())
+    return (SCENES[scene].objects[slot] not in picking and not (bin_ is not None and bin_.inside(positions[slot]))
+            and bool(rests_on(positions[slot], positions[others]).any()))  # it stands on another block
 
 
 def _held_back(action: np.ndarray, offset: np.ndarray, axes: np.ndarray) -> np.ndarray:

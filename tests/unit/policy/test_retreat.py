@@ -15,6 +15,8 @@ from semgoal_policy.controller import (
     EDGE_NUDGE,
     HOLD,
     HOLD_GRIP,
+    LANDING_SPEED,
+    RELEASE_XY,
     RETREAT_HEIGHT,
     RETREAT_OPENING,
     ROOM_HEIGHT,
@@ -23,6 +25,7 @@ from semgoal_policy.controller import (
     SubgoalController,
     kept_off_the_walls,
     kept_on_the_table,
+    placed_gently,
     straddles_a_stack,
 )
 from semgoal_sim.rollout import held_blocks
@@ -260,3 +263,52 @@ def test_a_hand_picking_the_block_it_straddles_or_around_one_on_the_table_or_in_
     observation = world.observation()
     observation[:3] = bin_floor + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE + 0.02])
     assert not straddles_a_stack("tabletop", observation)
+
+
+def _block_held_over_a_tower_of_two(off_centre: float, over_seat: float) -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop with green on red and blue in the hand, ``off_centre`` (m, along x) and ``over_seat`` (m) from
+    its seat on green; green's position."""
+    world = FetchWorld("tabletop", 3)
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    red = world.snapshot().block_positions[world.blocks.index("red")]
+    world.set_block_pose("green", red + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE]))
+    world.place_in_gripper("blue")
+    seat = world.snapshot().block_positions[world.blocks.index("green")] + [off_centre, 0.0, 2 * BLOCK_HALF_SIZE + over_seat]
+    for _ in range(60):
+        snapshot = world.snapshot()
+        blue = snapshot.block_positions[world.blocks.index("blue")]
+        world.step(move_to(snapshot.grip_position, snapshot.grip_position + seat - blue, -1.0))
+    assert "holding(blue)" in world.layout.readable(world.semantic_vector())
+    return world, world.snapshot().block_positions[world.blocks.index("green")].copy()
+
+
+def test_a_block_put_on_a_tower_is_let_go_only_centred_on_its_seat_and_lands_slowly() -> None:
+    """Off its seat the actor's let-go is refused: the hand keeps squeezing and brings the block over the centre and
+    down; centred and seated it lets go as the actor asks; over the seat a fast descent is slowed."""
+    let_go = np.array([0.4, -0.3, 0.0, 1.0], dtype=np.float32)
+    world, green = _block_held_over_a_tower_of_two(0.02, 0.02)
+    action = placed_gently("tabletop", world.observation(), let_go.copy(), "blue", "green")
+    blue = world.snapshot().block_positions[world.blocks.index("blue")]
+    assert action[3] == HOLD_GRIP[3] and action[2] == -LANDING_SPEED
+    assert np.sign(action[0]) == np.sign(green[0] - blue[0]) and abs(action[0]) > abs(action[1])
+    falling = placed_gently("tabletop", world.observation(), np.array([0.0, 0.0, -1.0, -1.0], dtype=np.float32),
+                            "blue", "green")
+    assert falling[2] == -LANDING_SPEED
+    world, _ = _block_held_over_a_tower_of_two(0.002, 0.002)
+    assert placed_gently("tabletop", world.observation(), let_go.copy(), "blue", "green").tolist() == pytest.approx(
+        let_go.tolist())
+    assert placed_gently("tabletop", world.observation(), let_go.copy(), "green", "red").tolist() == pytest.approx(
+        let_go.tolist())  # green is not in the hand: another step's business
+
+
+def test_the_actor_puts_a_block_held_off_centre_on_a_tower_centred() -> None:
+    world, green = _block_held_over_a_tower_of_two(0.02, 0.02)
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("above(blue,green)"), parse_literal("not holding(blue)")])
+    for _ in range(60):
+        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
+        if "holding(blue)" not in world.layout.readable(world.semantic_vector()):
+            break
+    blue = world.snapshot().block_positions[world.blocks.index("blue")]
+    assert "holding(blue)" not in world.layout.readable(world.semantic_vector())
+    assert np.linalg.norm(blue[:2] - green[:2]) < RELEASE_XY + 0.004

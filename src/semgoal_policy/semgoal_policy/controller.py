@@ -63,6 +63,13 @@ SEATING_SPEED = 0.15
 rests on what is under it and the fingers slide down its sides."""
 STRADDLE_HEIGHT = 0.06
 """An open hand's grip site less than this (m) above a block's centre still has its fingertips beside the block."""
+PALM_HEIGHT = 0.074
+"""How far (m) above the grip site the gripper's palm begins (the gripper link's mesh in the MJCF)."""
+PALM_REACH = 0.063 + BLOCK_HALF_SIZE * np.sqrt(2) + 0.005
+"""How near (m, along x or y) a block's centre may be to the grip site for the palm, 12.6 cm wide, to meet it: its
+half width, a turned block's half diagonal and 5 mm to spare."""
+MAX_DISPLACEMENT = 0.05
+"""How far (m) the hand moves a step for a displacement command of 1 (the world's action scale)."""
 SEATED_HEIGHT = 2 * BLOCK_HALF_SIZE
 """A block seated on another: its centre this far (m) over the other's."""
 LANDING_HEIGHT = 0.03
@@ -74,6 +81,8 @@ RELEASE_XY = 0.006
 starts from 3,000,000, 6 mm: 90 %)."""
 RELEASE_HEIGHT = 0.008
 """... and only this near (m) its seat."""
+PALM_CLEARANCE = 0.005
+"""How far (m) above a stack's top the palm stays."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -158,6 +167,33 @@ def placed_gently(scene: str, observation: np.ndarray, action: np.ndarray, top: 
         action[3] = HOLD_GRIP[3]
         action[:2] = np.clip(offset[:2] * RETREAT_GAIN, -1.0, 1.0)
         action[2] = -LANDING_SPEED if over_seat > RELEASE_HEIGHT else 0.0
+    return action
+
+
+def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while the hand holds a block, except that the gripper's palm does
+    not come down beside a stack of blocks lower than its top: the hand stays up and moves away from the stack. The
+    palm came down on a tower of five as the hand put a block on the table 7 cm from it, and the tower fell (tabletop
+    Unstack-6, start 3,000,014)."""
+    held = held_slots(scene, observation)
+    if not held.any():
+        return action
+    blocks = layout.block_slots(scene, observation)
+    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
+    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
+    stacked = pairs.any(axis=0) | pairs.any(axis=1)
+    grip = layout.arm_state(observation)["grip_position"]
+    offsets = positions - grip
+    near = stacked & (np.abs(offsets[:, :2]) < PALM_REACH).all(axis=1)
+    if not near.any():
+        return action
+    top = float(positions[near, 2].max()) + BLOCK_HALF_SIZE + PALM_CLEARANCE
+    palm = grip[2] + PALM_HEIGHT
+    if palm + min(action[2], 0.0) * MAX_DISPLACEMENT >= top:
+        return action
+    action[2] = max(action[2], min((top - palm) / MAX_DISPLACEMENT, 1.0))
+    away = -offsets[near, :2].mean(axis=0)
+    action[:2] = np.where(np.sign(action[:2]) == np.sign(away), action[:2], np.sign(away) * EDGE_NUDGE)
     return action
 
 
@@ -275,6 +311,7 @@ class SubgoalController:
             action = kept_off_the_walls(self.scene, observation, action)
         if self.putting_on:
             action = placed_gently(self.scene, observation, action, *self.putting_on)
+        action = palm_kept_off_stacks(self.scene, observation, action)
         return kept_on_the_table(self.scene, observation, action)
 
     def hold(self, observation: np.ndarray) -> np.ndarray:

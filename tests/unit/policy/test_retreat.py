@@ -16,6 +16,9 @@ from semgoal_policy.controller import (
     HOLD,
     HOLD_GRIP,
     LANDING_SPEED,
+    MAX_DISPLACEMENT,
+    PALM_CLEARANCE,
+    PALM_HEIGHT,
     RELEASE_XY,
     RETREAT_HEIGHT,
     RETREAT_OPENING,
@@ -25,6 +28,7 @@ from semgoal_policy.controller import (
     SubgoalController,
     kept_off_the_walls,
     kept_on_the_table,
+    palm_kept_off_stacks,
     placed_gently,
     straddles_a_stack,
 )
@@ -312,3 +316,45 @@ def test_the_actor_puts_a_block_held_off_centre_on_a_tower_centred() -> None:
     blue = world.snapshot().block_positions[world.blocks.index("blue")]
     assert "holding(blue)" not in world.layout.readable(world.semantic_vector())
     assert np.linalg.norm(blue[:2] - green[:2]) < RELEASE_XY + 0.004
+
+
+def _block_held_beside_a_tower_of_three(off: float) -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop with blue on green on red and yellow in the hand, the grip ``off`` (m) from the tower along x and
+    y, the palm 1 cm over its top; the tower's block positions."""
+    world = FetchWorld("tabletop", 4)
+    world.reset(TABLETOP_TASKS["Tower-4"].initial_state(3_000_000)[0])
+    red = world.snapshot().block_positions[world.blocks.index("red")]
+    for level, block in enumerate(("green", "blue"), start=1):
+        world.set_block_pose(block, red + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE * level]))
+    world.place_in_gripper("yellow")
+    target = red + np.array([off, off, 5 * BLOCK_HALF_SIZE + PALM_CLEARANCE + 0.01 - PALM_HEIGHT])
+    for _ in range(60):
+        world.step(move_to(world.snapshot().grip_position, target, -1.0))
+    assert "holding(yellow)" in world.layout.readable(world.semantic_vector())
+    return world, world.snapshot().block_positions[:3].copy()
+
+
+def test_a_hand_with_a_block_does_not_bring_its_palm_down_beside_a_stack() -> None:
+    """7 cm from a tower of three, the palm 1 cm over its top: a descent stops at the top and the hand moves away from
+    the tower; 15 cm off, or with an empty hand, the actor's command is kept."""
+    world, tower = _block_held_beside_a_tower_of_three(0.07)
+    down = np.array([0.0, 0.0, -1.0, -1.0], dtype=np.float32)
+    action = palm_kept_off_stacks("tabletop", world.observation(), down.copy())
+    grip = world.snapshot().grip_position
+    assert action[2] * MAX_DISPLACEMENT == pytest.approx(-0.01, abs=0.003)  # down to the tower's top, no further
+    assert (np.sign(action[:2]) == np.sign(grip[:2] - tower[0, :2])).all() and (np.abs(action[:2]) >= EDGE_NUDGE).all()
+    observation = world.observation()
+    observation[:3] += [0.08, 0.08, 0.0]  # 15 cm off
+    assert palm_kept_off_stacks("tabletop", observation, down.copy()).tolist() == pytest.approx(down.tolist())
+    world.open_fingers(RETREAT_OPENING)
+    assert palm_kept_off_stacks("tabletop", world.observation(), down.copy()).tolist() == pytest.approx(down.tolist())
+
+
+def test_the_actor_puts_a_block_on_the_table_beside_a_tower_and_the_tower_stands() -> None:
+    world, tower = _block_held_beside_a_tower_of_three(0.07)
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("not in_bin(yellow)"), parse_literal("not holding(yellow)")])
+    for _ in range(80):
+        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
+    assert "holding(yellow)" not in world.layout.readable(world.semantic_vector())
+    np.testing.assert_allclose(world.snapshot().block_positions[:3], tower, atol=0.005)

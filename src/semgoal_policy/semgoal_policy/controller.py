@@ -301,11 +301,17 @@ class SubgoalController:
             if self.idling == Idle.RETREAT:
                 return self.idle(observation)
             return self._hold(observation, make_room=self.idling == Idle.MAKE_ROOM)
-        if straddles_a_stack(self.scene, observation, self.picking):
-            return self._rise(observation, RETREAT_HEIGHT)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
-        action = self.actor.act(features.augment(self.scene, observation, self.derived, self.goal), self.goal, noise)
+        return self.ruled(observation, self.actor.act(features.augment(self.scene, observation, self.derived, self.goal),
+                                                      self.goal, noise))
+
+    def ruled(self, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+        """The actor's ``action`` for ``observation`` (both in the arm's own frame) under the rules this controller
+        puts on it for the active sub-goal: what :meth:`act` sends, given the actor's output (``eval subgoals
+        --shields`` judges the actor so)."""
+        if straddles_a_stack(self.scene, observation, self.picking):
+            return self._rise(observation, RETREAT_HEIGHT)
         action = np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
         if self.into_bin:
             action = kept_off_the_walls(self.scene, observation, action)

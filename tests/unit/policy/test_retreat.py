@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from semgoal_bringup.experiments.episodes import make_agent
+from semgoal_core import features
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
@@ -358,3 +359,17 @@ def test_the_actor_puts_a_block_on_the_table_beside_a_tower_and_the_tower_stands
         world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
     assert "holding(yellow)" not in world.layout.readable(world.semantic_vector())
     np.testing.assert_allclose(world.snapshot().block_positions[:3], tower, atol=0.005)
+
+
+def test_the_rules_on_an_actors_output_are_what_the_controller_sends() -> None:
+    """``eval subgoals --shields`` judges the actor through :meth:`SubgoalController.ruled`: the same command as
+    :meth:`SubgoalController.act` for the actor's output, the put's rule included."""
+    world, _ = _block_held_over_a_tower_of_two(0.02, 0.02)
+    controller = SubgoalController("tabletop", mode="mean")
+    controller.set_subgoal([parse_literal("above(blue,green)"), parse_literal("not holding(blue)")])
+    observation = world.observation()
+    raw = controller.actor.act(features.augment("tabletop", observation, controller.derived, controller.goal),
+                               controller.goal, None)
+    let_go = np.array([*raw[:3], 1.0], dtype=np.float32)
+    assert controller.ruled(observation, let_go.copy())[3] == HOLD_GRIP[3]  # refused off its seat
+    np.testing.assert_allclose(controller.ruled(observation, raw.copy()), controller.act(observation), atol=1e-6)

@@ -111,7 +111,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     from semgoal_core.settling import SETTLE_STEPS
     from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
-    from semgoal_policy.controller import ACTION_MODES, kept_on_the_table
+    from semgoal_policy.controller import ACTION_MODES, SubgoalController
     from semgoal_policy.evaluate import success_by_kind
     from semgoal_sim.env import EPISODE_STEPS
 
@@ -128,8 +128,9 @@ def eval_subgoals_main(argv: list[str]) -> int:
     parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
     parser.add_argument("--envs", type=count, default=10)
     parser.add_argument("--shields", action="store_true",
-                        help="the policy node's rule on top of the actor, as the graph runs it (no held block let go off "
-                             "the table's edge); default: the actor alone")
+                        help="the policy node's rules on top of the actor, as the graph runs it (no held block let go off "
+                             "the table's edge or over the bin's wall, a block put on another let go centred, the hand "
+                             "lifted off a tower's top, the palm kept off stacks); default: the actor alone")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--sleep", action="store_true",
@@ -152,13 +153,15 @@ def eval_subgoals_main(argv: list[str]) -> int:
 
     observation_size = layout.observation_size(args.scene)
 
+    controllers = [SubgoalController(args.scene, args.model_dir) for _ in envs] if args.shields else []
+
     def act(obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """The actor's mean, or a sample of its Gaussian as the policy node draws it; with ``--shields``, the policy
-        node's rule on top."""
+        node's rules for each env's sub-goal on top."""
         actions = actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
-        if args.shields:
-            for observation, action in zip(obs, actions, strict=True):
-                action[:] = kept_on_the_table(args.scene, observation[:observation_size], action)
+        for controller, env, observation, action in zip(controllers, envs, obs, actions, strict=False):
+            controller.set_subgoal(env.subgoal.literals())
+            action[:] = controller.ruled(observation[:observation_size], action)
         return actions
 
     kinds = spec.evaluated_kinds(args.scene)

@@ -20,6 +20,8 @@ from semgoal_core.vocabulary import LAYOUTS, SCENES
 
 CONTROL_DT = 0.04
 """Seconds per control step (20 substeps of 0.002 s); velocities are scaled by it, as in Fetch."""
+MAX_DISPLACEMENT = 0.05
+"""End-effector displacement (m) per control step for an action of 1 (Fetch benchmark)."""
 ARM_FEATURES = (("grip_position", 3), ("grip_velocity", 3), ("finger_positions", 2), ("finger_velocities", 2))
 BLOCK_FEATURES = (("present", 1), ("position", 3), ("relative_position", 3), ("velocity", 3))
 ARM_SIZE = sum(size for _, size in ARM_FEATURES)

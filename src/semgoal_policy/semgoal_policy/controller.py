@@ -68,8 +68,6 @@ PALM_HEIGHT = 0.074
 PALM_REACH = 0.063 + BLOCK_HALF_SIZE * np.sqrt(2) + 0.005
 """How near (m, along x or y) a block's centre may be to the grip site for the palm, 12.6 cm wide, to meet it: its
 half width, a turned block's half diagonal and 5 mm to spare."""
-MAX_DISPLACEMENT = 0.05
-"""How far (m) the hand moves a step for a displacement command of 1 (the world's action scale)."""
 SEATED_HEIGHT = 2 * BLOCK_HALF_SIZE
 """A block seated on another: its centre this far (m) over the other's."""
 LANDING_HEIGHT = 0.03
@@ -189,9 +187,9 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
         return action
     top = float(positions[near, 2].max()) + BLOCK_HALF_SIZE + PALM_CLEARANCE
     palm = grip[2] + PALM_HEIGHT
-    if palm + min(action[2], 0.0) * MAX_DISPLACEMENT >= top:
+    if palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= top:
         return action
-    action[2] = max(action[2], min((top - palm) / MAX_DISPLACEMENT, 1.0))
+    action[2] = max(action[2], min((top - palm) / layout.MAX_DISPLACEMENT, 1.0))
     away = -offsets[near, :2].mean(axis=0)
     action[:2] = np.where(np.sign(action[:2]) == np.sign(away), action[:2], np.sign(away) * EDGE_NUDGE)
     return action

@@ -16,15 +16,13 @@ import numpy as np
 from semgoal_core.arms import ArmFrame, arm_observation, holder_of, robot_name, takers
 from semgoal_core.expert import WorldView
 from semgoal_core.geometry import GRASP_OPENING, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP, grip_ceiling
-from semgoal_core.layout import CONTROL_DT
+from semgoal_core.layout import CONTROL_DT, MAX_DISPLACEMENT
 from semgoal_core.settling import motion_bits
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, LAYOUTS, SCENES, evaluate, fallen_blocks, held_alone
 from semgoal_sim.arm_guard import ArmGuard
 from semgoal_sim.scene import REACHING_LINKS, arm_prefix, block_body_name, build_model
 
 N_SUBSTEPS = 20
-MAX_DISPLACEMENT = 0.05
-"""End-effector displacement (m) per control step for an action of 1 (Fetch benchmark)."""
 GRIPPER_HOME_OFFSET = np.array([-0.498, 0.005, -0.431 + 0.2])
 """Fetch benchmark: grip site moved by this from the initial joint pose (gripper_extra_height 0.2)."""
 GRIPPER_QUAT = np.array([1.0, 0.0, 1.0, 0.0]) / np.sqrt(2.0)

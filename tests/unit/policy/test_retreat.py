@@ -9,6 +9,7 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core import features
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.layout import MAX_DISPLACEMENT
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, Literal, parse_literal
 from semgoal_policy.controller import (
@@ -17,7 +18,6 @@ from semgoal_policy.controller import (
     HOLD,
     HOLD_GRIP,
     LANDING_SPEED,
-    MAX_DISPLACEMENT,
     PALM_CLEARANCE,
     PALM_HEIGHT,
     RELEASE_XY,

@@ -153,15 +153,17 @@ def eval_subgoals_main(argv: list[str]) -> int:
 
     observation_size = layout.observation_size(args.scene)
 
-    controllers = [SubgoalController(args.scene, args.model_dir) for _ in envs] if args.shields else []
+    controller = SubgoalController(args.scene, args.model_dir) if args.shields else None  # rules hold no state of
+    # their own beyond the sub-goal, so one controller serves every env, set to each env's sub-goal in turn
 
     def act(obs: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """The actor's mean, or a sample of its Gaussian as the policy node draws it; with ``--shields``, the policy
         node's rules for each env's sub-goal on top."""
         actions = actor.act(obs, goal, noise.standard_normal((len(obs), 4)) if args.action_mode == "sample" else None)
-        for controller, env, observation, action in zip(controllers, envs, obs, actions, strict=False):
-            controller.set_subgoal(env.subgoal.literals())
-            action[:] = controller.ruled(observation[:observation_size], action)
+        if controller is not None:
+            for env, observation, action in zip(envs, obs, actions, strict=False):
+                controller.set_subgoal(env.subgoal.literals())
+                action[:] = controller.ruled(observation[:observation_size], action)
         return actions
 
     kinds = spec.evaluated_kinds(args.scene)

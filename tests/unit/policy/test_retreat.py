@@ -15,6 +15,7 @@ from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, L
 from semgoal_policy.controller import (
     EDGE_MARGIN,
     EDGE_NUDGE,
+    GRASP_HEIGHT,
     HOLD,
     HOLD_GRIP,
     LANDING_SPEED,
@@ -27,6 +28,7 @@ from semgoal_policy.controller import (
     STRADDLE_HEIGHT,
     Idle,
     SubgoalController,
+    grasped_in_place,
     kept_off_the_walls,
     kept_on_the_table,
     palm_kept_off_stacks,
@@ -268,6 +270,57 @@ def test_a_hand_picking_the_block_it_straddles_or_around_one_on_the_table_or_in_
     observation = world.observation()
     observation[:3] = bin_floor + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE + 0.02])
     assert not straddles_a_stack("tabletop", observation)
+
+
+def _hand_over_a_tower_of_three(height: float, opening: float) -> np.ndarray:
+    """An observation of the tabletop with blue on green on red, the grip ``height`` (m) over blue's centre and the
+    fingers still, ``opening`` apart."""
+    world = FetchWorld("tabletop", 3)
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    red = world.snapshot().block_positions[world.blocks.index("red")]
+    for level, block in enumerate(("green", "blue"), start=1):
+        world.set_block_pose(block, red + np.array([0.0, 0.0, 2 * BLOCK_HALF_SIZE * level]))
+    observation = world.observation()
+    observation[:3] = red + np.array([0.0, 0.0, 4 * BLOCK_HALF_SIZE + height])
+    observation[3:6] = 0.0
+    observation[6:8] = opening / 2
+    observation[8:10] = 0.0
+    return observation
+
+
+def test_a_block_on_a_stack_is_grasped_at_its_middle_without_moving_sideways() -> None:
+    """Around the top block's middle the hand closes as the actor asks, without moving in the plane; closed too high
+    with the fingertips beside the block it rises off it first; above it, not open, the fingers open before the hand
+    comes down; open, the hand comes down and the fingers do not close. A block with none under it is the actor's."""
+    sideways_closing = np.array([0.5, -0.4, -0.6, -1.0], dtype=np.float32)
+    action = grasped_in_place("tabletop", _hand_over_a_tower_of_three(0.005, 0.06), sideways_closing.copy(), "blue")
+    assert action.tolist() == pytest.approx([0.0, 0.0, -0.6, -1.0])
+    action = grasped_in_place("tabletop", _hand_over_a_tower_of_three(0.035, 0.03), sideways_closing.copy(), "blue")
+    assert not action[:2].any() and action[2] >= EDGE_NUDGE and action[3] == 0.0
+    action = grasped_in_place("tabletop", _hand_over_a_tower_of_three(0.06, 0.03), sideways_closing.copy(), "blue")
+    assert action[:2].tolist() == pytest.approx([0.5, -0.4]) and action[2] == 0.0 and action[3] > 0.0
+    rising_closing = np.array([0.5, -0.4, 0.5, -1.0], dtype=np.float32)
+    action = grasped_in_place("tabletop", _hand_over_a_tower_of_three(0.06, 0.09), rising_closing.copy(), "blue")
+    assert action[2] < 0.0 and action[3] == 0.0
+    assert GRASP_HEIGHT <= 0.06 + action[2] * MAX_DISPLACEMENT < 0.06  # down toward the middle, not past it
+    observation = _hand_over_a_tower_of_three(0.035 - 4 * BLOCK_HALF_SIZE, 0.03)  # beside red, on the table
+    assert grasped_in_place("tabletop", observation, sideways_closing.copy(), "red").tolist() == pytest.approx(
+        sideways_closing.tolist())
+
+
+def test_the_actor_picks_the_top_of_a_tower_of_six_and_the_tower_stands() -> None:
+    """Unstack-6, start 3,000,002: without the grasp's rule the hand closed on purple moving 1.4 cm sideways and the
+    tower fell (checked)."""
+    world = FetchWorld("tabletop", 6)
+    world.reset(TABLETOP_TASKS["Unstack-6"].initial_state(3_000_002)[0])
+    tower = world.snapshot().block_positions.copy()
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("holding(purple)")])
+    for _ in range(40):
+        world.step(controller.act(world.observation(), (3_000_002, world.step_count)))
+    assert "holding(purple)" in world.layout.readable(world.semantic_vector())
+    below = [world.blocks.index(name) for name in world.blocks if name != "purple"]
+    np.testing.assert_allclose(world.snapshot().block_positions[below], tower[below], atol=0.005)
 
 
 def _block_held_over_a_tower_of_two(off_centre: float, over_seat: float) -> tuple[FetchWorld, np.ndarray]:

@@ -88,6 +88,14 @@ LIFT_CLEARANCE = 0.02
 """A block picked off a stack rises this far (m) over the block below before the hand moves sideways."""
 FINGER_TIP = 0.0185
 """How far (m) the fingertips reach below the grip site (the Fetch gripper's finger boxes, in the MJCF)."""
+FINGER_LENGTH = 0.077
+"""A finger's length (m) from its tip up."""
+FINGER_HALF_WIDTH = 0.0135
+"""Half a finger's width (m) across the fingers' axis."""
+FINGER_THICKNESS = 0.014
+"""A finger's thickness (m) along the fingers' axis, outside the opening."""
+FINGER_CLEARANCE = 0.003
+"""Room (m) an opening finger leaves to a block beside it."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -212,6 +220,26 @@ def grasped_in_place(scene: str, observation: np.ndarray, action: np.ndarray, bl
     else:  # over it, not open: open as :meth:`SubgoalController._rise` does, not going down
         action[3] = (RETREAT_OPENING - opening) / 4
         action[2] = max(action[2], 0.0)
+    return action
+
+
+def fingers_spare_neighbours(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+    """An actor's command (in the arm's own frame), except that the fingers do not open into a block beside them along
+    their axis, at their height: they open only as far as leaves :data:`FINGER_CLEARANCE` to it. Letting go of a block
+    on the table 7.6 cm from another, the fingers opened fully, one struck the other block and flung it off the table
+    (tabletop Unstack-6, start 3,000,008)."""
+    if action[3] <= 0.0:
+        return action
+    arm, blocks = layout.arm_state(observation), layout.block_slots(scene, observation)
+    grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
+    offsets = blocks["position"] - grip
+    beside = (blocks["present"][:, 0] > 0.5) & (np.abs(offsets[:, 0]) < FINGER_HALF_WIDTH + BLOCK_HALF_SIZE) & (
+        np.abs(offsets[:, 1]) >= 2 * BLOCK_HALF_SIZE) & (offsets[:, 2] + BLOCK_HALF_SIZE > -FINGER_TIP) & (
+        offsets[:, 2] - BLOCK_HALF_SIZE < FINGER_LENGTH - FINGER_TIP)
+    if not beside.any():
+        return action
+    room = 2 * float(np.abs(offsets[beside, 1]).min() - BLOCK_HALF_SIZE - FINGER_THICKNESS - FINGER_CLEARANCE)
+    action[3] = min(action[3], max((room - opening) / 4, 0.0))  # a quarter of the way, as the retreat opens
     return action
 
 
@@ -365,6 +393,7 @@ class SubgoalController:
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
         action = palm_kept_off_stacks(self.scene, observation, action)
+        action = fingers_spare_neighbours(self.scene, observation, action)
         return kept_on_the_table(self.scene, observation, action)
 
     def hold(self, observation: np.ndarray) -> np.ndarray:

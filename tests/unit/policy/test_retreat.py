@@ -15,6 +15,8 @@ from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, L
 from semgoal_policy.controller import (
     EDGE_MARGIN,
     EDGE_NUDGE,
+    FINGER_CLEARANCE,
+    FINGER_THICKNESS,
     GRASP_HEIGHT,
     HOLD,
     HOLD_GRIP,
@@ -28,6 +30,7 @@ from semgoal_policy.controller import (
     STRADDLE_HEIGHT,
     Idle,
     SubgoalController,
+    fingers_spare_neighbours,
     grasped_in_place,
     kept_off_the_walls,
     kept_on_the_table,
@@ -321,6 +324,52 @@ def test_the_actor_picks_the_top_of_a_tower_of_six_and_the_tower_stands() -> Non
     assert "holding(purple)" in world.layout.readable(world.semantic_vector())
     below = [world.blocks.index(name) for name in world.blocks if name != "purple"]
     np.testing.assert_allclose(world.snapshot().block_positions[below], tower[below], atol=0.005)
+
+
+def _block_held_on_the_table_beside_another(dy: float) -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop with green in the hand, just over the table ``dy`` (m) from red along the fingers' axis; red's
+    position."""
+    world = FetchWorld("tabletop", 3)
+    world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    red = world.snapshot().block_positions[world.blocks.index("red")].copy()
+    world.place_in_gripper("green")
+    for _ in range(60):
+        snapshot = world.snapshot()
+        green = snapshot.block_positions[world.blocks.index("green")]
+        world.step(move_to(snapshot.grip_position, snapshot.grip_position + red + [0.0, dy, 0.003] - green, -1.0))
+    assert "holding(green)" in world.layout.readable(world.semantic_vector())
+    return world, world.snapshot().block_positions[world.blocks.index("red")].copy()
+
+
+def test_fingers_letting_go_open_only_as_far_as_a_block_beside_them_leaves_room() -> None:
+    """7.6 cm from red along the fingers' axis, a let-go opens the fingers only to leave 3 mm to red (a quarter of the
+    way a step); a block out of the fingers' reach in the other axis, or below the fingertips, leaves the command be."""
+    world, red = _block_held_on_the_table_beside_another(0.076)
+    let_go = np.array([0.1, 0.2, 0.3, 1.0], dtype=np.float32)
+    observation = world.observation()
+    grip, opening = world.snapshot().grip_position, world.snapshot().finger_opening
+    room = 2 * (abs(red[1] - grip[1]) - BLOCK_HALF_SIZE - FINGER_THICKNESS - FINGER_CLEARANCE)
+    action = fingers_spare_neighbours("tabletop", observation, let_go.copy())
+    assert action[:3].tolist() == pytest.approx(let_go[:3].tolist())
+    assert 0.0 < action[3] == pytest.approx((room - opening) / 4, abs=1e-4)
+    aside = observation.copy()
+    aside[:3] += [0.06, 0.0, 0.0]  # red 6 cm off the fingers' plane
+    assert fingers_spare_neighbours("tabletop", aside, let_go.copy())[3] == 1.0
+    above = observation.copy()
+    above[:3] += [0.0, 0.0, 0.07]  # the fingertips over red's top
+    assert fingers_spare_neighbours("tabletop", above, let_go.copy())[3] == 1.0
+
+
+def test_the_actor_lets_a_block_go_beside_another_and_the_other_stays() -> None:
+    """Without the rule the fingers opened fully and flung red 8 cm (checked; Unstack-6 3,000,008 flung it off the
+    table)."""
+    world, red = _block_held_on_the_table_beside_another(0.076)
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("not in_bin(green)"), parse_literal("not holding(green)")])
+    for _ in range(30):
+        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
+    assert "holding(green)" not in world.layout.readable(world.semantic_vector())
+    np.testing.assert_allclose(world.snapshot().block_positions[world.blocks.index("red")], red, atol=0.005)
 
 
 def _block_held_over_a_tower_of_two(off_centre: float, over_seat: float) -> tuple[FetchWorld, np.ndarray]:

@@ -326,6 +326,15 @@ def test_the_actor_picks_the_top_of_a_tower_of_six_and_the_tower_stands() -> Non
     np.testing.assert_allclose(world.snapshot().block_positions[below], tower[below], atol=0.005)
 
 
+def _put_on_the_table_by_the_actor(world: FetchWorld, block: str, steps: int) -> None:
+    """``steps`` control steps of the shipped actor and its rules on put_on_table(``block``), which ends let go."""
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal(f"not in_bin({block})"), parse_literal(f"not holding({block})")])
+    for _ in range(steps):
+        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
+    assert f"holding({block})" not in world.layout.readable(world.semantic_vector())
+
+
 def _block_held_on_the_table_beside_another(dy: float) -> tuple[FetchWorld, np.ndarray]:
     """The tabletop with green in the hand, just over the table ``dy`` (m) from red along the fingers' axis; red's
     position."""
@@ -364,11 +373,7 @@ def test_the_actor_lets_a_block_go_beside_another_and_the_other_stays() -> None:
     """Without the rule the fingers opened fully and flung red 8 cm (checked; Unstack-6 3,000,008 flung it off the
     table)."""
     world, red = _block_held_on_the_table_beside_another(0.076)
-    controller = SubgoalController("tabletop")
-    controller.set_subgoal([parse_literal("not in_bin(green)"), parse_literal("not holding(green)")])
-    for _ in range(30):
-        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
-    assert "holding(green)" not in world.layout.readable(world.semantic_vector())
+    _put_on_the_table_by_the_actor(world, "green", steps=30)
     np.testing.assert_allclose(world.snapshot().block_positions[world.blocks.index("red")], red, atol=0.005)
 
 
@@ -455,11 +460,7 @@ def test_a_hand_with_a_block_does_not_bring_its_palm_down_beside_a_stack() -> No
 
 def test_the_actor_puts_a_block_on_the_table_beside_a_tower_and_the_tower_stands() -> None:
     world, tower = _block_held_beside_a_tower_of_three(0.07)
-    controller = SubgoalController("tabletop")
-    controller.set_subgoal([parse_literal("not in_bin(yellow)"), parse_literal("not holding(yellow)")])
-    for _ in range(80):
-        world.step(controller.act(world.observation(), (3_000_000, world.step_count)))
-    assert "holding(yellow)" not in world.layout.readable(world.semantic_vector())
+    _put_on_the_table_by_the_actor(world, "yellow", steps=80)
     np.testing.assert_allclose(world.snapshot().block_positions[:3], tower, atol=0.005)
 
 

@@ -84,6 +84,9 @@ PALM_CLEARANCE = 0.005
 """How far (m) above a stack's top the palm stays."""
 GRASP_HEIGHT = 0.015
 """The highest (m) over the centre of a block on a stack at which the fingers close on it (the expert's within 8 mm)."""
+CENTRING_SPEED = 0.1
+"""The fastest (5 mm a step) the hand moves toward a stacked block's centre with its fingertips beside it: the
+expert aligns there before it closes, and held still it never did."""
 LIFT_CLEARANCE = 0.02
 """A block picked off a stack rises this far (m) over the block below before the hand moves sideways."""
 FINGER_TIP = 0.0185
@@ -186,8 +189,9 @@ def placed_gently(scene: str, observation: np.ndarray, action: np.ndarray, top: 
 def grasped_in_place(scene: str, observation: np.ndarray, action: np.ndarray, block: str) -> np.ndarray:
     """An actor's command (in the arm's own frame) while it picks ``block`` off a stack, except that over the block
     the hand goes down only with the fingers wide open, closes them only at the block's middle (at most
-    :data:`GRASP_HEIGHT` over its centre), and does not move sideways while the fingertips are beside the block, nor
-    until it is :data:`LIFT_CLEARANCE` clear of the block below. Fingers closed too high on the block rise off it
+    :data:`GRASP_HEIGHT` over its centre), and while the fingertips are beside the block moves in the plane only
+    toward its centre, slowly (:data:`CENTRING_SPEED`), and not at all once it holds it, until the block is
+    :data:`LIFT_CLEARANCE` clear of the block below. Fingers closed too high on the block rise off it
     before they open. Closing on the top of a tower of six, the hand moved 1.4 cm sideways (tabletop Unstack-6, start
     3,000,002), or the fingers pinched the block's top edge and dragged it (3,000,045), or pressed on its top and
     dragged it opening (3,000,006): each time the top block pulled the one under it along, and the tower fell."""
@@ -204,11 +208,12 @@ def grasped_in_place(scene: str, observation: np.ndarray, action: np.ndarray, bl
             or not -THRESHOLDS.holding_z < height < HOVER):
         return action
     gap = here[2] - BLOCK_HALF_SIZE - (positions[column, 2].max() + BLOCK_HALF_SIZE)
-    if gap >= LIFT_CLEARANCE and held_slots(scene, observation)[slot]:
+    held = bool(held_slots(scene, observation)[slot])
+    if gap >= LIFT_CLEARANCE and held:
         return action
     low = grip[2] - FINGER_TIP < here[2] + BLOCK_HALF_SIZE + PALM_CLEARANCE  # the fingertips beside the block
     if low:
-        action[:2] = 0.0
+        action[:2] = 0.0 if held else np.clip((here[:2] - grip[:2]) * RETREAT_GAIN, -CENTRING_SPEED, CENTRING_SPEED)
     if height <= GRASP_HEIGHT:
         return action
     if opening >= RETREAT_OPENING:  # open: down to the block's middle, not closing before

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import re
+import signal
 import sys
 
 from semgoal_core.arguments import seconds
@@ -99,11 +100,20 @@ def _follow(client: GraphClient, text: str, timeout: float, max_steps: int) -> i
             last[0] = key
             print(format_plan(plan), flush=True)
 
+    caught: list[int] = []
+
+    def stop_on_ctrl_c() -> None:  # between spins: an interrupt raised inside rclpy's C++ can lose its cause
+        if caught:
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, lambda number, _: caught.append(number))
     try:
-        result = client.execute(text, on_feedback, timeout=timeout, max_steps=max_steps)
+        result = client.execute(text, on_feedback, timeout=timeout, max_steps=max_steps, while_running=stop_on_ctrl_c)
     except KeyboardInterrupt:
         print("semgoal goal: interrupted; the goal was cancelled", file=sys.stderr)
         return 130
+    finally:
+        signal.signal(signal.SIGINT, previous)
     print(f"{'success' if result.success else 'failure'}: {result.message} "
           f"({result.control_steps} control steps, {result.sim_time:.1f} s sim time, {result.replans} re-plans)")
     return 0 if result.success else 1

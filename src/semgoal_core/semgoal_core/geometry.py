@@ -22,10 +22,13 @@ GRASP_OPENING = 0.08
 Opening no wider keeps the fingers (they open along y) off neighbouring blocks."""
 MIN_CENTRE_DISTANCE = 0.058
 """Closest two block centres may be (m) for a block to be set down between others: 5 cm and some play."""
-FINGER_REACH_X = 0.0135 + BLOCK_HALF_SIZE + 0.004
-FINGER_REACH_Y = 0.0149 + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
-"""A spot is clear of a block when the half-open fingers there miss it: finger half-width 1.35 cm in x;
-finger outer face at 1.49 cm + half the opening in y (measured on the Fetch gripper), plus a margin."""
+FINGER_HALF_WIDTH = 0.0135
+"""Half a finger's width (m) across the fingers' axis (x), measured on the Fetch gripper."""
+FINGER_OUTER_FACE = 0.0149
+"""How far (m) a finger's outer face lies beyond half the opening along the fingers' axis (y)."""
+FINGER_REACH_X = FINGER_HALF_WIDTH + BLOCK_HALF_SIZE + 0.004
+FINGER_REACH_Y = FINGER_OUTER_FACE + GRASP_OPENING / 2 + BLOCK_HALF_SIZE + 0.004
+"""A spot is clear of a block when the half-open fingers there miss it, with a margin."""
 
 
 GRIP_BELOW_BODY = 0.02

@@ -11,7 +11,7 @@ import numpy as np
 from semgoal_core import features, layout
 from semgoal_core.arms import PARK, ArmFrame
 from semgoal_core.expert import HOVER
-from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE
+from semgoal_core.geometry import FINGER_HALF_WIDTH, FINGER_OUTER_FACE, TABLE_CENTER, TABLE_HALF_SIZE
 from semgoal_core.settling import REST_SPEED, Settling, at_rest
 from semgoal_core.vocabulary import (
     BLOCK_HALF_SIZE,
@@ -93,12 +93,8 @@ FINGER_TIP = 0.0185
 """How far (m) the fingertips reach below the grip site (the Fetch gripper's finger boxes, in the MJCF)."""
 FINGER_LENGTH = 0.077
 """A finger's length (m) from its tip up."""
-FINGER_HALF_WIDTH = 0.0135
-"""Half a finger's width (m) across the fingers' axis."""
-FINGER_THICKNESS = 0.014
-"""A finger's thickness (m) along the fingers' axis, outside the opening."""
-FINGER_CLEARANCE = 0.003
-"""Room (m) an opening finger leaves to a block beside it."""
+FINGER_CLEARANCE = 0.0021
+"""Room (m) an opening finger's outer face leaves to a block beside it."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -222,8 +218,8 @@ def grasped_in_place(scene: str, observation: np.ndarray, action: np.ndarray, bl
     elif low:  # closed too high, on or beside the block's top: up off it first, the fingers as they are
         action[3] = -float(arm["finger_velocities"].mean())
         action[2] = max(action[2], EDGE_NUDGE)
-    else:  # over it, not open: open as :meth:`SubgoalController._rise` does, not going down
-        action[3] = (RETREAT_OPENING - opening) / 4
+    else:  # over it, not open: open, not going down
+        action[3] = _opening_toward(RETREAT_OPENING, opening)
         action[2] = max(action[2], 0.0)
     return action
 
@@ -243,8 +239,8 @@ def fingers_spare_neighbours(scene: str, observation: np.ndarray, action: np.nda
         offsets[:, 2] - BLOCK_HALF_SIZE < FINGER_LENGTH - FINGER_TIP)
     if not beside.any():
         return action
-    room = 2 * float(np.abs(offsets[beside, 1]).min() - BLOCK_HALF_SIZE - FINGER_THICKNESS - FINGER_CLEARANCE)
-    action[3] = min(action[3], max((room - opening) / 4, 0.0))  # a quarter of the way, as the retreat opens
+    room = 2 * float(np.abs(offsets[beside, 1]).min() - BLOCK_HALF_SIZE - FINGER_OUTER_FACE - FINGER_CLEARANCE)
+    action[3] = min(action[3], max(_opening_toward(room, opening), 0.0))
     return action
 
 
@@ -273,6 +269,12 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
     away = -offsets[near, :2].mean(axis=0)
     action[:2] = np.where(np.sign(action[:2]) == np.sign(away), action[:2], np.sign(away) * EDGE_NUDGE)
     return action
+
+
+def _opening_toward(target: float, opening: float) -> float:
+    """The finger command that opens the fingers from ``opening`` to ``target`` (m): a finger command is metres added
+    to each finger's target, and a quarter of the way a step comes to rest 3-4 mm past it, no more."""
+    return (target - opening) / 4
 
 
 def _held_back(action: np.ndarray, offset: np.ndarray, axes: np.ndarray) -> np.ndarray:
@@ -439,8 +441,8 @@ class SubgoalController:
         arm, blocks = layout.arm_state(observation), layout.block_slots(self.scene, observation)
         grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
         action = HOLD.copy()
-        if opening < RETREAT_OPENING:  # a finger command is metres added to each finger's target: a quarter of
-            action[3] = (RETREAT_OPENING - opening) / 4  # the way a step comes to rest 3-4 mm past it, no more
+        if opening < RETREAT_OPENING:
+            action[3] = _opening_toward(RETREAT_OPENING, opening)
             return action
         action[3] = -float(arm["finger_velocities"].mean())  # (per step) brakes the fingers where they are
         present = blocks["present"][:, 0] > 0.5

@@ -8,7 +8,7 @@ import pytest
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core import features
 from semgoal_core.expert import move_to
-from semgoal_core.geometry import TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
+from semgoal_core.geometry import FINGER_OUTER_FACE, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import MAX_DISPLACEMENT
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, Literal, parse_literal
@@ -16,7 +16,6 @@ from semgoal_policy.controller import (
     EDGE_MARGIN,
     EDGE_NUDGE,
     FINGER_CLEARANCE,
-    FINGER_THICKNESS,
     GRASP_HEIGHT,
     HOLD,
     HOLD_GRIP,
@@ -357,7 +356,7 @@ def test_fingers_letting_go_open_only_as_far_as_a_block_beside_them_leaves_room(
     let_go = np.array([0.1, 0.2, 0.3, 1.0], dtype=np.float32)
     observation = world.observation()
     grip, opening = world.snapshot().grip_position, world.snapshot().finger_opening
-    room = 2 * (abs(red[1] - grip[1]) - BLOCK_HALF_SIZE - FINGER_THICKNESS - FINGER_CLEARANCE)
+    room = 2 * (abs(red[1] - grip[1]) - BLOCK_HALF_SIZE - FINGER_OUTER_FACE - FINGER_CLEARANCE)
     action = fingers_spare_neighbours("tabletop", observation, let_go.copy())
     assert action[:3].tolist() == pytest.approx(let_go[:3].tolist())
     assert 0.0 < action[3] == pytest.approx((room - opening) / 4, abs=1e-4)

@@ -24,10 +24,10 @@ SEPARATION = 0.2
 """Least distance (m) between two arms' segments: two 5.3 cm envelopes, the links' 3 cm half-thickness each, and
 a margin."""
 RELEASE = SEPARATION + 0.04
+"""Distance (m) at which the arm with the right of way gives it up again."""
 MIN_GAP = 0.06
 """Least distance (m) between the two arms' links themselves (their meshes): forearms touched with their chains
 19.5 cm apart, one arm drawn back as far as it goes."""
-"""Distance (m) at which the arm with the right of way gives it up again."""
 DISTAL_POINTS = 3
 """The chain's points a command moves at once (wrist, gripper, grip site); the shoulder and the elbow follow."""
 STILL = 0.1
@@ -81,11 +81,9 @@ class ArmGuard:
     right_of_way: int | None = None
     yields: int = 0
     """Control steps on which an arm yielded, since :meth:`reset`."""
-    clearance: float = np.inf
-    """The arms' links' least distance at the last step (m)."""
 
     def reset(self) -> None:
-        self.right_of_way, self.yields, self.clearance = None, 0, np.inf
+        self.right_of_way, self.yields = None, 0
 
     def _moved(self, chains: np.ndarray, actions: np.ndarray, arms: tuple[int, ...] = (0, 1)) -> np.ndarray:
         """The chains after ``arms`` move by their commands: their last :attr:`distal` points (wrist to grip)."""
@@ -98,20 +96,20 @@ class ArmGuard:
     def apart(chains: np.ndarray) -> float:
         return chain_distance(chains[0], chains[1])
 
-    def _too_close(self, moved: np.ndarray, closing: bool) -> bool:
+    def _too_close(self, moved: np.ndarray, near: bool) -> bool:
         """Whether the arms at ``moved`` are too close: their chains less than :data:`SEPARATION` apart, or their
-        links closing in within :data:`MIN_GAP` (``closing``)."""
-        return closing or self.apart(moved) < SEPARATION
+        links within :data:`MIN_GAP` (``near``)."""
+        return near or self.apart(moved) < SEPARATION
 
     def __call__(self, chains: np.ndarray, actions: np.ndarray, heights: np.ndarray, holding: np.ndarray,
                  clearance: float = np.inf, towards: np.ndarray | None = None) -> np.ndarray:
         """The commands (2, 4) to send, given each arm's chain (2, K, 3: shoulder first, grip last), its command
         (2, 4), its grip's height (2,), whether it holds a block (2,), the least distance between the two arms'
         links now (``clearance``, m) and the unit vector from the first arm's nearest point to the second's."""
-        closing, self.clearance = clearance < MIN_GAP and clearance < self.clearance, clearance
+        near = clearance < MIN_GAP
         if self.right_of_way is not None and self.apart(chains) >= RELEASE and clearance >= MIN_GAP:
             self.right_of_way = None
-        if self.right_of_way is None and not self._too_close(self._moved(chains, actions), closing):
+        if self.right_of_way is None and not self._too_close(self._moved(chains, actions), near):
             return actions
         if self.right_of_way is None:
             closes = [self._too_close(self._moved(chains, actions, (arm,)), False) for arm in (0, 1)]
@@ -123,7 +121,7 @@ class ArmGuard:
         first, yielder = self.right_of_way, 1 - self.right_of_way
         actions = np.array(actions, dtype=np.float64)
         back = chains[yielder, 0, :2] - chains[yielder, -1, :2]
-        if closing and towards is not None:  # the links close in: away from the other's nearest point, in the plane
+        if near and towards is not None:  # the links within MIN_GAP: away from the other's nearest point, in the plane
             away = (-towards if yielder == 0 else towards)[:2]
             back = away if float(np.linalg.norm(away)) > 1e-6 else back
         shoulder_x, grip_x, edge = chains[yielder, 0, 0], chains[yielder, -1, 0], self.edges[yielder]
@@ -132,7 +130,7 @@ class ArmGuard:
         actions[yielder, 2] = 1.0 if heights[yielder] < CLEAR_HEIGHT else 0.0
         actions[yielder, 3] = -1.0 if holding[yielder] else 0.0
         apart = self.apart(self._moved(chains, actions))
-        if closing:  # the links close in: the first moves no nearer the other until it has drawn back
+        if near:  # the first moves no nearer the other while the links are within MIN_GAP, closing in or not
             normal = np.zeros(3) if towards is None else (towards if first == 0 else -towards)
             actions[first, :3] -= max(0.0, float(actions[first, :3] @ normal)) * normal
         elif apart < SEPARATION and apart < self.apart(chains):  # the first waits in the plane until there is room

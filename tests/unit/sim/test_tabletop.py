@@ -165,3 +165,28 @@ def test_training_may_keep_to_six_blocks_so_seven_and_eight_stay_unseen() -> Non
     assert max(drawn) <= 6 and len(drawn) > 2
     with pytest.raises(ValueError, match="max_blocks 1 leaves no episode"):
         SubgoalEnv("tabletop", max_blocks=1)
+
+
+@pytest.mark.parametrize("kind, first_seed", [("put_near", 2_010_000), ("put_away", 2_020_000), ("put_on", 2_030_000)])
+def test_the_tabletop_draws_only_puts_a_plan_could_hand_over(kind: str, first_seed: int) -> None:
+    """Evaluation's first starts of each put (the seeds of `eval subgoals`): a put on or near goes to a block outside
+    the bin with nothing on it, near one standing on the table (the domain's preconditions), and a put near or away
+    has a spot that fits. Drawn otherwise (2,010,009: near a block in the bin; 2,020,006: away from seven blocks with
+    no room left), the expert held the block to the end."""
+    from semgoal_core.expert import destination
+    from semgoal_sim.env import SubgoalEnv
+
+    env = SubgoalEnv("tabletop")
+    for seed in range(first_seed, first_seed + 30):
+        env.reset(seed=seed, options={"kind": kind})
+        subgoal, state = env.subgoal, env.world.semantic_vector()
+        assert env.world.view().holds(subgoal.block), (seed, subgoal)
+        if kind != "put_away":
+            for ref in subgoal.references:
+                others = [b for b in env.world.blocks if b != ref]
+                assert not state[env.layout.index(Literal("in_bin", (ref,)))], (seed, subgoal)
+                assert not any(state[env.layout.index(Literal("above", (b, ref)))] for b in others), (seed, subgoal)
+                if kind == "put_near":
+                    assert not any(state[env.layout.index(Literal("above", (ref, b)))] for b in others), (seed, subgoal)
+        if kind != "put_on":
+            assert destination(subgoal, env.world.view()) is not None, (seed, subgoal)

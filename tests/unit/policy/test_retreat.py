@@ -9,7 +9,7 @@ from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core import features
 from semgoal_core.expert import move_to
 from semgoal_core.geometry import FINGER_OUTER_FACE, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
-from semgoal_core.layout import MAX_DISPLACEMENT
+from semgoal_core.layout import CONTROL_DT, MAX_DISPLACEMENT
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, Literal, parse_literal
 from semgoal_policy.controller import (
@@ -20,6 +20,7 @@ from semgoal_policy.controller import (
     HOLD,
     HOLD_GRIP,
     LANDING_SPEED,
+    NEAR_RELEASE_SPEED,
     PALM_CLEARANCE,
     PALM_HEIGHT,
     RELEASE_XY,
@@ -33,6 +34,7 @@ from semgoal_policy.controller import (
     grasped_in_place,
     kept_off_the_walls,
     kept_on_the_table,
+    let_go_slowly,
     palm_kept_off_stacks,
     placed_gently,
     straddles_a_stack,
@@ -374,6 +376,31 @@ def test_the_actor_lets_a_block_go_beside_another_and_the_other_stays() -> None:
     world, red = _block_held_on_the_table_beside_another(0.076)
     _put_on_the_table_by_the_actor(world, "green", steps=30)
     np.testing.assert_allclose(world.snapshot().block_positions[world.blocks.index("red")], red, atol=0.005)
+
+
+def test_a_block_put_near_others_is_let_go_only_with_the_hand_slow() -> None:
+    """Let go moving at 0.2-0.5 m/s, 5-7 cm from their references, blocks slid on past ``close`` (tabletop put near,
+    seed 2,010,047): wanting to let go faster than NEAR_RELEASE_SPEED, the hand keeps squeezing and stops in the
+    plane; slower, or with no block in hand, the command goes as it is. Only a put near asks it."""
+    world, _ = _block_held_on_the_table_beside_another(0.12)
+    let_go = np.array([0.4, -0.3, -0.2, 1.0], dtype=np.float32)
+    moving, slow = world.observation(), world.observation()
+    moving[3:6] = [1.5 * NEAR_RELEASE_SPEED * CONTROL_DT, 0.0, 0.0]
+    slow[3:6] = [0.5 * NEAR_RELEASE_SPEED * CONTROL_DT, 0.0, 0.0]
+    assert let_go_slowly("tabletop", moving, let_go.copy()).tolist() == pytest.approx([0.0, 0.0, -0.2, HOLD_GRIP[3]])
+    assert let_go_slowly("tabletop", slow, let_go.copy()).tolist() == pytest.approx(let_go.tolist())
+    carrying = np.array([0.4, -0.3, -0.2, -1.0], dtype=np.float32)
+    assert let_go_slowly("tabletop", moving, carrying.copy()).tolist() == pytest.approx(carrying.tolist())
+    empty = FetchWorld("tabletop", 3)
+    empty.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
+    empty_moving = empty.observation()
+    empty_moving[3:6] = moving[3:6]
+    assert let_go_slowly("tabletop", empty_moving, let_go.copy()).tolist() == pytest.approx(let_go.tolist())
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("close(green,red)"), parse_literal("not holding(green)")])
+    assert controller.ruled(moving, let_go.copy())[3] == HOLD_GRIP[3]
+    controller.set_subgoal([parse_literal("not close(green,red)"), parse_literal("not holding(green)")])
+    assert controller.ruled(moving, let_go.copy())[:2].tolist() == pytest.approx(let_go[:2].tolist())
 
 
 def _block_held_over_a_tower_of_two(off_centre: float, over_seat: float) -> tuple[FetchWorld, np.ndarray]:

@@ -131,8 +131,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
                         help="the policy node's rules on top of the actor, as the graph runs it (no held block let go off "
                              "the table's edge or over the bin's wall, a block put on another let go centred, the hand "
                              "lifted off a tower's top, the palm kept off stacks, a block on a stack grasped at its "
-                             "middle, fingers opening no further than a block beside them leaves room); default: the "
-                             "actor alone")
+                             "middle, fingers opening no further than a block beside them leaves room, a block put near "
+                             "others let go only with the hand slow); default: the actor alone")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--sleep", action="store_true",

@@ -72,6 +72,20 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
                            "--record", str(session), "--log-level", "warn"], stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, text=True)
     try:
+        from semgoal_ros.client import GraphClient
+
+        watcher = GraphClient("semgoal_test_watcher", watch=False)
+        try:  # the session recorder records a topic once its reader has matched the publisher: under load it once
+            # matched the sim's world states only at the episode's end, and the session held no start of it
+            def recorder_hears_the_sim() -> bool:
+                readers = watcher.node.get_subscriptions_info_by_topic(topics.WORLD_STATE)
+                return (any(info.node_name == "recorder" for info in readers)
+                        and watcher.node.count_publishers(topics.WORLD_STATE) > 0)
+
+            assert watcher.spin_until(recorder_hears_the_sim, 60.0), "the session recorder never met the sim"
+            watcher.spin_until(lambda: False, 1.0)  # a moment for the two to match, as a third process saw them
+        finally:
+            watcher.close()
         ran = None
         for _ in range(3):  # the first try may come before the planner is up
             ran = semgoal("goal", TASK, "--wait", "--max-steps", "600", "--record", str(goal_record), timeout=300)
@@ -82,7 +96,6 @@ def test_up_and_goal_record_what_the_operator_ran(ros_domain, tmp_path) -> None:
         refused = semgoal("plan", "remove", "99")  # an edit the planner refuses: on record with its reason
         assert refused.returncode != 0, refused.stdout
         from semgoal_msgs.msg import OperatorEvent
-        from semgoal_ros.client import GraphClient
 
         hand = GraphClient("semgoal_test_hand", watch=False)  # a person's move (MoveBlock), as the console makes
         moves: list = []

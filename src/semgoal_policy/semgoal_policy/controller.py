@@ -344,8 +344,9 @@ class SubgoalController:
         self.into_bin = False
         """The sub-goal puts a block into the bin: :func:`kept_off_the_walls` applies."""
         self.putting_on: tuple[str, str] | None = None
-        self.putting_near = False
         """The sub-goal puts one block on another (top, bottom): :func:`placed_gently` applies."""
+        self.putting_near = False
+        """The sub-goal puts a block near others: :func:`let_go_slowly` applies."""
         self.picking: frozenset[str] = frozenset()
         """The blocks the sub-goal asks to hold: :func:`straddles_a_stack` leaves the hand beside them be."""
         self.keep: frozenset[str] = frozenset()

@@ -423,7 +423,10 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         x, references = subgoal.block, subgoal.references
         if subgoal.kind in ("put_near", "put_on") and self.scene.bin is not None and "above" in self.scene.predicates:
             vector = self.world.semantic_vector()
-            holds = lambda name, *args: bool(vector[self.layout.index(Literal(name, args))])  # noqa: E731
+
+            def holds(name: str, *args: str) -> bool:
+                return bool(vector[self.layout.index(Literal(name, args))])
+
             for ref in references:
                 if holds("in_bin", ref) or any(holds("above", b, ref) for b in self.world.blocks if b not in (x, ref)):
                     return False

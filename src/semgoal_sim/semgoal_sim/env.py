@@ -422,16 +422,14 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         put nears, 7 % of its put aways), and the actor learned to do the same."""
         x, references = subgoal.block, subgoal.references
         if subgoal.kind in ("put_near", "put_on") and self.scene.bin is not None and "above" in self.scene.predicates:
-            vector = self.world.semantic_vector()
-
-            def holds(name: str, *args: str) -> bool:
-                return bool(vector[self.layout.index(Literal(name, args))])
-
-            for ref in references:
-                if holds("in_bin", ref) or any(holds("above", b, ref) for b in self.world.blocks if b not in (x, ref)):
-                    return False
-                if subgoal.kind == "put_near" and any(holds("above", ref, b) for b in self.world.blocks if b != ref):
-                    return False
+            preconditions = [Literal("in_bin", (ref,), False) for ref in references]
+            preconditions += [Literal("above", (b, ref), False) for ref in references for b in self.world.blocks
+                              if b not in (x, ref)]
+            if subgoal.kind == "put_near":  # standing on the table
+                preconditions += [Literal("above", (ref, b), False) for ref in references for b in self.world.blocks
+                                  if b != ref]
+            if not satisfied(self.layout, self.world.semantic_vector(), preconditions):
+                return False
         near_both = subgoal.kind == "put_near" and len(references) == 2
         if subgoal.kind in ("put_near", "put_away") and not near_both:
             return destination(subgoal, self.world.view()) is not None

@@ -36,6 +36,14 @@ def counts(text: str) -> list[int]:
         raise argparse.ArgumentTypeError(f"must be whole numbers of at least 1 joined by commas, got {text!r}") from None
 
 
+def names(text: str) -> list[str]:
+    """Comma-separated names ('pick,put_near'), the spaces around each dropped; at least one."""
+    parts = [part.strip() for part in text.split(",") if part.strip()]
+    if not parts:
+        raise argparse.ArgumentTypeError(f"must be one or more names joined by commas, got {text!r}")
+    return parts
+
+
 def _whole(text: str, least: int) -> int:
     try:
         value = int(text)

@@ -17,6 +17,8 @@ from semgoal_core.settling import SETTLE_STEPS
 
 EVAL_SEED_BASE = 1_000_000
 """Evaluation episodes use seeds from here on; training envs are seeded far below (see trainer)."""
+KIND_SEED_STRIDE = 10_000
+"""The ``k``-th kind's episodes are seeded from ``seed + k * KIND_SEED_STRIDE`` (:func:`success_by_kind`)."""
 
 ActFn = Callable[[np.ndarray, np.ndarray], np.ndarray]
 
@@ -91,7 +93,7 @@ def success_by_kind(envs: Sequence, act: ActFn, kinds: Sequence[str], episodes: 
         wins = 0
         for start in range(0, episodes, len(envs)):
             batch = min(len(envs), episodes - start)
-            seeds = [seed + 10_000 * k + start + i for i in range(batch)]
+            seeds = [seed + KIND_SEED_STRIDE * k + start + i for i in range(batch)]
             result = run_episodes(envs, act, [{"kind": kind}] * batch, seeds, label=False)
             wins += int(result.success.sum())
             if on_miss is not None:

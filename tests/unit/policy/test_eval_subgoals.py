@@ -48,6 +48,25 @@ def test_the_sampled_actor_is_seeded_so_a_run_repeats(capsys) -> None:
     assert first["action_mode"] == "sample" and first == again
 
 
+@pytest.mark.parametrize("mode", ["mean", "sample"])
+def test_one_type_alone_gives_what_it_gives_among_the_others(mode, capsys) -> None:
+    """Its starts and its sampled noise are the type's own: alone, put_near meets the same starts with the same
+    actions (ten steps miss every put near, each with its own distances)."""
+    extra = ("--action-mode", mode, "--horizon", "10", "--misses")
+    every, alone = _run(capsys, *extra), _run(capsys, *extra, "--types", "put_near")
+    assert list(alone["per_subgoal"]) == ["put_near"]
+    assert alone["per_subgoal"]["put_near"] == every["per_subgoal"]["put_near"]
+    near = [miss for miss in every["misses"] if miss["kind"] == "put_near"]
+    assert near and alone["misses"] == near
+
+
+def test_a_type_the_scene_lacks_is_refused(capsys) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        eval_subgoals_main(["--scene", "two_blocks", "--types", "put_near,put_in_bin"])
+    assert exit_info.value.code == 2
+    assert "put_in_bin: not a sub-goal type of two_blocks (it has pick, put_near, put_away, put_on)" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("flag", ["--episodes", "--horizon", "--envs"])
 def test_counts_below_one_are_refused(flag, capsys) -> None:
     with pytest.raises(SystemExit) as exit_info:

@@ -11,7 +11,7 @@ import sys
 from functools import partial
 from pathlib import Path
 
-from semgoal_core.arguments import count, natural
+from semgoal_core.arguments import count, names, natural
 from semgoal_core.vocabulary import SCENES
 
 
@@ -112,7 +112,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
     from semgoal_policy.controller import ACTION_MODES, SubgoalController
-    from semgoal_policy.evaluate import success_by_kind
+    from semgoal_policy.evaluate import KIND_SEED_STRIDE, success_by_kind
     from semgoal_sim.env import EPISODE_STEPS
 
     parser = argparse.ArgumentParser(prog="semgoal eval subgoals", description=eval_subgoals_main.__doc__)
@@ -123,8 +123,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
                         help=f"control steps per episode (default {EPISODE_STEPS}, the training horizon; the planner "
                              "grants a step stall_steps, 150, before it re-plans)")
     parser.add_argument("--action-mode", choices=ACTION_MODES, default="mean",
-                        help="mean: the deterministic actor (default); sample: its Gaussian, seeded by --seed, "
-                             "as policy_node runs it (action_mode: sample)")
+                        help="mean: the deterministic actor (default); sample: its Gaussian, seeded by --seed and the "
+                             "sub-goal type, as policy_node runs it (action_mode: sample)")
     parser.add_argument("--model-dir", type=Path, help="exported actor (default: the shipped one, share/semgoal_policy/models/SCENE)")
     parser.add_argument("--envs", type=count, default=10)
     parser.add_argument("--shields", action="store_true",
@@ -133,12 +133,22 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "lifted off a tower's top, the palm kept off stacks, a block on a stack grasped at its "
                              "middle, fingers opening no further than a block beside them leaves room, a block put near "
                              "others let go only with the hand slow); default: the actor alone")
+    parser.add_argument("--types", type=names, metavar="TYPE[,TYPE...]",
+                        help="only these sub-goal types (default: every type of the scene), each from the same starts "
+                             "and with the same sampled noise as in the whole evaluation")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
     parser.add_argument("--sleep", action="store_true",
                         help="blocks at rest sleep (MuJoCo's sleeping islands; off as the actors were trained)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
+    spec = get_agent("hierarchical")
+    kinds = spec.evaluated_kinds(args.scene)
+    chosen = args.types or kinds
+    unknown = [kind for kind in chosen if kind not in kinds]
+    if unknown:
+        parser.error(f"argument --types: {', '.join(unknown)}: not a sub-goal type of {args.scene} "
+                     f"(it has {', '.join(kinds)})")
     import numpy as np
     import torch
 
@@ -147,11 +157,9 @@ def eval_subgoals_main(argv: list[str]) -> int:
         actor, meta = load(args.model_dir or models_dir() / args.scene, args.scene)
     except (FileNotFoundError, ValueError) as error:  # no actor there, or one of another scene
         parser.error(str(error))
-    spec = get_agent("hierarchical")
     envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=args.sleep) for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
-    noise = np.random.default_rng(args.seed)
 
     observation_size = layout.observation_size(args.scene)
 
@@ -168,14 +176,18 @@ def eval_subgoals_main(argv: list[str]) -> int:
                 action[:] = controller.ruled(observation[:observation_size], action)
         return actions
 
-    kinds = spec.evaluated_kinds(args.scene)
     misses: list[dict] = []
 
     def record(kind: str, seed: int, env) -> None:
         why = env.shortfall() or [f"achieved at rest at the end, for fewer than the {SETTLE_STEPS} steps that confirm it"]
         misses.append({"kind": kind, "seed": seed, "subgoal": str(env.subgoal), "why": why})
 
-    rates = success_by_kind(envs, act, kinds, args.episodes, args.seed, on_miss=record if args.misses else None)
+    rates = {}
+    for kind in chosen:  # each type its own starts and noise: the same figures alone as among the others
+        k = kinds.index(kind)
+        noise = np.random.default_rng([args.seed, k])
+        rates |= success_by_kind(envs, act, [kind], args.episodes, args.seed + KIND_SEED_STRIDE * k,
+                                 on_miss=record if args.misses else None)
     result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon, "sleep": args.sleep,
               "action_mode": args.action_mode, "shields": args.shields, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)} | ({"misses": misses} if args.misses else {})

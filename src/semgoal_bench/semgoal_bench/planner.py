@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 from semgoal_bench.planner_suite import PLANNERS, bench_python, run_suite, table
-from semgoal_core.arguments import count, counts, seconds
+from semgoal_core.arguments import count, counts, names, seconds
 from semgoal_planner.blocksworld import DOMAIN_PATH, problem
 
 COMBOS = (("bfs", "blind"), ("astar", "hmax"), ("astar", "lmcut"), ("gbfs", "hff"))
@@ -112,22 +112,22 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--suite", type=Path, help="a folder of PDDL domains in the IPC layout: coverage, validity "
                         "and whole-process times instead of the blocksworld series")
     parser.add_argument("--per-domain", type=count, default=6, help="with --suite: the first N problems of each domain")
-    parser.add_argument("--domains", help="with --suite: only these comma-separated domain folders")
-    parser.add_argument("--planners", default="ours,pyperplan,fast-downward",
+    parser.add_argument("--domains", type=names, help="with --suite: only these comma-separated domain folders")
+    parser.add_argument("--planners", type=names, default="ours,pyperplan,fast-downward",
                         help=f"with --suite: any of {', '.join(PLANNERS)}")
     parser.add_argument("--search", default="lazy/hff+lmcount", help="with --suite: SEARCH/HEURISTIC (lazy/hff+lmcount: "
                         "ours beside Fast Downward's lama-first, the same pair in a lazy search)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     if args.suite:
-        planners = args.planners.split(",")
+        planners = args.planners
         if not args.suite.is_dir() or set(planners) - set(PLANNERS):
             parser.error(f"--suite {args.suite}: not a folder" if not args.suite.is_dir() else
                          f"--planners: unknown {', '.join(sorted(set(planners) - set(PLANNERS)))}")
         search, _, heuristic = args.search.partition("/")
         progress = None if args.json else functools.partial(print, flush=True)
         result = run_suite(args.suite, planners, args.per_domain, args.timeout, search, heuristic or "blind",
-                           repeats=args.repeats or 1, domains=set(args.domains.split(",")) if args.domains else None,
+                           repeats=args.repeats or 1, domains=set(args.domains) if args.domains else None,
                            progress=progress)
         if not args.json:
             print(table(result))

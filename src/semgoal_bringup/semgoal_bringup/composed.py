@@ -20,6 +20,8 @@ from typing import Any
 
 import yaml
 
+from semgoal_core.arguments import names
+
 NODE_CLASSES = {
     "sim_node": "semgoal_sim.sim_node:SimNode",
     "predicate_node": "semgoal_sim.predicate_node:PredicateNode",
@@ -81,12 +83,12 @@ def main(argv: list[str] | None = None) -> None:
     argv = sys.argv[1:] if argv is None else argv
     split = argv.index("--ros-args") if "--ros-args" in argv else len(argv)
     parser = argparse.ArgumentParser(prog="graph_node", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--nodes", default=",".join(DEFAULT_NODES),
+    parser.add_argument("--nodes", type=names, default=",".join(DEFAULT_NODES),
                         help=f"of {', '.join(NODE_CLASSES)}, each under a namespace if written NS/EXE")
     parser.add_argument("--param", action="append", default=[], metavar="NS/EXE:KEY:=VALUE",
                         help="a value of a node under a namespace (repeat for more)")
     args = parser.parse_args(argv[:split])
-    entries = [name.strip() for name in args.nodes.split(",") if name.strip()]
+    entries = args.nodes
     if unknown := [name for name in entries if split_entry(name)[1] not in NODE_CLASSES]:
         parser.error(f"unknown node(s) {', '.join(unknown)}: of {', '.join(NODE_CLASSES)}")
     try:

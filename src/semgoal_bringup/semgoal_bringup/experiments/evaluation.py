@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, sight_of
-from semgoal_core.arguments import count, natural
+from semgoal_core.arguments import count, names, natural
 from semgoal_core.provenance import describe, provenance
 from semgoal_core.settling import REST_SPEED, SETTLE_STEPS
 from semgoal_core.tasks import TABLETOP_TASKS, TASK_STEP_BUDGET, TASKS, get_task
@@ -486,7 +486,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--episodes", type=count, default=50, help="episodes per task and training seed")
     parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="first task seed (fixes every start)")
     parser.add_argument("--seeds", type=count, default=3, help="training seeds to average where actors exist")
-    parser.add_argument("--agents", default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
+    parser.add_argument("--agents", type=names, default="hierarchical", help=f"comma-separated: {', '.join(AGENT_NAMES)}")
     parser.add_argument("--via-ros", action="store_true", help="also run the hierarchical agent through the node graph")
     parser.add_argument("--ros-episodes", type=count, help="episodes per task through the graph (default: --episodes)")
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
@@ -523,10 +523,10 @@ def main(argv: list[str]) -> int:
     sight = sight_of(args, parser, tasks)
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
-    agents = [a.strip() for a in args.agents.split(",") if a.strip()]
+    agents = args.agents
     unknown = [a for a in agents if a not in AGENT_NAMES]
-    if unknown or not agents or not tasks:
-        parser.error(f"need tasks and agents from {', '.join(AGENT_NAMES)} (got {args.agents!r})")
+    if unknown or not tasks:
+        parser.error(f"need tasks and agents from {', '.join(AGENT_NAMES)} (got {','.join(agents)!r})")
     if args.sleep and (args.via_ros or agents != ["hierarchical"]):
         parser.error("--sleep runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
     from semgoal_policy import actor as actor_io

@@ -23,7 +23,7 @@ from semgoal_bringup.experiments.evaluation import wilson_interval
 from semgoal_bringup.experiments.executors import check_executor, run_jobs
 from semgoal_bringup.graph import TRUTH, Sight, add_sight_arguments, running_graph, sight_of
 from semgoal_core import tasks
-from semgoal_core.arguments import count, natural
+from semgoal_core.arguments import count, names, natural
 from semgoal_core.goal_families import FAMILIES, GoalCase, goal_cases
 from semgoal_core.vocabulary import SCENES
 
@@ -74,7 +74,7 @@ def ros_sample(cases: dict[str, list[GoalCase]], episodes: int) -> list[GoalCase
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="semgoal eval goals", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", required=True, choices=list(SCENES))
-    parser.add_argument("--families", help="comma-separated (default: all of the scene's): "
+    parser.add_argument("--families", type=names, help="comma-separated (default: all of the scene's): "
                         + "; ".join(f"{scene}: {', '.join(names)}" for scene, names in FAMILIES.items()))
     parser.add_argument("--episodes", type=count, default=50, help="episodes per family")
     parser.add_argument("--seed", type=natural, default=DEFAULT_SEED, help="first goal seed (episode i: seed + i)")
@@ -91,7 +91,7 @@ def main(argv: list[str]) -> int:
     sight = sight_of(args, parser, tasks.scene_tasks(args.scene)[:1])
     if sight != TRUTH and not args.via_ros:
         parser.error("--perception / --policy-input camera run through the graph: add --via-ros")
-    families = [f.strip() for f in (args.families or ",".join(FAMILIES[args.scene])).split(",") if f.strip()]
+    families = args.families or list(FAMILIES[args.scene])
     unknown = [f for f in families if f not in FAMILIES[args.scene]]
     if unknown:
         parser.error(f"families of {args.scene} are {', '.join(FAMILIES[args.scene])} (got {unknown})")

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from semgoal_core.arguments import count, natural
+from semgoal_core.arguments import count, names, natural
 
 NEAR_THRESHOLD = 0.005
 """A literal whose true geometry is this close to a threshold (m) counts as a near-threshold case."""
@@ -233,7 +233,7 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--seed", type=natural, default=MEASUREMENT_SEED, help="the paper's task starts: seed + episode")
     parser.add_argument("--tabletop-seed", type=natural, default=TABLETOP_MEASUREMENT_SEED,
                         help="the tabletop's task starts: seed + episode")
-    parser.add_argument("--conditions", default=",".join(CONDITION_LOOKS), help=f"of {', '.join(CONDITION_LOOKS)}")
+    parser.add_argument("--conditions", type=names, default=",".join(CONDITION_LOOKS), help=f"of {', '.join(CONDITION_LOOKS)}")
     parser.add_argument("--model-dir", type=Path, help="exported voter (default: the shipped one)")
     parser.add_argument("--cache", type=Path, default=Path("runs/perception"))
     parser.add_argument("--json", action="store_true")
@@ -251,14 +251,14 @@ def main(argv: list[str]) -> int:
     literal_net = load_literal_net(literals_folder) if (literals_folder / "literal_net.pt").exists() else None
     size = tuple(json.loads((folder / "voter.json").read_text())["camera_size"])
     results = {}
-    for condition in args.conditions.split(","):
+    for condition in args.conditions:
         if condition not in CONDITION_LOOKS:
             parser.error(f"unknown condition {condition!r}: conditions are {', '.join(CONDITION_LOOKS)}")
         look, strength, tabletop = CONDITION_LOOKS[condition]
         frames = cached_frames(args.frames, args.tabletop_seed if tabletop else args.seed, size, strength, args.cache,
                                look, tabletop=tabletop)
         results[condition] = measure(frames, estimator, None if tabletop else literal_net)  # it knows the paper's scenes
-        if args.figure and condition == (args.figure_of or args.conditions.split(",")[0]):
+        if args.figure and condition == (args.figure_of or args.conditions[0]):
             figure(frames, estimator, args.figure)
     print(json.dumps(results, indent=2) if args.json else table(results))
     return 0

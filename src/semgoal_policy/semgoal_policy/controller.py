@@ -95,6 +95,9 @@ FINGER_LENGTH = 0.077
 """A finger's length (m) from its tip up."""
 FINGER_CLEARANCE = 0.0021
 """Room (m) an opening finger's outer face leaves to a block beside it."""
+STACK_CLEARANCE = 0.02
+"""Room (m) a held block keeps from a stack's footprint as it comes down beside it: blocks turned in the hand or in
+the stack reach up to 1 cm beyond their square."""
 NEAR_RELEASE_SPEED = 0.1
 """The fastest (m/s, 4 mm a step) the hand may move in the table's plane as it lets go of a block put near others:
 let go at 0.2-0.5 m/s within 5-7 cm of its references, blocks slid on to 10.2-11.5 cm, past ``close``."""
@@ -286,6 +289,35 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
     return action
 
 
+def held_block_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray, seat: str | None = None
+                               ) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while the hand holds a block, except that the held block does not
+    come down beside a block of a stack (``seat``, the block it is put on, aside) nearer than
+    :data:`STACK_CLEARANCE` to its footprint and below its top: it stays at its height and moves away from it.
+    Putting a block on the table 5-6 cm beside a tower of three, the held block came down along the tower's side,
+    pushed its top block out and off the table (tabletop Unstack-6, start 3,000,024)."""
+    held = held_slots(scene, observation)
+    if not held.any():
+        return action
+    blocks = layout.block_slots(scene, observation)
+    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
+    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
+    stacked = pairs.any(axis=0) | pairs.any(axis=1)
+    if seat is not None:
+        stacked[SCENES[scene].objects.index(seat)] = False
+    here = positions[held][0]
+    then = here + action[:3] * layout.MAX_DISPLACEMENT  # where this command takes it
+    offsets = then - positions
+    beside = stacked & (np.abs(offsets[:, :2]) < 2 * BLOCK_HALF_SIZE + STACK_CLEARANCE).all(axis=1) & (
+        np.hypot(offsets[:, 0], offsets[:, 1]) >= THRESHOLDS.above_xy) & (  # over it: a put on it, or a lift off it
+        offsets[:, 2] < 2 * BLOCK_HALF_SIZE + STACK_CLEARANCE) & (here[2] > positions[:, 2] + BLOCK_HALF_SIZE)
+    if beside.any():
+        action[2] = max(action[2], 0.0)
+        away = (here[:2] - positions[beside, :2]).mean(axis=0)
+        action[:2] = away / max(float(np.linalg.norm(away)), 1e-9) * CENTRING_SPEED
+    return action
+
+
 def _opening_toward(target: float, opening: float) -> float:
     """The finger command that opens the fingers from ``opening`` to ``target`` (m): a finger command is metres added
     to each finger's target, and a quarter of the way a step comes to rest 3-4 mm past it, no more."""
@@ -420,6 +452,7 @@ class SubgoalController:
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
         action = palm_kept_off_stacks(self.scene, observation, action)
+        action = held_block_kept_off_stacks(self.scene, observation, action, self.putting_on and self.putting_on[1])
         action = fingers_spare_neighbours(self.scene, observation, action)
         return kept_on_the_table(self.scene, observation, action)
 

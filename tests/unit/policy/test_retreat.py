@@ -13,6 +13,7 @@ from semgoal_core.layout import CONTROL_DT, MAX_DISPLACEMENT
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
 from semgoal_core.vocabulary import BLOCK_HALF_SIZE, TABLETOP_BIN, THRESHOLDS, Literal, parse_literal
 from semgoal_policy.controller import (
+    CENTRING_SPEED,
     EDGE_MARGIN,
     EDGE_NUDGE,
     FINGER_CLEARANCE,
@@ -32,6 +33,7 @@ from semgoal_policy.controller import (
     SubgoalController,
     fingers_spare_neighbours,
     grasped_in_place,
+    held_block_kept_off_stacks,
     kept_off_the_walls,
     kept_on_the_table,
     let_go_slowly,
@@ -487,6 +489,34 @@ def test_a_hand_with_a_block_does_not_bring_its_palm_down_beside_a_stack() -> No
 def test_the_actor_puts_a_block_on_the_table_beside_a_tower_and_the_tower_stands() -> None:
     world, tower = _block_held_beside_a_tower_of_three(0.07)
     _put_on_the_table_by_the_actor(world, "yellow", steps=80)
+    np.testing.assert_allclose(world.snapshot().block_positions[:3], tower, atol=0.005)
+
+
+def test_a_held_block_does_not_come_down_beside_a_stack() -> None:
+    """Beside a tower of two, its bottom at the tower's top, a held block commanded down stays at its height and moves
+    away from the tower in the plane; over its seat (a put on the tower), or 12 cm off, the command goes as it is."""
+    down = np.array([-0.1, 0.0, -1.0, -1.0], dtype=np.float32)
+    world, green = _block_held_over_a_tower_of_two(0.06, 0.0)
+    action = held_block_kept_off_stacks("tabletop", world.observation(), down.copy())
+    blue = world.snapshot().block_positions[world.blocks.index("blue")]
+    away = (blue[:2] - green[:2]) / np.linalg.norm(blue[:2] - green[:2])
+    assert action[2] == 0.0 and action[3] == -1.0
+    np.testing.assert_allclose(action[:2], away * CENTRING_SPEED, atol=1e-6)
+    over, _ = _block_held_over_a_tower_of_two(0.0, 0.02)
+    assert held_block_kept_off_stacks("tabletop", over.observation(), down.copy(), seat="green").tolist() == \
+        pytest.approx(down.tolist())
+    far, _ = _block_held_over_a_tower_of_two(0.12, 0.0)
+    assert held_block_kept_off_stacks("tabletop", far.observation(), down.copy()).tolist() == pytest.approx(down.tolist())
+
+
+def test_a_block_carried_down_beside_a_tower_leaves_the_tower_standing() -> None:
+    """Brought straight down 6.4 cm from a tower of three (4.5 cm along x and y), a held block knocked the tower over
+    (checked: its blocks moved 16 cm); under the rule the tower stays where it stood."""
+    world, tower = _block_held_beside_a_tower_of_three(0.045)
+    for _ in range(40):
+        grip = world.snapshot().grip_position
+        down = move_to(grip, grip + np.array([0.0, 0.0, -0.3]), -1.0).astype(np.float32)
+        world.step(held_block_kept_off_stacks("tabletop", world.observation(), down))
     np.testing.assert_allclose(world.snapshot().block_positions[:3], tower, atol=0.005)
 
 

@@ -130,7 +130,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     parser.add_argument("--shields", action="store_true",
                         help="the policy node's rules on top of the actor, as the graph runs it (no held block let go off "
                              "the table's edge or over the bin's wall, a block put on another let go centred, the hand "
-                             "lifted off a tower's top, the palm kept off stacks, a block on a stack grasped at its "
+                             "lifted off a tower's top, the palm and a held block kept off stacks, a block on a stack grasped at its "
                              "middle, fingers opening no further than a block beside them leaves room, a block put near "
                              "others let go only with the hand slow); default: the actor alone")
     parser.add_argument("--types", type=names, metavar="TYPE[,TYPE...]",

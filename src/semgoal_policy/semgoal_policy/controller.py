@@ -262,6 +262,14 @@ def fingers_spare_neighbours(scene: str, observation: np.ndarray, action: np.nda
     return action
 
 
+def _stacks(scene: str, observation: np.ndarray, held: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The block positions and which blocks, the ``held`` one aside, are in a stack: on another or under one."""
+    blocks = layout.block_slots(scene, observation)
+    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
+    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
+    return positions, pairs.any(axis=0) | pairs.any(axis=1)
+
+
 def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
     """An actor's command (in the arm's own frame) while the hand holds a block, except that the gripper's palm does
     not come down beside a stack of blocks lower than its top: the hand stays up and moves away from the stack. The
@@ -270,10 +278,7 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
     held = held_slots(scene, observation)
     if not held.any():
         return action
-    blocks = layout.block_slots(scene, observation)
-    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
-    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
-    stacked = pairs.any(axis=0) | pairs.any(axis=1)
+    positions, stacked = _stacks(scene, observation, held)
     grip = layout.arm_state(observation)["grip_position"]
     offsets = positions - grip
     near = stacked & (np.abs(offsets[:, :2]) < PALM_REACH).all(axis=1)
@@ -299,10 +304,7 @@ def held_block_kept_off_stacks(scene: str, observation: np.ndarray, action: np.n
     held = held_slots(scene, observation)
     if not held.any():
         return action
-    blocks = layout.block_slots(scene, observation)
-    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
-    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
-    stacked = pairs.any(axis=0) | pairs.any(axis=1)
+    positions, stacked = _stacks(scene, observation, held)
     if seat is not None:
         stacked[SCENES[scene].objects.index(seat)] = False
     here = positions[held][0]

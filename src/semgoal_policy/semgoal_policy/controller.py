@@ -262,23 +262,32 @@ def fingers_spare_neighbours(scene: str, observation: np.ndarray, action: np.nda
     return action
 
 
-def _stacks(scene: str, observation: np.ndarray, held: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The block positions and which blocks, the ``held`` one aside, are in a stack: on another or under one."""
+Stacks = tuple[np.ndarray, np.ndarray, np.ndarray]
+"""What the rules on stacks read of an observation: the held block slots, the block positions, and which blocks, the
+held one aside, are in a stack (on another or under one)."""
+
+
+def stacks_of(scene: str, observation: np.ndarray) -> Stacks | None:
+    """:data:`Stacks` of an observation (in the arm's own frame); None when the hand holds no block."""
+    held = held_slots(scene, observation)
+    if not held.any():
+        return None
     blocks = layout.block_slots(scene, observation)
     present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
     pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
-    return positions, pairs.any(axis=0) | pairs.any(axis=1)
+    return held, positions, pairs.any(axis=0) | pairs.any(axis=1)
 
 
-def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray, stacks: Stacks | None = None
+                         ) -> np.ndarray:
     """An actor's command (in the arm's own frame) while the hand holds a block, except that the gripper's palm does
     not come down beside a stack of blocks lower than its top: the hand stays up and moves away from the stack. The
     palm came down on a tower of five as the hand put a block on the table 7 cm from it, and the tower fell (tabletop
-    Unstack-6, start 3,000,014)."""
-    held = held_slots(scene, observation)
-    if not held.any():
+    Unstack-6, start 3,000,014). ``stacks``: :func:`stacks_of` the observation, when known."""
+    stacks = stacks or stacks_of(scene, observation)
+    if stacks is None:
         return action
-    positions, stacked = _stacks(scene, observation, held)
+    _, positions, stacked = stacks
     grip = layout.arm_state(observation)["grip_position"]
     offsets = positions - grip
     near = stacked & (np.abs(offsets[:, :2]) < PALM_REACH).all(axis=1)
@@ -294,18 +303,20 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
     return action
 
 
-def held_block_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray, seat: str | None = None
-                               ) -> np.ndarray:
+def held_block_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray, seat: str | None = None,
+                               stacks: Stacks | None = None) -> np.ndarray:
     """An actor's command (in the arm's own frame) while the hand holds a block, except that the held block does not
     come down beside a block of a stack (``seat``, the block it is put on, aside) nearer than
     :data:`STACK_CLEARANCE` to its footprint and below its top: it stays at its height and moves away from it.
     Putting a block on the table 5-6 cm beside a tower of three, the held block came down along the tower's side,
-    pushed its top block out and off the table (tabletop Unstack-6, start 3,000,024)."""
-    held = held_slots(scene, observation)
-    if not held.any():
+    pushed its top block out and off the table (tabletop Unstack-6, start 3,000,024). ``stacks``: :func:`stacks_of`
+    the observation, when known."""
+    stacks = stacks or stacks_of(scene, observation)
+    if stacks is None:
         return action
-    positions, stacked = _stacks(scene, observation, held)
+    held, positions, stacked = stacks
     if seat is not None:
+        stacked = stacked.copy()
         stacked[SCENES[scene].objects.index(seat)] = False
     here = positions[held][0]
     then = here + action[:3] * layout.MAX_DISPLACEMENT  # where this command takes it
@@ -453,8 +464,11 @@ class SubgoalController:
             action = let_go_slowly(self.scene, observation, action)
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
-        action = palm_kept_off_stacks(self.scene, observation, action)
-        action = held_block_kept_off_stacks(self.scene, observation, action, self.putting_on and self.putting_on[1])
+        stacks = stacks_of(self.scene, observation)
+        if stacks is not None:
+            action = palm_kept_off_stacks(self.scene, observation, action, stacks)
+            seat = self.putting_on[1] if self.putting_on else None
+            action = held_block_kept_off_stacks(self.scene, observation, action, seat, stacks)
         action = fingers_spare_neighbours(self.scene, observation, action)
         return kept_on_the_table(self.scene, observation, action)
 

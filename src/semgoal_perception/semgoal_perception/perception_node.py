@@ -101,15 +101,15 @@ class PerceptionNode(Node):
             raise ParameterValueError(f"perception: no usable block voter in {folder}: {error}") from None
         self.stale_after_s = values["stale_after_s"]
         self.semantic_pub = self.create_publisher(SemanticState, topics.SEMANTIC_STATE, topics.PER_STEP)
-        self.blocks_pub = self.create_publisher(BlockEstimates, topics.BLOCK_ESTIMATES, topics.STREAM)
-        self.world_pub = self.create_publisher(WorldState, topics.PERCEIVED_WORLD, topics.STREAM)
+        self.blocks_pub = self.create_publisher(BlockEstimates, topics.BLOCK_ESTIMATES, topics.RECORDING)
+        self.world_pub = self.create_publisher(WorldState, topics.PERCEIVED_WORLD, topics.RECORDING)
         self.create_subscription(Image, topics.RGBD_COLOUR, lambda m: self.pending_in("colour", m), topics.RGBD)
         self.create_subscription(Image, topics.RGBD_DEPTH, lambda m: self.pending_in("depth", m), topics.RGBD)
         self.create_subscription(CameraInfo, topics.RGBD_INFO, lambda m: self.pending_in("info", m), topics.RGBD)
         self.create_subscription(WorldState, topics.WORLD_STATE, lambda m: self.pending_in("world", m), topics.STREAM)
         self.create_subscription(TFMessage, topics.TF_STATIC, self.tf_static_callback, topics.LATCHED)
         self.pending: dict[int, dict[str, object]] = {}
-        self.other_arms = [(self.create_publisher(WorldState, topics.arm_topic(topics.PERCEIVED_WORLD, arm), topics.STREAM),
+        self.other_arms = [(self.create_publisher(WorldState, topics.arm_topic(topics.PERCEIVED_WORLD, arm), topics.RECORDING),
                             {}) for arm in range(1, values["arms"])]
         """Per other arm: its perceived world state's publisher, and its world states waiting for their frame."""
         for arm in range(1, values["arms"]):

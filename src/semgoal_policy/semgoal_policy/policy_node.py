@@ -82,7 +82,7 @@ class PolicyNode(Node):
                                f"actor for {scene} from {self.controller.model_dir}: "
                                f"{self.controller.meta.get('env_steps')} training steps, "
                                f"eval {self.controller.meta.get('final_eval', {}).get('per_kind')}")
-        self.publisher = self.create_publisher(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm), topics.STREAM)
+        self.publisher = self.create_publisher(ArmCommand, topics.arm_topic(topics.ARM_COMMAND, arm), topics.RECORDING)
         self.create_subscription(WorldState, topics.arm_topic(values["world_topic"], arm), self.world_callback,
                                  topics.STREAM)
         self.create_subscription(SubGoal, topics.arm_topic(topics.SUBGOAL, arm), self.subgoal_callback, topics.PER_STEP)

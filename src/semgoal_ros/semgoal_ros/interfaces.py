@@ -82,7 +82,8 @@ STREAM = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE,
     durability=DurabilityPolicy.VOLATILE,
 )
-"""Per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step)."""
+"""The readers of per-step streams: world state, joint states, arm commands (reliable: lockstep must not lose a step;
+their writers keep :data:`RECORDING`'s history)."""
 
 RECORDING = QoSProfile(
     depth=1000,
@@ -90,8 +91,11 @@ RECORDING = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE,
     durability=DurabilityPolicy.VOLATILE,
 )
-"""A reader that must see every step of an episode (the demo's GIF): a client that falls behind while four
-busy nodes share two cores would keep only the last ten steps of a depth-10 stream reader."""
+"""Both ends of a per-step stream that a recorder must get whole. The reader: a client that falls behind while four
+busy nodes share two cores would keep only the last ten steps of a depth-10 reader. The writers (world states, joint
+states, arm commands, estimates): a reliable reader is repaired from what its writer still keeps, and with ten kept a
+recorder starved through ten steps of a lockstep episode lost them for good (a session recording once held an
+episode's heartbeats and none of its steps)."""
 
 EVENTS = QoSProfile(depth=100, history=HistoryPolicy.KEEP_LAST, reliability=ReliabilityPolicy.RELIABLE,
                     durability=DurabilityPolicy.TRANSIENT_LOCAL)

@@ -94,9 +94,9 @@ class SimNode(Node):
         """When each arm's last command came (realtime: the watchdog holds an arm still once it is too old)."""
         self.lockstep_commands: dict[int, np.ndarray] = {}
         """Lockstep: the arms' commands for the step just published, until every arm's has come."""
-        self.world_pubs = [self.create_publisher(WorldState, topics.arm_topic(topics.WORLD_STATE, arm), topics.STREAM)
+        self.world_pubs = [self.create_publisher(WorldState, topics.arm_topic(topics.WORLD_STATE, arm), topics.RECORDING)
                            for arm in arms]
-        self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.STREAM)
+        self.joint_pub = self.create_publisher(JointState, topics.JOINT_STATES, topics.RECORDING)
         self.state: WorldState | None = None
         """The first arm's world state last published."""
         self.marker_pub = self.create_publisher(MarkerArray, topics.MARKERS, topics.LATCHED,

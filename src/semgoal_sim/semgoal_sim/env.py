@@ -154,6 +154,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         })
         self.action_space = gym.spaces.Box(-1.0, 1.0, (4,), np.float32)
         self.subgoal: SubGoal | None = None
+        self._subgoal_text = "None"
+        """``str(self.subgoal)``, as each step's info carries it."""
         self._encode_goal(np.zeros(self.layout.size, dtype=np.float32), np.zeros(self.layout.size, dtype=np.float32))
         self._steps = 0
         self._achieved = False
@@ -210,7 +212,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         motion = self.world.motion(snapshot, vector)
         self._achieved = self._holds(vector)
         reward = float(self._achieved and self.motion_reward.at_rest(self._asked, motion))  # compute_reward's
-        return reward, {"subgoal": str(self.subgoal), "subgoal_type": self.kind, "is_success": reward > 0,
+        return reward, {"subgoal": self._subgoal_text, "subgoal_type": self.kind, "is_success": reward > 0,
                         "motion": motion}
 
     def compute_reward(self, achieved_goal: np.ndarray, desired_goal: np.ndarray, info: Any) -> np.ndarray:
@@ -439,7 +441,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         return bool(vector[self.layout.index(Literal("close", pair))])
 
     def _set_subgoal(self, subgoal: SubGoal) -> None:
-        self.subgoal = subgoal
+        self.subgoal, self._subgoal_text = subgoal, str(subgoal)
         self._encode_goal(*self.layout.encode(subgoal.literals()))
 
     def _encode_goal(self, target: np.ndarray, mask: np.ndarray) -> None:

@@ -110,6 +110,8 @@ class FetchWorld:
         self.data = mujoco.MjData(self.model)
         self.blocks = self.scene.objects[: n_blocks or self.scene.max_blocks]
         self.present = np.array([obj in self.blocks for obj in self.scene.objects])
+        self._partial = None if self.present.all() else self.present
+        """:attr:`present` where a slot is empty, else None: a full scene's vector needs no masking, nor padding."""
         m = self.model
         self._block_qpos = [m.joint(f"{block_body_name(b)}:joint").qposadr[0] for b in self.blocks]
         self._block_qvel = [m.joint(f"{block_body_name(b)}:joint").dofadr[0] for b in self.blocks]
@@ -313,8 +315,9 @@ class FetchWorld:
             grip_velocity=grip_velocity[3:],
             finger_positions=d.qpos.take(hand.finger_qpos),
             finger_velocities=d.qvel.take(hand.finger_qvel),
-            other_hands=tuple((d.site_xpos[other.grip_site].copy(), float(d.qpos[other.finger_qpos].sum()))
-                              for other in self.arms if other is not hand),
+            other_hands=() if len(self.arms) == 1 else tuple(
+                (d.site_xpos[other.grip_site].copy(), float(d.qpos[other.finger_qpos].sum()))
+                for other in self.arms if other is not hand),
         )
 
     def hands(self) -> list[tuple[np.ndarray, float]]:
@@ -358,6 +361,8 @@ class FetchWorld:
 
     def padded_positions(self, snapshot: Snapshot) -> np.ndarray:
         """(max_blocks, 3) block centres with absent slots at zero: the scene-wide layout."""
+        if self._partial is None:
+            return snapshot.block_positions
         positions = np.zeros((self.scene.max_blocks, 3))
         positions[: len(self.blocks)] = snapshot.block_positions
         return positions
@@ -365,7 +370,7 @@ class FetchWorld:
     def semantic_vector(self, snapshot: Snapshot | None = None) -> np.ndarray:
         snapshot = snapshot or self.snapshot()
         return evaluate(self.layout, self.padded_positions(snapshot), snapshot.grip_position,
-                        snapshot.finger_opening, TABLE_TOP, self.present, other_hands=snapshot.other_hands)
+                        snapshot.finger_opening, TABLE_TOP, self._partial, other_hands=snapshot.other_hands)
 
     def motion(self, snapshot: Snapshot | None = None, vector: np.ndarray | None = None) -> np.ndarray:
         """(2 * max_blocks,) per block slot: moving, then held (:func:`semgoal_core.settling.motion_bits`);

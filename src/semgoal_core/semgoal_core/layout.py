@@ -35,6 +35,8 @@ def _slices(features: tuple[tuple[str, int], ...]) -> dict[str, slice]:
 
 BLOCK_SLICE = _slices(BLOCK_FEATURES)
 """Feature name -> its columns in a block slot, e.g. ``blocks[:, BLOCK_SLICE["relative_position"]]``."""
+ARM_SLICE = _slices(ARM_FEATURES)
+"""Feature name -> its entries in the observation's arm part."""
 
 
 def observation_size(scene: str) -> int:
@@ -99,7 +101,7 @@ def observation(
 
 def arm_state(observation: np.ndarray) -> dict[str, np.ndarray]:
     """The arm's features of an observation by name (:data:`ARM_FEATURES`; velocities as stored, x dt)."""
-    return {name: observation[s] for name, s in _slices(ARM_FEATURES).items()}
+    return {name: observation[s] for name, s in ARM_SLICE.items()}
 
 
 def block_slots(scene: str, observation: np.ndarray) -> dict[str, np.ndarray]:

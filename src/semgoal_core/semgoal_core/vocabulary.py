@@ -25,6 +25,7 @@ same predicates on the same Fetch blocks (5 cm cubes), except for close:
 
 from __future__ import annotations
 
+import functools
 import itertools
 import re
 from collections.abc import Iterable, Sequence
@@ -88,6 +89,18 @@ class Thresholds:
 THRESHOLDS = Thresholds()
 
 
+def _once_per_bin(method):
+    """A frozen geometry's pure method, worked out once per bin and argument (the controller asks for the bin's spots
+    every step); the arrays it hands out are read-only, as all share them."""
+    @functools.cache
+    def kept(self, *args):
+        result = method(self, *args)
+        result.setflags(write=False)
+        return result
+
+    return functools.wraps(method)(kept)
+
+
 @dataclass(frozen=True)
 class BinGeometry:
     """The open bin of the desk-cleanup scene: a floor and four walls on the table."""
@@ -114,6 +127,7 @@ class BinGeometry:
     row_slots: int = 4
     """Slots in a row."""
 
+    @_once_per_bin
     def slots(self, count: int | None = None) -> np.ndarray:
         """(count, 2) resting spots for blocks (all :attr:`rows` x :attr:`row_slots` when None): a row along x,
         evenly spaced; with more rows, each row's spots between the next row's (fingers opening along y clear a
@@ -130,6 +144,7 @@ class BinGeometry:
                  for row in range(self.rows)]
         return np.vstack(spots)[:count]
 
+    @_once_per_bin
     def interior(self, step: float = 0.005, margin: float = 0.003) -> np.ndarray:
         """(M, 2) grid of block centres at which a block lies on the floor, ``margin`` clear of the walls."""
         reach = np.asarray(self.inner_half_size) - BLOCK_HALF_SIZE - margin

@@ -274,19 +274,18 @@ def palm_clear_of_stacks(scene: str, observation: np.ndarray, action: np.ndarray
         return action
     others = present.copy()
     others[slot] = False
-    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & others[:, None] & others[None, :]
-    tall = (pairs.any(axis=0) | pairs.any(axis=1)) & (
-        positions[:, 2] + BLOCK_HALF_SIZE + PALM_CLEARANCE > here[2] + PALM_BOTTOM)
+    tall = _stacked(positions, others) & (positions[:, 2] + BLOCK_HALF_SIZE + PALM_CLEARANCE > here[2] + PALM_BOTTOM)
     shift = _palm_shift(positions[tall, :2] - here[:2])
     if shift is None:
         return action
     top = float(positions[tall, 2].max()) + BLOCK_HALF_SIZE + PALM_CLEARANCE
     palm = grip[2] + PALM_BOTTOM
-    if palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= top + APPROACH_HEIGHT:
+    palm_next = palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT  # where this command takes it
+    if palm_next >= top + APPROACH_HEIGHT:
         return action  # high over the stacks still: the actor's approach
     error = here[:2] + shift - grip[:2]
     action[:2] = np.clip(error * RETREAT_GAIN, -1.0, 1.0)
-    if np.abs(error).max() > SHIFT_TOLERANCE and palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT < top:
+    if np.abs(error).max() > SHIFT_TOLERANCE and palm_next < top:
         action[2] = max(action[2], min((top - palm) / layout.MAX_DISPLACEMENT, 1.0))
     wide = 2 * (BLOCK_HALF_SIZE + abs(shift[1]) + FINGER_CLEARANCE)
     fingertips = grip[2] - FINGER_TIP + min(action[2], 0.0) * layout.MAX_DISPLACEMENT
@@ -305,7 +304,7 @@ def _palm_shift(offsets: np.ndarray) -> np.ndarray | None:
     moves = []
     for axis in (0, 1):
         for direction in (-1.0, 1.0):
-            into = PALM_FOOTPRINT[axis] - direction * -offsets[:, axis]  # how far each block's centre is inside, ahead
+            into = PALM_FOOTPRINT[axis] + direction * offsets[:, axis]  # how far each block's centre is inside, ahead
             move = np.zeros(2)
             move[axis] = direction * max(0.0, float(into[inside].max()))
             if abs(move[axis]) <= PICK_SHIFT[axis] and not (np.abs(offsets - move) < PALM_FOOTPRINT).all(axis=1).any():
@@ -344,9 +343,14 @@ def stacks_of(scene: str, observation: np.ndarray) -> Stacks | None:
     if not held.any():
         return None
     blocks = layout.block_slots(scene, observation)
-    present, positions = (blocks["present"][:, 0] > 0.5) & ~held, blocks["position"]
-    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & present[:, None] & present[None, :]
-    return held, positions, pairs.any(axis=0) | pairs.any(axis=1)
+    positions = blocks["position"]
+    return held, positions, _stacked(positions, (blocks["present"][:, 0] > 0.5) & ~held)
+
+
+def _stacked(positions: np.ndarray, among: np.ndarray) -> np.ndarray:
+    """(N,) bool: which of the blocks ``among`` stand on another of them or carry one (``above``'s geometry)."""
+    pairs = rests_on(positions[:, None, :], positions[None, :, :]) & among[:, None] & among[None, :]
+    return pairs.any(axis=0) | pairs.any(axis=1)
 
 
 def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray, stacks: Stacks | None = None

@@ -10,7 +10,7 @@ import numpy as np
 
 from semgoal_core import features, layout
 from semgoal_core.arms import PARK, ArmFrame
-from semgoal_core.expert import HOVER
+from semgoal_core.expert import AWAY_DROP_DISTANCE, DROP_REACH, HOVER
 from semgoal_core.geometry import FINGER_HALF_WIDTH, FINGER_OUTER_FACE, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.settling import REST_SPEED, Settling, at_rest
 from semgoal_core.vocabulary import (
@@ -115,6 +115,16 @@ SHIFT_TOLERANCE = 0.003
 NEAR_RELEASE_SPEED = 0.1
 """The fastest (m/s, 4 mm a step) the hand may move in the table's plane as it lets go of a block put near others:
 let go at 0.2-0.5 m/s within 5-7 cm of its references, blocks slid on to 10.2-11.5 cm, past ``close``."""
+NEAR_AIM = 0.07
+"""Where :func:`let_go_within_reach` brings a held block too far from one it is put near: this far from it (m)."""
+APART_AIM = AWAY_DROP_DISTANCE + 0.005
+"""Where :func:`let_go_within_reach` brings a held block too near one it stays apart from: this far from it (m)."""
+STEER_SPEED = 0.5
+"""The largest command (a fraction of the arm's 5 cm a step) with which a rule moves a held block to where it may be
+let go."""
+STEER_MIN = 0.002
+"""The least move (m) for which :func:`let_go_within_reach` holds a block back: a smaller one, where its pulls cancel,
+lets it go."""
 
 ACTION_MODES = ("sample", "mean")
 """How the actor acts: ``sample`` draws from SAC's Gaussian policy (noise keyed by the task seed and the
@@ -211,6 +221,39 @@ def let_go_slowly(scene: str, observation: np.ndarray, action: np.ndarray) -> np
     speed = float(np.linalg.norm(layout.arm_state(observation)["grip_velocity"][:2])) / layout.CONTROL_DT
     if speed > NEAR_RELEASE_SPEED:
         action[:2], action[3] = 0.0, HOLD_GRIP[3]
+    return action
+
+
+def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray, block: str, near: Iterable[str],
+                        apart: Iterable[str]) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while it puts ``block`` near the blocks ``near`` and not close to
+    those ``apart``, except that the held block is let go only where the expert lets go: every block of ``near``
+    within its ``DROP_REACH`` in the table's plane, every one of ``apart`` beyond its ``AWAY_DROP_DISTANCE``. Wanting
+    to let go elsewhere, the hand keeps squeezing, holds its height and moves the block in the plane toward
+    :data:`NEAR_AIM` of the one and :data:`APART_AIM` of the other; where those moves cancel, it lets go. Let go
+    9-10 cm from the block it was put near, blocks came to rest just beyond close (tabletop put near, seeds
+    2,010,020 and 2,010,097)."""
+    held = held_slots(scene, observation)
+    objects = SCENES[scene].objects
+    if action[3] <= 0.0 or not held[objects.index(block)]:
+        return action
+    positions = layout.block_slots(scene, observation)["position"]
+    here = positions[objects.index(block)]
+    move = np.zeros(2)
+    for other in near:
+        offset = positions[objects.index(other), :2] - here[:2]
+        distance = float(np.linalg.norm(offset))
+        if distance > DROP_REACH:
+            move += offset / distance * (distance - NEAR_AIM)
+    for other in apart:
+        offset = here[:2] - positions[objects.index(other), :2]
+        distance = float(np.linalg.norm(offset))
+        if distance < AWAY_DROP_DISTANCE:
+            move += offset / max(distance, 1e-6) * (APART_AIM - distance)
+    if np.linalg.norm(move) < STEER_MIN:  # nowhere to go (the moves cancel): let go where the actor asks
+        return action
+    action[:2] = np.clip(move * RETREAT_GAIN, -STEER_SPEED, STEER_SPEED)
+    action[2], action[3] = 0.0, HOLD_GRIP[3]
     return action
 
 
@@ -439,6 +482,19 @@ class Idle(StrEnum):
     """Paused, failed or between steps: hold still, keeping what is in the hand."""
 
 
+def _put_near(literals: list[Literal]) -> tuple[str, list[str], list[str]] | None:
+    """A put near's block (the first of its first ``close``), the blocks it goes near and those it stays apart from;
+    None without a ``close`` to make true."""
+    closes = [lit for lit in literals if lit.name == "close"]
+    nears = [lit.args for lit in closes if lit.value]
+    if not nears:
+        return None
+    block = nears[0][0]
+    partners = {value: [b if a == block else a for a, b in (lit.args for lit in closes if lit.value is value)
+                        if block in (a, b)] for value in (True, False)}
+    return block, partners[True], partners[False]
+
+
 class SubgoalController:
     """Wraps an exported actor for one scene and one arm; every output is finite and within [-1, 1]. Observations
     and commands are in the world frame; the actor, and every rule here, sees the world in the arm's own frame
@@ -465,8 +521,9 @@ class SubgoalController:
         """The sub-goal puts a block into the bin: :func:`kept_off_the_walls` applies."""
         self.putting_on: tuple[str, str] | None = None
         """The sub-goal puts one block on another (top, bottom): :func:`placed_gently` applies."""
-        self.putting_near = False
-        """The sub-goal puts a block near others: :func:`let_go_slowly` applies."""
+        self.putting_near: tuple[str, list[str], list[str]] | None = None
+        """The sub-goal puts a block near others (the block, those it goes near, those it stays apart from):
+        :func:`let_go_slowly` and :func:`let_go_within_reach` apply."""
         self.picking: frozenset[str] = frozenset()
         """The blocks the sub-goal asks to hold: :func:`straddles_a_stack` leaves the hand beside them be."""
         self.keep: frozenset[str] = frozenset()
@@ -488,7 +545,7 @@ class SubgoalController:
         self.picking = frozenset(lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value)
         puts = [tuple(lit.args) for lit in self.literals if lit.name == "above" and lit.value]
         self.putting_on = puts[0] if len(puts) == 1 else None
-        self.putting_near = not puts and any(lit.name == "close" and lit.value for lit in self.literals)
+        self.putting_near = None if puts else _put_near(self.literals)
 
     def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
         """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
@@ -537,6 +594,7 @@ class SubgoalController:
             action = placed_gently(self.scene, observation, action, *self.putting_on)
         if self.putting_near:
             action = let_go_slowly(self.scene, observation, action)
+            action = let_go_within_reach(self.scene, observation, action, *self.putting_near)
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
             action = palm_clear_of_stacks(self.scene, observation, action, block)

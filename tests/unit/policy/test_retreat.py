@@ -7,7 +7,7 @@ import pytest
 
 from semgoal_bringup.experiments.episodes import make_agent
 from semgoal_core import features
-from semgoal_core.expert import move_to
+from semgoal_core.expert import AWAY_DROP_DISTANCE, DROP_REACH, move_to
 from semgoal_core.geometry import FINGER_OUTER_FACE, TABLE_CENTER, TABLE_HALF_SIZE, TABLE_TOP
 from semgoal_core.layout import CONTROL_DT, MAX_DISPLACEMENT
 from semgoal_core.tasks import TABLETOP_TASKS, TASKS
@@ -37,6 +37,7 @@ from semgoal_policy.controller import (
     kept_off_the_walls,
     kept_on_the_table,
     let_go_slowly,
+    let_go_within_reach,
     palm_kept_off_stacks,
     placed_gently,
     straddles_a_stack,
@@ -338,9 +339,9 @@ def _put_on_the_table_by_the_actor(world: FetchWorld, block: str, steps: int) ->
     assert f"holding({block})" not in world.layout.readable(world.semantic_vector())
 
 
-def _block_held_on_the_table_beside_another(dy: float) -> tuple[FetchWorld, np.ndarray]:
-    """The tabletop with green in the hand, just over the table ``dy`` (m) from red along the fingers' axis; red's
-    position."""
+def _block_held_on_the_table_beside_another(dy: float, height: float = 0.003) -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop with green in the hand, ``height`` (m) over the table ``dy`` (m) from red along the fingers' axis;
+    red's position."""
     world = FetchWorld("tabletop", 3)
     world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
     red = world.snapshot().block_positions[world.blocks.index("red")].copy()
@@ -348,7 +349,7 @@ def _block_held_on_the_table_beside_another(dy: float) -> tuple[FetchWorld, np.n
     for _ in range(60):
         snapshot = world.snapshot()
         green = snapshot.block_positions[world.blocks.index("green")]
-        world.step(move_to(snapshot.grip_position, snapshot.grip_position + red + [0.0, dy, 0.003] - green, -1.0))
+        world.step(move_to(snapshot.grip_position, snapshot.grip_position + red + [0.0, dy, height] - green, -1.0))
     assert "holding(green)" in world.layout.readable(world.semantic_vector())
     return world, world.snapshot().block_positions[world.blocks.index("red")].copy()
 
@@ -403,6 +404,53 @@ def test_a_block_put_near_others_is_let_go_only_with_the_hand_slow() -> None:
     assert controller.ruled(moving, let_go.copy())[3] == HOLD_GRIP[3]
     controller.set_subgoal([parse_literal("not close(green,red)"), parse_literal("not holding(green)")])
     assert controller.ruled(moving, let_go.copy())[:2].tolist() == pytest.approx(let_go[:2].tolist())
+
+
+def _distance(world: FetchWorld, a: str, b: str) -> float:
+    positions = world.snapshot().block_positions
+    return float(np.linalg.norm(positions[world.blocks.index(a), :2] - positions[world.blocks.index(b), :2]))
+
+
+LET_GO_HERE = np.array([0.0, 0.0, 0.0, 1.0], dtype=np.float32)
+"""An actor that lets go where it is, the hand still."""
+
+
+def test_a_let_go_beyond_reach_keeps_squeezing_and_moves_toward_the_block_it_goes_near() -> None:
+    """Let go 9-10 cm from red, blocks came to rest just beyond close (tabletop put near, seed 2,010,097): 12 cm from
+    red along +y, the hand squeezes, holds its height and moves along -y; within reach, or not letting go, the
+    command goes as it is."""
+    far = _block_held_on_the_table_beside_another(0.12, height=0.03)[0].observation()
+    action = let_go_within_reach("tabletop", far, LET_GO_HERE.copy(), "green", ["red"], [])
+    assert action[3] == HOLD_GRIP[3] and action[2] == 0.0
+    assert action[1] < 0.0 and abs(action[0]) < 0.05
+    near = _block_held_on_the_table_beside_another(0.07, height=0.03)[0].observation()
+    assert let_go_within_reach("tabletop", near, LET_GO_HERE.copy(), "green", ["red"], []).tolist() == LET_GO_HERE.tolist()
+    carrying = np.array([0.3, 0.2, -0.1, -1.0], dtype=np.float32)
+    assert let_go_within_reach("tabletop", far, carrying.copy(), "green", ["red"], []).tolist() == pytest.approx(
+        carrying.tolist())
+
+
+def test_a_let_go_too_near_a_block_to_stay_apart_from_moves_away_from_it() -> None:
+    """7 cm from red, which it stays apart from: the hand squeezes and moves away from red (+y)."""
+    world, _ = _block_held_on_the_table_beside_another(0.07, height=0.03)
+    assert _distance(world, "green", "red") < AWAY_DROP_DISTANCE
+    action = let_go_within_reach("tabletop", world.observation(), LET_GO_HERE.copy(), "green", [], ["red"])
+    assert action[3] == HOLD_GRIP[3] and action[1] > 0.0
+
+
+def test_the_controller_carries_a_block_let_go_too_far_within_close_before_letting_go() -> None:
+    """Physics: an actor that lets go 12 cm from red leaves green beyond ``close``; under the controller's rules the
+    hand carries it within reach first, and green comes to rest close to red, let go."""
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal("close(green,red)"), parse_literal("not holding(green)")])
+    for ruled in (False, True):
+        world, _ = _block_held_on_the_table_beside_another(0.12, height=0.03)
+        for _ in range(60):
+            world.step(controller.ruled(world.observation(), LET_GO_HERE.copy()) if ruled else LET_GO_HERE)
+        readable = world.layout.readable(world.semantic_vector())
+        assert "holding(green)" not in readable
+        assert ("close(red,green)" in readable) is ruled, _distance(world, "green", "red")  # as the layout orders it
+    assert _distance(world, "green", "red") <= DROP_REACH + 0.01
 
 
 def _block_held_over_a_tower_of_two(off_centre: float, over_seat: float) -> tuple[FetchWorld, np.ndarray]:

@@ -132,7 +132,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "the table's edge or over the bin's wall, a block put on another let go centred, the hand "
                              "lifted off a tower's top, the palm and a held block kept off stacks, a block on a stack grasped at its "
                              "middle, fingers opening no further than a block beside them leaves room, a block put near "
-                             "others let go only with the hand slow); default: the actor alone")
+                             "others let go only with the hand slow and within the expert's reach of them); default: the actor alone")
     parser.add_argument("--types", type=names, metavar="TYPE[,TYPE...]",
                         help="only these sub-goal types (default: every type of the scene), each from the same starts "
                              "and with the same sampled noise as in the whole evaluation")

@@ -513,6 +513,8 @@ class SubgoalController:
         self.model_dir = Path(model_dir or actor_io.models_dir() / scene)  # "expert": the scripted expert
         self.actor, self.meta = actor_io.load(self.model_dir, scene)
         self.derived = actor_io.derived_features(self.meta)
+        self.bin_shown = features.shown_bin(scene, self.meta["layout"]["scene"])
+        """The bin the actor's ``bin_target`` reads: in a scene without one, that of the scene it was trained on."""
         self.goal: np.ndarray | None = None
         self.literals: list[Literal] = []
         self.idling = Idle.RETREAT
@@ -578,8 +580,8 @@ class SubgoalController:
             return self._hold(observation, make_room=self.idling == Idle.MAKE_ROOM)
         # numpy seeds take non-negative integers; a negative key (a malformed world state) maps into range
         noise = np.random.default_rng([k % 2**64 for k in noise_key]).standard_normal(4) if self.mode == "sample" else None
-        return self.ruled(observation, self.actor.act(features.augment(self.scene, observation, self.derived, self.goal),
-                                                      self.goal, noise))
+        inputs = features.augment(self.scene, observation, self.derived, self.goal, self.bin_shown)
+        return self.ruled(observation, self.actor.act(inputs, self.goal, noise))
 
     def ruled(self, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
         """The actor's ``action`` for ``observation`` (both in the arm's own frame) under the rules this controller

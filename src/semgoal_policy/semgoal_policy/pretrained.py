@@ -21,6 +21,7 @@ class PretrainedPolicy:
         self.scene = scene
         self.actor, self.meta = actor_io.load(Path(model_dir or actor_io.models_dir() / scene), scene)
         self.derived = actor_io.derived_features(self.meta)
+        self.bin_shown = features.shown_bin(scene, self.meta["layout"]["scene"])
         self.rng = np.random.default_rng(seed)
 
     def predict(self, observation: dict[str, np.ndarray], state=None, episode_start=None,
@@ -30,7 +31,8 @@ class PretrainedPolicy:
         obs = np.asarray(observation["observation"], dtype=np.float32)
         goal = np.asarray(observation["desired_goal"], dtype=np.float32)
         rows, goals = np.atleast_2d(obs), np.atleast_2d(goal)
-        inputs = np.stack([features.augment(self.scene, row, self.derived, g) for row, g in zip(rows, goals, strict=True)])
+        inputs = np.stack([features.augment(self.scene, row, self.derived, g, self.bin_shown)
+                           for row, g in zip(rows, goals, strict=True)])
         noise = None if deterministic else self.rng.standard_normal((len(rows), 4))
         actions = self.actor.act(inputs, goals, noise)
         return (actions if obs.ndim == 2 else actions[0]), None

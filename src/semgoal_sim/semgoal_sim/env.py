@@ -30,6 +30,7 @@ from semgoal_core.vocabulary import (
     SCENES,
     TAKE_OUT,
     THRESHOLDS,
+    BinGeometry,
     Literal,
     SubGoal,
     parse_subgoal,
@@ -110,8 +111,10 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
                  missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-                 render_mode: str | None = None, sleep: bool = False) -> None:
+                 render_mode: str | None = None, sleep: bool = False, shown_bin: BinGeometry | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
+        :param shown_bin: the bin ``bin_target`` reads where the scene has none (``semgoal_core.features.shown_bin``:
+            an actor trained with a bin judged as the policy node runs it).
         :param spawn_margin: how far (m, along x) blocks may start beyond the tasks' spawn area, near and far
             edge alike, so that the area's edge is not the edge of the training data (actors stalled over
             blocks at its far edge). y stays: the bin lies beyond it. Evaluation sets it to 0.
@@ -135,6 +138,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
         self.scene = SCENES[scene]
         self.tower_share = tower_share
         self.derived = features.check(derived)
+        self.shown_bin = shown_bin
         counts = (n_blocks,) if n_blocks else self.scene.block_counts or (self.scene.max_blocks,)
         self.block_counts = tuple(count for count in counts if max_blocks is None or count <= max_blocks)
         if not self.block_counts:
@@ -491,7 +495,8 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def _obs(self, snapshot: Snapshot, vector: np.ndarray) -> dict[str, np.ndarray]:
         goal = self._goal.copy()
         return {
-            "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal),
+            "observation": features.augment(self.scene.name, self.world.observation(snapshot), self.derived, goal,
+                                            self.shown_bin),
             "achieved_goal": layout.achieved_goal(vector, self._mask),
             "desired_goal": goal,
         }

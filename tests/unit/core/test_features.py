@@ -60,6 +60,27 @@ def test_bin_target_is_zero_in_a_scene_without_a_bin() -> None:
     assert np.array_equal(features.augment("two_blocks", obs, ("bin_target",))[obs.size:], np.zeros(2))
 
 
+def test_an_actor_trained_with_a_bin_is_shown_its_training_scenes_bin_where_there_is_none() -> None:
+    """The scene's own bin where it has one; else the training scene's, which ``bin_target`` reads as the scene's."""
+    tabletop_bin = SCENES["tabletop"].bin
+    assert features.shown_bin("two_blocks", "tabletop") is tabletop_bin
+    assert features.shown_bin(SCENE, "tabletop") is BIN
+    assert features.shown_bin("two_blocks", "two_blocks") is None
+    grip = np.array([1.30, 0.70, 0.55])
+    positions = np.array([[1.25, 0.65, 0.425], [1.40, 0.80, 0.425]])
+    obs = layout.observation("two_blocks", grip, np.zeros(3), np.full(2, 0.02), np.zeros(2), positions,
+                             np.zeros_like(positions))
+    shown = features.augment("two_blocks", obs, ("bin_target",), None, tabletop_bin)[obs.size:]
+    assert np.allclose(shown, features.bin_target("tabletop", _tabletop_observation(grip, positions)), atol=1e-6)
+    assert np.linalg.norm(shown) > 0.1
+
+
+def _tabletop_observation(grip: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """The tabletop's observation of the same grip and blocks (the rest of its slots empty)."""
+    return layout.observation("tabletop", grip, np.zeros(3), np.full(2, 0.02), np.zeros(2), positions,
+                              np.zeros_like(positions))
+
+
 def test_the_env_appends_derived_features_to_its_observations() -> None:
     env = SubgoalEnv(SCENE, derived=("bin_target",))
     obs, _ = env.reset(seed=3, options={"kind": "put_in_bin"})

@@ -17,9 +17,10 @@ from semgoal_core.vocabulary import SCENES
 
 def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
              missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-             sleep: bool = False):
+             sleep: bool = False, shown_bin=None):
     """The env ``agent`` learns in: sub-goal episodes for the hierarchy (their blocks at rest sleeping with
-    ``sleep``), whole tasks for the flat baselines (semantic goals, or block positions for flat-continuous)."""
+    ``sleep``; ``shown_bin``: :class:`~semgoal_sim.env.SubgoalEnv`'s), whole tasks for the flat baselines (semantic
+    goals, or block positions for flat-continuous)."""
     from semgoal_policy.agents import get_agent
     from semgoal_sim.env import SubgoalEnv
     from semgoal_sim.task_env import TaskEnv
@@ -27,10 +28,10 @@ def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin
     spec = get_agent(agent)
     if spec.subgoals:
         return SubgoalEnv(scene, derived=derived, spawn_margin=spawn_margin, missed_put_share=missed_put_share,
-                          tower_share=tower_share, max_blocks=max_blocks, sleep=sleep)
+                          tower_share=tower_share, max_blocks=max_blocks, sleep=sleep, shown_bin=shown_bin)
     if derived:
         raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
-    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None or sleep:
+    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None or sleep or shown_bin:
         raise ValueError("a spawn margin, missed puts, a tower share, a block limit and sleeping blocks are for the "
                          "hierarchical agent only (task starts are the paper's)")
     return TaskEnv(scene, spec.goal)
@@ -107,7 +108,7 @@ def train_config(argv: list[str]):
 
 def eval_subgoals_main(argv: list[str]) -> int:
     """`./semgoal eval-subgoals --scene S --episodes N --seed S --json`: the shipped actor per sub-goal type."""
-    from semgoal_core import layout
+    from semgoal_core import features, layout
     from semgoal_core.settling import SETTLE_STEPS
     from semgoal_policy.actor import derived_features, load, models_dir
     from semgoal_policy.agents import get_agent
@@ -157,7 +158,9 @@ def eval_subgoals_main(argv: list[str]) -> int:
         actor, meta = load(args.model_dir or models_dir() / args.scene, args.scene)
     except (FileNotFoundError, ValueError) as error:  # no actor there, or one of another scene
         parser.error(str(error))
-    envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=args.sleep) for _ in range(args.envs)]
+    shown_bin = features.shown_bin(args.scene, meta["layout"]["scene"])
+    envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=args.sleep, shown_bin=shown_bin)
+            for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
 

@@ -86,6 +86,7 @@ def test_the_object_actor_acts_on_one_row_as_the_controller_asks(policy: ObjectA
     np.testing.assert_allclose(one, policy.act(obs.numpy(), goal.numpy())[0], atol=1e-6)
 
 
+@pytest.mark.slow
 def test_in_a_scene_without_a_bin_the_shipped_actor_reads_the_bin_of_its_training_scene() -> None:
     """The tabletop actor always saw a bin; shown zeros for ``bin_target`` on the paper's two blocks (a bin spot right
     under the grip, which it never saw), it carried the block it was to put near red about for hundreds of control

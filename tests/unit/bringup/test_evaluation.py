@@ -161,6 +161,20 @@ def test_the_graphs_episodes_are_compared_with_the_same_starts_in_process(capsys
     assert "seed 9: not run in process" in said
 
 
+def test_a_pool_standing_in_for_the_shipped_actor_is_compared_by_its_first_actor(capsys) -> None:
+    """three_blocks' pool runs the shipped actor as ``seed102`` in process (its ``pool.json`` without ``shipped``, the
+    shipped actor first): the graph's ``shipped`` episodes are compared with it, not reported as never run."""
+    from semgoal_bringup.experiments.episodes import Outcome
+
+    in_process, via_ros = evaluation.Row("hierarchical"), evaluation.Row(evaluation.VIA_ROS)
+    in_process.add("seed102", Outcome("MC-3", 7, True, 63))
+    in_process.add("seed101", Outcome("MC-3", 7, True, 80))
+    via_ros.add("shipped", Outcome("MC-3", 7, True, 63), first_step_observed=False)
+    assert evaluation.compare_with_graph([in_process, via_ros], ["MC-3"], "shipped", evaluation.TRUTH) == {
+        "MC-3": {"same": 1, "episodes": 1}}
+    assert "not run in process" not in capsys.readouterr().err
+
+
 def test_a_block_knocked_off_the_table_is_traced_to_the_edge_the_step_and_the_robots_step() -> None:
     """An in-process episode records the first block that left the table: which, over which edge, when and during
     which robot step; the miss says so, and ``--misses`` lists it per agent, training seed, task and start."""

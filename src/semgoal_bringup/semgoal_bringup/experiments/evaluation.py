@@ -173,8 +173,13 @@ class Row:
 
 def unlike_in_process(in_process: Row, via_ros: Row, label: str, task: str) -> list[str]:
     """The graph's episodes of ``task`` that did not end as the same start did in process (success at rest and
-    control steps), each said in words; the graph runs ``label``'s actors (the shipped ones or the expert)."""
-    ran = in_process.per_seed.get(label, {}).get(task, Tally()).ends
+    control steps), each said in words; the graph runs ``label``'s actors (the shipped ones or the expert). Where a
+    scene's pool stands in for its shipped actor in process (``pool.json`` without it), the pool's first actor is the
+    shipped one (the pool's rule), so its episodes are the ones compared."""
+    by_label = in_process.per_seed
+    same_actor = label if task in by_label.get(label, {}) else next(
+        (name for name, tasks in by_label.items() if task in tasks), label)
+    ran = by_label.get(same_actor, {}).get(task, Tally()).ends
     unlike = []
     for seed, (success, steps) in sorted(via_ros.per_seed[label][task].ends.items()):
         if seed not in ran:
@@ -322,9 +327,9 @@ def evaluate_via_ros(task_names: list[str], episodes: int, seed: int, record: Pa
     outcomes = run_via_ros(task_names, episodes, seed, models, record=record, sight=sight, composed=composed)
     label = EXPERT if models == EXPERT else "shipped"
     for outcome in tqdm(outcomes, total=len(task_names) * episodes, unit="episode", desc="eval via ROS", file=sys.stderr):
-        row.add(label, outcome, first_step_observed=False)  # the graph runs the shipped actors (or the expert)
+        row.add(label, outcome, first_step_observed=False)  # the graph runs the actors of ``models`` (or the expert)
     for task_name in task_names:
-        actor = actor_io.models_dir() / get_task(task_name).scene / "actor.json"
+        actor = Path(models or actor_io.models_dir()) / get_task(task_name).scene / "actor.json"
         row.seed_steps.setdefault(label, set()).add(0 if label == EXPERT else json.loads(actor.read_text())["env_steps"])
     row.wall_s = time.perf_counter() - started
     return row
@@ -492,8 +497,9 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--record", type=Path, help="with --via-ros: write each graph episode to DIR/TASK-SEED.mcap")
     parser.add_argument("--composed", action="store_true", help="with --via-ros: the graph's nodes in one process "
                         "(graph_node), their messages to each other handed over as objects")
-    parser.add_argument("--models", type=Path, help="folder of exported actors (default: the shipped ones); 'expert': "
-                        "the scripted expert, the actors' teacher, drives the hierarchy")
+    parser.add_argument("--models", type=Path, help="folder of exported actors, SCENE/actor.pt (default: the shipped "
+                        "ones), in process and, with --via-ros, through the graph; 'expert': the scripted expert, the "
+                        "actors' teacher, drives the hierarchy")
     add_sight_arguments(parser)
     parser.add_argument("--out", type=Path, help="write table1.md, table1.csv and table1.png here")
     parser.add_argument("--json", action="store_true", help="print the JSON summary as the last line")
@@ -540,7 +546,7 @@ def main(argv: list[str]) -> int:
         return 2
     failed, as_in_process = False, {}
     if args.via_ros:
-        graph_models = str(args.models) if str(args.models) == EXPERT else ""
+        graph_models = "" if args.models is None else str(args.models if str(args.models) == EXPERT else args.models.resolve())
         try:
             rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight,
                                          graph_models, args.composed))
@@ -548,7 +554,7 @@ def main(argv: list[str]) -> int:
             print(f"semgoal eval: through the graph: {error}", file=sys.stderr)
             failed = True
         else:
-            as_in_process = compare_with_graph(rows, tasks, EXPERT if graph_models else "shipped", sight)
+            as_in_process = compare_with_graph(rows, tasks, EXPERT if graph_models == EXPERT else "shipped", sight)
     for row in rows:
         print(f"{row.agent:24s} " + "  ".join(f"{t} {100 * row.rate(t):5.1f}%" for t in tasks)
               + f"   ({row.wall_s:.0f} s)", file=sys.stderr if args.json else sys.stdout)

@@ -19,9 +19,11 @@ from semgoal_core.vocabulary import (
     SCENES,
     THRESHOLDS,
     Literal,
+    SubGoal,
     VocabularyError,
     held_alone,
     rests_on,
+    subgoal_of,
 )
 from semgoal_policy import actor as actor_io
 
@@ -482,17 +484,13 @@ class Idle(StrEnum):
     """Paused, failed or between steps: hold still, keeping what is in the hand."""
 
 
-def _put_near(literals: list[Literal]) -> tuple[str, list[str], list[str]] | None:
-    """A put near's block (the first of its first ``close``), the blocks it goes near and those it stays apart from;
-    None without a ``close`` to make true."""
-    closes = [lit for lit in literals if lit.name == "close"]
-    nears = [lit.args for lit in closes if lit.value]
-    if not nears:
+def _put_near(literals: list[Literal]) -> SubGoal | None:
+    """The put near these literals ask for (:func:`~semgoal_core.vocabulary.subgoal_of`); None for any other."""
+    try:
+        subgoal = subgoal_of(literals)
+    except VocabularyError:
         return None
-    block = nears[0][0]
-    partners = {value: [b if a == block else a for a, b in (lit.args for lit in closes if lit.value is value)
-                        if block in (a, b)] for value in (True, False)}
-    return block, partners[True], partners[False]
+    return subgoal if subgoal.kind == "put_near" else None
 
 
 class SubgoalController:
@@ -523,9 +521,9 @@ class SubgoalController:
         """The sub-goal puts a block into the bin: :func:`kept_off_the_walls` applies."""
         self.putting_on: tuple[str, str] | None = None
         """The sub-goal puts one block on another (top, bottom): :func:`placed_gently` applies."""
-        self.putting_near: tuple[str, list[str], list[str]] | None = None
-        """The sub-goal puts a block near others (the block, those it goes near, those it stays apart from):
-        :func:`let_go_slowly` and :func:`let_go_within_reach` apply."""
+        self.putting_near: SubGoal | None = None
+        """The sub-goal, where it puts a block near others: :func:`let_go_slowly` and :func:`let_go_within_reach`
+        apply."""
         self.picking: frozenset[str] = frozenset()
         """The blocks the sub-goal asks to hold: :func:`straddles_a_stack` leaves the hand beside them be."""
         self.keep: frozenset[str] = frozenset()
@@ -547,7 +545,7 @@ class SubgoalController:
         self.picking = frozenset(lit.args[0] for lit in self.literals if lit.name == "holding" and lit.value)
         puts = [tuple(lit.args) for lit in self.literals if lit.name == "above" and lit.value]
         self.putting_on = puts[0] if len(puts) == 1 else None
-        self.putting_near = None if puts else _put_near(self.literals)
+        self.putting_near = _put_near(self.literals)
 
     def confirmed(self, step: int, semantic_vector: np.ndarray, moving: tuple[str, ...] = ()) -> bool:
         """Whether the sub-goal's literals held at rest (``moving``: the blocks not still) over the last
@@ -596,7 +594,8 @@ class SubgoalController:
             action = placed_gently(self.scene, observation, action, *self.putting_on)
         if self.putting_near:
             action = let_go_slowly(self.scene, observation, action)
-            action = let_go_within_reach(self.scene, observation, action, *self.putting_near)
+            put = self.putting_near
+            action = let_go_within_reach(self.scene, observation, action, put.block, put.references, put.apart)
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
             action = palm_clear_of_stacks(self.scene, observation, action, block)

@@ -546,7 +546,7 @@ def main(argv: list[str]) -> int:
         return 2
     failed, as_in_process = False, {}
     if args.via_ros:
-        graph_models = "" if args.models is None else str(args.models if str(args.models) == EXPERT else args.models.resolve())
+        graph_models = "" if args.models is None else EXPERT if str(args.models) == EXPERT else str(args.models.resolve())
         try:
             rows.append(evaluate_via_ros(tasks, args.ros_episodes or args.episodes, args.seed, args.record, sight,
                                          graph_models, args.composed))

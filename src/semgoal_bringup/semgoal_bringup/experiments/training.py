@@ -12,12 +12,12 @@ from functools import partial
 from pathlib import Path
 
 from semgoal_core.arguments import count, names, natural
-from semgoal_core.vocabulary import SCENES
+from semgoal_core.vocabulary import SCENES, BinGeometry
 
 
 def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
              missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-             sleep: bool = False, shown_bin=None):
+             sleep: bool = False, shown_bin: BinGeometry | None = None):
     """The env ``agent`` learns in: sub-goal episodes for the hierarchy (their blocks at rest sleeping with
     ``sleep``; ``shown_bin``: :class:`~semgoal_sim.env.SubgoalEnv`'s), whole tasks for the flat baselines (semantic
     goals, or block positions for flat-continuous)."""

@@ -3,8 +3,10 @@ decision on the step before (or, where that names no sub-goal, on the current st
 so the graph takes exactly the steps and re-plans that :class:`HierarchicalAgent` takes with the same
 cores, seeds and actor. Each case re-plans in process, so the re-plan timing (the planner's stall and
 contradiction clocks) is compared too. The client watches no stream, as the Table 1 evaluation through
-the graph runs."""
+the graph runs. Beside the policy node's main thread no thread of its process is busy: torch runs its actor on one
+(``threads``), where a second thread's OpenMP worker spun on the core the other nodes need."""
 
+import psutil
 import pytest
 
 from conftest import NodeProcesses
@@ -23,15 +25,27 @@ def test_the_graph_takes_the_in_process_steps(task: str, seed: int, nodes: NodeP
     expected = make_agent("hierarchical", get_task(task).scene).run(task, seed)
     assert expected.replans >= 1, "the case should exercise re-planning"
     params = node_params(task, seed, "lockstep")
-    for package, exe in NODES:
-        nodes.start(package, exe, params=params[exe])
+    processes = {exe: nodes.start(package, exe, params=params[exe]) for package, exe in NODES}
     client = GraphClient("semgoal_test_operator", watch=False)
     try:
         assert client.wait_ready(), "the four nodes did not come up"
         ok, message = client.reset(task, seed)
         assert ok, message
+        policy = psutil.Process(processes["policy_node"].pid)
+        before = thread_cpu_s(policy)
         result = client.execute(task, max_steps=TASK_STEP_BUDGET)
+        spent = thread_cpu_s(policy)
     finally:
         client.close()
     graph = (result.success, result.control_steps, result.replans)
     assert graph == (expected.success, expected.steps, expected.replans), result.message
+    spent = {thread: cpu - before.get(thread, 0.0) for thread, cpu in spent.items()}
+    main = spent.pop(policy.pid)
+    assert max(spent.values()) < 0.5 * main, f"a thread beside the policy's own was busy (torch threads): {spent}, main {main}"
+
+
+def thread_cpu_s(process: psutil.Process) -> dict[int, float]:
+    """CPU seconds of each thread of ``process`` so far: where torch runs on two threads, its OpenMP worker spins
+    between the actor's calls for as long as the episode runs (1.25-1.9 times the main thread's CPU), a core the
+    other nodes want; Fast DDS's threads wake a few times a step (a few per cent)."""
+    return {thread.id: thread.user_time + thread.system_time for thread in process.threads()}

@@ -21,6 +21,7 @@ import time
 from typing import Any
 
 import numpy as np
+import torch
 from rclpy.node import Node
 
 from semgoal_core.arms import MAX_ARMS
@@ -53,6 +54,8 @@ PARAMS = (
           low=1, high=MAX_ARMS),
     Param("action_mode", "sample", "sample: SAC's Gaussian, seeded per task and step | mean: the deterministic actor",
           choices=ACTION_MODES, runtime=True),
+    Param("threads", 1, "torch threads for the actor: a batch of one is fastest on one, and a second thread's OpenMP "
+          "worker spins on a core between commands, a core the graph's other nodes want", low=1, high=64),
 )
 IDLING = {StepStatus.SETTLING: Idle.RETREAT, PlanStatus.SUCCEEDED: Idle.RETREAT, StepStatus.WAITING_FOR_HUMAN: Idle.MAKE_ROOM}
 """What the arm does on a sub-goal status without a step for it: it retreats clear of the blocks once the goal holds,
@@ -68,6 +71,7 @@ class PolicyNode(Node):
         """``options``: rclpy ``Node``'s (a namespace, parameter overrides: ``graph_node`` composes nodes so)."""
         super().__init__("policy", **options)
         values = declare(self, PARAMS)
+        torch.set_num_threads(values["threads"])
         self.mode, scene = values["mode"], values["scene"]
         arm, self.arms = values["arm"] - 1, values["arms"]
         if arm >= self.arms:

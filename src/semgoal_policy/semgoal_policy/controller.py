@@ -124,6 +124,9 @@ APART_AIM = AWAY_DROP_DISTANCE + 0.005
 STEER_SPEED = 0.5
 """The largest command (a fraction of the arm's 5 cm a step) with which a rule moves a held block to where it may be
 let go."""
+FOOTPRINT_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
+"""How far apart (m) along the table's x or y a held block is let go from any block standing on the table, where it
+is as near along the other: nearer, their footprints overlap and it lands on that block's edge."""
 STEER_MIN = 0.002
 """The least move (m) for which :func:`let_go_within_reach` holds a block back: a smaller one, where its pulls cancel,
 lets it go."""
@@ -234,12 +237,16 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
     to let go elsewhere, the hand keeps squeezing, holds its height and moves the block in the plane toward
     :data:`NEAR_AIM` of the one and :data:`APART_AIM` of the other; where those moves cancel, it lets go. Let go
     9-10 cm from the block it was put near, blocks came to rest just beyond close (tabletop put near, seeds
-    2,010,020 and 2,010,097)."""
+    2,010,020 and 2,010,097). Nor is it let go over the edge of one block below it (nearer than
+    :data:`FOOTPRINT_CLEARANCE` along both x and y): it landed on the corner, tumbled off and came to rest just
+    beyond close (2,010,111); the hand moves it out along the axis it overlaps less first. Over two blocks' edges
+    it bridges them, and is let go."""
     held = held_slots(scene, observation)
     objects = SCENES[scene].objects
     if action[3] <= 0.0 or not held[objects.index(block)]:
         return action
-    positions = layout.block_slots(scene, observation)["position"]
+    blocks = layout.block_slots(scene, observation)
+    positions, present = blocks["position"], blocks["present"][:, 0] > 0.5
     here = positions[objects.index(block)]
     move = np.zeros(2)
     for other in near:
@@ -252,6 +259,13 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
         distance = float(np.linalg.norm(offset))
         if distance < AWAY_DROP_DISTANCE:
             move += offset / max(distance, 1e-6) * (APART_AIM - distance)
+    below = np.flatnonzero(present & (positions[:, 2] < here[2] - BLOCK_HALF_SIZE))  # under the held one
+    apart_by = here[:2] - positions[below, :2]
+    overlap = FOOTPRINT_CLEARANCE - np.abs(apart_by)
+    under = np.flatnonzero((overlap > 0).all(axis=1))
+    if len(under) == 1:  # over one block's edge, out along the axis where it overlaps less (over two, it bridges them)
+        axis = int(np.argmin(overlap[under[0]]))
+        move[axis] += np.copysign(overlap[under[0], axis], apart_by[under[0], axis])
     if np.linalg.norm(move) < STEER_MIN:  # nowhere to go (the moves cancel): let go where the actor asks
         return action
     action[:2] = np.clip(move * RETREAT_GAIN, -STEER_SPEED, STEER_SPEED)

@@ -339,9 +339,10 @@ def _put_on_the_table_by_the_actor(world: FetchWorld, block: str, steps: int) ->
     assert f"holding({block})" not in world.layout.readable(world.semantic_vector())
 
 
-def _block_held_on_the_table_beside_another(dy: float, height: float = 0.003) -> tuple[FetchWorld, np.ndarray]:
-    """The tabletop with green in the hand, ``height`` (m) over the table ``dy`` (m) from red along the fingers' axis;
-    red's position."""
+def _block_held_on_the_table_beside_another(dy: float, height: float = 0.003, dx: float = 0.0
+                                            ) -> tuple[FetchWorld, np.ndarray]:
+    """The tabletop with green in the hand, ``height`` (m) over the table ``dy`` (m) from red along the fingers' axis
+    (and ``dx`` across it); red's position."""
     world = FetchWorld("tabletop", 3)
     world.reset(TABLETOP_TASKS["Tower-3"].initial_state(3_000_000)[0])
     red = world.snapshot().block_positions[world.blocks.index("red")].copy()
@@ -349,7 +350,7 @@ def _block_held_on_the_table_beside_another(dy: float, height: float = 0.003) ->
     for _ in range(60):
         snapshot = world.snapshot()
         green = snapshot.block_positions[world.blocks.index("green")]
-        world.step(move_to(snapshot.grip_position, snapshot.grip_position + red + [0.0, dy, height] - green, -1.0))
+        world.step(move_to(snapshot.grip_position, snapshot.grip_position + red + [dx, dy, height] - green, -1.0))
     assert "holding(green)" in world.layout.readable(world.semantic_vector())
     return world, world.snapshot().block_positions[world.blocks.index("red")].copy()
 
@@ -438,13 +439,32 @@ def test_a_let_go_too_near_a_block_to_stay_apart_from_moves_away_from_it() -> No
     assert action[3] == HOLD_GRIP[3] and action[1] > 0.0
 
 
-def test_the_controller_carries_a_block_let_go_too_far_within_close_before_letting_go() -> None:
-    """Physics: an actor that lets go 12 cm from red leaves green beyond ``close``; under the controller's rules the
-    hand carries it within reach first, and green comes to rest close to red, let go."""
+def test_a_let_go_over_a_blocks_edge_moves_out_along_the_axis_it_overlaps_less() -> None:
+    """Green over red's corner, 4.6 cm from it along x and 4.0 along y, just over its top (tabletop put near, seed
+    2,010,111): the hand squeezes, holds its height and moves out along +x; clear of red's footprint it lets go, and
+    over the edges of two blocks at once (it bridges them: the paper's MC-3 lets a block go so between two close
+    ones, 3,100,018) too."""
+    world, red = _block_held_on_the_table_beside_another(0.040, height=0.06, dx=0.046)
+    action = let_go_within_reach("tabletop", world.observation(), LET_GO_HERE.copy(), "green", ["red"], [])
+    assert action[3] == HOLD_GRIP[3] and action[2] == 0.0
+    assert action[0] > 0.0 and abs(action[1]) < 0.01
+    world.set_block_pose("blue", red + np.array([0.09, 0.0, 0.0]))
+    bridging = let_go_within_reach("tabletop", world.observation(), LET_GO_HERE.copy(), "green", ["red", "blue"], [])
+    assert bridging.tolist() == LET_GO_HERE.tolist()
+    clear = _block_held_on_the_table_beside_another(0.040, height=0.06, dx=0.062)[0].observation()
+    assert let_go_within_reach("tabletop", clear, LET_GO_HERE.copy(), "green", ["red"], []).tolist() == LET_GO_HERE.tolist()
+
+
+@pytest.mark.parametrize(("dx", "dy", "height"), [(0.0, 0.12, 0.03), (0.044, 0.044, 0.06)])
+def test_the_controller_carries_a_block_let_go_too_far_within_close_before_letting_go(dx: float, dy: float,
+                                                                                      height: float) -> None:
+    """Physics: an actor that lets go 12 cm from red, or over red's corner (it lands on the corner and tumbles off),
+    leaves green beyond ``close``; under the controller's rules the hand carries it within reach and clear of red's
+    footprint first, and green comes to rest close to red, let go."""
     controller = SubgoalController("tabletop")
     controller.set_subgoal([parse_literal("close(green,red)"), parse_literal("not holding(green)")])
     for ruled in (False, True):
-        world, _ = _block_held_on_the_table_beside_another(0.12, height=0.03)
+        world, _ = _block_held_on_the_table_beside_another(dy, height=height, dx=dx)
         for _ in range(60):
             world.step(controller.ruled(world.observation(), LET_GO_HERE.copy()) if ruled else LET_GO_HERE)
         readable = world.layout.readable(world.semantic_vector())

@@ -125,8 +125,8 @@ STEER_SPEED = 0.5
 """The largest command (a fraction of the arm's 5 cm a step) with which a rule moves a held block to where it may be
 let go."""
 FOOTPRINT_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
-"""How far apart (m) along the table's x or y a held block is let go from any block standing on the table, where it
-is as near along the other: nearer, their footprints overlap and it lands on that block's edge."""
+"""How far apart (m) along the table's x or y a held block is let go from a block below it, where it is as near along
+the other: nearer, their footprints overlap and it lands on that block's corner (:func:`let_go_within_reach`)."""
 STEER_MIN = 0.002
 """The least move (m) for which :func:`let_go_within_reach` holds a block back: a smaller one, where its pulls cancel,
 lets it go."""
@@ -237,10 +237,11 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
     to let go elsewhere, the hand keeps squeezing, holds its height and moves the block in the plane toward
     :data:`NEAR_AIM` of the one and :data:`APART_AIM` of the other; where those moves cancel, it lets go. Let go
     9-10 cm from the block it was put near, blocks came to rest just beyond close (tabletop put near, seeds
-    2,010,020 and 2,010,097). Nor is it let go over the edge of one block below it (nearer than
-    :data:`FOOTPRINT_CLEARANCE` along both x and y): it landed on the corner, tumbled off and came to rest just
-    beyond close (2,010,111); the hand moves it out along the axis it overlaps less first. Over two blocks' edges
-    it bridges them, and is let go."""
+    2,010,020 and 2,010,097). Nor is it let go over the corner of one block below it (its centre beyond that
+    block's sides along both x and y, yet nearer than :data:`FOOTPRINT_CLEARANCE` along both): it landed on the
+    corner, tumbled off and came to rest just beyond close (2,010,111); the hand moves it out along the axis it
+    overlaps less first. Over two blocks' corners it bridges them, and over a block's side it slides down beside it
+    (the paper's MC-3 lets blocks go so): it is let go."""
     held = held_slots(scene, observation)
     objects = SCENES[scene].objects
     if action[3] <= 0.0 or not held[objects.index(block)]:
@@ -262,8 +263,8 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
     below = np.flatnonzero(present & (positions[:, 2] < here[2] - BLOCK_HALF_SIZE))  # under the held one
     apart_by = here[:2] - positions[below, :2]
     overlap = FOOTPRINT_CLEARANCE - np.abs(apart_by)
-    under = np.flatnonzero((overlap > 0).all(axis=1))
-    if len(under) == 1:  # over one block's edge, out along the axis where it overlaps less (over two, it bridges them)
+    under = np.flatnonzero((overlap > 0).all(axis=1) & (np.abs(apart_by) > BLOCK_HALF_SIZE).all(axis=1))
+    if len(under) == 1:  # over one block's corner, out along the axis where it overlaps less (over two, it bridges them)
         axis = int(np.argmin(overlap[under[0]]))
         move[axis] += np.copysign(overlap[under[0], axis], apart_by[under[0], axis])
     if np.linalg.norm(move) < STEER_MIN:  # nowhere to go (the moves cancel): let go where the actor asks

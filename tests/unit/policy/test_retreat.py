@@ -439,11 +439,11 @@ def test_a_let_go_too_near_a_block_to_stay_apart_from_moves_away_from_it() -> No
     assert action[3] == HOLD_GRIP[3] and action[1] > 0.0
 
 
-def test_a_let_go_over_a_blocks_edge_moves_out_along_the_axis_it_overlaps_less() -> None:
+def test_a_let_go_over_a_blocks_corner_moves_out_along_the_axis_it_overlaps_less() -> None:
     """Green over red's corner, 4.6 cm from it along x and 4.0 along y, just over its top (tabletop put near, seed
-    2,010,111): the hand squeezes, holds its height and moves out along +x; clear of red's footprint it lets go, and
-    over the edges of two blocks at once (it bridges them: the paper's MC-3 lets a block go so between two close
-    ones, 3,100,018) too."""
+    2,010,111): the hand squeezes, holds its height and moves out along +x; clear of red's footprint it lets go. Over
+    red's side (its centre 1.6 cm from red's along y: it slides down beside red, as the paper's MC-3 actor lets blocks
+    go, 3,000,015) and over the corners of two blocks at once (it bridges them) it lets go too."""
     world, red = _block_held_on_the_table_beside_another(0.040, height=0.06, dx=0.046)
     action = let_go_within_reach("tabletop", world.observation(), LET_GO_HERE.copy(), "green", ["red"], [])
     assert action[3] == HOLD_GRIP[3] and action[2] == 0.0
@@ -453,6 +453,9 @@ def test_a_let_go_over_a_blocks_edge_moves_out_along_the_axis_it_overlaps_less()
     assert bridging.tolist() == LET_GO_HERE.tolist()
     clear = _block_held_on_the_table_beside_another(0.040, height=0.06, dx=0.062)[0].observation()
     assert let_go_within_reach("tabletop", clear, LET_GO_HERE.copy(), "green", ["red"], []).tolist() == LET_GO_HERE.tolist()
+    over_side = _block_held_on_the_table_beside_another(0.016, height=0.06, dx=0.036)[0].observation()
+    assert let_go_within_reach("tabletop", over_side, LET_GO_HERE.copy(), "green", ["red"], []).tolist() == (
+        LET_GO_HERE.tolist())
 
 
 @pytest.mark.parametrize(("dx", "dy", "height"), [(0.0, 0.12, 0.03), (0.044, 0.044, 0.06)])

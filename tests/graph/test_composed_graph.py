@@ -42,7 +42,7 @@ def test_the_composed_graph_takes_the_in_process_steps(nodes: NodeProcesses, pro
     probe.node.create_subscription(SemanticState, topics.SEMANTIC_STATE, states.append, topics.LATCHED)
     probe.node.create_subscription(SubGoal, topics.SUBGOAL, subgoals.append, topics.LATCHED)
     # the latched history comes over a few spins, older decisions first (the reset's empty one): wait for the plan's
-    # last decision, that the goal succeeded (the test once took the reset's for it, when it happened to come last)
+    # last decision, that the goal succeeded
     probe.spin_until(lambda: bool(states) and bool(subgoals) and subgoals[-1].status == "succeeded", 30,
                      "the last semantic state and sub-goal")
     assert states[-1].step > 0 and subgoals[-1].step == states[-1].step  # the decision on the last state

@@ -114,9 +114,9 @@ APPROACH_HEIGHT = 0.03
 """How far (m) over a stack's top the palm comes on the actor's own before the hand goes to its shifted pick point."""
 SHIFT_TOLERANCE = 0.003
 """How near (m) the hand must be to its shifted pick point before it comes down past a stack."""
-NEAR_RELEASE_SPEED = 0.1
-"""The fastest (m/s, 4 mm a step) the hand may move in the table's plane as it lets go of a block put near others:
-let go at 0.2-0.5 m/s within 5-7 cm of its references, blocks slid on to 10.2-11.5 cm, past ``close``."""
+LET_GO_SPEED = 0.1
+"""The fastest (m/s, 4 mm a step) the hand may move in the table's plane as it lets go of a block put near others or
+into the bin: let go at 0.2-0.5 m/s within 5-7 cm of its references, blocks slid on to 10.2-11.5 cm, past ``close``."""
 NEAR_AIM = 0.07
 """Where :func:`let_go_within_reach` brings a held block too far from one it is put near: this far from it (m)."""
 APART_AIM = AWAY_DROP_DISTANCE + 0.005
@@ -127,6 +127,10 @@ let go."""
 FOOTPRINT_CLEARANCE = 2 * BLOCK_HALF_SIZE + 0.004
 """How far apart (m) along the table's x or y a held block is let go from a block below it, where it is as near along
 the other: nearer, their footprints overlap and it lands on that block's corner (:func:`let_go_within_reach`)."""
+CLOSING_OFFSET = PICK_SHIFT[0] + 0.003
+"""How far (m) off a block's centre across the fingers' width (the arm's x) an empty hand may close on it: the
+fingers, 2.7 cm wide, still hold 1.7 cm of its 5 cm face, and a pick shifted past a stack (:data:`PICK_SHIFT`) still
+closes."""
 STEER_MIN = 0.002
 """The least move (m) for which :func:`let_go_within_reach` holds a block back: a smaller one, where its pulls cancel,
 lets it go."""
@@ -218,13 +222,14 @@ def placed_gently(scene: str, observation: np.ndarray, action: np.ndarray, top: 
 
 
 def let_go_slowly(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
-    """An actor's command (in the arm's own frame) while it puts a block near others, except that a held block is let
-    go only with the hand slower than :data:`NEAR_RELEASE_SPEED` in the table's plane; wanting to let go before, the
-    hand keeps squeezing and stops in the plane."""
+    """An actor's command (in the arm's own frame) while it puts a block near others or into the bin, except that a
+    held block is let go only with the hand slower than :data:`LET_GO_SPEED` in the table's plane; wanting to let
+    go before, the hand keeps squeezing and stops in the plane. Let go at 1.25 m/s 14 cm over the bin, next to its
+    far wall, yellow flew over it and off the table (tabletop Clean-6, start 3,000,009)."""
     if action[3] <= 0.0 or not held_slots(scene, observation).any():
         return action
     speed = float(np.linalg.norm(layout.arm_state(observation)["grip_velocity"][:2])) / layout.CONTROL_DT
-    if speed > NEAR_RELEASE_SPEED:
+    if speed > LET_GO_SPEED:
         action[:2], action[3] = 0.0, HOLD_GRIP[3]
     return action
 
@@ -313,6 +318,56 @@ def grasped_in_place(scene: str, observation: np.ndarray, action: np.ndarray, bl
     else:  # over it, not open: open, not going down
         action[3] = _opening_toward(RETREAT_OPENING, opening)
         action[2] = max(action[2], 0.0)
+    return action
+
+
+def closed_across_the_middle(scene: str, observation: np.ndarray, action: np.ndarray, block: str) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while an empty hand picks ``block``, except that with the fingertips
+    beside the block and the fingers still open wider than it, they do not close more than :data:`CLOSING_OFFSET` off
+    its centre across their width: they stay as they are and the hand moves toward the centre along that axis
+    (:data:`CENTRING_SPEED`). Closed 2.7 cm off green's centre, the fingers held 1.2 cm of its edge; lifted, it slipped
+    out, fell and went over the table's far edge (tabletop Clean-6, start 3,300,015)."""
+    arm = layout.arm_state(observation)
+    grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
+    if action[3] >= 0.0 or opening <= 2 * BLOCK_HALF_SIZE or held_slots(scene, observation).any():
+        return action
+    here = layout.block_slots(scene, observation)["position"][SCENES[scene].objects.index(block)]
+    offset = here[:2] - grip[:2]
+    beside = (grip[2] - FINGER_TIP < here[2] + BLOCK_HALF_SIZE and grip[2] > here[2] - BLOCK_HALF_SIZE
+              and abs(offset[1]) < opening / 2)
+    if beside and CLOSING_OFFSET < abs(offset[0]) < BLOCK_HALF_SIZE + FINGER_HALF_WIDTH:
+        action[0] = float(np.clip(offset[0] * RETREAT_GAIN, -CENTRING_SPEED, CENTRING_SPEED))
+        action[3] = 0.0
+    return action
+
+
+def fingers_kept_off_its_top(scene: str, observation: np.ndarray, action: np.ndarray, block: str) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while an empty hand picks ``block``, except that fingers too narrow
+    to pass it do not come down on its top: over it, they come down no nearer than :data:`PALM_CLEARANCE` to its top
+    and open there, the hand moving toward its centre across their opening (:data:`CENTRING_SPEED`); on its top, they
+    rise off it first, the fingers as they are. Fingers closed over green came down on its top,
+    pressed it down on one edge and pushed it along the table and over its edge (tabletop Clean-6, starts 3,300,004
+    and 3,300,046)."""
+    arm = layout.arm_state(observation)
+    grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
+    if held_slots(scene, observation).any():
+        return action
+    here = layout.block_slots(scene, observation)["position"][SCENES[scene].objects.index(block)]
+    toward = here[:2] - grip[:2]
+    offset = np.abs(toward)
+    top = here[2] + BLOCK_HALF_SIZE + PALM_CLEARANCE
+    fingertips = grip[2] - FINGER_TIP
+    over = (offset[0] < BLOCK_HALF_SIZE + FINGER_HALF_WIDTH and offset[1] < BLOCK_HALF_SIZE + opening / 2 + FINGER_OUTER_FACE
+            and offset[1] + BLOCK_HALF_SIZE + FINGER_CLEARANCE > opening / 2)  # a finger over the block, not beside it
+    if not over or fingertips < here[2]:  # below its middle: beside it already, the grasp's own business
+        return action
+    if fingertips < top - PALM_CLEARANCE:  # on its top: up off it before the fingers move
+        action[2] = max(action[2], min((top - fingertips) / layout.MAX_DISPLACEMENT, 1.0))
+        action[3] = -float(arm["finger_velocities"].mean())
+    elif fingertips + min(action[2], 0.0) * layout.MAX_DISPLACEMENT < top:
+        action[1] = float(np.clip(toward[1] * RETREAT_GAIN, -CENTRING_SPEED, CENTRING_SPEED))
+        action[2] = max(action[2], min((top - fingertips) / layout.MAX_DISPLACEMENT, 0.0))
+        action[3] = 1.0
     return action
 
 
@@ -533,7 +588,7 @@ class SubgoalController:
         self.idling = Idle.RETREAT
         """What the arm does with no sub-goal."""
         self.into_bin = False
-        """The sub-goal puts a block into the bin: :func:`kept_off_the_walls` applies."""
+        """The sub-goal puts a block into the bin: :func:`let_go_slowly` and :func:`kept_off_the_walls` apply."""
         self.putting_on: tuple[str, str] | None = None
         """The sub-goal puts one block on another (top, bottom): :func:`placed_gently` applies."""
         self.putting_near: SubGoal | None = None
@@ -603,16 +658,19 @@ class SubgoalController:
         if straddles_a_stack(self.scene, observation, self.picking):
             return self._rise(observation, RETREAT_HEIGHT)
         action = np.clip(np.nan_to_num(action, nan=0.0, posinf=0.0, neginf=0.0), -1.0, 1.0).astype(np.float32)
+        if self.into_bin or self.putting_near:
+            action = let_go_slowly(self.scene, observation, action)
         if self.into_bin:
             action = kept_off_the_walls(self.scene, observation, action)
         if self.putting_on:
             action = placed_gently(self.scene, observation, action, *self.putting_on)
         if self.putting_near:
-            action = let_go_slowly(self.scene, observation, action)
             put = self.putting_near
             action = let_go_within_reach(self.scene, observation, action, put.block, put.references, put.apart)
         for block in self.picking:
             action = grasped_in_place(self.scene, observation, action, block)
+            action = closed_across_the_middle(self.scene, observation, action, block)
+            action = fingers_kept_off_its_top(self.scene, observation, action, block)
             action = palm_clear_of_stacks(self.scene, observation, action, block)
         stacks = stacks_of(self.scene, observation)
         if stacks is not None:

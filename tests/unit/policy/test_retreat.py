@@ -29,11 +29,13 @@ from semgoal_policy.controller import (
     RETREAT_OPENING,
     ROOM_HEIGHT,
     STRADDLE_HEIGHT,
+    WALL_CLEARANCE,
     Idle,
     SubgoalController,
     fingers_spare_neighbours,
     grasped_in_place,
     held_block_kept_off_stacks,
+    held_block_kept_off_the_walls,
     kept_off_the_walls,
     kept_on_the_table,
     let_go_slowly,
@@ -167,6 +169,34 @@ def test_a_block_on_its_way_into_the_bin_is_let_go_only_with_the_hand_slow() -> 
     slow[3:6] = [0.0, 0.5 * LET_GO_SPEED * CONTROL_DT, 0.0]
     assert controller.ruled(moving, let_go.copy()).tolist() == pytest.approx([0.0, 0.0, 0.0, HOLD_GRIP[3]])
     assert controller.ruled(slow, let_go.copy()).tolist() == pytest.approx(let_go.tolist())
+
+
+def test_a_block_on_its_way_into_the_bin_does_not_come_down_onto_a_wall() -> None:
+    """Over the desk bin's side wall, a held block comes down no nearer than WALL_CLEARANCE to the wall's top (nearer,
+    it rises) and moves inward, fingers closed; well over the wall, or over the bin's middle, it comes down as the
+    actor asks. Brought down onto the wall,
+    red was knocked out of the hand and off the table (DC-4 with the tabletop actor, start 3,200,016)."""
+    world = FetchWorld("desk_cleanup", 2)
+    world.reset(TASKS["DC-2"].initial_state(3_000_000)[0])
+    world.place_in_gripper("red")
+    bin_ = world.scene.bin
+    wall_top = TABLE_TOP + bin_.floor_thickness + bin_.wall_height
+    down = np.array([0.1, 0.0, -1.0, -1.0], dtype=np.float32)
+    side_wall = bin_.center[0] + bin_.inner_half_size[0] + bin_.wall_thickness / 2
+    for x, bottom, kept in ((side_wall, wall_top + 0.03, True), (side_wall, wall_top + 0.01, True),
+                            (side_wall, wall_top + 0.08, False), (bin_.center[0], wall_top + 0.03, False)):
+        for _ in range(40):
+            target = np.array([x, bin_.center[1], bottom + BLOCK_HALF_SIZE])
+            world.step(move_to(world.snapshot().block_positions[0], target, -1.0))
+        observation = world.observation()
+        assert "holding(red)" in world.layout.readable(world.semantic_vector())
+        action = held_block_kept_off_the_walls("desk_cleanup", observation, down.copy())
+        if kept:
+            now = world.snapshot().block_positions[0][2] - BLOCK_HALF_SIZE
+            assert now + action[2] * MAX_DISPLACEMENT == pytest.approx(wall_top + WALL_CLEARANCE, abs=1e-4)
+            assert action[0] <= -EDGE_NUDGE and action[3] <= 0.0, action
+        else:
+            assert action.tolist() == pytest.approx(down.tolist()), (x, bottom)
 
 
 def test_a_block_at_the_table_edge_beside_the_one_being_moved_stays_where_it_is() -> None:

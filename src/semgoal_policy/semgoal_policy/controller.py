@@ -181,9 +181,9 @@ def kept_off_the_walls(scene: str, observation: np.ndarray, action: np.ndarray) 
 def held_block_kept_off_the_walls(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
     """An actor's command (in the arm's own frame) while it puts a block into the bin, except that the held block does
     not come down onto a wall: where its footprint meets a wall's, its bottom comes no nearer than
-    :data:`WALL_CLEARANCE` to that wall's top (nearer, it rises) and the hand moves inward. Brought down onto the desk bin's
-    wall, red was knocked out of the fingers and over the table's edge behind (DC-4 with the tabletop actor, start
-    3,200,016)."""
+    :data:`WALL_CLEARANCE` to that wall's top (nearer, it rises) and the hand moves inward. Brought down onto the desk
+    bin's wall, red was knocked out of the fingers and over the table's edge behind (DC-4 with the tabletop actor,
+    start 3,200,016)."""
     bin_ = SCENES[scene].bin
     held = held_slots(scene, observation)
     if bin_ is None or not held.any():
@@ -374,9 +374,8 @@ def fingers_kept_off_its_top(scene: str, observation: np.ndarray, action: np.nda
     """An actor's command (in the arm's own frame) while an empty hand picks ``block``, except that fingers too narrow
     to pass it do not come down on its top: over it, they come down no nearer than :data:`PALM_CLEARANCE` to its top
     and open there, the hand moving toward its centre across their opening (:data:`CENTRING_SPEED`); on its top, they
-    rise off it first, the fingers as they are. Fingers closed over green came down on its top,
-    pressed it down on one edge and pushed it along the table and over its edge (tabletop Clean-6, starts 3,300,004
-    and 3,300,046)."""
+    rise off it first, the fingers as they are. Fingers closed over green came down on its top, pressed it down on one
+    edge and pushed it along the table and over its edge (tabletop Clean-6, starts 3,300,004 and 3,300,046)."""
     arm = layout.arm_state(observation)
     grip, opening = arm["grip_position"], float(arm["finger_positions"].sum())
     if held_slots(scene, observation).any():

@@ -134,6 +134,10 @@ CLOSING_OFFSET = PICK_SHIFT[0] + 0.003
 """How far (m) off a block's centre across the fingers' width (the arm's x) an empty hand may close on it: the
 fingers, 2.7 cm wide, still hold 1.7 cm of its 5 cm face, and a pick shifted past a stack (:data:`PICK_SHIFT`) still
 closes."""
+SLIDE_DISTANCE = 0.07
+"""Where a block let go over one block's side, its centre beyond that side, comes to rest: this far (m) from that
+block's centre along the axis it overlaps less (it tips off and slides; 6.9-7.6 cm traced, tabletop put near, starts
+2,110,003, 2,110,128 and 2,110,160)."""
 STEER_MIN = 0.002
 """The least move (m) for which :func:`let_go_within_reach` holds a block back: a smaller one, where its pulls cancel,
 lets it go."""
@@ -274,8 +278,9 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
     2,010,020 and 2,010,097). Nor is it let go over the corner of one block below it (its centre beyond that
     block's sides along both x and y, yet nearer than :data:`FOOTPRINT_CLEARANCE` along both): it landed on the
     corner, tumbled off and came to rest just beyond close (2,010,111); the hand moves it out along the axis it
-    overlaps less first. Over two blocks' corners it bridges them, and over a block's side it slides down beside it
-    (the paper's MC-3 lets blocks go so): it is let go."""
+    overlaps less first. Over two blocks' corners it bridges them: it is let go. Over one block's side it slides down
+    beside it (the paper's MC-3 lets blocks go so), to :data:`SLIDE_DISTANCE` from it: the reach is judged there. Let go
+    within reach over red's side, blue slid off away from green and came to rest 10.9 cm from it (2,110,003)."""
     held = held_slots(scene, observation)
     objects = SCENES[scene].objects
     if action[3] <= 0.0 or not held[objects.index(block)]:
@@ -283,24 +288,29 @@ def let_go_within_reach(scene: str, observation: np.ndarray, action: np.ndarray,
     blocks = layout.block_slots(scene, observation)
     positions, present = blocks["position"], blocks["present"][:, 0] > 0.5
     here = positions[objects.index(block)]
-    move = np.zeros(2)
+    below = np.flatnonzero(present & (positions[:, 2] < here[2] - BLOCK_HALF_SIZE))  # under the held one
+    apart_by = here[:2] - positions[below, :2]
+    overlap = FOOTPRINT_CLEARANCE - np.abs(apart_by)
+    over = (overlap > 0).all(axis=1)
+    beyond = np.abs(apart_by) > BLOCK_HALF_SIZE
+    corners, sides = np.flatnonzero(over & beyond.all(axis=1)), np.flatnonzero(over)
+    move, landing = np.zeros(2), here[:2].copy()
+    if len(corners) == 1:  # over one block's corner, out along the axis where it overlaps less (over two, it bridges them)
+        axis = int(np.argmin(overlap[corners[0]]))
+        move[axis] += np.copysign(overlap[corners[0], axis], apart_by[corners[0], axis])
+    elif len(sides) == 1 and beyond[sides[0], axis := int(np.argmin(overlap[sides[0]]))]:
+        # over one block's side: it slides off beside it, and is judged where it comes to rest
+        landing[axis] = positions[below[sides[0]], axis] + np.copysign(SLIDE_DISTANCE, apart_by[sides[0], axis])
     for other in near:
-        offset = positions[objects.index(other), :2] - here[:2]
+        offset = positions[objects.index(other), :2] - landing
         distance = float(np.linalg.norm(offset))
         if distance > DROP_REACH:
             move += offset / distance * (distance - NEAR_AIM)
     for other in apart:
-        offset = here[:2] - positions[objects.index(other), :2]
+        offset = landing - positions[objects.index(other), :2]
         distance = float(np.linalg.norm(offset))
         if distance < AWAY_DROP_DISTANCE:
             move += offset / max(distance, 1e-6) * (APART_AIM - distance)
-    below = np.flatnonzero(present & (positions[:, 2] < here[2] - BLOCK_HALF_SIZE))  # under the held one
-    apart_by = here[:2] - positions[below, :2]
-    overlap = FOOTPRINT_CLEARANCE - np.abs(apart_by)
-    under = np.flatnonzero((overlap > 0).all(axis=1) & (np.abs(apart_by) > BLOCK_HALF_SIZE).all(axis=1))
-    if len(under) == 1:  # over one block's corner, out along the axis where it overlaps less (over two, it bridges them)
-        axis = int(np.argmin(overlap[under[0]]))
-        move[axis] += np.copysign(overlap[under[0], axis], apart_by[under[0], axis])
     if np.linalg.norm(move) < STEER_MIN:  # nowhere to go (the moves cancel): let go where the actor asks
         return action
     action[:2] = np.clip(move * RETREAT_GAIN, -STEER_SPEED, STEER_SPEED)

@@ -507,6 +507,27 @@ def test_a_let_go_over_a_blocks_corner_moves_out_along_the_axis_it_overlaps_less
         LET_GO_HERE.tolist())
 
 
+def test_a_let_go_over_a_blocks_side_is_judged_where_the_block_slides_to() -> None:
+    """Physics and the rule: green held 7 cm up over red's side (1.6 cm from red's centre along x, 3.7 along y), blue
+    8 cm off, both to be near (tabletop put near, seed 2,110,003). Let go there, green slides off red away from blue
+    and comes to rest beyond close of it; the rule judges the reach where green will come to rest, squeezes and moves
+    it toward blue (-x, +y) first, and green comes to rest close to both."""
+    controller = SubgoalController("tabletop")
+    controller.set_subgoal([parse_literal(text) for text in ("close(green,red)", "close(green,blue)", "not holding(green)")])
+    for ruled in (False, True):
+        world, red = _block_held_on_the_table_beside_another(-0.037, height=0.07, dx=-0.016)
+        world.set_block_pose("blue", red + np.array([-0.05, 0.035, 0.0]))
+        assert _distance(world, "green", "blue") < DROP_REACH
+        if ruled:
+            action = let_go_within_reach("tabletop", world.observation(), LET_GO_HERE.copy(), "green", ["red", "blue"], [])
+            assert action[3] == HOLD_GRIP[3] and action[0] < 0.0 < action[1]
+        for _ in range(80):
+            world.step(controller.ruled(world.observation(), LET_GO_HERE.copy()) if ruled else LET_GO_HERE)
+        readable = world.layout.readable(world.semantic_vector())
+        assert "holding(green)" not in readable and "close(red,green)" in readable
+        assert ("close(green,blue)" in readable) is ruled, _distance(world, "green", "blue")
+
+
 @pytest.mark.parametrize(("dx", "dy", "height"), [(0.0, 0.12, 0.03), (0.044, 0.044, 0.06)])
 def test_the_controller_carries_a_block_let_go_too_far_within_close_before_letting_go(dx: float, dy: float,
                                                                                       height: float) -> None:

@@ -208,6 +208,37 @@ def held_block_kept_off_the_walls(scene: str, observation: np.ndarray, action: n
     return _held_back(action, offset, on_a_wall)
 
 
+def let_go_on_the_bin_floor(scene: str, observation: np.ndarray, action: np.ndarray) -> np.ndarray:
+    """An actor's command (in the arm's own frame) while it puts a block into the bin, except that the held block is
+    neither let go nor brought down over a block below it (their footprints within :data:`FOOTPRINT_CLEARANCE` along
+    both x and y): it keeps :data:`STACK_CLEARANCE` over that block's top, rising if nearer, and moves toward the
+    bin's free spot (``bin_target``: where the expert's hand goes, its fingers clear of the blocks there); there, or
+    with no spot free, it goes as the actor asks. Brought down onto blue in the desk's bin and let go
+    over it, yellow came to rest on blue, out of the bin (DC-4 with the tabletop actor, start 3,100,013)."""
+    bin_ = SCENES[scene].bin
+    held = held_slots(scene, observation)
+    if bin_ is None or not held.any():
+        return action
+    blocks = layout.block_slots(scene, observation)
+    positions, present = blocks["position"], blocks["present"][:, 0] > 0.5
+    here = positions[held][0]
+    under = present & ~held & (positions[:, 2] < here[2] - BLOCK_HALF_SIZE) & (
+        np.abs(positions[:, :2] - here[:2]) < FOOTPRINT_CLEARANCE).all(axis=1)
+    if not under.any():
+        return action
+    floor = float(positions[under, 2].max()) + BLOCK_HALF_SIZE + STACK_CLEARANCE  # the held block's bottom stays over it
+    bottom = here[2] - BLOCK_HALF_SIZE
+    if action[3] <= 0.0 and bottom + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= floor:
+        return action
+    spot = features.bin_target(scene, observation)  # from the grip, where the fingers fit
+    if np.linalg.norm(spot) < STEER_MIN:  # the hand there, or the bin full (zeros): as the actor asks
+        return action
+    action[:2] = np.clip(spot * RETREAT_GAIN, -STEER_SPEED, STEER_SPEED)
+    action[2] = max(action[2], min((floor - bottom) / layout.MAX_DISPLACEMENT, 1.0))
+    action[3] = HOLD_GRIP[3]
+    return action
+
+
 def straddles_a_stack(scene: str, observation: np.ndarray, picking: Iterable[str] = ()) -> bool:
     """Whether an empty hand's fingers (in the arm's own frame) still straddle a block standing on another, one it is
     not asked to pick (``picking``), outside the bin. The actor moved sideways there and dragged the block it had just
@@ -702,6 +733,7 @@ class SubgoalController:
         if self.into_bin:
             action = kept_off_the_walls(self.scene, observation, action)
             action = held_block_kept_off_the_walls(self.scene, observation, action)
+            action = let_go_on_the_bin_floor(self.scene, observation, action)
         if self.putting_on:
             action = placed_gently(self.scene, observation, action, *self.putting_on)
         if self.putting_near:

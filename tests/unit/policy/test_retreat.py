@@ -38,6 +38,7 @@ from semgoal_policy.controller import (
     held_block_kept_off_the_walls,
     kept_off_the_walls,
     kept_on_the_table,
+    let_go_on_the_bin_floor,
     let_go_slowly,
     let_go_within_reach,
     palm_kept_off_stacks,
@@ -197,6 +198,40 @@ def test_a_block_on_its_way_into_the_bin_does_not_come_down_onto_a_wall() -> Non
             assert action[0] <= -EDGE_NUDGE and action[3] <= 0.0, action
         else:
             assert action.tolist() == pytest.approx(down.tolist()), (x, bottom)
+
+
+def test_a_block_on_its_way_into_the_bin_is_let_go_on_its_floor_not_on_a_block_there() -> None:
+    """Physics and the rule: the desk's bin holding red, green and blue as DC-4 with the tabletop actor left them
+    (start 3,100,013), yellow held 5 cm over blue's top, 1-1.5 cm off its centre. Let go there, yellow comes to rest
+    on blue, out of the bin (as traced); under the rule the hand keeps squeezing, stays over blue and moves toward the
+    bin's free spot (+x, where ``bin_target`` points), and yellow comes to rest on the bin's floor. A hand neither
+    letting go nor coming down keeps the actor's command."""
+    controller = SubgoalController("desk_cleanup")
+    controller.set_subgoal([Literal("in_bin", ("yellow",)), Literal("holding", ("yellow",), False)])
+    for ruled in (False, True):
+        world = FetchWorld("desk_cleanup", 4)
+        world.reset(TASKS["DC-4"].initial_state(3_000_000)[0])
+        bin_ = world.scene.bin
+        floor = TABLE_TOP + bin_.floor_thickness + BLOCK_HALF_SIZE
+        for block, xy in (("red", (1.217, 0.973)), ("green", (1.404, 0.991)), ("blue", (1.268, 0.995))):
+            world.set_block_pose(block, np.array([*xy, floor]))
+        world.place_in_gripper("yellow")
+        over_blue = np.array([1.278, 1.010, floor + 2 * BLOCK_HALF_SIZE + 0.05])
+        for _ in range(50):
+            world.step(move_to(world.snapshot().block_positions[3], over_blue, -1.0))
+        if ruled:
+            observation = world.observation()
+            action = let_go_on_the_bin_floor("desk_cleanup", observation, LET_GO_HERE.copy())
+            assert action[3] == HOLD_GRIP[3] and action[2] >= 0.0 and action[0] > 0.0
+            assert np.sign(action[:2]).tolist() == np.sign(features.bin_target("desk_cleanup", observation)).tolist()
+            carrying = np.array([0.3, -0.2, 0.0, -1.0], dtype=np.float32)
+            assert let_go_on_the_bin_floor("desk_cleanup", observation, carrying.copy()).tolist() == pytest.approx(
+                carrying.tolist())
+        for _ in range(80):
+            world.step(controller.ruled(world.observation(), LET_GO_HERE.copy()) if ruled else LET_GO_HERE)
+        readable = world.layout.readable(world.semantic_vector())
+        assert "holding(yellow)" not in readable and "in_bin(blue)" in readable
+        assert ("in_bin(yellow)" in readable) is ruled, world.snapshot().block_positions[3]
 
 
 def test_a_block_at_the_table_edge_beside_the_one_being_moved_stays_where_it_is() -> None:

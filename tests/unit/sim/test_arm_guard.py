@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from semgoal_sim.arm_guard import MIN_GAP, SEPARATION, ArmGuard, chain_distance, segment_distance
+from semgoal_sim.arm_guard import MIN_GAP, RELEASE, SEPARATION, ArmGuard, chain_distance, segment_distance
 
 
 def test_segment_distance_is_the_closest_pair_of_points() -> None:
@@ -52,8 +52,8 @@ def test_the_right_of_way_is_kept_until_the_arms_are_well_apart() -> None:
     still = np.zeros((2, 4))
     guard(chains(1.25, 1.40), np.array([[1.0, 0, 0, 0], [0, 0, 0, 0]]), np.array([0.6, 0.6]), np.array([False, False]))
     assert guard.right_of_way == 0  # the moving one goes on, the still one yields
-    guard(chains(1.2, 1.42), still, np.array([0.6, 0.6]), np.array([False, False]))
-    assert guard.right_of_way == 0
+    guard(chains(1.2, 1.2 + (SEPARATION + RELEASE) / 2), still, np.array([0.6, 0.6]), np.array([False, False]))
+    assert guard.right_of_way == 0  # apart, but not yet by RELEASE
     guard(chains(1.05, 1.55), still, np.array([0.6, 0.6]), np.array([False, False]))
     assert guard.right_of_way is None
     guard.reset()

@@ -202,9 +202,9 @@ def held_block_kept_off_the_walls(scene: str, observation: np.ndarray, action: n
     heights = (bin_.wall_height, bin_.back_wall_height if offset[1] > 0 else bin_.wall_height)
     top = TABLE_TOP + bin_.floor_thickness + max(h for h, on in zip(heights, on_a_wall, strict=True) if on)
     bottom = block[2] - BLOCK_HALF_SIZE
-    if bottom + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= top + WALL_CLEARANCE:
+    if _lowered(bottom, action) >= top + WALL_CLEARANCE:
         return action
-    action[2] = max(action[2], min((top + WALL_CLEARANCE - bottom) / layout.MAX_DISPLACEMENT, 1.0))
+    _rise_over(action, bottom, top + WALL_CLEARANCE)
     return _held_back(action, offset, on_a_wall)
 
 
@@ -228,13 +228,13 @@ def let_go_on_the_bin_floor(scene: str, observation: np.ndarray, action: np.ndar
         return action
     floor = float(positions[under, 2].max()) + BLOCK_HALF_SIZE + STACK_CLEARANCE  # the held block's bottom stays over it
     bottom = here[2] - BLOCK_HALF_SIZE
-    if action[3] <= 0.0 and bottom + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= floor:
+    if action[3] <= 0.0 and _lowered(bottom, action) >= floor:
         return action
     spot = features.bin_target(scene, observation)  # from the grip, where the fingers fit
     if np.linalg.norm(spot) < STEER_MIN:  # the hand there, or the bin full (zeros): as the actor asks
         return action
     action[:2] = np.clip(spot * RETREAT_GAIN, -STEER_SPEED, STEER_SPEED)
-    action[2] = max(action[2], min((floor - bottom) / layout.MAX_DISPLACEMENT, 1.0))
+    _rise_over(action, bottom, floor)
     action[3] = HOLD_GRIP[3]
     return action
 
@@ -431,9 +431,9 @@ def fingers_kept_off_its_top(scene: str, observation: np.ndarray, action: np.nda
     if not over or fingertips < here[2]:  # below its middle: beside it already, the grasp's own business
         return action
     if fingertips < top - PALM_CLEARANCE:  # on its top: up off it before the fingers move
-        action[2] = max(action[2], min((top - fingertips) / layout.MAX_DISPLACEMENT, 1.0))
+        _rise_over(action, fingertips, top)
         action[3] = -float(arm["finger_velocities"].mean())
-    elif fingertips + min(action[2], 0.0) * layout.MAX_DISPLACEMENT < top:
+    elif _lowered(fingertips, action) < top:
         action[1] = float(np.clip(toward[1] * RETREAT_GAIN, -CENTRING_SPEED, CENTRING_SPEED))
         action[2] = max(action[2], min((top - fingertips) / layout.MAX_DISPLACEMENT, 0.0))
         action[3] = 1.0
@@ -464,15 +464,15 @@ def palm_clear_of_stacks(scene: str, observation: np.ndarray, action: np.ndarray
         return action
     top = float(positions[tall, 2].max()) + BLOCK_HALF_SIZE + PALM_CLEARANCE
     palm = grip[2] + PALM_BOTTOM
-    palm_next = palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT  # where this command takes it
+    palm_next = _lowered(palm, action)
     if palm_next >= top + APPROACH_HEIGHT:
         return action  # high over the stacks still: the actor's approach
     error = here[:2] + shift - grip[:2]
     action[:2] = np.clip(error * RETREAT_GAIN, -1.0, 1.0)
     if np.abs(error).max() > SHIFT_TOLERANCE and palm_next < top:
-        action[2] = max(action[2], min((top - palm) / layout.MAX_DISPLACEMENT, 1.0))
+        _rise_over(action, palm, top)
     wide = 2 * (BLOCK_HALF_SIZE + abs(shift[1]) + FINGER_CLEARANCE)
-    fingertips = grip[2] - FINGER_TIP + min(action[2], 0.0) * layout.MAX_DISPLACEMENT
+    fingertips = _lowered(grip[2] - FINGER_TIP, action)
     if opening < wide and fingertips < here[2] + BLOCK_HALF_SIZE + PALM_CLEARANCE and grip[2] - FINGER_TIP > here[2]:
         action[2] = max(action[2], 0.0)  # not down beside the block until the fingers pass it
         action[3] = 1.0
@@ -554,9 +554,9 @@ def palm_kept_off_stacks(scene: str, observation: np.ndarray, action: np.ndarray
         return action
     top = float(positions[near, 2].max()) + BLOCK_HALF_SIZE + PALM_CLEARANCE
     palm = grip[2] + PALM_HEIGHT
-    if palm + min(action[2], 0.0) * layout.MAX_DISPLACEMENT >= top:
+    if _lowered(palm, action) >= top:
         return action
-    action[2] = max(action[2], min((top - palm) / layout.MAX_DISPLACEMENT, 1.0))
+    _rise_over(action, palm, top)
     away = -offsets[near, :2].mean(axis=0)
     action[:2] = np.where(np.sign(action[:2]) == np.sign(away), action[:2], np.sign(away) * EDGE_NUDGE)
     return action
@@ -594,6 +594,17 @@ def _opening_toward(target: float, opening: float) -> float:
     """The finger command that opens the fingers from ``opening`` to ``target`` (m): a finger command is metres added
     to each finger's target, and a quarter of the way a step comes to rest 3-4 mm past it, no more."""
     return (target - opening) / 4
+
+
+def _lowered(height: float, action: np.ndarray) -> float:
+    """Where a part of the hand at ``height`` (m) is after ``action``, as low as it takes it (a rise counts as none)."""
+    return height + min(action[2], 0.0) * layout.MAX_DISPLACEMENT
+
+
+def _rise_over(action: np.ndarray, height: float, floor: float) -> None:
+    """Sets ``action`` to take a part of the hand at ``height`` (m) no lower than ``floor``: up to it where below it, at
+    most a full step (the actor's own rise kept where larger)."""
+    action[2] = max(action[2], min((floor - height) / layout.MAX_DISPLACEMENT, 1.0))
 
 
 def _held_back(action: np.ndarray, offset: np.ndarray, axes: np.ndarray) -> np.ndarray:
@@ -657,8 +668,8 @@ class SubgoalController:
         self.idling = Idle.RETREAT
         """What the arm does with no sub-goal."""
         self.into_bin = False
-        """The sub-goal puts a block into the bin: :func:`let_go_slowly`, :func:`kept_off_the_walls` and
-        :func:`held_block_kept_off_the_walls` apply."""
+        """The sub-goal puts a block into the bin: :func:`let_go_slowly`, :func:`kept_off_the_walls`,
+        :func:`held_block_kept_off_the_walls` and :func:`let_go_on_the_bin_floor` apply."""
         self.putting_on: tuple[str, str] | None = None
         """The sub-goal puts one block on another (top, bottom): :func:`placed_gently` applies."""
         self.putting_near: SubGoal | None = None

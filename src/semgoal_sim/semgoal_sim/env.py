@@ -111,7 +111,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
     def __init__(self, scene: str, n_blocks: int | None = None, subgoal_types: tuple[str, ...] | None = None,
                  max_steps: int = EPISODE_STEPS, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
                  missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-                 render_mode: str | None = None, sleep: bool = False, shown_bin: BinGeometry | None = None) -> None:
+                 render_mode: str | None = None, sleep: bool = True, shown_bin: BinGeometry | None = None) -> None:
         """:param derived: features (``semgoal_core.features``) appended to the observation.
         :param shown_bin: the bin ``bin_target`` reads where the scene has none (``semgoal_core.features.shown_bin``:
             an actor trained with a bin judged as the policy node runs it).
@@ -126,7 +126,7 @@ class SubgoalEnv(RgbArrayRendering, gym.Env):
             bring them. Scenes with towers only; evaluation sets it to None.
         :param max_blocks: the most blocks an episode has (None: every count the scene allows), so that tasks with
             more (the tabletop's Tower-7 and Clean-8) test an actor on counts it never met.
-        :param sleep: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`; off as the actors were trained).
+        :param sleep: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`); False: awake, as the actors were trained.
         """
         if not 0.0 <= spawn_margin <= MAX_SPAWN_MARGIN:
             raise ValueError(f"spawn_margin {spawn_margin} is outside [0, {MAX_SPAWN_MARGIN}] m")

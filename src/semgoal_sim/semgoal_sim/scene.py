@@ -187,14 +187,14 @@ def build_spec(scene: Scene, blocks: tuple[str, ...], arms: int = 1) -> mujoco.M
 
 
 @functools.cache
-def build_model(scene_name: str, n_blocks: int | None = None, arms: int = 1, sleep: bool = False) -> mujoco.MjModel:
+def build_model(scene_name: str, n_blocks: int | None = None, arms: int = 1, sleep: bool = True) -> mujoco.MjModel:
     """Compile the model of a scene (cached: models are immutable in use, data is per world).
 
     :param n_blocks: desk cleanup only: how many of its blocks to build (2 to 4); None = all.
     :param arms: 1, or 2 for a second arm across the table.
     :param sleep: blocks at rest sleep (MuJoCo's sleeping islands): skipped by the physics until something
-        touches them or moves them, which halves the desk's cost per step. Off by default: the shipped actors and
-        every figure in the docs were made without it, and it changes trajectories (resting blocks no longer jitter).
+        touches them or moves them, which halves the desk's cost per step. On by default: the shipped actors, trained
+        awake, succeed as often with it (docs/simulation.md); False keeps every body awake, as they were trained.
     """
     scene = SCENES[scene_name]
     count = scene.max_blocks if n_blocks is None else n_blocks

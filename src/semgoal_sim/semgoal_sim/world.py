@@ -101,8 +101,8 @@ class FetchWorld:
     arm, :meth:`snapshot` and :meth:`observation` read any arm's hand, ``holding`` is in either hand, and contacts
     between the two arms are counted (:attr:`arm_contacts`)."""
 
-    def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1, sleep: bool = False) -> None:
-        """``sleep``: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`)."""
+    def __init__(self, scene: str, n_blocks: int | None = None, arms: int = 1, sleep: bool = True) -> None:
+        """``sleep``: blocks at rest sleep (:func:`semgoal_sim.scene.build_model`); False: every body awake."""
         self.scene = SCENES[scene]
         self._workspace_high = WORKSPACE_HIGH + np.array([0.0, 0.0, self.scene.reach_height])
         self.layout = LAYOUTS[scene]

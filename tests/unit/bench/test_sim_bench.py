@@ -21,7 +21,7 @@ def test_bench_sim_reports_every_scene_and_the_reference() -> None:
     assert set(result["ratio_to_reference"]) == scenes
     # the bound the scene's physics sets: an env's step does the physics and more
     assert set(result["physics_ratio_to_reference"]) == scenes
-    assert set(result["sleeping_ratio_to_reference"]) == scenes  # the option: blocks at rest sleep
+    assert set(result["awake_ratio_to_reference"]) == scenes  # every body awake, as the actors were trained
     assert len(result["reference_runs"]) == 4 and all(rate > 0 for rate in result["reference_runs"]), result  # one
     # before each scene and one after the last
     # the env's and the world's own work: each part of the whole it is timed beside, so at most 1 but for noise, which

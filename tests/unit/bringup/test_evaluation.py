@@ -118,10 +118,10 @@ def test_eval_refuses_unknown_agents_and_missing_actors(tmp_path, capsys) -> Non
 
 
 @pytest.mark.parametrize("args", [["--agents", "flat-semantic"], ["--via-ros"]])
-def test_eval_runs_sleeping_blocks_only_for_the_hierarchy_in_process(args: list[str], capsys) -> None:
+def test_eval_keeps_blocks_awake_only_for_the_hierarchy_in_process(args: list[str], capsys) -> None:
     with pytest.raises(SystemExit):
-        evaluation.main(["--tasks", "MC-2", "--sleep", *args])
-    assert "--sleep runs the hierarchical agent in process" in capsys.readouterr().err
+        evaluation.main(["--tasks", "MC-2", "--awake", *args])
+    assert "--awake runs the hierarchical agent in process" in capsys.readouterr().err
 
 
 def test_eval_runs_the_graph_in_one_process_only_through_the_graph(capsys) -> None:

@@ -48,12 +48,12 @@ def test_eval_subgoals_runs_the_expert_per_type_on_a_batch(capsys) -> None:
 
 
 def test_with_blocks_sleeping_an_episode_does_not_depend_on_the_one_before() -> None:
-    """``eval --sleep``: the agent keeps its world between episodes, and what slept at the end of one is no part of
+    """The agent keeps its world between episodes, and what slept at the end of one is no part of
     the state a reset sets; without clearing it, Tower-6 start 3,000,001 took 266 control steps after start
     3,000,000 and 330 on a new world (start 3,000,003: 600, a failure, against 209)."""
     from semgoal_bringup.experiments.episodes import make_agent
 
-    used = make_agent("hierarchical", "tabletop", sleep=True)
+    used = make_agent("hierarchical", "tabletop")
     used.run("Tower-6", 3_000_000)
     after = used.run("Tower-6", 3_000_001)
-    assert after == make_agent("hierarchical", "tabletop", sleep=True).run("Tower-6", 3_000_001)
+    assert after == make_agent("hierarchical", "tabletop").run("Tower-6", 3_000_001)

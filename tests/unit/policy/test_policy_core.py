@@ -266,15 +266,17 @@ def test_flat_agents_refuse_derived_features() -> None:
         make_env("flat-semantic", "desk_cleanup", ("bin_target",))
 
 
-def test_sleeping_blocks_are_the_hierarchys_option() -> None:
-    """`eval subgoals --sleep`: the sub-goal episodes' worlds let blocks at rest sleep; the flat baselines' task
-    envs refuse it rather than ignore it."""
+def test_blocks_kept_awake_are_the_hierarchys_option() -> None:
+    """The envs' blocks at rest sleep; `eval subgoals --awake` keeps the sub-goal episodes' blocks awake (as the
+    actors were trained), and the flat baselines' task envs refuse that rather than ignore it."""
     import mujoco
 
-    env = make_env("hierarchical", "three_blocks", sleep=True)
-    assert env.world.model.opt.enableflags & int(mujoco.mjtEnableBit.mjENBL_SLEEP)
-    with pytest.raises(ValueError, match="sleeping blocks are for the hierarchical agent only"):
-        make_env("flat-semantic", "three_blocks", sleep=True)
+    sleeping = int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    assert make_env("hierarchical", "three_blocks").world.model.opt.enableflags & sleeping
+    assert make_env("flat-semantic", "three_blocks").world.model.opt.enableflags & sleeping
+    assert not make_env("hierarchical", "three_blocks", sleep=False).world.model.opt.enableflags & sleeping
+    with pytest.raises(ValueError, match="blocks kept awake are for the hierarchical agent only"):
+        make_env("flat-semantic", "three_blocks", sleep=False)
 
 
 def test_lockstep_follows_the_decision_on_the_step_before_when_it_names_a_subgoal() -> None:

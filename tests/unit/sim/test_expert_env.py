@@ -203,8 +203,8 @@ PINNED_PUT_NEAR_STARTS = [  # (seed, sub-goal, grip xyz, block xyz), as eval-sub
     (2010000, "put_near(blue,green)", (1.381, 0.557, 0.547), (1.386, 0.557, 0.548)),
     (2010001, "put_near(blue,red,green)", (1.191, 0.736, 0.562), (1.183, 0.737, 0.529)),
     (2010002, "put_near(blue,red,not green)", (1.342, 0.749, 0.533), (1.342, 0.749, 0.532)),
-    (2010004, "put_near(blue,green,red)", (1.228, 0.644, 0.561), (1.228, 0.645, 0.544)),
-    (2010005, "put_near(green,red,not blue)", (1.234, 0.806, 0.544), (1.234, 0.806, 0.545)),
+    (2010004, "put_near(blue,green,red)", (1.228, 0.630, 0.553), (1.229, 0.630, 0.543)),
+    (2010005, "put_near(green,red,blue)", (1.428, 0.626, 0.549), (1.439, 0.625, 0.549)),
 ]
 
 

@@ -263,11 +263,11 @@ def test_a_block_is_not_put_into_a_hand_near_the_table_but_may_be_set_down_from_
     assert ok and "out of the robot's hand" in message
 
 
-def test_blocks_at_rest_sleep_where_asked_and_wake_when_moved_touched_or_reset() -> None:
-    """``sleep=True``: resting blocks leave the physics (the arm's tree never sleeps); a block teleported into the
+def test_blocks_at_rest_sleep_unless_kept_awake_and_wake_when_moved_touched_or_reset() -> None:
+    """Resting blocks leave the physics (the arm's tree never sleeps); a block teleported into the
     air wakes and falls, the expert still picks a sleeping block, and a reset after a history of sleeping gives the
     episode a new world gives (over whole episodes: ``test_tabletop_hierarchy.py``)."""
-    world = FetchWorld("desk_cleanup", 4, sleep=True)
+    world = FetchWorld("desk_cleanup", 4)
     positions, _ = TASKS["DC-4"].initial_state(5)
     first = world.reset(positions)
     for _ in range(20):
@@ -279,9 +279,9 @@ def test_blocks_at_rest_sleep_where_asked_and_wake_when_moved_touched_or_reset()
         world.step(np.zeros(4))
     assert abs(world.snapshot().block_positions[1][2] - first.block_positions[1][2]) < 0.005  # it fell back
     assert run_subgoal(world, SubGoal("pick", (world.blocks[0],)), max_steps=60)[0]
-    fresh = FetchWorld("desk_cleanup", 4, sleep=True)
+    fresh = FetchWorld("desk_cleanup", 4)
     for each in (world, fresh):  # the same episode after a history of sleeping and waking, and on a new world
         each.reset(positions)
         run_subgoal(each, SubGoal("pick", (each.blocks[2],)), max_steps=40)
     np.testing.assert_array_equal(world.snapshot().block_positions, fresh.snapshot().block_positions)
-    assert not FetchWorld("desk_cleanup", 4).model.opt.enableflags & int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+    assert not FetchWorld("desk_cleanup", 4, sleep=False).model.opt.enableflags & int(mujoco.mjtEnableBit.mjENBL_SLEEP)

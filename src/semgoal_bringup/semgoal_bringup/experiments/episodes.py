@@ -134,7 +134,7 @@ class Person(Protocol):
 class HierarchicalAgent:
     """Planner executive + one scene's sub-goal actor, on the benchmark's tasks or on any goal."""
 
-    def __init__(self, scene: str, actor_dir: Path, arms: int = 1, sleep: bool = False) -> None:
+    def __init__(self, scene: str, actor_dir: Path, arms: int = 1, sleep: bool = True) -> None:
         self.scene = scene
         self.sleep = sleep
         """Blocks at rest sleep in its worlds (:func:`semgoal_sim.scene.build_model`)."""
@@ -266,9 +266,9 @@ def _scene_task(task_name: str, scene: str) -> Task:
 
 
 def make_agent(agent: str, scene: str, actor_dir: Path | None = None, arms: int = 1,
-               sleep: bool = False) -> HierarchicalAgent | FlatAgent:
+               sleep: bool = True) -> HierarchicalAgent | FlatAgent:
     """The runner for ``agent`` on ``scene`` (the hierarchical one with ``arms`` arms, its blocks at rest sleeping
-    with ``sleep``); ``actor_dir`` defaults to the shipped actor."""
+    unless ``sleep`` is False); ``actor_dir`` defaults to the shipped actor."""
     spec = get_agent(agent)  # KeyError with the valid names
     actor_dir = actor_dir or actor_io.models_dir() / spec.model_name(scene)
     if agent != "hierarchical":

@@ -263,10 +263,10 @@ def actor_dirs(agent: str, scene: str, seeds: int, models_dir: Path) -> list[Pat
 
 
 def evaluate_task(agent: str, task_name: str, episodes: range, seed: int, seeds: int, models_dir: Path,
-                  linger: int = 0, sleep: bool = False) -> Row:
+                  linger: int = 0, sleep: bool = True) -> Row:
     """In-process episodes (their indices: episode i starts from task seed ``seed + i``) of one agent on one task,
     for every available training seed (one job); ``linger``: control steps after a success before the goal is
-    checked again (the hierarchical agent); ``sleep``: its worlds' blocks at rest sleep."""
+    checked again (the hierarchical agent); ``sleep``: its worlds' blocks at rest sleep (False: awake)."""
     import torch
 
     from semgoal_bringup.experiments.episodes import make_agent
@@ -306,7 +306,7 @@ def merge(rows: list[Row]) -> list[Row]:
 
 def evaluate_in_process(agents: list[str], tasks: list[str], episodes: int, seed: int, seeds: int, models_dir: Path,
                         jobs: int, executor: str = "local", chunk: int = 0, linger: int = 0,
-                        sleep: bool = False) -> list[Row]:
+                        sleep: bool = True) -> list[Row]:
     """Every (agent, task, chunk of ``chunk`` episodes; 0: all) as a job on ``executor`` with ``jobs`` workers.
     Each job is seeded by its episodes' indices: the rows do not depend on the executor, the workers or the chunks."""
     size = chunk or episodes
@@ -508,8 +508,8 @@ def main(argv: list[str]) -> int:
                         help="local (a process pool), dask (a Dask LocalCluster on 127.0.0.1) or dask:ADDRESS (a running "
                              "Dask scheduler)")
     parser.add_argument("--chunk", type=natural, default=10, help="episodes per job (per agent and task; 0: all in one)")
-    parser.add_argument("--sleep", action="store_true", help="the hierarchical agent's blocks at rest sleep (MuJoCo's "
-                        "sleeping islands; off as the actors were trained): in process only")
+    parser.add_argument("--awake", action="store_true", help="the hierarchical agent's blocks never sleep (MuJoCo's "
+                        "sleeping islands off, as the actors were trained): in process only")
     parser.add_argument("--linger", type=natural, default=0, help="after each success, this many control steps of the idle "
                         "arm, then whether the goal still holds at rest (linger_holds; the hierarchical agent in process)")
     parser.add_argument("--misses", action="store_true", help="list each start missed in process and why (for a block "
@@ -533,14 +533,14 @@ def main(argv: list[str]) -> int:
     unknown = [a for a in agents if a not in AGENT_NAMES]
     if unknown or not tasks:
         parser.error(f"need tasks and agents from {', '.join(AGENT_NAMES)} (got {','.join(agents)!r})")
-    if args.sleep and (args.via_ros or agents != ["hierarchical"]):
-        parser.error("--sleep runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
+    if args.awake and (args.via_ros or agents != ["hierarchical"]):
+        parser.error("--awake runs the hierarchical agent in process: give --agents hierarchical, without --via-ros")
     from semgoal_policy import actor as actor_io
 
     models_dir = args.models or actor_io.models_dir()
     try:
         rows = evaluate_in_process(agents, tasks, args.episodes, args.seed, args.seeds, models_dir, args.jobs,
-                                   args.executor, args.chunk, args.linger, args.sleep)
+                                   args.executor, args.chunk, args.linger, not args.awake)
     except FileNotFoundError as error:
         print(f"semgoal eval: {error}", file=sys.stderr)
         return 2

@@ -17,9 +17,9 @@ from semgoal_core.vocabulary import SCENES, BinGeometry
 
 def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin: float = 0.0,
              missed_put_share: float = 0.0, tower_share: float | None = None, max_blocks: int | None = None,
-             sleep: bool = False, shown_bin: BinGeometry | None = None):
-    """The env ``agent`` learns in: sub-goal episodes for the hierarchy (their blocks at rest sleeping with
-    ``sleep``; ``shown_bin``: :class:`~semgoal_sim.env.SubgoalEnv`'s), whole tasks for the flat baselines (semantic
+             sleep: bool = True, shown_bin: BinGeometry | None = None):
+    """The env ``agent`` learns in: sub-goal episodes for the hierarchy (their blocks at rest sleeping unless
+    ``sleep`` is False; ``shown_bin``: :class:`~semgoal_sim.env.SubgoalEnv`'s), whole tasks for the flat baselines (semantic
     goals, or block positions for flat-continuous)."""
     from semgoal_policy.agents import get_agent
     from semgoal_sim.env import SubgoalEnv
@@ -31,8 +31,8 @@ def make_env(agent: str, scene: str, derived: tuple[str, ...] = (), spawn_margin
                           tower_share=tower_share, max_blocks=max_blocks, sleep=sleep, shown_bin=shown_bin)
     if derived:
         raise ValueError(f"derived features ({', '.join(derived)}) are for the hierarchical agent only")
-    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None or sleep or shown_bin:
-        raise ValueError("a spawn margin, missed puts, a tower share, a block limit and sleeping blocks are for the "
+    if spawn_margin or missed_put_share or tower_share is not None or max_blocks is not None or not sleep or shown_bin:
+        raise ValueError("a spawn margin, missed puts, a tower share, a block limit and blocks kept awake are for the "
                          "hierarchical agent only (task starts are the paper's)")
     return TaskEnv(scene, spec.goal)
 
@@ -139,8 +139,8 @@ def eval_subgoals_main(argv: list[str]) -> int:
                              "and with the same sampled noise as in the whole evaluation")
     parser.add_argument("--misses", action="store_true",
                         help="also list every missed episode: its seed, sub-goal and why it is not achieved at rest at the end")
-    parser.add_argument("--sleep", action="store_true",
-                        help="blocks at rest sleep (MuJoCo's sleeping islands; off as the actors were trained)")
+    parser.add_argument("--awake", action="store_true",
+                        help="blocks never sleep (MuJoCo's sleeping islands off, as the actors were trained)")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args(argv)
     spec = get_agent("hierarchical")
@@ -159,7 +159,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
     except (FileNotFoundError, ValueError) as error:  # no actor there, or one of another scene
         parser.error(str(error))
     shown_bin = features.shown_bin(args.scene, meta["layout"]["scene"])
-    envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=args.sleep, shown_bin=shown_bin)
+    envs = [make_env("hierarchical", args.scene, derived_features(meta), sleep=not args.awake, shown_bin=shown_bin)
             for _ in range(args.envs)]
     for env in envs:
         env.max_steps = args.horizon
@@ -191,7 +191,7 @@ def eval_subgoals_main(argv: list[str]) -> int:
         noise = np.random.default_rng([args.seed, k])
         rates |= success_by_kind(envs, act, [kind], args.episodes, args.seed + KIND_SEED_STRIDE * k,
                                  on_miss=record if args.misses else None)
-    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon, "sleep": args.sleep,
+    result = {"scene": args.scene, "episodes": args.episodes, "seed": args.seed, "horizon": args.horizon, "sleep": not args.awake,
               "action_mode": args.action_mode, "shields": args.shields, "per_subgoal": rates,
               "overall": sum(rates.values()) / len(rates)} | ({"misses": misses} if args.misses else {})
     if not args.json:
